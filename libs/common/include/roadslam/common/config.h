@@ -1,0 +1,31 @@
+#pragma once
+/// \file config.h
+/// Ini helpers on top of MRPT's config classes: every component's Params loads from and saves to a
+/// section with these, so a missing file or a malformed value is reported with the file and key.
+
+#include <mrpt/config/CConfigFileBase.h>
+
+#include <memory>
+#include <string>
+
+namespace roadslam {
+
+/// Opens an ini file; throws std::runtime_error naming the file when it is missing or unreadable.
+std::unique_ptr<mrpt::config::CConfigFileBase> loadIniFile(const std::string& path);
+
+/// Reads a double; throws naming section/key (and the source) when the value is not a number.
+double readDouble(const mrpt::config::CConfigFileBase& cfg, const std::string& section,
+                  const std::string& key, double default_value);
+int readInt(const mrpt::config::CConfigFileBase& cfg, const std::string& section,
+            const std::string& key, int default_value);
+bool readBool(const mrpt::config::CConfigFileBase& cfg, const std::string& section,
+              const std::string& key, bool default_value);
+std::string readString(const mrpt::config::CConfigFileBase& cfg, const std::string& section,
+                       const std::string& key, const std::string& default_value);
+
+/// Keys present in \p section that are not in \p known: reported so a typo in an ini never goes unseen.
+std::vector<std::string> unknownKeys(const mrpt::config::CConfigFileBase& cfg,
+                                     const std::string& section,
+                                     const std::vector<std::string>& known);
+
+}  // namespace roadslam

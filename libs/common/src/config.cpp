@@ -1,0 +1,86 @@
+#include "roadslam/common/config.h"
+
+#include <mrpt/config/CConfigFile.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdlib>
+#include <fstream>
+#include <stdexcept>
+
+namespace roadslam {
+namespace {
+std::string where(const mrpt::config::CConfigFileBase& cfg, const std::string& section,
+                  const std::string& key) {
+  std::string src;
+  if (auto f = dynamic_cast<const mrpt::config::CConfigFile*>(&cfg)) src = f->getAssociatedFile() + ": ";
+  return src + "[" + section + "] " + key;
+}
+std::string raw(const mrpt::config::CConfigFileBase& cfg, const std::string& section,
+                const std::string& key) {
+  return cfg.read_string(section, key, "", false);
+}
+}  // namespace
+
+std::unique_ptr<mrpt::config::CConfigFileBase> loadIniFile(const std::string& path) {
+  std::ifstream probe(path);
+  if (!probe) throw std::runtime_error("cannot open config file '" + path + "'");
+  return std::make_unique<mrpt::config::CConfigFile>(path);
+}
+
+double readDouble(const mrpt::config::CConfigFileBase& cfg, const std::string& section,
+                  const std::string& key, double default_value) {
+  const std::string s = raw(cfg, section, key);
+  if (s.empty()) return default_value;
+  char* end = nullptr;
+  errno = 0;
+  const double v = std::strtod(s.c_str(), &end);
+  while (end && (*end == ' ' || *end == '\t')) ++end;
+  if (end == s.c_str() || (end && *end != '\0') || errno == ERANGE) {
+    throw std::runtime_error(where(cfg, section, key) + " = '" + s + "' is not a number");
+  }
+  return v;
+}
+
+int readInt(const mrpt::config::CConfigFileBase& cfg, const std::string& section,
+            const std::string& key, int default_value) {
+  const std::string s = raw(cfg, section, key);
+  if (s.empty()) return default_value;
+  char* end = nullptr;
+  errno = 0;
+  const long v = std::strtol(s.c_str(), &end, 10);
+  while (end && (*end == ' ' || *end == '\t')) ++end;
+  if (end == s.c_str() || (end && *end != '\0') || errno == ERANGE) {
+    throw std::runtime_error(where(cfg, section, key) + " = '" + s + "' is not an integer");
+  }
+  return static_cast<int>(v);
+}
+
+bool readBool(const mrpt::config::CConfigFileBase& cfg, const std::string& section,
+              const std::string& key, bool default_value) {
+  std::string s = raw(cfg, section, key);
+  if (s.empty()) return default_value;
+  std::transform(s.begin(), s.end(), s.begin(), ::tolower);
+  if (s == "1" || s == "true" || s == "yes" || s == "on") return true;
+  if (s == "0" || s == "false" || s == "no" || s == "off") return false;
+  throw std::runtime_error(where(cfg, section, key) + " = '" + s + "' is not a boolean");
+}
+
+std::string readString(const mrpt::config::CConfigFileBase& cfg, const std::string& section,
+                       const std::string& key, const std::string& default_value) {
+  const std::string s = raw(cfg, section, key);
+  return s.empty() ? default_value : s;
+}
+
+std::vector<std::string> unknownKeys(const mrpt::config::CConfigFileBase& cfg,
+                                     const std::string& section,
+                                     const std::vector<std::string>& known) {
+  std::vector<std::string> keys, out;
+  cfg.getAllKeys(section, keys);
+  for (const auto& k : keys) {
+    if (std::find(known.begin(), known.end(), k) == known.end()) out.push_back(k);
+  }
+  return out;
+}
+
+}  // namespace roadslam
