@@ -8,7 +8,7 @@
 #include <memory>
 #include <string>
 
-namespace roadslam::sources {
+namespace roadslam::pcap {
 
 class PcapWriter {
  public:
@@ -33,4 +33,4 @@ class PcapWriter {
   std::size_t packets_ = 0;
 };
 
-}  // namespace roadslam::sources
+}  // namespace roadslam::pcap
