@@ -24,6 +24,8 @@ constexpr int kChannelsPerBlock = 32;
 constexpr uint16_t kBlockFlag = 0xEEFF;
 constexpr uint16_t kDefaultDataPort = 2368;
 constexpr uint16_t kDefaultPositionPort = 8308;
+constexpr std::size_t kPositionTimestampOffset = 198;  ///< u32 [us past the hour] in a position packet
+constexpr std::size_t kPositionNmeaOffset = 206;       ///< NUL-padded NMEA sentence in a position packet
 
 // VLP-16 firing timing (manual, section 9.5): one laser every 2.304 us, a 16-laser sequence
 // (with recharge) every 55.296 us, so one packet spans 24 sequences = 1327.104 us (754 packets/s).
