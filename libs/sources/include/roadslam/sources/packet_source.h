@@ -1,0 +1,74 @@
+#pragma once
+/// \file packet_source.h
+/// One interface for every origin of raw Velodyne UDP payloads (live UDP, pcap capture, MRPT
+/// rawlog): downstream code (SweepSource, the rawlog writer, the apps) never knows whether data is
+/// live or recorded (STYLE.md rule 3, MOLA's input modules).
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "roadslam/velodyne/packet.h"
+
+namespace roadslam::sources {
+
+/// Counters every backend keeps; problems in the per-packet path are counted here, never thrown.
+struct SourceStats {
+  uint64_t packets = 0;            ///< payloads returned by next() [count]
+  uint64_t data_packets = 0;       ///< 1206-byte payloads on the data port [count]
+  uint64_t position_packets = 0;   ///< 512-byte payloads on the position port (or GPS records) [count]
+  uint64_t malformed_packets = 0;  ///< on a Velodyne port with the wrong size [count], not returned
+  uint64_t skipped_packets = 0;    ///< non-UDP / other-port / filtered traffic [count], not returned
+  uint64_t missing_packets = 0;    ///< gaps in the sensor's packet timestamps (see GapCounter) [count]
+  uint64_t kernel_drops = 0;       ///< datagrams dropped by a full socket buffer (SO_RXQ_OVFL) [count]
+  double first_stamp_s = 0;        ///< stamp of the first returned packet [s]
+  double last_stamp_s = 0;         ///< stamp of the last returned packet [s]
+};
+
+/// Ports that identify Velodyne traffic (VLP-16 manual 63-9243, section 9).
+struct PortConfig {
+  uint16_t data_port = velodyne::kDefaultDataPort;          ///< [UDP port]
+  uint16_t position_port = velodyne::kDefaultPositionPort;  ///< [UDP port]
+};
+
+/// A stream of raw UDP payloads, in arrival order.
+class PacketSource {
+ public:
+  virtual ~PacketSource() = default;
+  /// The next valid data or position packet. std::nullopt: end of a recording, or (live) nothing
+  /// arrived within the backend's poll timeout; tell them apart with finished().
+  virtual std::optional<velodyne::RawPacket> next() = 0;
+  /// True once a recording is exhausted (a live source never finishes).
+  virtual bool finished() const = 0;
+  virtual const SourceStats& stats() const = 0;
+  /// Short human-readable origin, e.g. "pcap:/path/file.pcap" or "udp:0.0.0.0:2368".
+  virtual std::string describe() const = 0;
+};
+
+/// Counts packets missing from a data stream from the sensor's own timestamps (bytes 1200-1203, us
+/// past the hour): a step larger than 1.5 expected periods means round(step/period)-1 packets lost.
+/// Period: 1327.104 us for VLP-16 single return (24 sequences x 55.296 us), half of it in dual
+/// return mode (each firing fills two blocks), unless \p forced_period_s > 0.
+class GapCounter {
+ public:
+  explicit GapCounter(double forced_period_s = 0) : forced_period_s_(forced_period_s) {}
+  /// Feeds one 1206-byte data payload; returns the packets missing just before it [count].
+  uint64_t feed(const uint8_t* payload);
+  uint64_t missing() const { return missing_; }
+
+ private:
+  double forced_period_s_;
+  int64_t last_us_ = -1;
+  uint64_t missing_ = 0;
+};
+
+/// Classification of one UDP payload by port and size, shared by every backend.
+enum class PacketKind { Data, Position, Malformed, Other };
+PacketKind classify(const PortConfig& ports, uint16_t dst_port, std::size_t size);
+
+/// Applies classify() and updates \p stats (and \p gaps for data packets); returns true when the
+/// packet is to be passed on to the caller.
+bool accountPacket(const PortConfig& ports, const velodyne::RawPacket& pkt, SourceStats& stats,
+                   GapCounter& gaps);
+
+}  // namespace roadslam::sources

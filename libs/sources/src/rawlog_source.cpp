@@ -1,0 +1,112 @@
+#include "roadslam/sources/rawlog_source.h"
+
+#include <mrpt/core/Clock.h>
+#include <mrpt/io/CFileGZInputStream.h>
+#include <mrpt/obs/CObservationGPS.h>
+#include <mrpt/obs/CObservationVelodyneScan.h>
+#include <mrpt/obs/CSensoryFrame.h>
+#include <mrpt/serialization/CArchive.h>
+#include <mrpt/system/filesystem.h>
+
+#include <cstring>
+#include <stdexcept>
+
+namespace roadslam::sources {
+
+using mrpt::obs::CObservationVelodyneScan;
+
+namespace {
+constexpr double kHour_s = 3600.0;
+constexpr double kKnot_mps = 1852.0 / 3600.0;
+
+GpsFix fixFromObservation(const mrpt::obs::CObservationGPS& o) {
+  GpsFix fix;
+  const auto t = o.originalReceivedTimestamp != INVALID_TIMESTAMP ? o.originalReceivedTimestamp
+                                                                   : o.timestamp;
+  fix.stamp_s = mrpt::Clock::toDouble(t);
+  const auto& f = o.getMsgByClass<mrpt::obs::gnss::Message_NMEA_RMC>().fields;
+  fix.utc_s = f.UTCTime.hour * 3600.0 + f.UTCTime.minute * 60.0 + f.UTCTime.sec;
+  fix.valid = f.validity_char == 'A';
+  fix.latitude_deg = f.latitude_degrees;
+  fix.longitude_deg = f.longitude_degrees;
+  fix.speed_mps = f.speed_knots * kKnot_mps;
+  fix.course_deg = f.direction_degrees;
+  return fix;
+}
+}  // namespace
+
+struct RawlogPacketSource::Impl {
+  mrpt::io::CFileGZInputStream in;
+  std::deque<mrpt::obs::CObservation::Ptr> pending;  // observations of a sensory frame
+};
+
+RawlogPacketSource::RawlogPacketSource(const std::string& path, const PortConfig& ports)
+    : impl_(std::make_unique<Impl>()), path_(path), ports_(ports) {
+  if (!mrpt::system::fileExists(path))
+    throw std::runtime_error("rawlog '" + path + "' does not exist");
+  if (!impl_->in.open(path)) throw std::runtime_error("cannot open rawlog '" + path + "'");
+}
+
+RawlogPacketSource::~RawlogPacketSource() = default;
+
+// Reads the next record; returns false at end of file. A record that fails to deserialize ends
+// the replay (the stream position is lost), counted in otherRecords().
+bool RawlogPacketSource::readMore() {
+  mrpt::obs::CObservation::Ptr obs;
+  if (!impl_->pending.empty()) {
+    obs = impl_->pending.front();
+    impl_->pending.pop_front();
+  } else {
+    mrpt::serialization::CSerializable::Ptr rec;
+    try {
+      rec = mrpt::serialization::archiveFrom(impl_->in).ReadObject();
+    } catch (const mrpt::serialization::CExceptionEOF&) {
+      return false;
+    } catch (const std::exception&) {
+      ++other_;
+      return false;
+    }
+    if (auto sf = std::dynamic_pointer_cast<mrpt::obs::CSensoryFrame>(rec)) {
+      for (const auto& o : *sf) impl_->pending.push_back(o);
+      return true;
+    }
+    obs = std::dynamic_pointer_cast<mrpt::obs::CObservation>(rec);
+  }
+  if (auto v = std::dynamic_pointer_cast<CObservationVelodyneScan>(obs)) {
+    ++scans_;
+    const auto t0 = v->originalReceivedTimestamp != INVALID_TIMESTAMP ? v->originalReceivedTimestamp
+                                                                       : v->timestamp;
+    const double stamp0 = mrpt::Clock::toDouble(t0);
+    const double counter0 = v->scan_packets.empty() ? 0 : v->scan_packets[0].gps_timestamp() * 1e-6;
+    for (const auto& raw : v->scan_packets) {
+      velodyne::RawPacket pkt;
+      double dt = raw.gps_timestamp() * 1e-6 - counter0;
+      if (dt < -kHour_s / 2) dt += kHour_s;  // sensor counter wraps at the top of the hour
+      pkt.stamp_s = stamp0 + dt;
+      pkt.dst_port = ports_.data_port;
+      const auto* b = reinterpret_cast<const uint8_t*>(&raw);
+      pkt.payload.assign(b, b + velodyne::kDataPacketSize);
+      if (accountPacket(ports_, pkt, stats_, gaps_)) queue_.push_back(std::move(pkt));
+    }
+  } else if (auto g = std::dynamic_pointer_cast<mrpt::obs::CObservationGPS>(obs)) {
+    if (g->hasMsgClass<mrpt::obs::gnss::Message_NMEA_RMC>()) {
+      gps_.push_back(fixFromObservation(*g));
+      ++stats_.position_packets;
+    } else {
+      ++stats_.skipped_packets;
+    }
+  } else {
+    ++other_;
+  }
+  return true;
+}
+
+std::optional<velodyne::RawPacket> RawlogPacketSource::next() {
+  while (queue_.empty() && !finished_) finished_ = !readMore();
+  if (queue_.empty()) return std::nullopt;
+  velodyne::RawPacket p = std::move(queue_.front());
+  queue_.pop_front();
+  return p;
+}
+
+}  // namespace roadslam::sources

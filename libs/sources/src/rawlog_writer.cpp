@@ -1,0 +1,143 @@
+#include "roadslam/sources/rawlog_writer.h"
+
+#include <mrpt/core/Clock.h>
+#include <mrpt/hwdrivers/CGPSInterface.h>
+#include <mrpt/io/CFileGZOutputStream.h>
+#include <mrpt/obs/CObservationGPS.h>
+#include <mrpt/obs/CObservationVelodyneScan.h>
+#include <mrpt/serialization/CArchive.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <stdexcept>
+
+#include "roadslam/common/atomic_file.h"
+#include "roadslam/common/config.h"
+#include "roadslam/sources/gps_fix.h"
+
+namespace roadslam::sources {
+
+using mrpt::obs::CObservationVelodyneScan;
+static_assert(sizeof(CObservationVelodyneScan::TVelodyneRawPacket) == velodyne::kDataPacketSize,
+              "MRPT's packed packet struct must match the 1206-byte UDP payload");
+
+namespace {
+constexpr double kDeg = M_PI / 180.0;
+}
+
+void RawlogWriter::Params::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
+                                              const std::string& s) {
+  sensor_label = readString(c, s, "sensor_label", sensor_label);
+  gps_label = readString(c, s, "gps_label", gps_label);
+  model = readString(c, s, "model", model);
+  calibration_file = readString(c, s, "calibration_file", calibration_file);
+  min_range_m = readDouble(c, s, "min_range_m", min_range_m);
+  max_range_m = readDouble(c, s, "max_range_m", max_range_m);
+  x_m = readDouble(c, s, "x_m", x_m);
+  y_m = readDouble(c, s, "y_m", y_m);
+  z_m = readDouble(c, s, "z_m", z_m);
+  yaw_rad = readDouble(c, s, "yaw_deg", yaw_rad / kDeg) * kDeg;
+  pitch_rad = readDouble(c, s, "pitch_deg", pitch_rad / kDeg) * kDeg;
+  roll_rad = readDouble(c, s, "roll_deg", roll_rad / kDeg) * kDeg;
+}
+
+void RawlogWriter::Params::saveToConfigFile(mrpt::config::CConfigFileBase& c,
+                                            const std::string& s) const {
+  c.write(s, "sensor_label", sensor_label);
+  c.write(s, "gps_label", gps_label);
+  c.write(s, "model", model);
+  c.write(s, "calibration_file", calibration_file);
+  c.write(s, "min_range_m", min_range_m);
+  c.write(s, "max_range_m", max_range_m);
+  c.write(s, "x_m", x_m);
+  c.write(s, "y_m", y_m);
+  c.write(s, "z_m", z_m);
+  c.write(s, "yaw_deg", yaw_rad / kDeg);
+  c.write(s, "pitch_deg", pitch_rad / kDeg);
+  c.write(s, "roll_deg", roll_rad / kDeg);
+}
+
+struct RawlogWriter::Impl {
+  std::string path, tmp;
+  Params params;
+  mrpt::obs::VelodyneCalibration calibration;
+  mrpt::io::CFileGZOutputStream out;
+  bool closed = false;
+};
+
+RawlogWriter::RawlogWriter(const std::string& path, const Params& params)
+    : impl_(std::make_unique<Impl>()) {
+  impl_->path = path;
+  impl_->tmp = tempPathFor(path);
+  impl_->params = params;
+  if (!params.calibration_file.empty()) {
+    if (!impl_->calibration.loadFromXMLFile(params.calibration_file))
+      throw std::runtime_error("cannot load Velodyne calibration XML '" + params.calibration_file + "'");
+  } else {
+    impl_->calibration = mrpt::obs::VelodyneCalibration::LoadDefaultCalibration(params.model);
+    if (impl_->calibration.empty())
+      throw std::runtime_error("no default Velodyne calibration for model '" + params.model + "'");
+  }
+  if (!impl_->out.open(impl_->tmp, 1))
+    throw std::runtime_error("cannot create rawlog '" + path + "' (temporary '" + impl_->tmp + "')");
+}
+
+RawlogWriter::~RawlogWriter() {
+  if (impl_ && !impl_->closed) {
+    impl_->out.close();
+    std::remove(impl_->tmp.c_str());
+  }
+}
+
+void RawlogWriter::writeSweep(const std::vector<velodyne::RawPacket>& data_packets) {
+  auto obs = CObservationVelodyneScan::Create();
+  const Params& p = impl_->params;
+  obs->sensorLabel = p.sensor_label;
+  obs->sensorPose = mrpt::poses::CPose3D(p.x_m, p.y_m, p.z_m, p.yaw_rad, p.pitch_rad, p.roll_rad);
+  obs->minRange = p.min_range_m;
+  obs->maxRange = p.max_range_m;
+  obs->calibration = impl_->calibration;
+  obs->scan_packets.reserve(data_packets.size());
+  for (const auto& pkt : data_packets) {
+    if (pkt.payload.size() != velodyne::kDataPacketSize) {
+      ++skipped_;
+      continue;
+    }
+    if (obs->scan_packets.empty()) {
+      obs->timestamp = mrpt::Clock::fromDouble(pkt.stamp_s);
+      obs->originalReceivedTimestamp = obs->timestamp;
+    }
+    obs->scan_packets.emplace_back();
+    std::memcpy(&obs->scan_packets.back(), pkt.payload.data(), velodyne::kDataPacketSize);
+  }
+  if (obs->scan_packets.empty()) return;
+  mrpt::serialization::archiveFrom(impl_->out) << *obs;
+  packets_ += obs->scan_packets.size();
+  ++sweeps_;
+}
+
+bool RawlogWriter::writePosition(const velodyne::RawPacket& position_packet) {
+  const std::string nmea = nmeaOfPositionPacket(position_packet);
+  mrpt::obs::CObservationGPS obs;
+  if (nmea.size() < 6 || nmea.compare(3, 3, "RMC") != 0 ||
+      !mrpt::hwdrivers::CGPSInterface::parse_NMEA(nmea, obs)) {
+    ++skipped_;
+    return false;
+  }
+  obs.sensorLabel = impl_->params.gps_label;
+  obs.timestamp = mrpt::Clock::fromDouble(position_packet.stamp_s);
+  obs.originalReceivedTimestamp = obs.timestamp;
+  mrpt::serialization::archiveFrom(impl_->out) << obs;
+  ++gps_;
+  return true;
+}
+
+void RawlogWriter::close() {
+  if (impl_->closed) return;
+  impl_->out.close();
+  impl_->closed = true;
+  commitTempFile(impl_->tmp, impl_->path);
+}
+
+}  // namespace roadslam::sources

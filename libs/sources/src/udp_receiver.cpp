@@ -1,0 +1,169 @@
+#include "roadslam/sources/udp_receiver.h"
+
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <stdexcept>
+#include <vector>
+
+#include "roadslam/common/config.h"
+
+namespace roadslam::sources {
+namespace {
+
+uint32_t parseIpv4(const std::string& text, const char* what) {
+  if (text.empty()) return 0;
+  in_addr a{};
+  if (inet_pton(AF_INET, text.c_str(), &a) != 1)
+    throw std::runtime_error(std::string("UdpReceiver: invalid IPv4 address for ") + what + ": '" +
+                             text + "'");
+  return ntohl(a.s_addr);
+}
+
+// Binds one socket; returns the fd and writes the port the kernel actually assigned.
+int openSocket(uint32_t bind_ip, uint16_t port, int rcvbuf, int& granted, uint16_t& bound_port) {
+  const int fd = socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+  if (fd < 0) throw std::runtime_error(std::string("UdpReceiver: socket(): ") + strerror(errno));
+  const int one = 1;
+  setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
+  setsockopt(fd, SOL_SOCKET, SO_TIMESTAMPNS, &one, sizeof one);
+  setsockopt(fd, SOL_SOCKET, SO_RXQ_OVFL, &one, sizeof one);
+  setsockopt(fd, SOL_SOCKET, SO_RCVBUF, &rcvbuf, sizeof rcvbuf);
+  socklen_t len = sizeof granted;
+  getsockopt(fd, SOL_SOCKET, SO_RCVBUF, &granted, &len);
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_port = htons(port);
+  addr.sin_addr.s_addr = htonl(bind_ip);
+  if (bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0) {
+    const std::string err = strerror(errno);
+    close(fd);
+    throw std::runtime_error("UdpReceiver: cannot bind UDP port " + std::to_string(port) + ": " + err);
+  }
+  len = sizeof addr;
+  getsockname(fd, reinterpret_cast<sockaddr*>(&addr), &len);
+  bound_port = ntohs(addr.sin_port);
+  return fd;
+}
+
+}  // namespace
+
+void UdpReceiver::Params::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
+                                             const std::string& s) {
+  ports.data_port = uint16_t(readInt(cfg, s, "data_port", ports.data_port));
+  ports.position_port = uint16_t(readInt(cfg, s, "position_port", ports.position_port));
+  bind_address = readString(cfg, s, "bind_address", bind_address);
+  source_filter = readString(cfg, s, "source_filter", source_filter);
+  rcvbuf_bytes = readInt(cfg, s, "rcvbuf_bytes", rcvbuf_bytes);
+  batch_size = readInt(cfg, s, "batch_size", batch_size);
+  poll_timeout_s = readDouble(cfg, s, "poll_timeout_ms", poll_timeout_s * 1e3) * 1e-3;
+  packet_period_s = readDouble(cfg, s, "packet_period_us", packet_period_s * 1e6) * 1e-6;
+}
+
+void UdpReceiver::Params::saveToConfigFile(mrpt::config::CConfigFileBase& cfg,
+                                           const std::string& s) const {
+  cfg.write(s, "data_port", int(ports.data_port));
+  cfg.write(s, "position_port", int(ports.position_port));
+  cfg.write(s, "bind_address", bind_address);
+  cfg.write(s, "source_filter", source_filter);
+  cfg.write(s, "rcvbuf_bytes", rcvbuf_bytes);
+  cfg.write(s, "batch_size", batch_size);
+  cfg.write(s, "poll_timeout_ms", poll_timeout_s * 1e3);
+  cfg.write(s, "packet_period_us", packet_period_s * 1e6);
+}
+
+UdpReceiver::UdpReceiver(const Params& p) : params_(p), gaps_(p.packet_period_s) {
+  const uint32_t bind_ip = parseIpv4(p.bind_address, "bind_address");
+  source_ip_ = parseIpv4(p.source_filter, "source_filter");
+  if (p.batch_size < 1) throw std::runtime_error("UdpReceiver: batch_size must be >= 1");
+  fds_[0] = openSocket(bind_ip, p.ports.data_port, p.rcvbuf_bytes, granted_rcvbuf_, bound_data_port_);
+  int granted_pos = 0;
+  try {
+    fds_[1] = openSocket(bind_ip, p.ports.position_port, p.rcvbuf_bytes, granted_pos,
+                         bound_position_port_);
+  } catch (...) {
+    close(fds_[0]);
+    throw;
+  }
+  params_.ports = {bound_data_port_, bound_position_port_};
+}
+
+UdpReceiver::~UdpReceiver() {
+  for (int fd : fds_)
+    if (fd >= 0) close(fd);
+}
+
+std::string UdpReceiver::describe() const {
+  const std::string a = params_.bind_address.empty() ? "0.0.0.0" : params_.bind_address;
+  return "udp:" + a + ":" + std::to_string(bound_data_port_) + "+" +
+         std::to_string(bound_position_port_);
+}
+
+void UdpReceiver::receiveBatch(int fd, uint16_t port, uint32_t& last_overflow) {
+  const std::size_t n = std::size_t(params_.batch_size);
+  constexpr std::size_t kBuf = 2048;  // > 1206: oversize datagrams are seen (and counted), not cut
+  constexpr std::size_t kCtl = CMSG_SPACE(sizeof(timespec)) + CMSG_SPACE(sizeof(uint32_t)) + 64;
+  std::vector<uint8_t> bufs(n * kBuf), ctl(n * kCtl);
+  std::vector<iovec> iov(n);
+  std::vector<mmsghdr> msgs(n);
+  std::vector<sockaddr_in> from(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    iov[i] = {bufs.data() + i * kBuf, kBuf};
+    msgs[i].msg_hdr = {};
+    msgs[i].msg_hdr.msg_iov = &iov[i];
+    msgs[i].msg_hdr.msg_iovlen = 1;
+    msgs[i].msg_hdr.msg_control = ctl.data() + i * kCtl;
+    msgs[i].msg_hdr.msg_controllen = kCtl;
+    msgs[i].msg_hdr.msg_name = &from[i];
+    msgs[i].msg_hdr.msg_namelen = sizeof(sockaddr_in);
+  }
+  const int got = recvmmsg(fd, msgs.data(), unsigned(n), MSG_DONTWAIT, nullptr);
+  for (int i = 0; i < got; ++i) {
+    velodyne::RawPacket pkt;
+    pkt.dst_port = port;
+    pkt.src_ip = ntohl(from[i].sin_addr.s_addr);
+    for (cmsghdr* c = CMSG_FIRSTHDR(&msgs[i].msg_hdr); c; c = CMSG_NXTHDR(&msgs[i].msg_hdr, c)) {
+      if (c->cmsg_level != SOL_SOCKET) continue;
+      if (c->cmsg_type == SCM_TIMESTAMPNS) {
+        timespec ts;
+        std::memcpy(&ts, CMSG_DATA(c), sizeof ts);
+        pkt.stamp_s = double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+      } else if (c->cmsg_type == SO_RXQ_OVFL) {
+        uint32_t drops;  // cumulative count of the socket (socket(7))
+        std::memcpy(&drops, CMSG_DATA(c), sizeof drops);
+        stats_.kernel_drops += drops - last_overflow;
+        last_overflow = drops;
+      }
+    }
+    if (source_ip_ != 0 && pkt.src_ip != source_ip_) {
+      ++stats_.skipped_packets;
+      continue;
+    }
+    const uint8_t* b = bufs.data() + std::size_t(i) * kBuf;
+    pkt.payload.assign(b, b + msgs[i].msg_len);
+    if (accountPacket(params_.ports, pkt, stats_, gaps_)) queue_.push_back(std::move(pkt));
+  }
+}
+
+std::optional<velodyne::RawPacket> UdpReceiver::next() {
+  if (queue_.empty()) {
+    pollfd pfd[2] = {{fds_[0], POLLIN, 0}, {fds_[1], POLLIN, 0}};
+    const int ms = int(params_.poll_timeout_s * 1e3);
+    if (poll(pfd, 2, ms) > 0) {
+      // Position packets first: at equal readiness they are older than most of the data batch.
+      if (pfd[1].revents & POLLIN) receiveBatch(fds_[1], bound_position_port_, overflow_[1]);
+      if (pfd[0].revents & POLLIN) receiveBatch(fds_[0], bound_data_port_, overflow_[0]);
+    }
+  }
+  if (queue_.empty()) return std::nullopt;
+  velodyne::RawPacket p = std::move(queue_.front());
+  queue_.pop_front();
+  return p;
+}
+
+}  // namespace roadslam::sources

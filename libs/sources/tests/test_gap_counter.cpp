@@ -1,0 +1,50 @@
+#include <gtest/gtest.h>
+
+#include "roadslam/sources/packet_source.h"
+#include "test_packets.h"
+
+using namespace roadslam::sources;
+using roadslam::sources::testing::makeDataPacket;
+
+namespace {
+// Real sensor counters advance by 1327 or 1328 us (1327.104 us per packet, integer clock).
+uint32_t stampOf(int k, uint32_t t0) { return uint32_t(t0 + (k * 1327104LL) / 1000); }
+}  // namespace
+
+TEST(GapCounter, CountsExactlyTheRemovedPackets) {
+  GapCounter gaps;
+  const std::vector<int> removed = {5, 6, 7, 40, 99};
+  for (int k = 0; k < 120; ++k) {
+    if (std::find(removed.begin(), removed.end(), k) != removed.end()) continue;
+    gaps.feed(makeDataPacket(stampOf(k, 1000), 0, k).data());
+  }
+  EXPECT_EQ(gaps.missing(), removed.size());
+}
+
+TEST(GapCounter, HandlesTheTopOfTheHourWrap) {
+  GapCounter gaps;
+  const uint32_t t0 = 3600u * 1000000u - 5000u;  // 5 ms before the wrap
+  for (int k = 0; k < 10; ++k) {
+    if (k == 6) continue;
+    gaps.feed(makeDataPacket(stampOf(k, t0) % 3600000000u, 0, k).data());
+  }
+  EXPECT_EQ(gaps.missing(), 1u);
+}
+
+TEST(GapCounter, DualReturnHalvesThePeriod) {
+  GapCounter gaps;
+  for (int k = 0; k < 20; ++k) {
+    if (k == 3) continue;
+    gaps.feed(makeDataPacket(uint32_t(k * 663552LL / 1000), 0, k, 0x39).data());
+  }
+  EXPECT_EQ(gaps.missing(), 1u);
+}
+
+TEST(Classify, ByPortAndSize) {
+  PortConfig ports;
+  EXPECT_EQ(classify(ports, 2368, 1206), PacketKind::Data);
+  EXPECT_EQ(classify(ports, 2368, 1205), PacketKind::Malformed);
+  EXPECT_EQ(classify(ports, 8308, 512), PacketKind::Position);
+  EXPECT_EQ(classify(ports, 8308, 1206), PacketKind::Malformed);
+  EXPECT_EQ(classify(ports, 53, 1206), PacketKind::Other);
+}
