@@ -1,0 +1,100 @@
+#include "roadslam/eval/evaluate.h"
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <stdexcept>
+
+#include "roadslam/eval/plot.h"
+
+namespace roadslam::eval {
+namespace {
+
+int columnsOfFirstDataLine(const std::string& path) {
+  std::ifstream f(path);
+  if (!f) throw std::runtime_error("cannot open trajectory '" + path + "'");
+  std::string line;
+  while (std::getline(f, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream ss(line);
+    int n = 0;
+    double v;
+    while (ss >> v) ++n;
+    return n;
+  }
+  throw std::runtime_error("trajectory '" + path + "' holds no pose");
+}
+
+}  // namespace
+
+datasets::Trajectory readTrajectoryAnyFormat(const std::string& path, const std::string& times_path) {
+  const int cols = columnsOfFirstDataLine(path);
+  if (cols == 8) return datasets::readTum(path);
+  if (cols == 12) {
+    if (!times_path.empty()) return datasets::readKittiTrajectory(path, times_path);
+    datasets::Trajectory t;
+    t.poses = datasets::readKittiPoses(path);
+    return t;
+  }
+  throw std::runtime_error("'" + path + "': " + std::to_string(cols) +
+                           " columns, expected 8 (TUM: t x y z qx qy qz qw) or 12 (KITTI 3x4)");
+}
+
+EvalOutcome evaluate(const EvalRequest& req) {
+  const auto gt = readTrajectoryAnyFormat(req.gt_path, req.gt_times_path);
+  const auto est = readTrajectoryAnyFormat(req.est_path, req.est_times_path);
+  EvalOutcome out;
+  out.matched = associate(gt, est, req.max_dt_s);
+  if (out.matched.gt.size() < 2) {
+    throw std::runtime_error("only " + std::to_string(out.matched.gt.size()) + " poses of '" +
+                             req.est_path + "' match '" + req.gt_path +
+                             "' in time (tolerance " + std::to_string(req.max_dt_s) + " s)");
+  }
+  try {
+    out.metrics = computeMetrics(out.matched, req.metrics);
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(e.what());
+  }
+  if (!req.plot_path.empty()) {
+    plotTrajectories(req.plot_path, out.matched, out.metrics, req.est_path + " vs " + req.gt_path);
+  }
+  return out;
+}
+
+nlohmann::json toJson(const TrajectoryMetrics& m) {
+  nlohmann::json j;
+  j["matched_poses"] = m.matched_poses;
+  j["path_length_m"] = m.path_length_m;
+  j["ate_rmse_m"] = m.ate_rmse_m;
+  j["ate_rmse_origin_aligned_m"] = m.ate_rmse_origin_aligned_m;
+  j["ate_max_m"] = m.ate_max_m;
+  j["rpe_trans_rmse_m"] = m.rpe_trans_rmse_m;
+  j["rpe_rot_rmse_deg"] = m.rpe_rot_rmse_deg;
+  j["rte_percent"] = m.rte_percent;
+  j["rre_deg_per_100m"] = m.rre_deg_per_100m;
+  j["final_position_error_m"] = m.final_position_error_m;
+  auto& seg = j["segments"] = nlohmann::json::array();
+  for (const auto& s : m.per_length) {
+    seg.push_back({{"length_m", s.length_m},
+                   {"rte_percent", s.t_err_percent},
+                   {"rre_deg_per_100m", s.r_err_deg_per_100m},
+                   {"count", s.segments}});
+  }
+  return j;
+}
+
+std::string toText(const TrajectoryMetrics& m) {
+  char buf[1024];
+  std::snprintf(buf, sizeof buf,
+                "matched poses      %d over %.1f m\n"
+                "ATE RMSE           %.3f m (SE(3)-aligned), %.3f m (first pose aligned), max %.3f m\n"
+                "RPE (frame-frame)  %.4f m, %.4f deg\n"
+                "KITTI rel. error   %.3f %% translation, %.4f deg/100 m rotation\n"
+                "final pos. error   %.3f m (first pose aligned)\n",
+                m.matched_poses, m.path_length_m, m.ate_rmse_m, m.ate_rmse_origin_aligned_m,
+                m.ate_max_m, m.rpe_trans_rmse_m, m.rpe_rot_rmse_deg, m.rte_percent,
+                m.rre_deg_per_100m, m.final_position_error_m);
+  return buf;
+}
+
+}  // namespace roadslam::eval
