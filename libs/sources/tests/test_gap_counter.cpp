@@ -4,7 +4,7 @@
 #include "test_packets.h"
 
 using namespace roadslam::sources;
-using roadslam::sources::testing::makeDataPacket;
+using roadslam::sources::test_support::makeDataPacket;
 
 namespace {
 // Real sensor counters advance by 1327 or 1328 us (1327.104 us per packet, integer clock).

@@ -9,7 +9,7 @@
 
 #include "roadslam/velodyne/packet.h"
 
-namespace roadslam::sources::testing {
+namespace roadslam::sources::test_support {
 
 inline std::vector<uint8_t> makeDataPacket(uint32_t t_us, uint16_t azimuth_cdeg, uint32_t seed,
                                            uint8_t mode = 0x37, uint8_t product = 0x22) {
@@ -48,4 +48,4 @@ inline const char* kAlmeriaRmc = "GPRMC,081802,A,3649.7480,N,00224.4540,W,000.0,
 constexpr double kAlmeriaLat_deg = 36.0 + 49.748 / 60.0;
 constexpr double kAlmeriaLon_deg = -(2.0 + 24.454 / 60.0);
 
-}  // namespace roadslam::sources::testing
+}  // namespace roadslam::sources::test_support

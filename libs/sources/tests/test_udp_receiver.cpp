@@ -14,7 +14,7 @@
 #include "test_packets.h"
 
 using namespace roadslam::sources;
-using namespace roadslam::sources::testing;
+using namespace roadslam::sources::test_support;
 
 namespace {
 
