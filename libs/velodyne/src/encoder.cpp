@@ -58,9 +58,9 @@ DataPacketBytes encodeVlp16Packet(const std::array<FiringSequence, kVlp16Sequenc
   for (int b = 0; b < kBlocksPerPacket; ++b) {
     uint8_t* blk = pkt.data() + b * kBlockSize;
     if (mode == ReturnMode::Dual) {
-      // Manual 9.3.2.2: blocks 2j (strongest) and 2j+1 (last) share the azimuth of one firing pair.
+      // Manual 9.3.2.2: block 2j holds the last returns, block 2j+1 the strongest, same azimuth.
       const int s = 2 * (b / 2);
-      const bool last = (b % 2) == 1;
+      const bool last = (b % 2) == 0;
       writeBlock(blk, seq[s].azimuth_deg, last ? seq[s].last : seq[s].strongest,
                  last ? seq[s + 1].last : seq[s + 1].strongest);
     } else {

@@ -54,8 +54,8 @@ TEST(EncoderLayout, DualBlocksPairShareAzimuth) {
     const uint8_t* b = a + 100;
     EXPECT_EQ(le16(a + 2), le16(b + 2));
     EXPECT_EQ(le16(a + 2), 1000 + 40 * j);
-    EXPECT_EQ(le16(a + 4), 2500);  // strongest 5 m
-    EXPECT_EQ(le16(b + 4), 3500);  // last 7 m
+    EXPECT_EQ(le16(a + 4), 3500);  // last 7 m first
+    EXPECT_EQ(le16(b + 4), 2500);  // then strongest 5 m
   }
   EXPECT_EQ(pkt[1204], 0x39);
 }

@@ -28,7 +28,8 @@ struct FiringSequence {
 /// Encodes 24 firing sequences (one packet's worth, 1.327 ms) into a data packet.
 /// Strongest/Last: sequence 2k and 2k+1 go into block k; the block azimuth is that of sequence 2k
 /// (the second sequence's azimuth is implied, as in the real sensor).
-/// Dual: 12 sequences fill 6 block pairs (strongest/last share the azimuth); sequences 12..23 ignored.
+/// Dual: 12 sequences fill 6 block pairs sharing one azimuth, block 2j = last returns, block 2j+1 =
+/// strongest (VLP-16 manual 9.3.2.2); sequences 12..23 ignored.
 /// \param timestamp_us microseconds past the top of the hour of the first firing.
 DataPacketBytes encodeVlp16Packet(const std::array<FiringSequence, kVlp16SequencesPerPacket>& seq,
                                   uint32_t timestamp_us, ReturnMode mode = ReturnMode::Strongest,
