@@ -93,17 +93,28 @@ class Parser {
     while (peek().kind != Tok::kEnd && !(peek().line_start && peek().col == 1)) take();
   }
 
-  Message& messageById(const Token& at, std::uint32_t dbc_id) {
-    for (Message& m : db_.messages) {
-      if (m.dbc_id == dbc_id) return m;
-    }
-    fail(at, "reference to undefined message id " + std::to_string(dbc_id));
+  void warn(const Token& at, const std::string& what) {
+    db_.warnings.push_back(source_ + ":" + std::to_string(at.line) + ":" + std::to_string(at.col) + ": " + what);
   }
-  Signal& signalByName(Message& m, const Token& at) {
-    for (Signal& s : m.signals) {
-      if (s.name == at.text) return s;
+  // Message referenced by CM_/VAL_/SIG_VALTYPE_; nullptr (statement skipped, warning kept) if undefined.
+  Message* messageRef() {
+    const Token& at = peek();
+    const auto id = static_cast<std::uint32_t>(unsignedInt());
+    for (Message& m : db_.messages) {
+      if (m.dbc_id == id) return &m;
     }
-    fail(at, "reference to undefined signal of message " + m.name);
+    warn(at, "reference to undefined message id " + at.text + " ignored");
+    skipStatement();
+    return nullptr;
+  }
+  Signal* signalRef(Message& m) {
+    const Token& at = expect(Tok::kIdent, "a signal name");
+    for (Signal& s : m.signals) {
+      if (s.name == at.text) return &s;
+    }
+    warn(at, "reference to undefined signal " + m.name + "." + at.text + " ignored");
+    skipStatement();
+    return nullptr;
   }
 
   void statement();
@@ -129,7 +140,7 @@ void Parser::statement() {
     skipBlock();
   } else if (k == "BU_") {
     expectPunct(':');
-    while (peek().kind == Tok::kIdent && !peek().line_start) db_.nodes.push_back(take().text);
+    while (peek().kind == Tok::kIdent && !(peek().line_start && peek().col == 1)) db_.nodes.push_back(take().text);
   } else if (k == "BO_") {
     message();
   } else if (k == "SG_") {
@@ -169,8 +180,10 @@ void Parser::message() {
   const std::uint64_t id = unsignedInt();
   // 29-bit ids carry bit 31; 0x40000000 is Vector's VECTOR__INDEPENDENT_SIG_MSG pseudo-message.
   const bool ext_ok = (id & 0x80000000ULL) != 0 && (id & 0x60000000ULL) == 0 && id <= 0xFFFFFFFFULL;
-  if (!(id <= 0x7FF || ext_ok || id == 0x40000000ULL)) {
-    fail(id_tok, "message id out of range (11-bit ids <= 0x7FF, 29-bit ids need bit 31 set)");
+  if (id > 0xFFFFFFFFULL) fail(id_tok, "message id above 32 bits");
+  if (!(id <= 0x7FF || ext_ok || id == 0x40000000ULL)) {  // kept (opendbc has some), never matches a frame
+    db_.warnings.push_back(source_ + ":" + std::to_string(id_tok.line) + ":" + std::to_string(id_tok.col) +
+                           ": message id " + id_tok.text + " is neither 11-bit nor 29-bit with bit 31");
   }
   m.dbc_id = static_cast<std::uint32_t>(id);
   m.name = expect(Tok::kIdent, "a message name").text;
@@ -245,17 +258,27 @@ void Parser::signal() {
 void Parser::comment() {
   if (peek().kind == Tok::kString) {
     db_.comments.push_back(take().text);
+  } else if (peek().kind == Tok::kNumber) {  // "CM_ 145 "..."" (opendbc): object keyword missing
+    warn(peek(), "CM_ without BO_/SG_ keyword ignored");
+    skipStatement();
+    return;
   } else {
     const Token& obj = expect(Tok::kIdent, "BU_, BO_, SG_, EV_ or a string");
     if (obj.text == "BO_") {
-      const Token& at = peek();
-      Message& m = messageById(at, static_cast<std::uint32_t>(unsignedInt()));
-      m.comment = expect(Tok::kString, "a quoted comment").text;
+      Message* m = messageRef();
+      if (!m) return;
+      m->comment = expect(Tok::kString, "a quoted comment").text;
     } else if (obj.text == "SG_") {
-      const Token& at = peek();
-      Message& m = messageById(at, static_cast<std::uint32_t>(unsignedInt()));
-      Signal& s = signalByName(m, expect(Tok::kIdent, "a signal name"));
-      s.comment = expect(Tok::kString, "a quoted comment").text;
+      Message* m = messageRef();
+      if (!m) return;
+      if (peek().kind == Tok::kString) {  // seen in opendbc: signal name missing; keep going
+        warn(peek(), "CM_ SG_ without signal name ignored");
+        take();
+      } else {
+        Signal* s = signalRef(*m);
+        if (!s) return;
+        s->comment = expect(Tok::kString, "a quoted comment").text;
+      }
     } else if (obj.text == "BU_") {
       const std::string node = expect(Tok::kIdent, "a node name").text;
       db_.node_comments[node] = expect(Tok::kString, "a quoted comment").text;
@@ -326,10 +349,11 @@ void Parser::valueDescriptions() {
     ++db_.skipped_statements;
     return;
   }
-  const Token& at = peek();
-  Message& m = messageById(at, static_cast<std::uint32_t>(unsignedInt()));
-  Signal& s = signalByName(m, expect(Tok::kIdent, "a signal name"));
-  s.value_descriptions = valuePairs();
+  Message* m = messageRef();
+  if (!m) return;
+  Signal* s = signalRef(*m);
+  if (!s) return;
+  s->value_descriptions = valuePairs();
 }
 
 void Parser::valueTable() {
@@ -338,9 +362,11 @@ void Parser::valueTable() {
 }
 
 void Parser::sigValType() {
-  const Token& at = peek();
-  Message& m = messageById(at, static_cast<std::uint32_t>(unsignedInt()));
-  Signal& s = signalByName(m, expect(Tok::kIdent, "a signal name"));
+  Message* m = messageRef();
+  if (!m) return;
+  Signal* sp = signalRef(*m);
+  if (!sp) return;
+  Signal& s = *sp;
   acceptPunct(':');
   const Token& vt = peek();
   const std::uint64_t t = unsignedInt();

@@ -85,6 +85,8 @@ struct Database {
   std::vector<std::pair<std::string, std::string>> attribute_defaults;  ///< BA_DEF_DEF_ name, value
   std::vector<AttributeValue> attributes;
   std::size_t skipped_statements = 0;  ///< statements of kinds roadslam ignores (EV_, SIG_GROUP_, ...)
+  /// Tolerated defects ("file:line:col: what"), e.g. a CM_ SG_ without signal name; not compared.
+  std::vector<std::string> warnings;
 
   const Message* findMessage(std::uint32_t dbc_id) const;
   const Message* findMessage(const std::string& name) const;
