@@ -1,0 +1,63 @@
+#pragma once
+/// \file outputs.h
+/// Running a scenario into an output folder (all files written atomically):
+///   velodyne.pcap       data packets (port 2368) and $GPRMC position packets (port 8308)
+///   gt_trajectory.tum   T_world_lidar every 10 ms, "t x y z qx qy qz qw", t on the capture clock
+///   gt_boundaries.json  per road: centreline and left/right curb polylines [x, y, z] (world frame)
+///   gt_objects.json     moving cars' tracks at 10 Hz [t, x, y, z, yaw]
+///   summary.json        scenario, seed, duration_s, packets, sweeps, points, distance_m,
+///                       real_time_factor (packets_sent with UDP)
+///   scenario_used.ini   the parameters actually used
+/// and, optionally, UDP streaming of the data packets paced at a multiple of real time.
+
+#include <cstdint>
+#include <string>
+
+#include "roadslam/sim/simulator.h"
+
+namespace roadslam::sim {
+
+struct OutputOptions {
+  std::string dir;               ///< output folder (created when missing)
+  std::string udp_host;          ///< IPv4 address to stream the data packets to; empty = no UDP
+  uint16_t udp_port = 0;         ///< [-]
+  double udp_speed = 1.0;        ///< pace: 1 = real time, 2 = twice as fast [-]
+  std::string top_view_png;      ///< also draw the top view here when not empty
+};
+
+struct RunReport {
+  SimStats stats;
+  uint64_t packets_sent = 0;     ///< UDP datagrams sent (data packets)
+  uint64_t packets_late = 0;     ///< UDP datagrams sent behind their pace time by > 10 ms
+  double real_time_factor = 0;   ///< simulated seconds per wall-clock second (whole run) [-]
+};
+
+/// Simulates \p sim into \p opt.dir (and UDP); throws naming the file on I/O errors.
+RunReport runToDirectory(Simulator& sim, const OutputOptions& opt);
+
+/// Top view: world primitives, roads, curbs (green), route (red), start (circle) to a PNG.
+void drawTopView(const Simulator& sim, const std::string& png_path, int max_px = 1600);
+
+/// Sends UDP payloads paced on their capture times (divided by \p speed). Throws naming the
+/// address when the socket cannot be created.
+class UdpStreamer : public PacketSink {
+ public:
+  UdpStreamer(const std::string& host, uint16_t port, double speed);
+  ~UdpStreamer() override;
+  UdpStreamer(const UdpStreamer&) = delete;
+  UdpStreamer& operator=(const UdpStreamer&) = delete;
+  /// Data packets (port 2368) go to host:port; position packets are not streamed.
+  void packet(double capture_s, uint16_t port, const uint8_t* data, std::size_t size) override;
+  uint64_t sent() const { return sent_; }
+  uint64_t late() const { return late_; }
+
+ private:
+  int fd_ = -1;
+  uint8_t addr_[16]{};  ///< sockaddr_in
+  double speed_;
+  double first_capture_ = -1;
+  double wall0_ = 0;
+  uint64_t sent_ = 0, late_ = 0;
+};
+
+}  // namespace roadslam::sim

@@ -1,0 +1,72 @@
+#pragma once
+/// \file trajectory.h
+/// The vehicle's drive along the route: a speed profile limited by the maximum speed, longitudinal
+/// acceleration/deceleration and lateral acceleration in curves, standing still at the start and end.
+/// States every 10 ms carry everything a CAN simulation needs (speed, yaw rate, wheel speeds).
+/// Vehicle frame: x forward, y left, z up; origin on the ground below the rear axle centre.
+
+#include <string>
+#include <vector>
+
+#include "roadslam/sim/world.h"
+
+namespace mrpt::config {
+class CConfigFileBase;
+}
+
+namespace roadslam::sim {
+
+struct TrajectoryParams {
+  double max_speed_kmh = 50;         ///< [km/h]
+  double accel_mps2 = 1.5;           ///< longitudinal acceleration limit [m/s^2]
+  double decel_mps2 = 2.0;           ///< braking limit [m/s^2]
+  double lateral_accel_mps2 = 2.5;   ///< v^2 * curvature limit in turns [m/s^2]
+  double start_standing_s = 2.0;     ///< standing still before driving off [s]
+  double end_standing_s = 1.0;       ///< standing still after arriving [s]
+  int laps = 1;                      ///< closed routes: number of laps [-]
+  double track_width_m = 1.6;        ///< for the wheel speeds [m]
+
+  double max_speed_mps() const { return max_speed_kmh / 3.6; }
+  void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section);
+  void saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& section) const;
+  static std::vector<std::string> keys();
+};
+
+/// Vehicle state at time t: pose of the vehicle frame in the world frame (T_world_vehicle as
+/// translation + ZYX Euler angles) and its motion.
+struct VehicleState {
+  double t_s = 0;                    ///< time since the start of the simulation [s]
+  double x = 0, y = 0, z = 0;        ///< [m] world frame
+  double yaw = 0, pitch = 0, roll = 0;  ///< ZYX Euler angles [rad]
+  double speed_mps = 0;              ///< forward speed [m/s]
+  double accel_mps2 = 0;             ///< forward acceleration [m/s^2]
+  double yaw_rate_rps = 0;           ///< [rad/s]
+  double wheel_speed_left_mps = 0, wheel_speed_right_mps = 0;  ///< rear wheels [m/s]
+  double s_m = 0;                    ///< distance driven [m]
+};
+
+class Trajectory {
+ public:
+  static constexpr double kStep_s = 0.01;  ///< state table period [s]
+
+  Trajectory(const Road& route, const Ground& ground, const TrajectoryParams& p);
+  /// Time from the start until the vehicle has stood for end_standing_s at the end [s].
+  double duration_s() const { return duration_; }
+  double distance_m() const { return states_.empty() ? 0 : states_.back().s_m; }
+  /// States every kStep_s from t = 0 to duration_s().
+  const std::vector<VehicleState>& states() const { return states_; }
+  /// State at any t (linear interpolation of the 10 ms table; clamped to [0, duration]).
+  VehicleState at(double t_s) const;
+
+ private:
+  VehicleState stateAtArcLength(double s, double v, double a) const;
+  const Ground& ground_;
+  TrajectoryParams p_;
+  bool closed_ = false;
+  double route_len_ = 0;
+  std::vector<double> s_, x_, y_, h_, k_;  ///< dense route: arc length, position, heading, curvature
+  std::vector<VehicleState> states_;
+  double duration_ = 0;
+};
+
+}  // namespace roadslam::sim

@@ -1,0 +1,130 @@
+#pragma once
+/// \file world.h
+/// The simulated road world: a smooth height-field ground, analytic primitives (prisms, cylinders,
+/// porous spheres) indexed by a 2D uniform grid, roads with their curb lines, and moving cars.
+/// World frame: x east, y north, z up [m]. Built by buildWorld() (world_builder.h).
+
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "roadslam/sim/primitives.h"
+
+namespace roadslam::sim {
+
+struct Vec2 {
+  double x = 0, y = 0;
+};
+
+/// Smooth hills: h(x, y) = A sin(2 pi x / L) + A/2 sin(2 pi y / (0.8 L)) [m]; flat when A = 0.
+struct Ground {
+  double amplitude_m = 0;     ///< A [m]
+  double wavelength_m = 400;  ///< L [m]
+  double height(double x, double y) const;
+  /// Gradient (dh/dx, dh/dy) [m/m].
+  Vec2 gradient(double x, double y) const;
+};
+
+/// A road: dense centreline (about 0.5 m spacing) and the curb lines where sidewalks exist.
+struct Road {
+  std::string name;
+  std::vector<Vec2> centerline;  ///< world frame [m]
+  std::vector<double> cum_m;     ///< arc length at each centreline point [m] (see finalizeRoad())
+  double half_width_m = 3.5;     ///< centreline to curb face [m]
+  bool closed = false;           ///< loop: last point connects to the first
+  /// Curb polylines (road edge at the curb face) [m]; several pieces where intersections cut them.
+  std::vector<std::vector<Vec2>> left_curbs, right_curbs;
+};
+
+/// A car driving along a road at constant speed (a moving occluder).
+struct MovingCar {
+  int road = 0;            ///< index into World::roads
+  double s0_m = 0;         ///< arc length along the centreline at t = 0 [m]
+  double speed_mps = 10;   ///< signed: negative drives against the centreline direction [m/s]
+  double lateral_m = 1.75;  ///< offset to the right of the travel direction (right-hand traffic) [m]
+  double length_m = 4.5, width_m = 1.8, height_m = 1.5;  ///< [m]
+  Material material = Material::CarPaint;
+};
+
+/// Pose of a moving car at time t: centre (x, y), ground z and heading [m, rad].
+struct CarPose {
+  double x = 0, y = 0, z = 0, yaw = 0;
+};
+
+class World {
+ public:
+  Ground ground;
+  std::vector<Prism> prisms;
+  std::vector<Cylinder> cylinders;
+  std::vector<Sphere> spheres;
+  std::vector<Road> roads;
+  std::vector<MovingCar> cars;
+  double ground_margin_m = 0;  ///< informational: the grid covers the content plus this margin [m]
+
+  /// Builds the acceleration grid over [xmin, xmax] x [ymin, ymax] with square cells [m].
+  /// Must be called after the primitives are final and before raycast().
+  void buildGrid(double xmin, double ymin, double xmax, double ymax, double cell_m);
+
+  /// Closest surface along \p ray within (0, max_range] [m] among the ground, the static primitives
+  /// and the \p dynamic prisms (moving cars at the firing time). \p ray_key seeds the deterministic
+  /// draw that decides where a ray stops inside porous foliage. Allocation-free.
+  bool raycast(const Ray& ray, double max_range, uint64_t ray_key, const Prism* dynamic,
+               std::size_t n_dynamic, Hit& hit) const;
+
+  /// Car pose at time \p t_s [s] (cars wrap around at the end of a road).
+  CarPose carPose(const MovingCar& car, double t_s) const;
+  /// The car as a prism at time \p t_s.
+  Prism carPrism(const MovingCar& car, double t_s) const;
+
+  double xmin() const { return x0_; }
+  double ymin() const { return y0_; }
+  double xmax() const { return x0_ + nx_ * cell_; }
+  double ymax() const { return y0_ + ny_ * cell_; }
+
+ private:
+  struct Cell {
+    double gz = 0, gx = 0, gy = 0;  ///< ground plane: z = gz + gx (x - xc) + gy (y - yc) [m]
+    float zmax = 0;                 ///< highest surface in the cell [m]
+    Material ground_material = Material::Terrain;
+    uint32_t first = 0, count = 0;  ///< range in refs_
+  };
+  bool traceCell(const Ray& ray, const Cell& cell, int ix, int iy, double t_in, double t_out,
+                 uint64_t ray_key, Hit& hit) const;
+
+  double x0_ = 0, y0_ = 0, cell_ = 5;
+  int nx_ = 0, ny_ = 0;
+  std::vector<Cell> cells_;
+  std::vector<uint32_t> refs_;  ///< 2 high bits: 0 prism, 1 cylinder, 2 sphere; low 30 bits: index
+};
+
+/// Fills Road::cum_m (for a closed road the last entry is the length back to the first point).
+void finalizeRoad(Road& road);
+/// Total length of a finalized road [m].
+double roadLength(const Road& road);
+/// Position and heading [m, rad] at arc length \p s [m] on a finalized road (wrapped when closed,
+/// clamped when open).
+void pointAtArcLength(const Road& road, double s, Vec2& p, double& heading);
+
+/// splitmix64: the deterministic, counter-based random source of the simulator.
+inline uint64_t mix64(uint64_t z) {
+  z += 0x9E3779B97F4A7C15ull;
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  return z ^ (z >> 31);
+}
+/// Uniform in [0, 1) from a 64-bit key.
+inline double uniform01(uint64_t key) { return static_cast<double>(mix64(key) >> 11) * 0x1.0p-53; }
+
+/// A sequential deterministic generator (same numbers on every platform, unlike std distributions).
+struct Rng {
+  uint64_t state;
+  double uniform(double a = 0, double b = 1) { return a + (b - a) * uniform01(state++); }
+  /// Standard normal (Box-Muller).
+  double normal() {
+    const double u1 = 1.0 - uniform(), u2 = uniform();
+    return std::sqrt(-2.0 * std::log(u1)) * std::cos(6.283185307179586 * u2);
+  }
+};
+
+}  // namespace roadslam::sim

@@ -1,0 +1,149 @@
+#include "roadslam/sim/outputs.h"
+
+#include <mrpt/config/CConfigFileMemory.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "roadslam/common/atomic_file.h"
+#include "roadslam/pcap/pcap_writer.h"
+
+namespace roadslam::sim {
+
+namespace {
+using nlohmann::json;
+
+class PcapSink : public PacketSink {
+ public:
+  PcapSink(const std::string& path, PacketSink* also) : tmp_(tempPathFor(path)), path_(path), w_(tmp_), also_(also) {}
+  void packet(double capture_s, uint16_t port, const uint8_t* data, std::size_t size) override {
+    w_.writeUdp(capture_s, port, port, data, size);
+    if (also_) also_->packet(capture_s, port, data, size);
+  }
+  void commit() {
+    w_.close();
+    commitTempFile(tmp_, path_);
+  }
+
+ private:
+  std::string tmp_, path_;
+  pcap::PcapWriter w_;
+  PacketSink* also_;
+};
+
+void writeTum(const Simulator& sim, double duration_s, const std::string& path) {
+  AtomicFile f(path);
+  const double t0 = static_cast<double>(sim.params().start_epoch_s);
+  const auto n = static_cast<std::size_t>(std::floor(duration_s / Trajectory::kStep_s + 1e-9));
+  char line[200];
+  for (std::size_t i = 0; i <= n; ++i) {
+    const double t = static_cast<double>(i) * Trajectory::kStep_s;
+    const Pose3 T = sim.lidar().lidarPose(t);
+    const auto q = T.quaternion();
+    std::snprintf(line, sizeof(line), "%.6f %.6f %.6f %.6f %.9f %.9f %.9f %.9f\n", t0 + t, T.t.x, T.t.y,
+                  T.t.z, q[0], q[1], q[2], q[3]);
+    f.stream() << line;
+  }
+  f.commit();
+}
+
+json polyline3(const World& w, const std::vector<Vec2>& line, std::size_t stride = 1) {
+  json a = json::array();
+  auto r3 = [](double v) { return std::round(v * 1000.0) / 1000.0; };
+  for (std::size_t i = 0; i < line.size(); i += stride)
+    a.push_back({r3(line[i].x), r3(line[i].y), r3(w.ground.height(line[i].x, line[i].y))});
+  return a;
+}
+
+void writeBoundaries(const Simulator& sim, const std::string& path) {
+  const World& w = sim.world();
+  json roads = json::array();
+  for (const Road& r : w.roads) {
+    json left = json::array(), right = json::array();
+    for (const auto& c : r.left_curbs) left.push_back(polyline3(w, c));
+    for (const auto& c : r.right_curbs) right.push_back(polyline3(w, c));
+    roads.push_back({{"name", r.name}, {"half_width_m", r.half_width_m}, {"closed", r.closed},
+                     {"centerline", polyline3(w, r.centerline, 4)}, {"left_curbs", left},
+                     {"right_curbs", right}});
+  }
+  const json j = {{"frame", "world (x east, y north, z up) [m]"},
+                  {"curb_height_m", sim.params().world.curb_height_m},
+                  {"note", "left/right of the centreline direction; curb polylines run along the curb face"},
+                  {"roads", roads}};
+  writeFileAtomically(path, j.dump(1) + "\n");
+}
+
+void writeObjects(const Simulator& sim, double duration_s, const std::string& path) {
+  const World& w = sim.world();
+  json cars = json::array();
+  const double t0 = static_cast<double>(sim.params().start_epoch_s);
+  for (std::size_t i = 0; i < w.cars.size(); ++i) {
+    const MovingCar& c = w.cars[i];
+    json track = json::array();
+    for (double t = 0; t <= duration_s + 1e-9; t += 0.1) {
+      const CarPose p = w.carPose(c, t);
+      track.push_back({t0 + t, p.x, p.y, p.z, p.yaw});
+    }
+    cars.push_back({{"id", i}, {"road", w.roads[static_cast<std::size_t>(c.road)].name},
+                    {"length_m", c.length_m}, {"width_m", c.width_m}, {"height_m", c.height_m},
+                    {"speed_mps", std::abs(c.speed_mps)}, {"track", track}});
+  }
+  const json j = {{"frame", "world"}, {"track_fields", {"t", "x", "y", "z_ground", "yaw_rad"}},
+                  {"moving_cars", cars},
+                  {"static", {{"prisms", w.prisms.size()}, {"cylinders", w.cylinders.size()},
+                              {"spheres", w.spheres.size()}}}};
+  writeFileAtomically(path, j.dump() + "\n");
+}
+}  // namespace
+
+RunReport runToDirectory(Simulator& sim, const OutputOptions& opt) {
+  namespace fs = std::filesystem;
+  const auto wall0 = std::chrono::steady_clock::now();
+  std::error_code ec;
+  fs::create_directories(opt.dir, ec);
+  if (!fs::is_directory(opt.dir)) throw std::runtime_error("cannot create output folder " + opt.dir);
+  const std::string d = opt.dir + "/";
+  std::unique_ptr<UdpStreamer> udp;
+  if (!opt.udp_host.empty()) udp = std::make_unique<UdpStreamer>(opt.udp_host, opt.udp_port, opt.udp_speed);
+  RunReport rep;
+  {
+    PcapSink pcap(d + "velodyne.pcap", udp.get());
+    rep.stats = sim.run(pcap);
+    pcap.commit();
+  }
+  writeTum(sim, rep.stats.duration_s, d + "gt_trajectory.tum");
+  writeBoundaries(sim, d + "gt_boundaries.json");
+  writeObjects(sim, rep.stats.duration_s, d + "gt_objects.json");
+  mrpt::config::CConfigFileMemory used;
+  sim.params().saveToConfigFile(used);
+  writeFileAtomically(d + "scenario_used.ini", used.getContent());
+  if (!opt.top_view_png.empty()) drawTopView(sim, opt.top_view_png);
+  if (udp) {
+    rep.packets_sent = udp->sent();
+    rep.packets_late = udp->late();
+  }
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  rep.real_time_factor = rep.stats.duration_s / std::max(1e-9, wall);
+  const auto& s = rep.stats;
+  json j = {{"scenario", sim.params().name}, {"seed", sim.params().seed}, {"duration_s", s.duration_s},
+            {"packets", s.data_packets}, {"position_packets", s.position_packets}, {"sweeps", s.sweeps},
+            {"points", s.lidar.returns}, {"rays", s.lidar.rays}, {"distance_m", s.distance_m},
+            {"real_time_factor", rep.real_time_factor},
+            {"simulation_real_time_factor", s.duration_s / std::max(1e-9, s.wall_s)},
+            {"lost_returns", {{"no_hit", s.lidar.no_hit}, {"too_close", s.lidar.too_close},
+                              {"grazing", s.lidar.grazing}, {"dark", s.lidar.dark},
+                              {"dropped", s.lidar.dropped}}},
+            {"start_epoch_s", sim.params().start_epoch_s}};
+  if (udp) {
+    j["packets_sent"] = rep.packets_sent;
+    j["packets_late"] = rep.packets_late;
+    j["udp_speed"] = opt.udp_speed;
+  }
+  writeFileAtomically(d + "summary.json", j.dump(1) + "\n");
+  return rep;
+}
+
+}  // namespace roadslam::sim

@@ -1,0 +1,151 @@
+#include "roadslam/sim/simulator.h"
+
+#include <mrpt/config/CConfigFileBase.h>
+
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <stdexcept>
+
+#include "roadslam/common/config.h"
+#include "roadslam/velodyne/encoder.h"
+
+namespace roadslam::sim {
+
+namespace {
+void rejectUnknown(const mrpt::config::CConfigFileBase& cfg, const std::string& section,
+                   const std::vector<std::string>& known) {
+  const auto bad = unknownKeys(cfg, section, known);
+  if (!bad.empty()) throw std::runtime_error("[" + section + "] unknown key '" + bad.front() + "'");
+}
+}  // namespace
+
+void ScenarioParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg) {
+  std::vector<std::string> sections;
+  cfg.getAllSections(sections);
+  for (const auto& s : sections)
+    if (s != "scenario" && s != "world" && s != "trajectory" && s != "lidar")
+      throw std::runtime_error("unknown section [" + s + "] (expected scenario, world, trajectory, lidar)");
+  rejectUnknown(cfg, "scenario", {"name", "seed", "duration_s", "start_epoch_s", "position_packets",
+                                  "origin_lat_deg", "origin_lon_deg"});
+  rejectUnknown(cfg, "world", WorldParams::keys());
+  rejectUnknown(cfg, "trajectory", TrajectoryParams::keys());
+  rejectUnknown(cfg, "lidar", LidarParams::keys());
+  name = readString(cfg, "scenario", "name", name);
+  const int s = readInt(cfg, "scenario", "seed", static_cast<int>(seed));
+  if (s < 0) throw std::runtime_error("[scenario] seed must be >= 0");
+  seed = static_cast<uint64_t>(s);
+  duration_s = readDouble(cfg, "scenario", "duration_s", duration_s);
+  if (duration_s < 0) throw std::runtime_error("[scenario] duration_s must be >= 0");
+  start_epoch_s = static_cast<int64_t>(readDouble(cfg, "scenario", "start_epoch_s", static_cast<double>(start_epoch_s)));
+  position_packets = readBool(cfg, "scenario", "position_packets", position_packets);
+  origin_lat_deg = readDouble(cfg, "scenario", "origin_lat_deg", origin_lat_deg);
+  origin_lon_deg = readDouble(cfg, "scenario", "origin_lon_deg", origin_lon_deg);
+  world.loadFromConfigFile(cfg, "world");
+  trajectory.loadFromConfigFile(cfg, "trajectory");
+  lidar.loadFromConfigFile(cfg, "lidar");
+}
+
+void ScenarioParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg) const {
+  cfg.write("scenario", "name", name);
+  cfg.write("scenario", "seed", static_cast<int>(seed));
+  cfg.write("scenario", "duration_s", duration_s);
+  cfg.write("scenario", "start_epoch_s", static_cast<double>(start_epoch_s));
+  cfg.write("scenario", "position_packets", position_packets);
+  cfg.write("scenario", "origin_lat_deg", origin_lat_deg);
+  cfg.write("scenario", "origin_lon_deg", origin_lon_deg);
+  world.saveToConfigFile(cfg, "world");
+  trajectory.saveToConfigFile(cfg, "trajectory");
+  lidar.saveToConfigFile(cfg, "lidar");
+}
+
+ScenarioParams ScenarioParams::fromFile(const std::string& path) {
+  const auto cfg = loadIniFile(path);
+  ScenarioParams p;
+  try {
+    p.loadFromConfigFile(*cfg);
+  } catch (const std::exception& e) {
+    const std::string what = e.what();
+    throw std::runtime_error(what.find(path) == std::string::npos ? path + ": " + what : what);
+  }
+  return p;
+}
+
+Simulator::Simulator(const ScenarioParams& params) : p_(params) {
+  world_ = buildWorld(p_.world, p_.seed, route_);
+  trajectory_ = std::make_unique<Trajectory>(route_, world_.ground, p_.trajectory);
+  lidar_ = std::make_unique<LidarSimulator>(world_, *trajectory_, p_.lidar, p_.seed);
+}
+
+Simulator::~Simulator() = default;
+
+double Simulator::duration_s() const {
+  return p_.duration_s > 0 ? p_.duration_s : trajectory_->duration_s();
+}
+
+uint32_t Simulator::packetTimestampUs(uint64_t k) const {
+  const int64_t us = (p_.start_epoch_s % 3600) * 1000000 +
+                     std::llround(static_cast<double>(k) * LidarSimulator::packetPeriod_s() * 1e6);
+  return static_cast<uint32_t>(us % 3600000000LL);
+}
+
+double Simulator::packetCaptureTime(uint64_t k) const {
+  return static_cast<double>(p_.start_epoch_s) + static_cast<double>(k + 1) * LidarSimulator::packetPeriod_s();
+}
+
+SimStats Simulator::run(PacketSink& sink, std::vector<TrueReturn>* truth) {
+  const auto wall0 = std::chrono::steady_clock::now();
+  const double T = duration_s(), P = LidarSimulator::packetPeriod_s();
+  const auto n = static_cast<uint64_t>(std::floor(T / P));
+  std::array<velodyne::FiringSequence, velodyne::kVlp16SequencesPerPacket> seq{};
+  SimStats st;
+  double next_position_s = 0;  // simulation time of the next $GPRMC packet
+  for (uint64_t k = 0; k < n; ++k) {
+    lidar_->simulatePacket(k, seq, truth);
+    const auto bytes = velodyne::encodeVlp16Packet(seq, packetTimestampUs(k));
+    const double capture = packetCaptureTime(k);
+    while (p_.position_packets && static_cast<double>(p_.start_epoch_s) + next_position_s <= capture) {
+      const double epoch = static_cast<double>(p_.start_epoch_s) + next_position_s;
+      const std::string nmea = gprmcSentence(p_, trajectory_->at(next_position_s), epoch);
+      const uint32_t ts = static_cast<uint32_t>(
+          ((p_.start_epoch_s % 3600) * 1000000 + std::llround(next_position_s * 1e6)) % 3600000000LL);
+      const auto pos = velodyne::encodePositionPacket(ts, nmea.c_str());
+      sink.packet(epoch, velodyne::kDefaultPositionPort, pos.data(), pos.size());
+      ++st.position_packets;
+      next_position_s += 1.0;
+    }
+    sink.packet(capture, velodyne::kDefaultDataPort, bytes.data(), bytes.size());
+    ++st.data_packets;
+  }
+  st.duration_s = static_cast<double>(n) * P;
+  st.sweeps = static_cast<uint64_t>(std::floor(st.duration_s * p_.lidar.rotation_hz));
+  st.distance_m = trajectory_->at(st.duration_s).s_m;
+  st.lidar = lidar_->counters();
+  st.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  return st;
+}
+
+std::string gprmcSentence(const ScenarioParams& p, const VehicleState& s, double epoch_s) {
+  constexpr double kEarthRadius_m = 6378137.0;
+  const double lat = p.origin_lat_deg + s.y / kEarthRadius_m * 180.0 / M_PI;
+  const double lon = p.origin_lon_deg + s.x / (kEarthRadius_m * std::cos(p.origin_lat_deg * M_PI / 180.0)) * 180.0 / M_PI;
+  const auto secs = static_cast<std::time_t>(std::floor(epoch_s));
+  std::tm tm{};
+  gmtime_r(&secs, &tm);
+  const double sec = tm.tm_sec + (epoch_s - std::floor(epoch_s));
+  const double alat = std::abs(lat), alon = std::abs(lon);
+  const double course = std::fmod(450.0 - s.yaw * 180.0 / M_PI, 360.0);
+  char body[160];
+  std::snprintf(body, sizeof(body), "GPRMC,%02d%02d%05.2f,A,%02d%07.4f,%c,%03d%07.4f,%c,%.2f,%.1f,%02d%02d%02d,,,A",
+                tm.tm_hour, tm.tm_min, sec, static_cast<int>(alat), (alat - std::floor(alat)) * 60.0,
+                lat >= 0 ? 'N' : 'S', static_cast<int>(alon), (alon - std::floor(alon)) * 60.0,
+                lon >= 0 ? 'E' : 'W', s.speed_mps * 3600.0 / 1852.0, course, tm.tm_mday, tm.tm_mon + 1,
+                tm.tm_year % 100);
+  uint8_t sum = 0;  // NMEA 0183: XOR of the characters between '$' and '*'
+  for (const char* c = body; *c; ++c) sum ^= static_cast<uint8_t>(*c);
+  char out[176];
+  std::snprintf(out, sizeof(out), "$%s*%02X", body, sum);
+  return out;
+}
+
+}  // namespace roadslam::sim

@@ -1,0 +1,156 @@
+#include "roadslam/sim/trajectory.h"
+
+#include <mrpt/config/CConfigFileBase.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "roadslam/common/config.h"
+
+namespace roadslam::sim {
+
+void TrajectoryParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, const std::string& s) {
+  max_speed_kmh = readDouble(c, s, "max_speed_kmh", max_speed_kmh);
+  accel_mps2 = readDouble(c, s, "accel_mps2", accel_mps2);
+  decel_mps2 = readDouble(c, s, "decel_mps2", decel_mps2);
+  lateral_accel_mps2 = readDouble(c, s, "lateral_accel_mps2", lateral_accel_mps2);
+  start_standing_s = readDouble(c, s, "start_standing_s", start_standing_s);
+  end_standing_s = readDouble(c, s, "end_standing_s", end_standing_s);
+  laps = readInt(c, s, "laps", laps);
+  track_width_m = readDouble(c, s, "track_width_m", track_width_m);
+  if (max_speed_kmh <= 0 || accel_mps2 <= 0 || decel_mps2 <= 0 || lateral_accel_mps2 <= 0 || laps < 1)
+    throw std::runtime_error("[" + s + "] max_speed_kmh, accel_mps2, decel_mps2, lateral_accel_mps2 "
+                             "must be > 0 and laps >= 1");
+}
+
+void TrajectoryParams::saveToConfigFile(mrpt::config::CConfigFileBase& c, const std::string& s) const {
+  c.write(s, "max_speed_kmh", max_speed_kmh);
+  c.write(s, "accel_mps2", accel_mps2);
+  c.write(s, "decel_mps2", decel_mps2);
+  c.write(s, "lateral_accel_mps2", lateral_accel_mps2);
+  c.write(s, "start_standing_s", start_standing_s);
+  c.write(s, "end_standing_s", end_standing_s);
+  c.write(s, "laps", laps);
+  c.write(s, "track_width_m", track_width_m);
+}
+
+std::vector<std::string> TrajectoryParams::keys() {
+  return {"max_speed_kmh", "accel_mps2", "decel_mps2", "lateral_accel_mps2", "start_standing_s",
+          "end_standing_s", "laps", "track_width_m"};
+}
+
+Trajectory::Trajectory(const Road& route, const Ground& ground, const TrajectoryParams& p)
+    : ground_(ground), p_(p), closed_(route.closed), route_len_(roadLength(route)) {
+  // Dense route with smooth heading (mean of the adjacent segments) and curvature dh/ds.
+  const auto& c = route.centerline;
+  const std::size_t n = c.size();
+  const int laps = closed_ ? p.laps : 1;
+  const std::size_t m = closed_ ? n * laps + 1 : n;
+  s_.resize(m);
+  x_.resize(m);
+  y_.resize(m);
+  h_.resize(m);
+  k_.resize(m);
+  std::vector<double> seg(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec2 a = c[i], b = c[(i + 1) % n];
+    seg[i] = (closed_ || i + 1 < n) ? std::atan2(b.y - a.y, b.x - a.x) : seg[i - 1];
+  }
+  for (std::size_t j = 0; j < m; ++j) {
+    const std::size_t i = j % n;
+    const double prev = (i == 0 && !closed_) ? seg[0] : seg[(i + n - 1) % n];
+    const double d = std::remainder(seg[i] - prev, 2 * M_PI);
+    x_[j] = c[i].x;
+    y_[j] = c[i].y;
+    s_[j] = (j < n ? route.cum_m[i] : route.cum_m[i] + route_len_ * static_cast<double>(j / n));
+    h_[j] = j == 0 ? prev + 0.5 * d : h_[j - 1] + std::remainder(prev + 0.5 * d - h_[j - 1], 2 * M_PI);
+  }
+  for (std::size_t j = 0; j < m; ++j) {
+    const std::size_t a = j > 0 ? j - 1 : j, b = j + 1 < m ? j + 1 : j;
+    k_[j] = s_[b] > s_[a] ? (h_[b] - h_[a]) / (s_[b] - s_[a]) : 0;
+  }
+  // Speed profile: curvature limit, then forward (acceleration) and backward (braking) passes.
+  std::vector<double> v(m);
+  for (std::size_t j = 0; j < m; ++j)
+    v[j] = std::min(p.max_speed_mps(), std::sqrt(p.lateral_accel_mps2 / std::max(1e-6, std::abs(k_[j]))));
+  v[0] = 0;
+  for (std::size_t j = 1; j < m; ++j)
+    v[j] = std::min(v[j], std::sqrt(v[j - 1] * v[j - 1] + 2 * p.accel_mps2 * (s_[j] - s_[j - 1])));
+  v[m - 1] = 0;
+  for (std::size_t j = m - 1; j-- > 0;)
+    v[j] = std::min(v[j], std::sqrt(v[j + 1] * v[j + 1] + 2 * p.decel_mps2 * (s_[j + 1] - s_[j])));
+  std::vector<double> t(m);
+  t[0] = p.start_standing_s;
+  for (std::size_t j = 1; j < m; ++j) t[j] = t[j - 1] + 2 * (s_[j] - s_[j - 1]) / std::max(1e-9, v[j - 1] + v[j]);
+  duration_ = t[m - 1] + p.end_standing_s;
+  // 10 ms table: constant acceleration within each dense segment.
+  const std::size_t steps = static_cast<std::size_t>(std::floor(duration_ / kStep_s)) + 1;
+  states_.reserve(steps);
+  std::size_t j = 0;
+  for (std::size_t k = 0; k < steps; ++k) {
+    const double tk = k * kStep_s;
+    while (j + 2 < m && t[j + 1] <= tk) ++j;
+    double s = 0, vk = 0, ak = 0;
+    if (tk <= t[0]) {
+      s = 0;
+    } else if (tk >= t[m - 1]) {
+      s = s_[m - 1];
+    } else {
+      const double ds = s_[j + 1] - s_[j];
+      ak = (v[j + 1] * v[j + 1] - v[j] * v[j]) / (2 * ds);
+      const double tau = tk - t[j];
+      s = s_[j] + v[j] * tau + 0.5 * ak * tau * tau;
+      vk = v[j] + ak * tau;
+    }
+    VehicleState st = stateAtArcLength(s, vk, ak);
+    st.t_s = tk;
+    states_.push_back(st);
+  }
+}
+
+VehicleState Trajectory::stateAtArcLength(double s, double v, double a) const {
+  auto it = std::upper_bound(s_.begin(), s_.end(), s);
+  std::size_t i = static_cast<std::size_t>(std::clamp<std::ptrdiff_t>(it - s_.begin(), 1, s_.size() - 1));
+  const double f = std::clamp((s - s_[i - 1]) / std::max(1e-9, s_[i] - s_[i - 1]), 0.0, 1.0);
+  VehicleState st;
+  st.s_m = s;
+  st.x = x_[i - 1] + f * (x_[i] - x_[i - 1]);
+  st.y = y_[i - 1] + f * (y_[i] - y_[i - 1]);
+  st.z = ground_.height(st.x, st.y);
+  st.yaw = std::remainder(h_[i - 1] + f * (h_[i] - h_[i - 1]), 2 * M_PI);
+  const double kappa = k_[i - 1] + f * (k_[i] - k_[i - 1]);
+  const Vec2 g = ground_.gradient(st.x, st.y);
+  const double ch = std::cos(st.yaw), sh = std::sin(st.yaw);
+  st.pitch = -std::atan(g.x * ch + g.y * sh);  // nose up on an uphill (ZYX: +pitch is nose down)
+  st.roll = std::atan(-g.x * sh + g.y * ch);   // left side up when the ground rises to the left
+  st.speed_mps = v;
+  st.accel_mps2 = a;
+  st.yaw_rate_rps = v * kappa;
+  st.wheel_speed_left_mps = v * (1 - 0.5 * kappa * p_.track_width_m);
+  st.wheel_speed_right_mps = v * (1 + 0.5 * kappa * p_.track_width_m);
+  return st;
+}
+
+VehicleState Trajectory::at(double t_s) const {
+  const double u = std::clamp(t_s / kStep_s, 0.0, static_cast<double>(states_.size() - 1));
+  const std::size_t i = std::min(static_cast<std::size_t>(u), states_.size() - 2);
+  const double f = u - static_cast<double>(i);
+  const VehicleState& a = states_[i];
+  const VehicleState& b = states_[i + 1];
+  auto lerp = [f](double p, double q) { return p + f * (q - p); };
+  VehicleState s = a;
+  s.t_s = t_s;
+  s.x = lerp(a.x, b.x);
+  s.y = lerp(a.y, b.y);
+  s.z = lerp(a.z, b.z);
+  s.yaw = a.yaw + f * std::remainder(b.yaw - a.yaw, 2 * M_PI);
+  s.pitch = lerp(a.pitch, b.pitch);
+  s.roll = lerp(a.roll, b.roll);
+  s.speed_mps = lerp(a.speed_mps, b.speed_mps);
+  s.yaw_rate_rps = lerp(a.yaw_rate_rps, b.yaw_rate_rps);
+  s.s_m = lerp(a.s_m, b.s_m);
+  return s;
+}
+
+}  // namespace roadslam::sim

@@ -1,0 +1,49 @@
+#include <mrpt/config/CConfigFileBase.h>
+
+#include <stdexcept>
+
+#include "roadslam/common/config.h"
+#include "roadslam/sim/world_builder.h"
+
+namespace roadslam::sim {
+
+#define RS_DOUBLES(X)                                                                          \
+  X(length_m) X(width_m) X(corner_radius_m) X(curviness_m) X(lane_width_m) X(parking_width_m) \
+  X(curb_height_m) X(sidewalk_width_m) X(building_density) X(building_min_height_m)           \
+  X(building_max_height_m) X(building_setback_m) X(pole_spacing_m) X(tree_spacing_m)          \
+  X(parked_car_prob) X(moving_car_speed_kmh) X(hill_amplitude_m) X(hill_wavelength_m)         \
+  X(tunnel_start_m) X(tunnel_length_m) X(tunnel_height_m) X(grid_cell_m) X(margin_m)
+#define RS_INTS(X) X(streets) X(lanes_per_side) X(moving_cars)
+
+void WorldParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
+                                     const std::string& s) {
+#define RS_LOAD_D(k) k = readDouble(cfg, s, #k, k);
+#define RS_LOAD_I(k) k = readInt(cfg, s, #k, k);
+  RS_DOUBLES(RS_LOAD_D)
+  RS_INTS(RS_LOAD_I)
+  layout = readString(cfg, s, "layout", layout);
+  if (layout != "loop" && layout != "straight" && layout != "grid")
+    throw std::runtime_error("[" + s + "] layout: '" + layout + "' is not loop|straight|grid");
+  if (length_m <= 0 || width_m <= 0 || lane_width_m <= 0 || grid_cell_m <= 0 || streets < 1 ||
+      lanes_per_side < 1 || hill_wavelength_m <= 0)
+    throw std::runtime_error("[" + s + "] length_m, width_m, lane_width_m, grid_cell_m, "
+                             "hill_wavelength_m must be > 0, streets and lanes_per_side >= 1");
+  if (curb_height_m < 0 || curb_height_m > 0.5)
+    throw std::runtime_error("[" + s + "] curb_height_m must be in [0, 0.5]");
+  if (building_min_height_m > building_max_height_m)
+    throw std::runtime_error("[" + s + "] building_min_height_m > building_max_height_m");
+}
+
+void WorldParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& s) const {
+#define RS_SAVE(k) cfg.write(s, #k, k);
+  RS_DOUBLES(RS_SAVE)
+  RS_INTS(RS_SAVE)
+  cfg.write(s, "layout", layout);
+}
+
+std::vector<std::string> WorldParams::keys() {
+#define RS_NAME(k) #k,
+  return {RS_DOUBLES(RS_NAME) RS_INTS(RS_NAME) "layout"};
+}
+
+}  // namespace roadslam::sim
