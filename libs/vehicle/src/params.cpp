@@ -1,0 +1,119 @@
+#include <roadslam/common/config.h>
+#include <roadslam/vehicle/params.h>
+
+#include <mrpt/config/CConfigFileBase.h>
+
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+#include <stdexcept>
+
+namespace roadslam::vehicle {
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kG = 9.80665;  // standard gravity [m/s^2]
+}  // namespace
+
+const char* quantityKey(Quantity q) {
+  static const char* kKeys[kQuantityCount] = {"wheel_fl",       "wheel_fr", "wheel_rl", "wheel_rr",
+                                              "vehicle_speed",  "yaw_rate", "steering_angle", "accel_x",
+                                              "accel_y",        "gear",     "latitude", "longitude"};
+  return kKeys[static_cast<int>(q)];
+}
+
+double unitScale(const std::string& u) {
+  if (u == "mps" || u == "mps2" || u == "rad" || u == "rad_s" || u == "deg_wgs84" || u == "raw" || u.empty()) {
+    return 1.0;
+  }
+  if (u == "kmh") return 1.0 / 3.6;
+  if (u == "mph") return 0.44704;
+  if (u == "deg" || u == "deg_s") return kPi / 180.0;
+  if (u == "g") return kG;
+  if (u == "pct_g") return kG / 100.0;
+  throw std::invalid_argument("unknown unit '" + u +
+                              "' (accepted: mps kmh mph rad deg rad_s deg_s mps2 g pct_g deg_wgs84 raw)");
+}
+
+std::string VehicleParams::dbcPath() const {
+  if (dbc.empty() || std::filesystem::path(dbc).is_absolute() || data_root.empty()) return dbc;
+  return (std::filesystem::path(data_root) / dbc).string();
+}
+
+std::vector<double> VehicleParams::reverseValues() const {
+  std::vector<double> out;
+  std::stringstream ss(reverse_gear_values);
+  for (std::string tok; std::getline(ss, tok, ',');) {
+    if (!tok.empty()) out.push_back(std::stod(tok));
+  }
+  return out;
+}
+
+void VehicleParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& s) {
+  name = readString(cfg, s, "name", name);
+  dbc = readString(cfg, s, "dbc", dbc);
+  data_root = readString(cfg, s, "data_root", data_root);
+  interface = readString(cfg, s, "interface", interface);
+  wheelbase_m = readDouble(cfg, s, "wheelbase_m", wheelbase_m);
+  track_width_m = readDouble(cfg, s, "track_width_m", track_width_m);
+  steering_ratio = readDouble(cfg, s, "steering_ratio", steering_ratio);
+  reverse_gear_values = readString(cfg, s, "reverse_gear_values", reverse_gear_values);
+  std::vector<std::string> known = {"name", "dbc", "data_root", "interface", "wheelbase_m", "track_width_m",
+                                    "steering_ratio", "reverse_gear_values"};
+  for (int i = 0; i < kQuantityCount; ++i) {
+    SignalMapping& m = map[static_cast<std::size_t>(i)];
+    const std::string k = quantityKey(static_cast<Quantity>(i));
+    m.signal = readString(cfg, s, k, m.signal);
+    m.add_signal = readString(cfg, s, k + "_add", m.add_signal);
+    m.negate_if = readString(cfg, s, k + "_negate_if", m.negate_if);
+    m.unit = readString(cfg, s, k + "_unit", m.unit);
+    m.sign = readDouble(cfg, s, k + "_sign", m.sign);
+    try {
+      m.unit_scale = unitScale(m.unit);
+    } catch (const std::exception& e) {
+      throw std::runtime_error("[" + s + "] " + k + "_unit: " + e.what());
+    }
+    if (m.sign != 1.0 && m.sign != -1.0) throw std::runtime_error("[" + s + "] " + k + "_sign must be 1 or -1");
+    for (const char* suffix : {"", "_add", "_negate_if", "_unit", "_sign"}) known.push_back(k + suffix);
+  }
+  const auto unknown = unknownKeys(cfg, s, known);
+  if (!unknown.empty()) throw std::runtime_error("[" + s + "] unknown key '" + unknown.front() + "'");
+  if (wheelbase_m <= 0 || steering_ratio <= 0) {
+    throw std::runtime_error("[" + s + "] wheelbase_m and steering_ratio must be positive");
+  }
+}
+
+void VehicleParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& s) const {
+  cfg.write(s, "name", name);
+  cfg.write(s, "dbc", dbc);
+  cfg.write(s, "data_root", data_root);
+  cfg.write(s, "interface", interface);
+  cfg.write(s, "wheelbase_m", wheelbase_m);
+  cfg.write(s, "track_width_m", track_width_m);
+  cfg.write(s, "steering_ratio", steering_ratio);
+  cfg.write(s, "reverse_gear_values", reverse_gear_values);
+  for (int i = 0; i < kQuantityCount; ++i) {
+    const SignalMapping& m = map[static_cast<std::size_t>(i)];
+    if (!m.present()) continue;
+    const std::string k = quantityKey(static_cast<Quantity>(i));
+    cfg.write(s, k, m.signal);
+    if (!m.add_signal.empty()) cfg.write(s, k + "_add", m.add_signal);
+    if (!m.negate_if.empty()) cfg.write(s, k + "_negate_if", m.negate_if);
+    cfg.write(s, k + "_unit", m.unit);
+    cfg.write(s, k + "_sign", m.sign);
+  }
+}
+
+VehicleParams loadVehicleIni(const std::string& path, const std::string& data_root) {
+  const auto cfg = loadIniFile(path);
+  VehicleParams p;
+  try {
+    p.loadFromConfigFile(*cfg, "vehicle");
+  } catch (const std::exception& e) {
+    throw std::runtime_error(path + ": " + e.what());
+  }
+  if (!data_root.empty()) p.data_root = data_root;
+  if (p.dbc.empty()) throw std::runtime_error(path + ": [vehicle] dbc is required");
+  return p;
+}
+
+}  // namespace roadslam::vehicle
