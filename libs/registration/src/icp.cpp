@@ -1,0 +1,100 @@
+#include <Eigen/Cholesky>
+
+#include "solvers.h"
+
+namespace roadslam::registration {
+namespace {
+
+// Accumulates J^T W J and J^T W r for one Gauss-Newton step. Residuals, with x = T * p_source
+// and q the nearest target point (left perturbation, J_x = [I, -[x]_x]):
+//   point-to-point: r = x - q,          J = [I, -[x]_x]           (Besl & McKay 1992)
+//   point-to-plane: r = n . (x - q),    J = [n^T, (x cross n)^T]  (Chen & Medioni 1992)
+struct Normal6 {
+  Matrix6d H = Matrix6d::Zero();
+  Vector6d b = Vector6d::Zero();
+  int n = 0;
+};
+
+void accumulate(const Target::Impl& t, const PointCloud& src, const Eigen::Isometry3d& T,
+                const Params& prm, bool point_to_plane, Normal6& acc) {
+  const double max_d2 = prm.max_correspondence_distance_m * prm.max_correspondence_distance_m;
+  Eigen::Matrix<double, 6, 6> H = Matrix6d::Zero();
+  Vector6d b = Vector6d::Zero();
+  int n = 0;
+  const Eigen::Matrix3d R = T.linear();
+  const Eigen::Vector3d tr = T.translation();
+  for (const auto& p : src) {
+    const Eigen::Vector3d x = R * p + tr;
+    double d2 = 0;
+    const int j = nearest(t, x, max_d2, d2);
+    if (j < 0) continue;
+    const Eigen::Vector3d& q = t.points[static_cast<size_t>(j)];
+    if (point_to_plane) {
+      const Eigen::Vector3d& nn = t.normals[static_cast<size_t>(j)];
+      const double r = nn.dot(x - q);
+      Vector6d J;
+      J.head<3>() = nn;
+      J.tail<3>() = x.cross(nn);
+      const double w = kernelWeight(prm.kernel, r, prm.kernel_scale_m);
+      H.selfadjointView<Eigen::Upper>().rankUpdate(J, w);
+      b.noalias() += (w * r) * J;
+    } else {
+      const Eigen::Vector3d r = x - q;
+      const double w = kernelWeight(prm.kernel, std::sqrt(d2), prm.kernel_scale_m);
+      // J^T J for J = [I, -[x]x]: blocks I, -[x]x ; [x]x, -[x]x^2 (= [x]x^T [x]x).
+      Eigen::Matrix<double, 3, 6> J;
+      J.leftCols<3>().setIdentity();
+      J.rightCols<3>() << 0, x.z(), -x.y(), -x.z(), 0, x.x(), x.y(), -x.x(), 0;
+      H.noalias() += w * J.transpose() * J;
+      b.noalias() += w * J.transpose() * r;
+    }
+    ++n;
+  }
+  if (point_to_plane) H.triangularView<Eigen::StrictlyLower>() = H.transpose();
+  acc.H = H;
+  acc.b = b;
+  acc.n = n;
+}
+
+}  // namespace
+
+SolveOutcome solveIcp(const Target::Impl& t, const PointCloud& src, const Eigen::Isometry3d& guess,
+                      const Params& prm) {
+  const bool p2pl = prm.method == Method::IcpPointToPlane;
+  SolveOutcome out;
+  out.T_target_source = guess;
+  Normal6 acc;
+  for (int it = 0; it < prm.max_iterations; ++it) {
+    accumulate(t, src, out.T_target_source, prm, p2pl, acc);
+    out.iterations = it + 1;
+    if (acc.n < std::max(prm.min_inliers, 6)) {
+      out.status = Status::TooFewCorrespondences;
+      out.reason = "iteration " + std::to_string(it) + ": " + std::to_string(acc.n) +
+                   " correspondences within " + std::to_string(prm.max_correspondence_distance_m) + " m";
+      return out;
+    }
+    const Eigen::LDLT<Matrix6d> ldlt(acc.H);
+    const Vector6d delta = ldlt.solve(-acc.b);
+    if (ldlt.info() != Eigen::Success || !delta.allFinite()) {
+      out.status = Status::Diverged;
+      out.reason = "singular normal equations at iteration " + std::to_string(it);
+      return out;
+    }
+    out.T_target_source = applyIncrement(delta, out.T_target_source);
+    if ((out.T_target_source.translation() - guess.translation()).norm() > prm.max_correction_m) {
+      out.status = Status::Diverged;
+      out.reason = "correction beyond max_correction_m = " + std::to_string(prm.max_correction_m) + " m";
+      return out;
+    }
+    if (delta.head<3>().norm() < prm.convergence_translation_m &&
+        delta.tail<3>().norm() < prm.convergence_rotation_rad) {
+      out.status = Status::Converged;
+      return out;
+    }
+  }
+  out.status = Status::MaxIterations;
+  out.reason = "no convergence in " + std::to_string(prm.max_iterations) + " iterations";
+  return out;
+}
+
+}  // namespace roadslam::registration

@@ -1,0 +1,145 @@
+#include <Eigen/Eigenvalues>
+#include <cmath>
+
+#include "solvers.h"
+
+namespace roadslam::registration {
+namespace {
+
+// Gaussian fit of the mixed normal/uniform cell likelihood (Magnusson 2009, eq. 6.8).
+struct NdtConstants {
+  double d1, d2;
+};
+NdtConstants ndtConstants(double outlier_ratio, double res) {
+  const double c1 = 10.0 * (1.0 - outlier_ratio);
+  const double c2 = outlier_ratio / (res * res * res);
+  const double d3 = -std::log(c2);
+  const double d1 = -std::log(c1 + c2) - d3;
+  const double d2 = -2.0 * std::log((-std::log(c1 * std::exp(-0.5) + c2) - d3) / d1);
+  return {d1, d2};
+}
+
+constexpr int kNeighbourOffsets[7][3] = {{0, 0, 0}, {1, 0, 0}, {-1, 0, 0}, {0, 1, 0},
+                                         {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+
+// Cost f = sum d1 exp(-d2/2 x'^T C^-1 x') (to minimise, d1 < 0) with gradient and Hessian
+// (Magnusson 2009, eq. 6.12-6.13) for the left perturbation x = R(w) x0 + t, whose second
+// derivative d2x/dw_i dw_j gives the term 1/2 (x a^T + a x^T) - (a.x) I with a = C^-1 x'.
+double evaluate(const NdtGrid& g, const NdtConstants& k, const PointCloud& src, const Eigen::Isometry3d& T,
+                Vector6d* grad, Matrix6d* hess, int* hits = nullptr) {
+  const double inv = 1.0 / g.resolution_m;
+  double f = 0;
+  if (grad) grad->setZero();
+  if (hess) hess->setZero();
+  int n_hits = 0;
+  const Eigen::Matrix3d R = T.linear();
+  const Eigen::Vector3d tr = T.translation();
+  for (const auto& p : src) {
+    const Eigen::Vector3d x = R * p + tr;
+    const int64_t cx = static_cast<int64_t>(std::floor(x.x() * inv));
+    const int64_t cy = static_cast<int64_t>(std::floor(x.y() * inv));
+    const int64_t cz = static_cast<int64_t>(std::floor(x.z() * inv));
+    for (const auto& o : kNeighbourOffsets) {
+      const auto it = g.index.find(voxelKey(cx + o[0], cy + o[1], cz + o[2]));
+      if (it == g.index.end()) continue;
+      const NdtCell& c = g.cells[static_cast<size_t>(it->second)];
+      const Eigen::Vector3d xd = x - c.mean;
+      const Eigen::Vector3d a = c.cov_inv * xd;
+      const double e = std::exp(-0.5 * k.d2 * xd.dot(a));
+      if (e < 1e-12) continue;
+      f += k.d1 * e;
+      ++n_hits;
+      if (!grad) continue;
+      const double s = -k.d1 * k.d2 * e;  // > 0
+      Vector6d Ja;  // J^T a with J = [I, -[x]x]
+      Ja.head<3>() = a;
+      Ja.tail<3>() = x.cross(a);
+      grad->noalias() += s * Ja;
+      if (!hess) continue;
+      Matrix6d Hp;
+      Eigen::Matrix<double, 3, 6> J;
+      J.leftCols<3>().setIdentity();
+      J.rightCols<3>() << 0, x.z(), -x.y(), -x.z(), 0, x.x(), x.y(), -x.x(), 0;
+      Hp.noalias() = J.transpose() * c.cov_inv * J;
+      Hp.noalias() -= k.d2 * Ja * Ja.transpose();
+      Hp.bottomRightCorner<3, 3>() += 0.5 * (x * a.transpose() + a * x.transpose()) -
+                                      a.dot(x) * Eigen::Matrix3d::Identity();
+      hess->noalias() += s * Hp;
+    }
+  }
+  if (hits) *hits = n_hits;
+  return f;
+}
+
+// Newton direction with the Hessian made positive definite by clamping its eigenvalues (the
+// exact Hessian is indefinite far from the optimum; Magnusson's More-Thuente search assumes descent).
+Vector6d newtonDirection(const Matrix6d& H, const Vector6d& g) {
+  Eigen::SelfAdjointEigenSolver<Matrix6d> es(H);
+  Vector6d ev = es.eigenvalues().cwiseAbs();
+  const double floor_ev = std::max(1e-9, 1e-6 * ev.maxCoeff());
+  for (int i = 0; i < 6; ++i) ev(i) = std::max(ev(i), floor_ev);
+  return -(es.eigenvectors() * ev.cwiseInverse().asDiagonal() * es.eigenvectors().transpose() * g);
+}
+
+}  // namespace
+
+SolveOutcome solveNdt(const Target::Impl& t, const PointCloud& src, const Eigen::Isometry3d& guess,
+                      const Params& prm) {
+  SolveOutcome out;
+  out.T_target_source = guess;
+  bool last_converged = false;
+  for (const NdtGrid& g : t.ndt) {
+    const NdtConstants k = ndtConstants(prm.ndt_outlier_ratio, g.resolution_m);
+    last_converged = false;
+    Vector6d grad;
+    Matrix6d hess;
+    int hits = 0;
+    double f = evaluate(g, k, src, out.T_target_source, &grad, &hess, &hits);
+    for (int it = 0; it < prm.max_iterations && !last_converged; ++it) {
+      ++out.iterations;
+      if (hits < std::max(prm.min_inliers, 6)) {
+        out.status = Status::TooFewCorrespondences;
+        out.reason = std::to_string(hits) + " point-cell pairs at resolution " +
+                     std::to_string(g.resolution_m) + " m";
+        return out;
+      }
+      Vector6d delta = newtonDirection(hess, grad);
+      if (!delta.allFinite()) {
+        out.status = Status::Diverged;
+        out.reason = "non-finite Newton step";
+        return out;
+      }
+      const double step = delta.norm();
+      if (step > prm.ndt_max_step_m) delta *= prm.ndt_max_step_m / step;
+      // Backtracking line search with the Armijo condition (sufficient decrease, c = 1e-4).
+      const double slope = grad.dot(delta);
+      double alpha = 1.0;
+      Eigen::Isometry3d T_new = out.T_target_source;
+      double f_new = f;
+      for (int ls = 0; ls < 10; ++ls, alpha *= 0.5) {
+        T_new = applyIncrement(alpha * delta, out.T_target_source);
+        f_new = evaluate(g, k, src, T_new, nullptr, nullptr);
+        if (f_new <= f + 1e-4 * alpha * slope) break;
+      }
+      if (f_new > f) {  // no decrease along a descent direction: at the optimum to precision
+        last_converged = true;
+        break;
+      }
+      const Vector6d applied = alpha * delta;
+      out.T_target_source = T_new;
+      f = evaluate(g, k, src, out.T_target_source, &grad, &hess, &hits);
+      if ((out.T_target_source.translation() - guess.translation()).norm() > prm.max_correction_m) {
+        out.status = Status::Diverged;
+        out.reason = "correction beyond max_correction_m = " + std::to_string(prm.max_correction_m) + " m";
+        return out;
+      }
+      last_converged = applied.head<3>().norm() < prm.convergence_translation_m &&
+                       applied.tail<3>().norm() < prm.convergence_rotation_rad;
+    }
+  }
+  out.status = last_converged ? Status::Converged : Status::MaxIterations;
+  if (!last_converged) out.reason = "no convergence in " + std::to_string(prm.max_iterations) + " iterations";
+  return out;
+}
+
+}  // namespace roadslam::registration

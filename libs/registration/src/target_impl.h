@@ -1,0 +1,76 @@
+#pragma once
+// Private: search structures behind roadslam::registration::Target.
+
+#include "roadslam/registration/registration.h"
+
+#include <nanoflann.hpp>
+
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+namespace roadslam::registration {
+
+/// nanoflann dataset adaptor over a PointCloud.
+struct CloudAdaptor {
+  const PointCloud* pts = nullptr;
+  size_t kdtree_get_point_count() const { return pts->size(); }
+  double kdtree_get_pt(size_t i, size_t dim) const { return (*pts)[i][static_cast<Eigen::Index>(dim)]; }
+  template <class BBox>
+  bool kdtree_get_bbox(BBox&) const { return false; }
+};
+using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, CloudAdaptor>,
+                                                   CloudAdaptor, 3, uint32_t>;
+
+/// Integer voxel coordinates packed into 63 bits (21 bits per axis, +-1M cells).
+inline uint64_t voxelKey(const Eigen::Vector3d& p, double inv_size) {
+  const auto c = [&](double v) {
+    return static_cast<uint64_t>(static_cast<int64_t>(std::floor(v * inv_size)) + (1 << 20)) & 0x1FFFFFu;
+  };
+  return (c(p.x()) << 42) | (c(p.y()) << 21) | c(p.z());
+}
+inline uint64_t voxelKey(int64_t x, int64_t y, int64_t z) {
+  const auto c = [](int64_t v) { return static_cast<uint64_t>(v + (1 << 20)) & 0x1FFFFFu; };
+  return (c(x) << 42) | (c(y) << 21) | c(z);
+}
+struct VoxelHash {
+  size_t operator()(uint64_t k) const noexcept {
+    // Teschner et al. 2003 spatial hash, applied to the packed key's three fields.
+    return static_cast<size_t>(((k >> 42) * 73856093u) ^ (((k >> 21) & 0x1FFFFFu) * 19349663u) ^
+                               ((k & 0x1FFFFFu) * 83492791u));
+  }
+};
+
+/// One NDT cell: a Gaussian of the target points inside it (Magnusson 2009, eq. 6.2-6.3).
+struct NdtCell {
+  Eigen::Vector3d mean;      ///< [m], target frame
+  Eigen::Matrix3d cov_inv;   ///< regularised inverse covariance [1/m^2]
+  Eigen::Vector3d normal;    ///< eigenvector of the smallest eigenvalue (for degeneracy analysis)
+};
+struct NdtGrid {
+  double resolution_m = 1;
+  std::unordered_map<uint64_t, int, VoxelHash> index;  ///< voxel key -> cells[i]
+  std::vector<NdtCell> cells;
+};
+
+struct Target::Impl {
+  Method method = Method::IcpPointToPlane;
+  PointCloud points;   ///< finite target points [m]
+  PointCloud normals;  ///< unit normals (ICP methods); zero where undefined
+  size_t dropped = 0;
+  CloudAdaptor adaptor;
+  std::unique_ptr<KdTree> tree;
+  std::vector<NdtGrid> ndt;  ///< coarse to fine
+};
+
+/// Nearest target point within max_dist2 [m^2]; returns index or -1.
+inline int nearest(const Target::Impl& t, const Eigen::Vector3d& x, double max_dist2, double& d2) {
+  uint32_t idx = 0;
+  nanoflann::KNNResultSet<double, uint32_t> rs(1);
+  rs.init(&idx, &d2);
+  t.tree->findNeighbors(rs, x.data(), nanoflann::SearchParams(10));
+  if (rs.size() == 0 || d2 > max_dist2) return -1;
+  return static_cast<int>(idx);
+}
+
+}  // namespace roadslam::registration
