@@ -95,8 +95,9 @@ void World::buildGrid(double xmin, double ymin, double xmax, double ymax, double
 bool World::traceCell(const Ray& ray, const Cell& cell, int ix, int iy, double t_in, double t_out,
                       uint64_t ray_key, Hit& hit) const {
   bool any = false;
-  // Ground: the cell's tangent plane at its centre (error ~ curvature * cell^2 / 8, < 1 cm for the
-  // shipped hills). Entering a cell below its plane means hitting the step between two planes.
+  // Ground: the cell's tangent plane at its centre (second-order error (h_xx dx^2 + h_yy dy^2)/2 at
+  // the corners: < 1.5 cm for hills.ini with 5 m cells, below the range noise).
+  // Entering a cell below its plane means hitting the step between two planes.
   const double xc = x0_ + (ix + 0.5) * cell_, yc = y0_ + (iy + 0.5) * cell_;
   const double a = ray.d.z - cell.gx * ray.d.x - cell.gy * ray.d.y;
   const double f0 = ray.o.z - cell.gz - cell.gx * (ray.o.x - xc) - cell.gy * (ray.o.y - yc);

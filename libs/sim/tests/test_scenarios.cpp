@@ -1,0 +1,102 @@
+// Every shipped scenario loads and builds; drives obey their limits; the urban loop closes.
+#include <gtest/gtest.h>
+#include <mrpt/config/CConfigFileMemory.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "roadslam/sim/simulator.h"
+
+using namespace roadslam::sim;
+
+namespace {
+std::string iniPath(const std::string& name) { return std::string(ROADSLAM_SOURCE_DIR) + "/ini/sim/" + name; }
+}  // namespace
+
+TEST(Scenarios, EveryShippedIniLoadsAndBuilds) {
+  int n = 0;
+  for (const auto& e : std::filesystem::directory_iterator(iniPath(""))) {
+    if (e.path().extension() != ".ini") continue;
+    SCOPED_TRACE(e.path().string());
+    const ScenarioParams p = ScenarioParams::fromFile(e.path().string());
+    EXPECT_EQ(p.name + ".ini", e.path().filename().string());
+    const Simulator sim(p);
+    EXPECT_GT(sim.world().prisms.size(), 50u);
+    EXPECT_GT(sim.trajectory().distance_m(), 200.0);
+    EXPECT_GT(sim.duration_s(), 20.0);
+    ++n;
+  }
+  EXPECT_EQ(n, 6);
+}
+
+TEST(Scenarios, UnknownKeysAndBadValuesAreNamed) {
+  mrpt::config::CConfigFileMemory cfg;
+  cfg.write("world", "lenght_m", 3.0);
+  ScenarioParams p;
+  try {
+    p.loadFromConfigFile(cfg);
+    FAIL() << "typo accepted";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("lenght_m"), std::string::npos) << e.what();
+  }
+  mrpt::config::CConfigFileMemory bad;
+  bad.write("lidar", "rotation_hz", 30.0);
+  EXPECT_THROW(p.loadFromConfigFile(bad), std::runtime_error);
+}
+
+TEST(Scenarios, SavedParametersReloadIdentically) {
+  ScenarioParams a = ScenarioParams::fromFile(iniPath("hills.ini"));
+  mrpt::config::CConfigFileMemory cfg;
+  a.saveToConfigFile(cfg);
+  ScenarioParams b;
+  b.loadFromConfigFile(cfg);
+  mrpt::config::CConfigFileMemory cfg2;
+  b.saveToConfigFile(cfg2);
+  EXPECT_EQ(cfg.getContent(), cfg2.getContent());
+  EXPECT_DOUBLE_EQ(b.world.hill_amplitude_m, 6.0);
+}
+
+TEST(Scenarios, UrbanLoopReturnsToItsStart) {
+  const Simulator sim(ScenarioParams::fromFile(iniPath("urban-loop.ini")));
+  const auto& st = sim.trajectory().states();
+  const VehicleState& a = st.front();
+  const VehicleState& b = st.back();
+  EXPECT_LT(std::hypot(b.x - a.x, b.y - a.y), 3.0);
+  EXPECT_NEAR(std::remainder(b.yaw - a.yaw, 2 * M_PI), 0.0, 0.05);
+  EXPECT_NEAR(sim.trajectory().distance_m(), 1000.0, 60.0);  // 2 (300 + 200) minus the corners
+  EXPECT_EQ(a.speed_mps, 0.0);
+  EXPECT_EQ(b.speed_mps, 0.0);
+}
+
+// Limits of the speed profile, checked by differentiating the 10 ms table (an independent route
+// to speed, acceleration and lateral acceleration).
+TEST(Scenarios, DrivesRespectTheirLimits) {
+  for (const char* name : {"urban-loop.ini", "highway.ini", "parking-lot.ini"}) {
+    SCOPED_TRACE(name);
+    const ScenarioParams p = ScenarioParams::fromFile(iniPath(name));
+    const Simulator sim(p);
+    const auto& st = sim.trajectory().states();
+    double vmax = 0;
+    for (std::size_t i = 1; i + 1 < st.size(); ++i) {
+      const double v = std::hypot(st[i + 1].x - st[i - 1].x, st[i + 1].y - st[i - 1].y) / 0.02;
+      vmax = std::max(vmax, v);
+      ASSERT_LE(v, p.trajectory.max_speed_mps() + 0.05) << "t " << st[i].t_s;
+      ASSERT_NEAR(st[i].speed_mps, v, 0.05) << "t " << st[i].t_s;
+      const double dyaw = std::remainder(st[i + 1].yaw - st[i - 1].yaw, 2 * M_PI) / 0.02;
+      ASSERT_LE(std::abs(dyaw * v), p.trajectory.lateral_accel_mps2 * 1.15 + 0.05) << "t " << st[i].t_s;
+    }
+    EXPECT_NEAR(vmax, p.trajectory.max_speed_mps(), 0.1 * p.trajectory.max_speed_mps());
+  }
+}
+
+TEST(Scenarios, SameSeedSameWorldOtherSeedOtherWorld) {
+  ScenarioParams p = ScenarioParams::fromFile(iniPath("urban-loop.ini"));
+  const Simulator a(p), b(p);
+  ASSERT_EQ(a.world().prisms.size(), b.world().prisms.size());
+  for (std::size_t i = 0; i < a.world().prisms.size(); ++i) ASSERT_EQ(a.world().prisms[i].cx, b.world().prisms[i].cx);
+  p.seed = 99;
+  const Simulator c(p);
+  bool differs = c.world().prisms.size() != a.world().prisms.size();
+  for (std::size_t i = 0; !differs && i < a.world().prisms.size(); ++i) differs = a.world().prisms[i].cx != c.world().prisms[i].cx;
+  EXPECT_TRUE(differs);
+}
