@@ -7,22 +7,63 @@
 #include <string>
 
 #include "roadslam/sources/boxroom.h"
+#include "roadslam/sources/recording.h"
+
+namespace {
+struct DecoderOptions {
+  std::string model = "auto";
+  std::string calibration;
+  void addTo(CLI::App* cmd) {
+    cmd->add_option("--model", model, "force the sensor model (some VLP-16s report 0x21)")
+        ->check(CLI::IsMember({"auto", "vlp16", "hdl32"}));
+    cmd->add_option("--calibration", calibration, "VeloView/Velodyne calibration XML");
+  }
+  roadslam::velodyne::DecoderParams params() const {
+    roadslam::velodyne::DecoderParams p;
+    p.model = roadslam::velodyne::parseModel(model);
+    p.calibration_file = calibration;
+    return p;
+  }
+};
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"Summarise and convert Velodyne recordings (.pcap, MRPT .rawlog)"};
   app.require_subcommand(1);
 
-  std::string boxroom_out;
-  auto* box = app.add_subcommand("make-boxroom",
-                                 "Write the deterministic box-room VLP-16 capture (rawlogs/boxroom-vlp16.pcap)");
-  box->add_option("OUT", boxroom_out, "output .pcap")->required();
+  std::string info_in;
+  bool json = false;
+  DecoderOptions info_opt;
+  auto* info = app.add_subcommand("info", "Sweeps, packets, points, duration, rates, GPS fixes");
+  info->add_option("FILE", info_in, ".pcap or .rawlog")->required();
+  info->add_flag("--json", json, "machine-readable output");
+  info_opt.addTo(info);
+
+  std::string conv_in, conv_out;
+  DecoderOptions conv_opt;
+  auto* conv = app.add_subcommand("convert", "pcap -> MRPT rawlog (CObservationVelodyneScan per sweep)");
+  conv->add_option("IN", conv_in, "input .pcap (or .rawlog)")->required();
+  conv->add_option("OUT", conv_out, "output .rawlog")->required();
+  conv_opt.addTo(conv);
+
+  std::string box_out;
+  auto* box = app.add_subcommand("make-boxroom", "Write the deterministic box-room VLP-16 capture");
+  box->add_option("OUT", box_out, "output .pcap (bundled: rawlogs/boxroom-vlp16.pcap)")->required();
 
   CLI11_PARSE(app, argc, argv);
+  using namespace roadslam::sources;
   try {
-    if (*box) {
-      const auto s = roadslam::sources::writeBoxRoomPcap(boxroom_out);
+    if (*info) {
+      const RecordingSummary s = summarizeRecording(info_in, info_opt.params());
+      fmt::print("{}\n", json ? toJson(s) : toText(s));
+    } else if (*conv) {
+      const ConvertSummary s = convertToRawlog(conv_in, conv_out, conv_opt.params());
+      fmt::print("{}: {} sweeps ({} packets), {} GPS records\n", conv_out, s.observations,
+                 s.packets, s.gps);
+    } else if (*box) {
+      const BoxRoomSummary s = writeBoxRoomPcap(box_out);
       fmt::print("{}: {} data packets, {} position packets, {} points, {} complete sweeps\n",
-                 boxroom_out, s.data_packets, s.position_packets, s.points, s.complete_sweeps);
+                 box_out, s.data_packets, s.position_packets, s.points, s.complete_sweeps);
     }
   } catch (const std::exception& e) {
     fmt::print(stderr, "roadslam-rawlog: {}\n", e.what());

@@ -8,6 +8,7 @@
 #include <mrpt/serialization/CArchive.h>
 #include <mrpt/system/filesystem.h>
 
+#include <cmath>
 #include <cstring>
 #include <stdexcept>
 
@@ -19,19 +20,23 @@ namespace {
 constexpr double kHour_s = 3600.0;
 constexpr double kKnot_mps = 1852.0 / 3600.0;
 
-GpsFix fixFromObservation(const mrpt::obs::CObservationGPS& o) {
-  GpsFix fix;
-  const auto t = o.originalReceivedTimestamp != INVALID_TIMESTAMP ? o.originalReceivedTimestamp
-                                                                   : o.timestamp;
-  fix.stamp_s = mrpt::Clock::toDouble(t);
+TimedGpsFix fixFromObservation(const mrpt::obs::CObservationGPS& o) {
+  TimedGpsFix t;
+  const auto ts = o.originalReceivedTimestamp != INVALID_TIMESTAMP ? o.originalReceivedTimestamp
+                                                                    : o.timestamp;
+  t.stamp_s = mrpt::Clock::toDouble(ts);
   const auto& f = o.getMsgByClass<mrpt::obs::gnss::Message_NMEA_RMC>().fields;
-  fix.utc_s = f.UTCTime.hour * 3600.0 + f.UTCTime.minute * 60.0 + f.UTCTime.sec;
+  velodyne::GpsFix& fix = t.fix;
+  fix.time_of_day_s = f.UTCTime.hour * 3600.0 + f.UTCTime.minute * 60.0 + f.UTCTime.sec;
   fix.valid = f.validity_char == 'A';
+  fix.day = f.date_day;
+  fix.month = f.date_month;
+  fix.year = f.date_year == 0 ? 0 : 2000 + f.date_year;
   fix.latitude_deg = f.latitude_degrees;
   fix.longitude_deg = f.longitude_degrees;
   fix.speed_mps = f.speed_knots * kKnot_mps;
-  fix.course_deg = f.direction_degrees;
-  return fix;
+  fix.course_rad = f.direction_degrees * M_PI / 180.0;
+  return t;
 }
 }  // namespace
 
@@ -99,6 +104,12 @@ bool RawlogPacketSource::readMore() {
     ++other_;
   }
   return true;
+}
+
+std::vector<TimedGpsFix> RawlogPacketSource::takeDecodedFixes() {
+  std::vector<TimedGpsFix> out;
+  out.swap(gps_);
+  return out;
 }
 
 std::optional<velodyne::RawPacket> RawlogPacketSource::next() {

@@ -14,7 +14,7 @@
 
 #include "roadslam/common/atomic_file.h"
 #include "roadslam/common/config.h"
-#include "roadslam/sources/gps_fix.h"
+#include "roadslam/velodyne/position.h"
 
 namespace roadslam::sources {
 
@@ -118,10 +118,13 @@ void RawlogWriter::writeSweep(const std::vector<velodyne::RawPacket>& data_packe
 }
 
 bool RawlogWriter::writePosition(const velodyne::RawPacket& position_packet) {
-  const std::string nmea = nmeaOfPositionPacket(position_packet);
+  velodyne::PositionPacket pos;
   mrpt::obs::CObservationGPS obs;
-  if (nmea.size() < 6 || nmea.compare(3, 3, "RMC") != 0 ||
-      !mrpt::hwdrivers::CGPSInterface::parse_NMEA(nmea, obs)) {
+  // Our decoder checks size, checksum and fields; MRPT's own NMEA parser then fills the
+  // Message_NMEA_RMC exactly as MRPT's GPS drivers do, so MRPT tools read it as usual.
+  if (!velodyne::decodePositionPacket(position_packet.payload.data(),
+                                      position_packet.payload.size(), pos) ||
+      !pos.has_fix || !mrpt::hwdrivers::CGPSInterface::parse_NMEA(pos.nmea, obs)) {
     ++skipped_;
     return false;
   }

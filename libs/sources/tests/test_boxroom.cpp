@@ -56,9 +56,9 @@ TEST(BoxRoom, PacketsCarryTheCastRangesAndGps) {
   std::size_t data = 0, fixes = 0;
   while (auto pkt = src.next()) {
     if (pkt->dst_port == 8308) {
-      auto fix = parseGpsFix(*pkt);
+      auto fix = decodeGpsFix(*pkt);
       ASSERT_TRUE(fix);
-      EXPECT_TRUE(fix->valid);
+      EXPECT_TRUE(fix->fix.valid);
       ++fixes;
       continue;
     }

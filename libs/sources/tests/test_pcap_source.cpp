@@ -34,13 +34,13 @@ TEST(PcapPacketSource, MrptSampleCountsMatchManifest) {
     EXPECT_GE(p->stamp_s, last) << "packet " << n;
     last = p->stamp_s;
     if (p->dst_port == 8308) {
-      auto fix = parseGpsFix(*p);
+      auto fix = decodeGpsFix(*p);
       if (fix) {
         ++fixes;
         // MANIFEST: $GPRMC 36deg49.748'N 002deg24.454'W, 0.03 kn.
-        EXPECT_NEAR(fix->latitude_deg, test_support::kAlmeriaLat_deg, 1e-3);
-        EXPECT_NEAR(fix->longitude_deg, test_support::kAlmeriaLon_deg, 1e-3);
-        EXPECT_LT(fix->speed_mps, 0.1);
+        EXPECT_NEAR(fix->fix.latitude_deg, test_support::kAlmeriaLat_deg, 1e-3);
+        EXPECT_NEAR(fix->fix.longitude_deg, test_support::kAlmeriaLon_deg, 1e-3);
+        EXPECT_LT(fix->fix.speed_mps, 0.1);
       }
     }
     ++n;

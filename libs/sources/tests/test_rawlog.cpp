@@ -85,11 +85,15 @@ TEST(Rawlog, PacketsRoundTripByteIdenticalWithStamps) {
   EXPECT_EQ(src.scansRead(), 3u);
   EXPECT_EQ(src.stats().data_packets, 3u * 76u);
   EXPECT_EQ(src.stats().missing_packets, 0u);
-  ASSERT_EQ(src.gpsFixes().size(), 3u);
-  EXPECT_NEAR(src.gpsFixes()[0].latitude_deg, kAlmeriaLat_deg, 1e-7);
-  EXPECT_NEAR(src.gpsFixes()[0].longitude_deg, kAlmeriaLon_deg, 1e-7);
-  EXPECT_TRUE(src.gpsFixes()[0].valid);
-  EXPECT_NEAR(src.gpsFixes()[0].utc_s, 8 * 3600 + 18 * 60 + 2, 1e-6);
+  const auto fixes = src.takeDecodedFixes();
+  ASSERT_EQ(fixes.size(), 3u);
+  EXPECT_TRUE(src.takeDecodedFixes().empty()) << "fixes are handed out once";
+  EXPECT_NEAR(fixes[0].fix.latitude_deg, kAlmeriaLat_deg, 1e-7);
+  EXPECT_NEAR(fixes[0].fix.longitude_deg, kAlmeriaLon_deg, 1e-7);
+  EXPECT_TRUE(fixes[0].fix.valid);
+  EXPECT_NEAR(fixes[0].fix.time_of_day_s, 8 * 3600 + 18 * 60 + 2, 1e-6);
+  EXPECT_EQ(fixes[0].fix.year, 2016);
+  EXPECT_NEAR(fixes[0].stamp_s, rec.positions[0].stamp_s, 1e-6);
   fs::remove(path);
 }
 

@@ -7,7 +7,9 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
+#include "roadslam/sources/gps_fix.h"
 #include "roadslam/velodyne/packet.h"
 
 namespace roadslam::sources {
@@ -43,6 +45,9 @@ class PacketSource {
   virtual const SourceStats& stats() const = 0;
   /// Short human-readable origin, e.g. "pcap:/path/file.pcap" or "udp:0.0.0.0:2368".
   virtual std::string describe() const = 0;
+  /// GPS fixes the source holds already decoded (rawlog CObservationGPS records) since the last
+  /// call; position packets returned by next() are not repeated here.
+  virtual std::vector<TimedGpsFix> takeDecodedFixes() { return {}; }
 };
 
 /// Counts packets missing from a data stream from the sensor's own timestamps (bytes 1200-1203, us

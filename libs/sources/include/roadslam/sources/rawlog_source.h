@@ -2,7 +2,7 @@
 /// \file rawlog_source.h
 /// Replays an MRPT rawlog as raw packets: every CObservationVelodyneScan's scan_packets come back
 /// as 1206-byte RawPackets (byte-identical to what was recorded), CObservationGPS records are
-/// turned into GpsFix values. Observations are read one at a time (no full load), from both the
+/// turned into TimedGpsFix values. Observations are read one at a time (no full load), from both the
 /// "observations" and the "sensory frames" rawlog formats.
 
 #include <deque>
@@ -28,8 +28,8 @@ class RawlogPacketSource : public PacketSource {
   const SourceStats& stats() const override { return stats_; }
   std::string describe() const override { return "rawlog:" + path_; }
 
-  /// GPS fixes read so far (from CObservationGPS records with an RMC message).
-  const std::vector<GpsFix>& gpsFixes() const { return gps_; }
+  /// GPS fixes (CObservationGPS records with an RMC message) read since the last call.
+  std::vector<TimedGpsFix> takeDecodedFixes() override;
   /// CObservationVelodyneScan records read so far (= sweeps as written) [count].
   std::size_t scansRead() const { return scans_; }
   /// Records that are neither Velodyne scans nor GPS, or failed to deserialize [count].
@@ -43,7 +43,7 @@ class RawlogPacketSource : public PacketSource {
   std::string path_;
   PortConfig ports_;
   std::deque<velodyne::RawPacket> queue_;
-  std::vector<GpsFix> gps_;
+  std::vector<TimedGpsFix> gps_;
   SourceStats stats_;
   GapCounter gaps_;
   std::size_t scans_ = 0, other_ = 0;

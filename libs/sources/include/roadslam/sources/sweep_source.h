@@ -1,0 +1,65 @@
+#pragma once
+/// \file sweep_source.h
+/// Turns any PacketSource (live UDP, pcap, rawlog) into decoded sweeps (roadslam::Scan, lidar
+/// frame, see libs/velodyne decoder.h) and GPS fixes, through libs/velodyne's SweepAssembler.
+/// The first sweep of a stream and the one closed at its end are flagged Scan::partial.
+
+#include <functional>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "roadslam/common/scan.h"
+#include "roadslam/sources/gps_fix.h"
+#include "roadslam/sources/packet_source.h"
+#include "roadslam/velodyne/sweep_assembler.h"
+
+namespace roadslam::sources {
+
+struct SweepSourceStats {
+  uint64_t sweeps = 0;           ///< sweeps returned (partial included) [count]
+  uint64_t partial_sweeps = 0;   ///< of which partial [count]
+  uint64_t points = 0;           ///< points in returned sweeps [count]
+  uint64_t gps_fixes = 0;        ///< fixes handed out by takeGpsFixes() [count]
+  uint64_t undecodable_packets = 0;  ///< data packets the decoder rejected (bad flag, model) [count]
+  double first_wrap_stamp_s = 0; ///< Scan::stamp_s of the first sweep that began at a wrap [s]
+  double last_wrap_stamp_s = 0;  ///< ... and of the last one [s]
+  uint64_t wrap_sweeps = 0;      ///< sweeps that began at a wrap (all but the stream's first) [count]
+  /// Rotation rate from the wrap-to-wrap stamps [1/s]; 0 with fewer than two wraps.
+  double sweepRate_hz() const;
+};
+
+class SweepSource {
+ public:
+  /// \p packets is owned; \p params select model, calibration, cut angle, stamp clock.
+  SweepSource(std::unique_ptr<PacketSource> packets, const velodyne::DecoderParams& params = {});
+
+  /// Next sweep; nullopt when the recording is exhausted (after the final partial sweep) or, live,
+  /// when no packet arrived within the receiver's timeout.
+  std::optional<Scan> next();
+  /// GPS fixes received since the last call, in arrival order.
+  std::vector<TimedGpsFix> takeGpsFixes();
+
+  /// Optional observer of every raw packet (data and position) in arrival order, with the number
+  /// of sweeps the assembler closed while taking it (data packets only): lets a recorder store the
+  /// raw packets grouped like the decoded sweeps.
+  using PacketObserver = std::function<void(const velodyne::RawPacket&, std::size_t closed)>;
+  void setPacketObserver(PacketObserver obs) { observer_ = std::move(obs); }
+
+  const PacketSource& packets() const { return *packets_; }
+  const velodyne::SweepStats& assemblerStats() const { return assembler_.stats(); }
+  const velodyne::Decoder& decoder() const { return assembler_.decoder(); }
+  const SweepSourceStats& stats() const { return stats_; }
+
+ private:
+  Scan deliver(Scan s);
+
+  std::unique_ptr<PacketSource> packets_;
+  velodyne::SweepAssembler assembler_;
+  std::vector<TimedGpsFix> fixes_;
+  PacketObserver observer_;
+  SweepSourceStats stats_;
+  bool finished_ = false;
+};
+
+}  // namespace roadslam::sources

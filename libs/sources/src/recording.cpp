@@ -1,0 +1,154 @@
+#include "roadslam/sources/recording.h"
+
+#include <nlohmann/json.hpp>
+#include <fmt/core.h>
+
+#include <fstream>
+#include <stdexcept>
+#include <sys/stat.h>
+
+#include "roadslam/sources/pcap_source.h"
+#include "roadslam/sources/rawlog_source.h"
+#include "roadslam/sources/sweep_source.h"
+
+namespace roadslam::sources {
+namespace {
+
+bool isPcapMagic(uint32_t m) {
+  // pcap-savefile(5): us / ns magic in either byte order; pcapng section header block type.
+  return m == 0xA1B2C3D4u || m == 0xD4C3B2A1u || m == 0xA1B23C4Du || m == 0x4D3CB2A1u ||
+         m == 0x0A0D0D0Au;
+}
+
+void requireNonEmptyFile(const std::string& path) {
+  struct stat st {};
+  if (stat(path.c_str(), &st) != 0) throw std::runtime_error(path + ": no such file");
+  if (!S_ISREG(st.st_mode)) throw std::runtime_error(path + ": not a regular file");
+  if (st.st_size == 0) throw std::runtime_error(path + ": empty file");
+}
+
+std::string pcapError(const PacketSource& src) {
+  const auto* p = dynamic_cast<const PcapPacketSource*>(&src);
+  return p ? p->errorMessage() : std::string();
+}
+
+}  // namespace
+
+std::unique_ptr<PacketSource> openRecording(const std::string& path, const PortConfig& ports) {
+  requireNonEmptyFile(path);
+  uint32_t magic = 0;
+  std::ifstream(path, std::ios::binary).read(reinterpret_cast<char*>(&magic), sizeof magic);
+  try {
+    if (isPcapMagic(magic)) return std::make_unique<PcapPacketSource>(path, ports);
+    return std::make_unique<RawlogPacketSource>(path, ports);
+  } catch (const std::exception& e) {
+    const std::string what = e.what();
+    throw std::runtime_error(what.find(path) != std::string::npos ? what : path + ": " + what);
+  }
+}
+
+RecordingSummary summarizeRecording(const std::string& path, const velodyne::DecoderParams& params) {
+  SweepSource sweeps(openRecording(path), params);
+  RecordingSummary s;
+  s.path = path;
+  s.format = dynamic_cast<const PcapPacketSource*>(&sweeps.packets()) ? "pcap" : "rawlog";
+  sweeps.setPacketObserver([&](const velodyne::RawPacket& p, std::size_t) {
+    if (s.model.empty() && p.payload.size() == velodyne::kDataPacketSize)
+      s.model = velodyne::modelName(sweeps.decoder().modelOf(p.payload.data(), p.payload.size()));
+  });
+  while (auto scan = sweeps.next()) {
+    (scan->partial ? s.partial_sweeps : s.sweeps)++;
+    sweeps.takeGpsFixes();
+  }
+  sweeps.takeGpsFixes();
+  const std::string err = pcapError(sweeps.packets());
+  if (!err.empty()) throw std::runtime_error(err);
+  const SourceStats& ps = sweeps.packets().stats();
+  if (ps.data_packets == 0) throw std::runtime_error(path + ": no Velodyne data packets");
+  const SweepSourceStats& ss = sweeps.stats();
+  s.packets = ps.data_packets;
+  s.position_packets = ps.position_packets;
+  s.points = ss.points;
+  s.gps_fixes = ss.gps_fixes;
+  s.malformed_packets = ps.malformed_packets + ss.undecodable_packets;
+  s.skipped_packets = ps.skipped_packets;
+  s.missing_packets = ps.missing_packets;
+  s.duration_s = ps.last_stamp_s - ps.first_stamp_s;
+  s.sweeps_per_s = ss.sweepRate_hz();
+  s.packets_per_s = s.duration_s > 0 ? double(s.packets - 1) / s.duration_s : 0.0;
+  return s;
+}
+
+std::string toJson(const RecordingSummary& s) {
+  const nlohmann::json j = {
+      {"path", s.path},           {"format", s.format},
+      {"model", s.model},         {"sweeps", s.sweeps},
+      {"partial_sweeps", s.partial_sweeps},
+      {"packets", s.packets},     {"position_packets", s.position_packets},
+      {"points", s.points},       {"gps_fixes", s.gps_fixes},
+      {"malformed_packets", s.malformed_packets},
+      {"skipped_packets", s.skipped_packets},
+      {"missing_packets", s.missing_packets},
+      {"duration_s", s.duration_s}, {"sweeps_per_s", s.sweeps_per_s},
+      {"packets_per_s", s.packets_per_s}};
+  return j.dump(2);
+}
+
+std::string toText(const RecordingSummary& s) {
+  std::string t = fmt::format("{} ({}, {})\n", s.path, s.format, s.model);
+  t += fmt::format("  sweeps            {} complete + {} partial\n", s.sweeps, s.partial_sweeps);
+  t += fmt::format("  data packets      {}\n", s.packets);
+  t += fmt::format("  points            {}\n", s.points);
+  t += fmt::format("  duration          {:.3f} s\n", s.duration_s);
+  t += fmt::format("  rate              {:.2f} sweeps/s, {:.1f} packets/s\n", s.sweeps_per_s,
+                   s.packets_per_s);
+  t += fmt::format("  position packets  {} ({} GPS fixes)\n", s.position_packets, s.gps_fixes);
+  t += fmt::format("  malformed packets {}\n", s.malformed_packets);
+  t += fmt::format("  skipped packets   {}\n", s.skipped_packets);
+  t += fmt::format("  missing packets   {}\n", s.missing_packets);
+  return t;
+}
+
+ConvertSummary convertToRawlog(const std::string& in, const std::string& out,
+                               const velodyne::DecoderParams& params,
+                               RawlogWriter::Params writer_params) {
+  SweepSource sweeps(openRecording(in), params);
+  if (writer_params.calibration_file.empty()) writer_params.calibration_file = params.calibration_file;
+  bool model_set = params.model != velodyne::Model::Unknown;
+  if (model_set) writer_params.model = params.model == velodyne::Model::HDL32 ? "HDL32" : "VLP16";
+  std::unique_ptr<RawlogWriter> writer;  // opened at the first data packet, once the model is known
+  std::vector<velodyne::RawPacket> pending;
+  ConvertSummary sum;
+  auto flush = [&] {
+    if (pending.empty()) return;
+    writer->writeSweep(pending);
+    ++sum.observations;
+    pending.clear();
+  };
+  sweeps.setPacketObserver([&](const velodyne::RawPacket& p, std::size_t closed) {
+    if (!writer) {
+      if (!model_set && p.payload.size() == velodyne::kDataPacketSize)
+        writer_params.model = sweeps.decoder().modelOf(p.payload.data(), p.payload.size()) ==
+                                      velodyne::Model::HDL32 ? "HDL32" : "VLP16";
+      writer = std::make_unique<RawlogWriter>(out, writer_params);
+    }
+    if (p.payload.size() == velodyne::kPositionPacketSize) {
+      writer->writePosition(p);
+      return;
+    }
+    if (closed > 0) flush();  // this packet holds the start of the next sweep
+    pending.push_back(p);
+  });
+  while (sweeps.next()) sweeps.takeGpsFixes();
+  const std::string err = pcapError(sweeps.packets());
+  if (!err.empty()) throw std::runtime_error(err);
+  if (sweeps.packets().stats().data_packets == 0 || !writer)
+    throw std::runtime_error(in + ": no Velodyne data packets");
+  flush();
+  writer->close();
+  sum.packets = writer->packetsWritten();
+  sum.gps = writer->gpsWritten();
+  return sum;
+}
+
+}  // namespace roadslam::sources

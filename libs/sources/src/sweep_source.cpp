@@ -1,0 +1,60 @@
+#include "roadslam/sources/sweep_source.h"
+
+namespace roadslam::sources {
+
+double SweepSourceStats::sweepRate_hz() const {
+  const double span = last_wrap_stamp_s - first_wrap_stamp_s;
+  return wrap_sweeps >= 2 && span > 0 ? double(wrap_sweeps - 1) / span : 0.0;
+}
+
+SweepSource::SweepSource(std::unique_ptr<PacketSource> packets,
+                         const velodyne::DecoderParams& params)
+    : packets_(std::move(packets)), assembler_(params) {}
+
+Scan SweepSource::deliver(Scan s) {
+  ++stats_.sweeps;
+  stats_.points += s.points.size();
+  if (s.partial) ++stats_.partial_sweeps;
+  // Every sweep but the stream's first begins where the azimuth crossed the cut.
+  if (stats_.sweeps > 1) {
+    if (stats_.wrap_sweeps == 0) stats_.first_wrap_stamp_s = s.stamp_s;
+    stats_.last_wrap_stamp_s = s.stamp_s;
+    ++stats_.wrap_sweeps;
+  }
+  return s;
+}
+
+std::optional<Scan> SweepSource::next() {
+  while (!assembler_.hasSweep()) {
+    if (finished_) return std::nullopt;
+    auto pkt = packets_->next();
+    for (auto& f : packets_->takeDecodedFixes()) fixes_.push_back(f);
+    if (!pkt) {
+      if (!packets_->finished()) return std::nullopt;  // live: nothing within the timeout
+      finished_ = true;
+      assembler_.finish();
+      continue;
+    }
+    std::size_t closed = 0;
+    if (pkt->payload.size() == velodyne::kPositionPacketSize) {
+      if (auto fix = decodeGpsFix(*pkt)) fixes_.push_back(*fix);
+    } else {
+      const std::size_t before = assembler_.stats().sweeps + assembler_.stats().empty_sweeps_dropped;
+      if (assembler_.addPacket(pkt->payload.data(), pkt->payload.size(), pkt->stamp_s) !=
+          velodyne::DecodeStatus::Ok)
+        ++stats_.undecodable_packets;
+      closed = assembler_.stats().sweeps + assembler_.stats().empty_sweeps_dropped - before;
+    }
+    if (observer_) observer_(*pkt, closed);
+  }
+  return deliver(assembler_.takeSweep());
+}
+
+std::vector<TimedGpsFix> SweepSource::takeGpsFixes() {
+  std::vector<TimedGpsFix> out;
+  out.swap(fixes_);
+  stats_.gps_fixes += out.size();
+  return out;
+}
+
+}  // namespace roadslam::sources

@@ -1,0 +1,171 @@
+// End-to-end: the roadslam-rawlog binary on the bundled box room (oracle: the generator's own
+// analytic count) and on MRPT's real VLP-16 capture (oracle: its MANIFEST and MRPT's unit test),
+// convert -> info consistency, MRPT reading our rawlog, and bad inputs failing with one line.
+#include <gtest/gtest.h>
+
+#include <mrpt/obs/CObservationGPS.h>
+#include <mrpt/obs/CObservationVelodyneScan.h>
+#include <mrpt/obs/CRawlog.h>
+#include <nlohmann/json.hpp>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include "roadslam/pcap/pcap_writer.h"
+#include "roadslam/sources/boxroom.h"
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+const std::string kBox = std::string(ROADSLAM_SOURCE_DIR) + "/rawlogs/boxroom-vlp16.pcap";
+const std::string kMrpt =
+    std::string(ROADSLAM_SHARED_DATA) + "/velodyne/mrpt_sample_velodyne_vlp16_gps.pcap";
+
+struct AppRun {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+fs::path tmpDir() {
+  const fs::path d = fs::temp_directory_path() / ("roadslam_e2e_rawlog_" + std::to_string(getpid()));
+  fs::create_directories(d);
+  return d;
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>()};
+}
+
+AppRun run(const std::string& args) {
+  const fs::path o = tmpDir() / "stdout.txt", e = tmpDir() / "stderr.txt";
+  const std::string cmd = std::string(ROADSLAM_RAWLOG_BIN) + " " + args + " >" + o.string() +
+                          " 2>" + e.string() + " </dev/null";
+  const int status = std::system(cmd.c_str());
+  AppRun r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = slurp(o);
+  r.err = slurp(e);
+  return r;
+}
+
+json info(const std::string& file, const std::string& extra = "") {
+  const AppRun r = run("info " + file + " --json " + extra);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  return json::parse(r.out);
+}
+
+void expectOneLineFailureNaming(const AppRun& r, const std::string& name) {
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find(name), std::string::npos) << "stderr: " << r.err;
+  ASSERT_FALSE(r.err.empty());
+  EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "one line expected: " << r.err;
+}
+
+}  // namespace
+
+TEST(RawlogApp, HelpExitsZero) {
+  const AppRun r = run("--help");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_NE(r.out.find("convert"), std::string::npos);
+  EXPECT_NE(r.out.find("info"), std::string::npos);
+}
+
+TEST(RawlogApp, BoxRoomInfoMatchesTheGeneratorsAnalyticCount) {
+  ASSERT_TRUE(fs::exists(kBox)) << kBox;
+  // The generator's own oracle (same default parameters as the bundled file).
+  const auto expected = roadslam::sources::writeBoxRoomPcap((tmpDir() / "box.pcap").string());
+  const json j = info(kBox);
+  EXPECT_EQ(j["sweeps"], expected.complete_sweeps);
+  EXPECT_EQ(j["partial_sweeps"], expected.partial_sweeps);
+  EXPECT_EQ(j["points"], expected.points);  // every beam hits a wall: 16 returns per firing
+  EXPECT_EQ(j["packets"], expected.data_packets);
+  EXPECT_EQ(j["gps_fixes"], expected.position_packets);
+  EXPECT_EQ(j["malformed_packets"], 0);
+  EXPECT_EQ(j["missing_packets"], 0);
+  EXPECT_NEAR(j["duration_s"].get<double>(), expected.duration_s, 2e-6);
+  EXPECT_NEAR(j["sweeps_per_s"].get<double>(), 1.0 / (76 * 1327.104e-6), 0.01);
+}
+
+TEST(RawlogApp, MrptSampleInfoMatchesManifest) {
+  if (!fs::exists(kMrpt)) GTEST_SKIP() << "missing " << kMrpt;
+  const json j = info(kMrpt, "--model vlp16");
+  EXPECT_EQ(j["packets"], 293);          // MANIFEST: 293 data packets
+  EXPECT_EQ(j["position_packets"], 57);  // MANIFEST: 57 position packets
+  EXPECT_GT(j["gps_fixes"].get<int>(), 0);
+  EXPECT_EQ(j["malformed_packets"], 0);
+  // MRPT's test expects 4 scans: CVelodyneScanner emits a scan at every azimuth wrap (so the
+  // leading partial one counts) and loses the one in progress at end of file.
+  EXPECT_EQ(j["sweeps"].get<int>() + j["partial_sweeps"].get<int>() - 1, 4);
+  EXPECT_NEAR(j["duration_s"].get<double>(), 0.39, 0.01);  // MANIFEST: 0.39 s
+  EXPECT_NEAR(j["sweeps_per_s"].get<double>(), 10.0, 0.2);  // MANIFEST: 10 Hz
+}
+
+TEST(RawlogApp, ConvertThenInfoGivesTheSameCountsAndMrptReadsIt) {
+  for (const std::string& in : {kBox, kMrpt}) {
+    if (!fs::exists(in)) continue;
+    const fs::path out = tmpDir() / (fs::path(in).stem().string() + ".rawlog");
+    const AppRun c = run("convert " + in + " " + out.string());
+    ASSERT_EQ(c.exit_code, 0) << c.err;
+    const json a = info(in), b = info(out.string());
+    for (const char* key : {"sweeps", "partial_sweeps", "packets", "points", "gps_fixes"})
+      EXPECT_EQ(a[key], b[key]) << in << " key " << key;
+    EXPECT_EQ(b["format"], "rawlog");
+
+    mrpt::obs::CRawlog rawlog;  // MRPT's own loader: RawLogViewer / rawlog-edit use it
+    ASSERT_TRUE(rawlog.loadFromRawLogFile(out.string()));
+    std::size_t scans = 0, packets = 0, gps = 0;
+    for (std::size_t i = 0; i < rawlog.size(); ++i) {
+      auto o = rawlog.getAsObservation(i);
+      if (auto v = std::dynamic_pointer_cast<mrpt::obs::CObservationVelodyneScan>(o)) {
+        ++scans;
+        packets += v->scan_packets.size();
+      }
+      if (std::dynamic_pointer_cast<mrpt::obs::CObservationGPS>(o)) ++gps;
+    }
+    EXPECT_EQ(scans, a["sweeps"].get<std::size_t>() + a["partial_sweeps"].get<std::size_t>());
+    EXPECT_EQ(packets, a["packets"].get<std::size_t>());
+    EXPECT_EQ(gps, a["gps_fixes"].get<std::size_t>());
+  }
+}
+
+TEST(RawlogApp, BadInputsFailWithOneLineNamingTheFile) {
+  const fs::path d = tmpDir();
+  const std::string missing = (d / "missing.pcap").string();
+  expectOneLineFailureNaming(run("info " + missing), missing);
+  expectOneLineFailureNaming(run("convert " + missing + " " + (d / "x.rawlog").string()), missing);
+  EXPECT_FALSE(fs::exists(d / "x.rawlog"));
+
+  const std::string empty = (d / "empty.pcap").string();
+  std::ofstream(empty).close();
+  expectOneLineFailureNaming(run("info " + empty), empty);
+
+  ASSERT_TRUE(fs::exists(kBox)) << kBox;
+  const std::string truncated = (d / "truncated.pcap").string();
+  {
+    const std::string bytes = slurp(kBox);
+    std::ofstream(truncated, std::ios::binary).write(bytes.data(), 100000);  // mid-record
+  }
+  expectOneLineFailureNaming(run("info " + truncated), truncated);
+
+  const std::string dns = (d / "dns.pcap").string();
+  {
+    roadslam::pcap::PcapWriter w(dns);
+    const std::vector<uint8_t> payload(80, 3);
+    for (int i = 0; i < 10; ++i) w.writeUdp(100.0 + i, 5353, 53, payload.data(), payload.size());
+    w.close();
+  }
+  expectOneLineFailureNaming(run("info " + dns), dns);
+  expectOneLineFailureNaming(run("convert " + dns + " " + (d / "dns.rawlog").string()), dns);
+  EXPECT_FALSE(fs::exists(d / "dns.rawlog"));
+
+  const std::string unwritable = "/nonexistent-dir-roadslam/out.rawlog";
+  expectOneLineFailureNaming(run("convert " + kBox + " " + unwritable), unwritable);
+
+  const AppRun bad_model = run("info " + kBox + " --model hdl64");
+  EXPECT_NE(bad_model.exit_code, 0);
+}
