@@ -1,0 +1,181 @@
+// Side-by-side registration benchmark on consecutive pairs of the KITTI raw drive 2011_09_26_0001:
+// our ICP point-to-point, ICP point-to-plane and NDT against MRPT's CICP::Align3D, same pairs,
+// same 0.5 m voxel clouds, identity initial guess, one thread. Counters per method: median CPU time of
+// target build + alignment (thread CPU time), median/p90 translation error vs the OXTS ground truth, pairs > 0.3 m off.
+#include <benchmark/benchmark.h>
+#include <mrpt/maps/CSimplePointsMap.h>
+#include <mrpt/poses/CPose3DPDF.h>
+#include <mrpt/slam/CICP.h>
+#include <roadslam/datasets/kitti_scans.h>
+#include <roadslam/datasets/trajectory_io.h>
+#include <roadslam/registration/registration.h>
+
+#include <time.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+
+namespace {
+namespace reg = roadslam::registration;
+namespace ds = roadslam::datasets;
+
+constexpr int kPairs = 50;
+constexpr double kVoxel_m = 0.5;
+const std::string kRaw = std::string(ROADSLAM_SHARED_DATA) + "/kitti/raw-2011_09_26-0001/";
+
+struct Data {
+  std::vector<reg::PointCloud> clouds;                        // voxelized sweeps, velodyne frame [m]
+  ds::PoseList T_world_velo;                                  // ground truth
+  bool ok = false;
+};
+
+const Data& data() {
+  static Data d = [] {
+    Data out;
+    if (!std::filesystem::exists(kRaw + "velodyne.tar.zst")) return out;
+    const std::string cache = ds::unpackTarZstOnce(kRaw + "velodyne.tar.zst", REGISTRATION_BENCH_CACHE);
+    const ds::KittiScanFolder folder(cache + "/velodyne");
+    out.T_world_velo = ds::readKittiPoses(kRaw + "poses_velo_kitti.txt");
+    for (int i = 0; i <= kPairs; ++i) {
+      out.clouds.push_back(reg::voxelDownsample(reg::toPointCloud(folder.read(static_cast<size_t>(i))), kVoxel_m));
+    }
+    out.ok = true;
+    return out;
+  }();
+  return d;
+}
+
+Eigen::Isometry3d truth(int i) { return data().T_world_velo[static_cast<size_t>(i)].inverse() * data().T_world_velo[static_cast<size_t>(i) + 1]; }
+
+struct Stats {
+  std::vector<double> ms, terr, rerr_deg;
+  int failed = 0;
+};
+std::map<std::string, Stats>& table() {
+  static std::map<std::string, Stats> t;
+  return t;
+}
+
+// Thread CPU time [ms]: the machine is shared, wall time includes other processes' load.
+double cpuMs() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return 1e3 * static_cast<double>(ts.tv_sec) + 1e-6 * static_cast<double>(ts.tv_nsec);
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
+  return v[v.size() / 2];
+}
+double percentile90(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  return v[(v.size() * 9) / 10];
+}
+
+void report(benchmark::State& state, const std::string& name) {
+  Stats& s = table()[name];
+  state.counters["median_ms"] = median(s.ms);
+  state.counters["median_terr_m"] = median(s.terr);
+  state.counters["p90_terr_m"] = percentile90(s.terr);
+  state.counters["median_rerr_deg"] = median(s.rerr_deg);
+  state.counters["pairs_off_0.3m"] = static_cast<double>(
+      std::count_if(s.terr.begin(), s.terr.end(), [](double e) { return e > 0.3; }));
+  state.counters["not_converged"] = s.failed;
+}
+
+void record(const std::string& name, int pair, double ms, const Eigen::Isometry3d& T, bool converged) {
+  Stats& s = table()[name];
+  const Eigen::Isometry3d E = truth(pair).inverse() * T;
+  s.ms.push_back(ms);
+  s.terr.push_back(E.translation().norm());
+  s.rerr_deg.push_back(Eigen::AngleAxisd(E.linear()).angle() * 180.0 / M_PI);
+  s.failed += converged ? 0 : 1;
+}
+
+void BM_Ours(benchmark::State& state, reg::Method method) {
+  if (!data().ok) {
+    state.SkipWithError(("missing " + kRaw + "velodyne.tar.zst").c_str());
+    return;
+  }
+  reg::Params prm;
+  prm.method = method;
+  if (method == reg::Method::IcpPointToPoint) prm.max_iterations = 100;
+  if (const char* e = std::getenv("REG_KERNEL")) prm.kernel = reg::kernelFromString(e);
+  if (const char* e = std::getenv("REG_KSCALE")) prm.kernel_scale_m = std::atof(e);
+  if (const char* e = std::getenv("REG_MAXCORR")) prm.max_correspondence_distance_m = std::atof(e);
+  if (const char* e = std::getenv("REG_NDT_LEVELS")) prm.ndt_levels = std::atoi(e);
+  if (const char* e = std::getenv("REG_NDT_RES")) prm.ndt_resolution_m = std::atof(e);
+  if (const char* e = std::getenv("REG_MAXIT")) prm.max_iterations = std::atoi(e);
+  const std::string name = reg::toString(method);
+  table()[name] = {};
+  int pair = 0;
+  for (auto _ : state) {
+    const double t0 = cpuMs();
+    const reg::Target target(data().clouds[static_cast<size_t>(pair)], prm);
+    const reg::RegistrationResult r =
+        reg::align(target, data().clouds[static_cast<size_t>(pair) + 1], Eigen::Isometry3d::Identity(), prm);
+    const double ms = cpuMs() - t0;
+    benchmark::DoNotOptimize(r.T_target_source);
+    record(name, pair, ms, r.T_target_source, r.converged);
+    pair = (pair + 1) % kPairs;
+  }
+  report(state, name);
+}
+
+mrpt::maps::CSimplePointsMap toMrpt(const reg::PointCloud& pts) {
+  mrpt::maps::CSimplePointsMap m;
+  m.reserve(pts.size());
+  for (const auto& p : pts) m.insertPointFast(static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z()));
+  m.mark_as_modified();
+  return m;
+}
+
+void BM_MrptCicp(benchmark::State& state) {
+  if (!data().ok) {
+    state.SkipWithError(("missing " + kRaw + "velodyne.tar.zst").c_str());
+    return;
+  }
+  const std::string name = "mrpt_cicp_align3d";
+  table()[name] = {};
+  int pair = 0;
+  for (auto _ : state) {
+    const auto m1 = toMrpt(data().clouds[static_cast<size_t>(pair)]);
+    const auto m2 = toMrpt(data().clouds[static_cast<size_t>(pair) + 1]);
+    const double t0 = cpuMs();
+    mrpt::slam::CICP icp;  // MRPT defaults (icpClassic, point-to-point)
+    mrpt::slam::CICP::TReturnInfo info;
+    const auto pdf = icp.Align3D(&m1, &m2, mrpt::poses::CPose3D(), info);
+    const double ms = cpuMs() - t0;
+    const Eigen::Isometry3d T(pdf->getMeanVal().getHomogeneousMatrixVal<mrpt::math::CMatrixDouble44>().asEigen());
+    record(name, pair, ms, T, true);
+    pair = (pair + 1) % kPairs;
+  }
+  report(state, name);
+}
+
+}  // namespace
+
+BENCHMARK_CAPTURE(BM_Ours, icp_point_to_point, reg::Method::IcpPointToPoint)->Iterations(kPairs)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Ours, icp_point_to_plane, reg::Method::IcpPointToPlane)->Iterations(kPairs)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Ours, ndt, reg::Method::Ndt)->Iterations(kPairs)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_MrptCicp)->Iterations(kPairs)->Unit(benchmark::kMillisecond);
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  benchmark::RunSpecifiedBenchmarks();
+  std::printf("\n%-22s %10s %14s %12s %14s %8s\n", "method", "median_ms", "median_terr_m", "p90_terr_m",
+              "median_rerr_deg", ">0.3m");
+  for (const auto& [name, s] : table()) {
+    std::printf("%-22s %10.1f %14.3f %12.3f %14.3f %8ld\n", name.c_str(), median(s.ms), median(s.terr),
+                percentile90(s.terr), median(s.rerr_deg),
+                static_cast<long>(std::count_if(s.terr.begin(), s.terr.end(), [](double e) { return e > 0.3; })));
+  }
+  benchmark::Shutdown();
+  return 0;
+}
