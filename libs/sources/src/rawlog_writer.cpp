@@ -1,7 +1,6 @@
 #include "roadslam/sources/rawlog_writer.h"
 
 #include <mrpt/core/Clock.h>
-#include <mrpt/hwdrivers/CGPSInterface.h>
 #include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/obs/CObservationGPS.h>
 #include <mrpt/obs/CObservationVelodyneScan.h>
@@ -24,6 +23,7 @@ static_assert(sizeof(CObservationVelodyneScan::TVelodyneRawPacket) == velodyne::
 
 namespace {
 constexpr double kDeg = M_PI / 180.0;
+constexpr double kKnot_mps = 1852.0 / 3600.0;  // international knot
 }
 
 void RawlogWriter::Params::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
@@ -119,15 +119,30 @@ void RawlogWriter::writeSweep(const std::vector<velodyne::RawPacket>& data_packe
 
 bool RawlogWriter::writePosition(const velodyne::RawPacket& position_packet) {
   velodyne::PositionPacket pos;
-  mrpt::obs::CObservationGPS obs;
-  // Our decoder checks size, checksum and fields; MRPT's own NMEA parser then fills the
-  // Message_NMEA_RMC exactly as MRPT's GPS drivers do, so MRPT tools read it as usual.
   if (!velodyne::decodePositionPacket(position_packet.payload.data(),
                                       position_packet.payload.size(), pos) ||
-      !pos.has_fix || !mrpt::hwdrivers::CGPSInterface::parse_NMEA(pos.nmea, obs)) {
+      !pos.has_fix) {
     ++skipped_;
     return false;
   }
+  // The fields MRPT's NMEA parser (CGPSInterface::parse_NMEA) fills for an RMC sentence; set
+  // from our decoder so the library does not pull in mrpt-hwdrivers (300+ shared libraries).
+  const velodyne::GpsFix& f = pos.fix;
+  mrpt::obs::gnss::Message_NMEA_RMC rmc;
+  const double tod = f.time_of_day_s;
+  rmc.fields.UTCTime.hour = uint8_t(tod / 3600);
+  rmc.fields.UTCTime.minute = uint8_t(std::fmod(tod, 3600.0) / 60);
+  rmc.fields.UTCTime.sec = std::fmod(tod, 60.0);
+  rmc.fields.validity_char = f.valid ? 'A' : 'V';
+  rmc.fields.latitude_degrees = f.latitude_deg;
+  rmc.fields.longitude_degrees = f.longitude_deg;
+  rmc.fields.speed_knots = f.speed_mps / kKnot_mps;
+  rmc.fields.direction_degrees = f.course_rad / kDeg;
+  rmc.fields.date_day = uint8_t(f.day);
+  rmc.fields.date_month = uint8_t(f.month);
+  rmc.fields.date_year = uint8_t(f.year % 100);
+  mrpt::obs::CObservationGPS obs;
+  obs.setMsg(rmc);
   obs.sensorLabel = impl_->params.gps_label;
   obs.timestamp = mrpt::Clock::fromDouble(position_packet.stamp_s);
   obs.originalReceivedTimestamp = obs.timestamp;
