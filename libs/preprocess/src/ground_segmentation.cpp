@@ -1,0 +1,245 @@
+#include "roadslam/preprocess/ground_segmentation.h"
+
+#include "param_utils.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace roadslam::preprocess {
+namespace {
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+struct Segment {
+  double m, b, r0, r1;  // z = m r + b over [r0, r1] (horizontal range [m])
+  double at(double r) const { return m * r + b; }
+};
+
+/// Incremental least squares of z = m r + b (Himmelsbach 2010, Sec. III-B).
+struct LineAccumulator {
+  double n = 0, sr = 0, sz = 0, srr = 0, srz = 0, szz = 0, r_first = 0, r_last = 0;
+  void add(double r, double z) {
+    if (n == 0) r_first = r;
+    r_last = r;
+    n += 1, sr += r, sz += z, srr += r * r, srz += r * z, szz += z * z;
+  }
+  /// Slope, intercept and RMS residual; false when degenerate.
+  bool fit(double& m, double& b, double& rms) const {
+    const double den = n * srr - sr * sr;
+    if (n < 2 || std::abs(den) < 1e-12) return false;
+    m = (n * srz - sr * sz) / den;
+    b = (sz - m * sr) / n;
+    const double sse = szz - 2 * m * srz - 2 * b * sz + m * m * srr + 2 * m * b * sr + n * b * b;
+    rms = std::sqrt(std::max(0.0, sse) / n);
+    return true;
+  }
+};
+
+/// Extracts the line segments of one sector from its prototypes (r, z) in increasing range. A
+/// prototype that breaks the current line (slope or fit error) starts a new line together with the
+/// last ground prototype when the slope between the two is admissible, so slope changes at crests
+/// and dips are followed even between sparse rings (Himmelsbach 2010, Sec. III-B; linefit).
+std::vector<Segment> fitSector(const float* proto_r, const float* proto_z, const float* top_z,
+                               int bins, const GroundSegParams& p) {
+  std::vector<Segment> segs;
+  LineAccumulator cur;
+  bool have_last = false;  // last prototype accepted as ground
+  double last_r = 0, last_z = 0;
+  auto finish = [&] {
+    double fm, fb, fr;
+    // The first segment of a sector must pass under the car: its height at r = 0 within
+    // max_start_height_m of the road under the sensor (linefit's start check).
+    if (cur.n >= 2 && cur.fit(fm, fb, fr) &&
+        (!segs.empty() || std::abs(fb + p.sensor_height_m) <= p.max_start_height_m)) {
+      segs.push_back({fm, fb, cur.r_first, cur.r_last});
+    }
+    cur = LineAccumulator{};
+  };
+  auto slopeOk = [&](double r0, double z0, double r1, double z1) {
+    return std::abs(z1 - z0) <= p.max_slope * std::max(r1 - r0, 1e-6);
+  };
+  auto canStart = [&](double r, double z) {
+    if (segs.empty()) return std::abs(z + p.sensor_height_m) <= p.max_start_height_m + p.max_slope * r;
+    const Segment& last = segs.back();
+    const double tol = (r - last.r1 <= p.max_gap_m) ? p.max_step_m : p.max_start_height_m;
+    return std::abs(z - last.at(r)) <= tol;
+  };
+  for (int i = 0; i < bins; ++i) {
+    if (proto_z[i] == kInf) continue;
+    const double r = proto_r[i], z = proto_z[i];
+    bool accepted = false;
+    if (top_z[i] - proto_z[i] > p.tall_cell_height_m) {
+      // The lowest return under a vertical structure (wall, car side) only extends the ground
+      // profile when it lies on it: the foot of a wall a few cm up would otherwise bend the line.
+      double cm = 0, cb = 0, cr = 0;
+      const bool on_line = cur.n >= 2 ? (cur.fit(cm, cb, cr) && std::abs(z - (cm * r + cb)) <= p.max_dist_to_line_tall_m)
+                                      : (!segs.empty() && std::abs(z - segs.back().at(r)) <= p.max_dist_to_line_tall_m);
+      if (!on_line) continue;
+    }
+    if (cur.n >= 2) {
+      LineAccumulator trial = cur;
+      trial.add(r, z);
+      double cm, cb, cr, tm, tb, tr;
+      if (cur.fit(cm, cb, cr) && std::abs(z - (cm * r + cb)) <= p.max_step_m &&
+          slopeOk(last_r, last_z, r, z) &&
+          trial.fit(tm, tb, tr) && std::abs(tm) <= p.max_slope && tr <= p.max_fit_error_m) {
+        cur = trial;
+        accepted = true;
+      } else {
+        finish();
+      }
+    } else if (cur.n == 1 && slopeOk(cur.r_last, cur.sz, r, z)) {
+      cur.add(r, z);
+      accepted = true;
+    }
+    if (!accepted) {
+      cur = LineAccumulator{};
+      // A bridge may bend the ground profile by at most max_slope_change (crests, dips), which
+      // keeps it from climbing the foot of a wall whose lowest return is a few bins further on.
+      const bool bends_ok = segs.empty() || std::abs(z - segs.back().at(r)) <=
+                                                p.max_step_m + p.max_slope_change * (r - last_r);
+      if (have_last && slopeOk(last_r, last_z, r, z) && bends_ok && r - last_r <= p.max_bridge_m) {
+        cur.add(last_r, last_z);  // new line continues from the last ground prototype
+        cur.add(r, z);
+        accepted = true;
+      } else if (canStart(r, z)) {
+        cur.add(r, z);
+        accepted = true;
+      }
+    }
+    if (accepted) have_last = true, last_r = r, last_z = z;
+  }
+  finish();
+  return segs;
+}
+
+/// For every bin of a sector, the segment covering it (or the nearest within max_gap_m).
+void assignBins(const std::vector<Segment>& segs, int bins, const GroundSegParams& p, float* m_out,
+                float* b_out) {
+  std::vector<float> best(static_cast<size_t>(bins), kInf);
+  for (const auto& s : segs) {
+    const int i0 = std::max(0, static_cast<int>((s.r0 - p.max_gap_m) / p.bin_length_m));
+    const int i1 = std::min(bins - 1, static_cast<int>((s.r1 + p.max_gap_m) / p.bin_length_m));
+    for (int i = i0; i <= i1; ++i) {
+      const double rc = (i + 0.5) * p.bin_length_m;
+      const float dist = static_cast<float>(std::max({0.0, s.r0 - rc, rc - s.r1}));
+      if (dist < best[static_cast<size_t>(i)]) {
+        best[static_cast<size_t>(i)] = dist;
+        m_out[i] = static_cast<float>(s.m);
+        b_out[i] = static_cast<float>(s.b);
+      }
+    }
+  }
+}
+}  // namespace
+
+std::vector<uint8_t> segmentGround(const std::vector<ScanPoint>& pts, const GroundSegParams& p,
+                                   GroundSegStats* stats) {
+  const int S = p.num_sectors;
+  const int B = static_cast<int>(std::ceil(p.max_range_m / p.bin_length_m));
+  const size_t cells = static_cast<size_t>(S) * static_cast<size_t>(B);
+  std::vector<float> proto_z(cells, kInf), proto_r(cells, 0.f), top_z(cells, -kInf);
+  std::vector<int32_t> cell_of(pts.size(), -1);
+  const float inv_bin = static_cast<float>(1.0 / p.bin_length_m);
+  const float sec_scale = static_cast<float>(S / (2 * M_PI));
+  for (size_t i = 0; i < pts.size(); ++i) {
+    const auto& q = pts[i];
+    const float r = std::sqrt(q.x * q.x + q.y * q.y);
+    const int bin = static_cast<int>(r * inv_bin);
+    if (bin >= B) continue;
+    const int sec = std::min(S - 1, static_cast<int>((std::atan2(q.y, q.x) + static_cast<float>(M_PI)) * sec_scale));
+    const int c = sec * B + bin;
+    cell_of[i] = c;
+    const auto cu = static_cast<size_t>(c);
+    if (q.z < proto_z[cu]) proto_z[cu] = q.z, proto_r[cu] = r;
+    top_z[cu] = std::max(top_z[cu], q.z);
+  }
+  std::vector<float> line_m(cells, 0.f), line_b(cells, kInf);
+  GroundSegStats st;
+  for (int s = 0; s < S; ++s) {
+    const size_t off = static_cast<size_t>(s) * static_cast<size_t>(B);
+    const auto segs = fitSector(&proto_r[off], &proto_z[off], &top_z[off], B, p);
+    st.segments += segs.size();
+    assignBins(segs, B, p, &line_m[off], &line_b[off]);
+  }
+  std::vector<uint8_t> labels(pts.size(), 0);
+  const float tol = static_cast<float>(p.max_dist_to_line_m);
+  const float tol_tall = static_cast<float>(std::min(p.max_dist_to_line_m, p.max_dist_to_line_tall_m));
+  const float tall = static_cast<float>(p.tall_cell_height_m);
+  for (size_t i = 0; i < pts.size(); ++i) {
+    if (cell_of[i] < 0) continue;
+    auto c = static_cast<size_t>(cell_of[i]);
+    if (line_b[c] == kInf) {  // no segment in this sector: borrow a neighbour sector's (same bin)
+      const size_t bin = c % static_cast<size_t>(B), sec = c / static_cast<size_t>(B);
+      const size_t left = ((sec + static_cast<size_t>(S) - 1) % static_cast<size_t>(S)) * static_cast<size_t>(B) + bin;
+      const size_t right = ((sec + 1) % static_cast<size_t>(S)) * static_cast<size_t>(B) + bin;
+      c = line_b[left] != kInf ? left : right;
+      if (line_b[c] == kInf) {
+        ++st.unassigned;
+        continue;
+      }
+    }
+    const auto& q = pts[i];
+    const float r = std::sqrt(q.x * q.x + q.y * q.y);
+    // A cell holding a vertical structure (wall, curb, car side) gets the tight tolerance, so the
+    // foot of the structure is not taken for ground while the road in front of it still is.
+    const auto own = static_cast<size_t>(cell_of[i]);
+    const float t = top_z[own] - proto_z[own] > tall ? tol_tall : tol;
+    labels[i] = std::abs(q.z - (line_m[c] * r + line_b[c])) <= t;
+    st.ground += labels[i];
+  }
+  if (stats) *stats = st;
+  return labels;
+}
+
+size_t removeGroundLinefit(std::vector<ScanPoint>& pts, const GroundSegParams& p) {
+  const auto labels = segmentGround(pts, p);
+  size_t w = 0;
+  for (size_t i = 0; i < pts.size(); ++i)
+    if (!labels[i]) pts[w++] = pts[i];
+  const size_t removed = pts.size() - w;
+  pts.resize(w);
+  return removed;
+}
+
+void GroundSegParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& s) {
+  num_sectors = readInt(cfg, s, "seg_sectors", num_sectors);
+  bin_length_m = readDouble(cfg, s, "seg_bin_length_m", bin_length_m);
+  max_range_m = readDouble(cfg, s, "seg_max_range_m", max_range_m);
+  sensor_height_m = readDouble(cfg, s, "seg_sensor_height_m", sensor_height_m);
+  max_start_height_m = readDouble(cfg, s, "seg_max_start_height_m", max_start_height_m);
+  max_slope = readDouble(cfg, s, "seg_max_slope", max_slope);
+  max_fit_error_m = readDouble(cfg, s, "seg_max_fit_error_m", max_fit_error_m);
+  max_step_m = readDouble(cfg, s, "seg_max_step_m", max_step_m);
+  max_dist_to_line_m = readDouble(cfg, s, "seg_max_dist_to_line_m", max_dist_to_line_m);
+  max_gap_m = readDouble(cfg, s, "seg_max_gap_m", max_gap_m);
+  max_bridge_m = readDouble(cfg, s, "seg_max_bridge_m", max_bridge_m);
+  max_slope_change = readDouble(cfg, s, "seg_max_slope_change", max_slope_change);
+  max_dist_to_line_tall_m = readDouble(cfg, s, "seg_max_dist_to_line_tall_m", max_dist_to_line_tall_m);
+  tall_cell_height_m = readDouble(cfg, s, "seg_tall_cell_height_m", tall_cell_height_m);
+  detail::require(num_sectors >= 1 && num_sectors <= 3600, s, "seg_sectors", "must be in [1, 3600]");
+  detail::require(bin_length_m > 0 && max_range_m > bin_length_m, s, "seg_bin_length_m/seg_max_range_m",
+                  "need 0 < bin length < max range");
+  detail::require(max_range_m / bin_length_m <= 10000, s, "seg_bin_length_m", "too many range bins");
+  detail::require(max_slope > 0 && max_fit_error_m > 0 && max_step_m > 0 && max_dist_to_line_m > 0, s,
+                  "seg_max_*", "thresholds must be > 0");
+}
+
+void GroundSegParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& s) const {
+  cfg.write(s, "seg_sectors", num_sectors);
+  cfg.write(s, "seg_bin_length_m", bin_length_m);
+  cfg.write(s, "seg_max_range_m", max_range_m);
+  cfg.write(s, "seg_sensor_height_m", sensor_height_m);
+  cfg.write(s, "seg_max_start_height_m", max_start_height_m);
+  cfg.write(s, "seg_max_slope", max_slope);
+  cfg.write(s, "seg_max_fit_error_m", max_fit_error_m);
+  cfg.write(s, "seg_max_step_m", max_step_m);
+  cfg.write(s, "seg_max_dist_to_line_m", max_dist_to_line_m);
+  cfg.write(s, "seg_max_gap_m", max_gap_m);
+  cfg.write(s, "seg_max_bridge_m", max_bridge_m);
+  cfg.write(s, "seg_max_slope_change", max_slope_change);
+  cfg.write(s, "seg_max_dist_to_line_tall_m", max_dist_to_line_tall_m);
+  cfg.write(s, "seg_tall_cell_height_m", tall_cell_height_m);
+}
+
+}  // namespace roadslam::preprocess
