@@ -31,5 +31,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
   } catch (const std::runtime_error&) {
     // Rejected at open: expected for most inputs.
   }
+  std::remove(path.c_str());
   return 0;
 }

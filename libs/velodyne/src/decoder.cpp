@@ -79,6 +79,56 @@ Model Decoder::modelOf(const uint8_t* data, std::size_t size) const noexcept {
   return Model::Unknown;
 }
 
+namespace {
+
+/// Per-packet constants shared by the blocks of one packet.
+struct PacketContext {
+  const Calibration* cal;
+  Timing timing;
+  double step_per_us;  // azimuth advance [0.01 deg / us]
+  bool dual, vlp16, keep_last, keep_strongest, drop_dups;
+  double min_range_m, max_range_m;
+};
+
+/// Decodes block \p b (VLP-16 manual 9.3, 9.5; HDL-32E manual appendix E) into \p out.
+void decodeBlock(const PacketContext& k, const uint8_t* blk, int b, uint16_t az,
+                 std::vector<ScanPoint>& out) {
+  const int pair = k.dual ? b / 2 : b;
+  // Dual mode (VLP-16 manual 9.3.2.2): block 2j = last return, block 2j+1 = strongest.
+  const bool last_block = k.dual && (b % 2) == 0;
+  if (k.dual && ((last_block && !k.keep_last) || (!last_block && !k.keep_strongest))) return;
+  const double t0_us = k.timing.offset_us(pair, 0);
+  for (int c = 0; c < kChannelsPerBlock; ++c) {
+    const uint8_t* ch = blk + 4 + 3 * c;
+    const uint16_t raw = le16(ch);
+    if (raw == 0) continue;  // no return
+    if (last_block && k.drop_dups) {
+      const uint8_t* twin = ch + kBlockSize;  // same channel, strongest block
+      if (le16(twin) == raw && twin[2] == ch[2]) continue;  // VeloView keeps one of equal returns
+    }
+    const LaserCalibration& lc = k.cal->lasers[static_cast<std::size_t>(k.vlp16 ? c % 16 : c)];
+    const double range = raw * kDistanceUnit_m + lc.distance_correction_m;
+    if (range <= 0 || range < k.min_range_m || range > k.max_range_m) continue;
+    const double t_us = k.timing.offset_us(pair, c);
+    double a_units = az + k.step_per_us * (t_us - t0_us);
+    if (a_units >= 36000.0) a_units -= 36000.0;
+    const double a = a_units * kAzimuthUnit_rad - lc.azimuth_correction_rad;
+    const double ca = std::cos(a), sa = std::sin(a);
+    const double xy = range * lc.cos_vert - lc.vertical_offset_m * lc.sin_vert;
+    ScanPoint p;  // calibration.h: our frame is VeloView's (y_vv, -x_vv, z_vv)
+    p.x = static_cast<float>(xy * ca + lc.horizontal_offset_m * sa);
+    p.y = static_cast<float>(-xy * sa + lc.horizontal_offset_m * ca);
+    p.z = static_cast<float>(range * lc.sin_vert + lc.vertical_offset_m);
+    p.intensity = ch[2];
+    p.t = static_cast<float>(t_us * 1e-6);
+    p.ring = lc.ring;
+    p.return_index = last_block ? 1 : 0;
+    out.push_back(p);
+  }
+}
+
+}  // namespace
+
 DecodeStatus Decoder::decode(const uint8_t* data, std::size_t size, std::vector<ScanPoint>& out,
                              PacketInfo* info) const noexcept {
   if (data == nullptr || size != kDataPacketSize) return DecodeStatus::WrongSize;
@@ -90,58 +140,30 @@ DecodeStatus Decoder::decode(const uint8_t* data, std::size_t size, std::vector<
     if (le16(blk) != kBlockFlag) return DecodeStatus::BadBlockFlag;
     az[b] = le16(blk + 2) % 36000;
   }
-  const bool dual = data[kTailOffset + 4] == static_cast<uint8_t>(ReturnMode::Dual);
-  const Calibration& cal = calibration(model);
-  const Timing timing{model == Model::VLP16, model == Model::VLP16 ? 110.592 : 46.08};
-  const double step_per_us =
-      params_.intra_block_azimuth ? blockAzimuthStep(az.data()) / timing.block_period_us : 0.0;
-  const bool keep_last = params_.dual_returns != DualReturns::Strongest;
-  const bool keep_strongest = params_.dual_returns != DualReturns::Last;
-  const bool drop_dups = params_.drop_dual_duplicates && params_.dual_returns == DualReturns::Both;
+  const uint8_t* tail = data + kTailOffset;
+  PacketContext k;
+  k.cal = &calibration(model);
+  k.vlp16 = model == Model::VLP16;
+  k.timing = Timing{k.vlp16, k.vlp16 ? 110.592 : 46.08};
+  k.dual = tail[4] == static_cast<uint8_t>(ReturnMode::Dual);
+  k.step_per_us =
+      params_.intra_block_azimuth ? blockAzimuthStep(az.data()) / k.timing.block_period_us : 0.0;
+  k.keep_last = params_.dual_returns != DualReturns::Strongest;
+  k.keep_strongest = params_.dual_returns != DualReturns::Last;
+  k.drop_dups = params_.drop_dual_duplicates && params_.dual_returns == DualReturns::Both;
+  k.min_range_m = params_.min_range_m;
+  k.max_range_m = params_.max_range_m;
   PacketInfo local;
   PacketInfo& pi = info != nullptr ? *info : local;
   pi.model = model;
-  pi.mode = dual ? ReturnMode::Dual : static_cast<ReturnMode>(data[kTailOffset + 4]);
-  pi.timestamp_us = static_cast<uint32_t>(data[kTailOffset]) | (uint32_t{data[kTailOffset + 1]} << 8) |
-                    (uint32_t{data[kTailOffset + 2]} << 16) | (uint32_t{data[kTailOffset + 3]} << 24);
+  pi.mode = static_cast<ReturnMode>(tail[4]);  // raw byte; only 0x39 changes decoding
+  pi.timestamp_us = uint32_t{tail[0]} | (uint32_t{tail[1]} << 8) | (uint32_t{tail[2]} << 16) |
+                    (uint32_t{tail[3]} << 24);
   for (int b = 0; b < kBlocksPerPacket; ++b) {
-    const uint8_t* blk = data + b * kBlockSize;
-    const int pair = dual ? b / 2 : b;
-    // Dual mode (VLP-16 manual 9.3.2.2): block 2j = last return, block 2j+1 = strongest.
-    const bool last_block = dual && (b % 2) == 0;
-    const double t0_us = timing.offset_us(pair, 0);
     pi.block_azimuth[b] = az[b];
     pi.block_first_point[b] = static_cast<uint32_t>(out.size());
-    pi.block_time_s[b] = static_cast<float>(t0_us * 1e-6);
-    if (dual && ((last_block && !keep_last) || (!last_block && !keep_strongest))) continue;
-    for (int c = 0; c < kChannelsPerBlock; ++c) {
-      const uint8_t* ch = blk + 4 + 3 * c;
-      const uint16_t raw = le16(ch);
-      if (raw == 0) continue;
-      if (last_block && drop_dups) {
-        const uint8_t* twin = ch + kBlockSize;  // same channel, strongest block
-        if (le16(twin) == raw && twin[2] == ch[2]) continue;  // VeloView keeps one of equal returns
-      }
-      const int laser = model == Model::VLP16 ? c % 16 : c;
-      const LaserCalibration& lc = cal.lasers[static_cast<std::size_t>(laser)];
-      const double range = raw * kDistanceUnit_m + lc.distance_correction_m;
-      if (range <= 0 || range < params_.min_range_m || range > params_.max_range_m) continue;
-      const double t_us = timing.offset_us(pair, c);
-      double a_units = az[b] + step_per_us * (t_us - t0_us);
-      if (a_units >= 36000.0) a_units -= 36000.0;
-      const double a = a_units * kAzimuthUnit_rad - lc.azimuth_correction_rad;
-      const double ca = std::cos(a), sa = std::sin(a);
-      const double xy = range * lc.cos_vert - lc.vertical_offset_m * lc.sin_vert;
-      ScanPoint p;
-      p.x = static_cast<float>(xy * ca + lc.horizontal_offset_m * sa);
-      p.y = static_cast<float>(-xy * sa + lc.horizontal_offset_m * ca);
-      p.z = static_cast<float>(range * lc.sin_vert + lc.vertical_offset_m);
-      p.intensity = ch[2];
-      p.t = static_cast<float>(t_us * 1e-6);
-      p.ring = lc.ring;
-      p.return_index = last_block ? 1 : 0;
-      out.push_back(p);
-    }
+    pi.block_time_s[b] = static_cast<float>(k.timing.offset_us(k.dual ? b / 2 : b, 0) * 1e-6);
+    decodeBlock(k, data + b * kBlockSize, b, az[b], out);
   }
   pi.end_point = static_cast<uint32_t>(out.size());
   return DecodeStatus::Ok;
