@@ -2,6 +2,7 @@
 #include <roadslam/common/atomic_file.h>
 
 #include <algorithm>
+#include <cstring>
 #include <cstdio>
 #include <istream>
 #include <sstream>
@@ -167,6 +168,11 @@ bool operator==(const CanFrame& a, const CanFrame& b) noexcept {
          a.fd_flags == b.fd_flags && a.len8_dlc == b.len8_dlc &&
          std::strncmp(a.iface.data(), b.iface.data(), kMaxInterfaceName) == 0 &&
          std::equal(a.data.begin(), a.data.begin() + a.len, b.data.begin());
+}
+
+void CanFrame::setInterface(const char* name) noexcept {
+  iface.fill(0);
+  std::memcpy(iface.data(), name, strnlen(name, kMaxInterfaceName - 1));
 }
 
 std::uint8_t fdDlcToLen(std::uint8_t dlc) noexcept {

@@ -37,10 +37,8 @@ struct CanFrame {
   bool error() const noexcept { return (flags & kError) != 0; }
   bool fd() const noexcept { return (flags & kFd) != 0; }
   double timeSeconds() const noexcept { return static_cast<double>(t_us) * 1e-6; }
-  void setInterface(const char* name) noexcept {
-    std::strncpy(iface.data(), name, kMaxInterfaceName - 1);
-    iface[kMaxInterfaceName - 1] = 0;
-  }
+  /// Copies \p name (cut to 15 characters) into iface.
+  void setInterface(const char* name) noexcept;
 };
 
 bool operator==(const CanFrame& a, const CanFrame& b) noexcept;
