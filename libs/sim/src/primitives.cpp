@@ -49,7 +49,10 @@ inline bool clipHalfSpace(double a, double b, int face, Clip& c) {
 }  // namespace
 
 bool intersect(const Ray& ray, const Prism& p, double t_min, Hit& hit) {
-  const double c = std::cos(p.yaw), s = std::sin(p.yaw);
+  return intersect(ray, p, std::cos(p.yaw), std::sin(p.yaw), t_min, hit);
+}
+
+bool intersect(const Ray& ray, const Prism& p, double c, double s, double t_min, Hit& hit) {
   const double ox = ray.o.x - p.cx, oy = ray.o.y - p.cy;
   const double ou = c * ox + s * oy, ov = -s * ox + c * oy;
   const double du = c * ray.d.x + s * ray.d.y, dv = -s * ray.d.x + c * ray.d.y;

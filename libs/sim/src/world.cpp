@@ -84,6 +84,11 @@ void World::buildGrid(double xmin, double ymin, double xmax, double ymax, double
     bin(q.c.x - q.r, q.c.y - q.r, q.c.x + q.r, q.c.y + q.r, q.c.z + q.r,
         static_cast<uint32_t>(i) | (kSphere << 30));
   }
+  prism_cs_.resize(2 * prisms.size());
+  for (std::size_t i = 0; i < prisms.size(); ++i) {
+    prism_cs_[2 * i] = std::cos(prisms[i].yaw);
+    prism_cs_[2 * i + 1] = std::sin(prisms[i].yaw);
+  }
   refs_.clear();
   for (std::size_t k = 0; k < cells_.size(); ++k) {
     cells_[k].first = static_cast<uint32_t>(refs_.size());
@@ -117,7 +122,9 @@ bool World::traceCell(const Ray& ray, const Cell& cell, int ix, int iy, double t
   for (uint32_t k = cell.first; k < cell.first + cell.count; ++k) {
     const uint32_t ref = refs_[k], idx = ref & kIndexMask;
     switch (ref >> 30) {
-      case kPrism: any |= intersect(ray, prisms[idx], 1e-6, hit); break;
+      case kPrism:
+        any |= intersect(ray, prisms[idx], prism_cs_[2 * idx], prism_cs_[2 * idx + 1], 1e-6, hit);
+        break;
       case kCylinder: any |= intersect(ray, cylinders[idx], 1e-6, hit); break;
       default: {
         const Sphere& s = spheres[idx];

@@ -64,6 +64,8 @@ struct Sphere {
 /// t in (t_min, hit.t) (or any t > t_min when hit.valid is false). Rays starting inside a solid
 /// primitive see no hit from it.
 bool intersect(const Ray& ray, const Prism& p, double t_min, Hit& hit);
+/// Same with the prism's cos(yaw), sin(yaw) precomputed (the ray caster's hot path).
+bool intersect(const Ray& ray, const Prism& p, double cos_yaw, double sin_yaw, double t_min, Hit& hit);
 bool intersect(const Ray& ray, const Cylinder& c, double t_min, Hit& hit);
 /// Entry and exit ranges of the ray through the sphere; false when it misses or is behind.
 bool intersectSphere(const Ray& ray, const Sphere& s, double t_min, double& t_in, double& t_out);

@@ -95,6 +95,7 @@ class World {
   double x0_ = 0, y0_ = 0, cell_ = 5;
   int nx_ = 0, ny_ = 0;
   std::vector<Cell> cells_;
+  std::vector<double> prism_cs_;  ///< cos(yaw), sin(yaw) of every prism
   std::vector<uint32_t> refs_;  ///< 2 high bits: 0 prism, 1 cylinder, 2 sphere; low 30 bits: index
 };
 
