@@ -105,6 +105,34 @@ TEST(RawlogApp, MrptSampleInfoMatchesManifest) {
   EXPECT_NEAR(j["sweeps_per_s"].get<double>(), 10.0, 0.2);  // MANIFEST: 10 Hz
 }
 
+TEST(RawlogApp, OtherRealCapturesMatchTheirOracles) {
+  const std::string dir = std::string(ROADSLAM_SHARED_DATA) + "/velodyne/";
+  const std::string hdl32 = dir + "mrpt_sample_velodyne_hdl32.pcap";
+  const std::string vlp16 = dir + "veloview_vlp-16-test-90deg-1-50-frames.pcap";
+  const std::string monterey = dir + "veloview_monterey-first-100-packets.pcap";
+  if (!fs::exists(hdl32) || !fs::exists(vlp16) || !fs::exists(monterey))
+    GTEST_SKIP() << "missing one of " << hdl32 << ", " << vlp16 << ", " << monterey;
+  // MRPT unit test sample_hdl32_dataset: 3 scans (wrap-closed sweeps, see above); 500 packets.
+  const json h = info(hdl32, "--model hdl32");
+  EXPECT_EQ(h["packets"], 500);
+  EXPECT_EQ(h["sweeps"].get<int>() + h["partial_sweeps"].get<int>() - 1, 3);
+  EXPECT_EQ(h["missing_packets"], 0);
+  // VeloView vlp-16.test: frame_count 52 (partial first/last frames count); 1,902 data packets;
+  // its product byte says HDL-32E, so only with the model forced is nothing "missing".
+  const json v = info(vlp16, "--model vlp16");
+  EXPECT_EQ(v["sweeps"].get<int>() + v["partial_sweeps"].get<int>(), 52);
+  EXPECT_EQ(v["packets"], 1902);
+  EXPECT_EQ(v["missing_packets"], 0);
+  EXPECT_NEAR(v["sweeps_per_s"].get<double>(), 20.0, 0.2);  // MANIFEST: 20 Hz
+  EXPECT_GT(info(vlp16)["missing_packets"].get<int>(), 1000);
+  // VeloView monterey.test: frame_count 19; TestPositionReader: 299 position packets.
+  const json m = info(monterey);
+  EXPECT_EQ(m["sweeps"].get<int>() + m["partial_sweeps"].get<int>(), 19);
+  EXPECT_EQ(m["packets"], 2702);
+  EXPECT_EQ(m["gps_fixes"], 299);
+  EXPECT_EQ(m["model"], "hdl32");
+}
+
 TEST(RawlogApp, ConvertThenInfoGivesTheSameCountsAndMrptReadsIt) {
   for (const std::string& in : {kBox, kMrpt}) {
     if (!fs::exists(in)) continue;

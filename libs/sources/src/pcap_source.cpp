@@ -5,7 +5,7 @@
 namespace roadslam::sources {
 
 PcapPacketSource::PcapPacketSource(const std::string& path, const PortConfig& ports)
-    : reader_(std::make_unique<pcap::PcapReader>(path)), path_(path), ports_(ports) {}
+    : reader_(std::make_unique<pcap::PcapReader>(path)), path_(path), ports_(ports), gaps_(0, ports.model) {}
 
 PcapPacketSource::~PcapPacketSource() = default;
 

@@ -46,7 +46,7 @@ struct RawlogPacketSource::Impl {
 };
 
 RawlogPacketSource::RawlogPacketSource(const std::string& path, const PortConfig& ports)
-    : impl_(std::make_unique<Impl>()), path_(path), ports_(ports) {
+    : impl_(std::make_unique<Impl>()), path_(path), ports_(ports), gaps_(0, ports.model) {
   if (!mrpt::system::fileExists(path))
     throw std::runtime_error("rawlog '" + path + "' does not exist");
   if (!impl_->in.open(path)) throw std::runtime_error("cannot open rawlog '" + path + "'");

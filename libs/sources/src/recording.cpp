@@ -48,7 +48,9 @@ std::unique_ptr<PacketSource> openRecording(const std::string& path, const PortC
 }
 
 RecordingSummary summarizeRecording(const std::string& path, const velodyne::DecoderParams& params) {
-  SweepSource sweeps(openRecording(path), params);
+  PortConfig ports;
+  ports.model = params.model;
+  SweepSource sweeps(openRecording(path, ports), params);
   RecordingSummary s;
   s.path = path;
   s.format = dynamic_cast<const PcapPacketSource*>(&sweeps.packets()) ? "pcap" : "rawlog";
@@ -112,7 +114,9 @@ std::string toText(const RecordingSummary& s) {
 ConvertSummary convertToRawlog(const std::string& in, const std::string& out,
                                const velodyne::DecoderParams& params,
                                RawlogWriter::Params writer_params) {
-  SweepSource sweeps(openRecording(in), params);
+  PortConfig ports;
+  ports.model = params.model;
+  SweepSource sweeps(openRecording(in, ports), params);
   if (writer_params.calibration_file.empty()) writer_params.calibration_file = params.calibration_file;
   bool model_set = params.model != velodyne::Model::Unknown;
   if (model_set) writer_params.model = params.model == velodyne::Model::HDL32 ? "HDL32" : "VLP16";

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "roadslam/common/config.h"
+#include "roadslam/velodyne/decoder_params.h"
 
 namespace roadslam::sources {
 namespace {
@@ -57,6 +58,12 @@ void UdpReceiver::Params::loadFromConfigFile(const mrpt::config::CConfigFileBase
                                              const std::string& s) {
   ports.data_port = uint16_t(readInt(cfg, s, "data_port", ports.data_port));
   ports.position_port = uint16_t(readInt(cfg, s, "position_port", ports.position_port));
+  const std::string model = readString(cfg, s, "model", velodyne::modelName(ports.model));
+  try {
+    ports.model = velodyne::parseModel(model);
+  } catch (const std::exception&) {
+    throw std::runtime_error("[" + s + "] model: expected auto, vlp16 or hdl32, got '" + model + "'");
+  }
   bind_address = readString(cfg, s, "bind_address", bind_address);
   source_filter = readString(cfg, s, "source_filter", source_filter);
   rcvbuf_bytes = readInt(cfg, s, "rcvbuf_bytes", rcvbuf_bytes);
@@ -69,6 +76,7 @@ void UdpReceiver::Params::saveToConfigFile(mrpt::config::CConfigFileBase& cfg,
                                            const std::string& s) const {
   cfg.write(s, "data_port", int(ports.data_port));
   cfg.write(s, "position_port", int(ports.position_port));
+  cfg.write(s, "model", velodyne::modelName(ports.model));
   cfg.write(s, "bind_address", bind_address);
   cfg.write(s, "source_filter", source_filter);
   cfg.write(s, "rcvbuf_bytes", rcvbuf_bytes);
@@ -77,7 +85,7 @@ void UdpReceiver::Params::saveToConfigFile(mrpt::config::CConfigFileBase& cfg,
   cfg.write(s, "packet_period_us", packet_period_s * 1e6);
 }
 
-UdpReceiver::UdpReceiver(const Params& p) : params_(p), gaps_(p.packet_period_s) {
+UdpReceiver::UdpReceiver(const Params& p) : params_(p), gaps_(p.packet_period_s, p.ports.model) {
   const uint32_t bind_ip = parseIpv4(p.bind_address, "bind_address");
   source_ip_ = parseIpv4(p.source_filter, "source_filter");
   if (p.batch_size < 1) throw std::runtime_error("UdpReceiver: batch_size must be >= 1");
@@ -90,7 +98,8 @@ UdpReceiver::UdpReceiver(const Params& p) : params_(p), gaps_(p.packet_period_s)
     close(fds_[0]);
     throw;
   }
-  params_.ports = {bound_data_port_, bound_position_port_};
+  params_.ports.data_port = bound_data_port_;
+  params_.ports.position_port = bound_position_port_;
 }
 
 UdpReceiver::~UdpReceiver() {

@@ -48,3 +48,21 @@ TEST(Classify, ByPortAndSize) {
   EXPECT_EQ(classify(ports, 8308, 1206), PacketKind::Malformed);
   EXPECT_EQ(classify(ports, 53, 1206), PacketKind::Other);
 }
+
+TEST(GapCounter, Hdl32PeriodFromTheProductByteOrAForcedModel) {
+  // HDL-32E: 12 blocks x 46.08 us = 552.96 us per packet (manual 63-9113, appendix E).
+  GapCounter by_byte;
+  for (int k = 0; k < 50; ++k)
+    if (k != 20) by_byte.feed(makeDataPacket(uint32_t(k * 552960LL / 1000), 0, k, 0x37, 0x21).data());
+  EXPECT_EQ(by_byte.missing(), 1u);
+  // An early VLP-16 reporting 0x21 at the VLP-16 rate: read as HDL-32E, every step looks like a
+  // gap; with the model forced, none is missing.
+  GapCounter lying, forced(0, roadslam::velodyne::Model::VLP16);
+  for (int k = 0; k < 50; ++k) {
+    const auto p = makeDataPacket(uint32_t(k * 1327104LL / 1000), 0, k, 0x37, 0x21);
+    lying.feed(p.data());
+    forced.feed(p.data());
+  }
+  EXPECT_GT(lying.missing(), 40u);
+  EXPECT_EQ(forced.missing(), 0u);
+}

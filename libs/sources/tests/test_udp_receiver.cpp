@@ -135,7 +135,7 @@ TEST(UdpReceiver, BadOrNonLocalBindAddressThrows) {
 
 TEST(UdpReceiver, ParamsRoundTripThroughIni) {
   UdpReceiver::Params p;
-  p.ports = {2400, 8400};
+  p.ports = {2400, 8400, roadslam::velodyne::Model::HDL32};
   p.source_filter = "10.0.0.5";
   p.poll_timeout_s = 0.25;
   p.packet_period_s = 663.552e-6;
@@ -145,6 +145,9 @@ TEST(UdpReceiver, ParamsRoundTripThroughIni) {
   q.loadFromConfigFile(ini, "udp");
   EXPECT_EQ(q.ports.data_port, 2400);
   EXPECT_EQ(q.ports.position_port, 8400);
+  EXPECT_EQ(q.ports.model, roadslam::velodyne::Model::HDL32);
+  ini.write("udp", "model", std::string("hdl64"));
+  EXPECT_THROW(q.loadFromConfigFile(ini, "udp"), std::runtime_error);
   EXPECT_EQ(q.source_filter, "10.0.0.5");
   EXPECT_NEAR(q.poll_timeout_s, 0.25, 1e-12);
   EXPECT_NEAR(q.packet_period_s, 663.552e-6, 1e-12);

@@ -31,6 +31,9 @@ struct SourceStats {
 struct PortConfig {
   uint16_t data_port = velodyne::kDefaultDataPort;          ///< [UDP port]
   uint16_t position_port = velodyne::kDefaultPositionPort;  ///< [UDP port]
+  /// Sensor model for the missing-packet count; Unknown = the packet's product byte. Force it for
+  /// captures whose byte lies (early VLP-16 firmware reports 0x21, the HDL-32E code).
+  velodyne::Model model = velodyne::Model::Unknown;
 };
 
 /// A stream of raw UDP payloads, in arrival order.
@@ -52,17 +55,22 @@ class PacketSource {
 
 /// Counts packets missing from a data stream from the sensor's own timestamps (bytes 1200-1203, us
 /// past the hour): a step larger than 1.5 expected periods means round(step/period)-1 packets lost.
-/// Period: 1327.104 us for VLP-16 single return (24 sequences x 55.296 us), half of it in dual
-/// return mode (each firing fills two blocks), unless \p forced_period_s > 0.
+/// Period (unless \p forced_period_s > 0): VLP-16 1327.104 us (24 sequences x 55.296 us), HDL-32E
+/// 552.96 us (12 blocks x 46.08 us); half of it in dual return mode (each firing fills two blocks).
+/// The model is \p model, or the packet's product byte when Unknown.
 class GapCounter {
  public:
-  explicit GapCounter(double forced_period_s = 0) : forced_period_s_(forced_period_s) {}
+  explicit GapCounter(double forced_period_s = 0, velodyne::Model model = velodyne::Model::Unknown)
+      : forced_period_s_(forced_period_s), model_(model) {}
+  /// Expected step between consecutive data packets [s].
+  static double packetPeriod_s(velodyne::Model model, bool dual);
   /// Feeds one 1206-byte data payload; returns the packets missing just before it [count].
   uint64_t feed(const uint8_t* payload);
   uint64_t missing() const { return missing_; }
 
  private:
   double forced_period_s_;
+  velodyne::Model model_;
   int64_t last_us_ = -1;
   uint64_t missing_ = 0;
 };

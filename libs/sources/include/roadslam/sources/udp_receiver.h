@@ -28,7 +28,7 @@ class UdpReceiver : public PacketSource {
     double poll_timeout_s = 0.1;   ///< next() returns nullopt after this long without data [s]
     double packet_period_s = 0;    ///< expected data packet step for gap counting [s], 0 = from mode
 
-    /// Keys: data_port, position_port, bind_address, source_filter, rcvbuf_bytes, batch_size,
+    /// Keys: data_port, position_port, model (auto|vlp16|hdl32), bind_address, source_filter, rcvbuf_bytes, batch_size,
     /// poll_timeout_ms (converted to s), packet_period_us (converted to s).
     void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section);
     void saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& section) const;
