@@ -15,7 +15,7 @@ size_t randomDownsample(std::vector<ScanPoint>& pts, const RandomDownsampleParam
   size_t w = 0;
   for (size_t i = 0; i < n && need > 0; ++i) {
     // Algorithm S: select point i with probability need / (points left).
-    if (rng.below(n - i) < need) {
+    if (rng.uniform() * static_cast<double>(n - i) < static_cast<double>(need)) {
       pts[w++] = pts[i];
       --need;
     }
@@ -42,42 +42,92 @@ uint64_t hashKey(uint64_t k) {  // SplitMix64 finaliser as a mixer
   k = (k ^ (k >> 27)) * 0x94D049BB133111EBull;
   return k ^ (k >> 31);
 }
+/// floor() without the libm call (x86-64 baseline has no SSE4.1 round instruction); exact for
+/// |x| < 2^31, which packKey's 21-bit range is far inside of.
+inline int32_t fastFloor(float x) {
+  const auto i = static_cast<int32_t>(x);
+  return i - (static_cast<float>(i) > x);
+}
+
 struct Acc {
   double x, y, z, i;
   uint32_t n, first;
+};
+
+/// Open-addressing hash map voxel key -> index into the voxel list; linear probing, grown at a
+/// load factor of 1/2. Key and index share one 16-byte slot so a lookup touches one cache line.
+class VoxelIndex {
+ public:
+  explicit VoxelIndex(size_t expected) {
+    size_t cap = 1024;
+    while (cap < 2 * expected) cap <<= 1;
+    slots_.assign(cap, Slot{0, -1});
+  }
+  /// Index stored for \p key, or inserts \p next_index and returns -1.
+  int32_t findOrInsert(uint64_t key, int32_t next_index) {
+    if (2 * (size_ + 1) > slots_.size()) grow();
+    const size_t mask = slots_.size() - 1;
+    for (size_t h = hashKey(key) & mask;; h = (h + 1) & mask) {
+      Slot& s = slots_[h];
+      if (s.index < 0) {
+        s = {key, next_index};
+        ++size_;
+        return -1;
+      }
+      if (s.key == key) return s.index;
+    }
+  }
+
+ private:
+  struct Slot {
+    uint64_t key;
+    int32_t index;
+  };
+  void grow() {
+    std::vector<Slot> old(slots_.size() * 2, Slot{0, -1});
+    old.swap(slots_);
+    const size_t mask = slots_.size() - 1;
+    for (const Slot& s : old) {
+      if (s.index < 0) continue;
+      size_t h = hashKey(s.key) & mask;
+      while (slots_[h].index >= 0) h = (h + 1) & mask;
+      slots_[h] = s;
+    }
+  }
+  std::vector<Slot> slots_;
+  size_t size_ = 0;
 };
 }  // namespace
 
 size_t voxelDownsample(std::vector<ScanPoint>& pts, const VoxelParams& prm) {
   const size_t n = pts.size();
   if (n == 0) return 0;
-  size_t cap = 16;
-  while (cap < 2 * n) cap <<= 1;  // load factor <= 0.5 for short linear probes
-  std::vector<uint64_t> keys(cap);
-  std::vector<int32_t> slot(cap, -1);  // index into voxels
+  VoxelIndex index(n / 8);  // typical sweeps keep 1/3 to 1/10 of their points; grows if needed
   std::vector<Acc> voxels;
   voxels.reserve(n / 4 + 16);
   const float inv = static_cast<float>(1.0 / prm.voxel_size_m);
+  const bool centroid = prm.mode == VoxelParams::Mode::Centroid;
+  uint64_t last_key = 0;
+  int32_t last_voxel = -1;  // consecutive returns often share a voxel: skip the lookup
   for (size_t i = 0; i < n; ++i) {
     const ScanPoint& p = pts[i];
-    const VoxelKey vk{static_cast<int32_t>(std::floor(p.x * inv)), static_cast<int32_t>(std::floor(p.y * inv)),
-                      static_cast<int32_t>(std::floor(p.z * inv))};
-    const uint64_t key = packKey(vk);
-    size_t h = hashKey(key) & (cap - 1);
-    while (slot[h] >= 0 && keys[h] != key) h = (h + 1) & (cap - 1);
-    if (slot[h] < 0) {
-      keys[h] = key;
-      slot[h] = static_cast<int32_t>(voxels.size());
+    const uint64_t key = packKey({fastFloor(p.x * inv), fastFloor(p.y * inv), fastFloor(p.z * inv)});
+    int32_t v = (last_voxel >= 0 && key == last_key)
+                    ? last_voxel
+                    : index.findOrInsert(key, static_cast<int32_t>(voxels.size()));
+    if (v < 0) {
+      v = static_cast<int32_t>(voxels.size());
       voxels.push_back({p.x, p.y, p.z, p.intensity, 1, static_cast<uint32_t>(i)});
-    } else if (prm.mode == VoxelParams::Mode::Centroid) {
-      Acc& a = voxels[static_cast<size_t>(slot[h])];
+    } else if (centroid) {
+      Acc& a = voxels[static_cast<size_t>(v)];
       a.x += p.x, a.y += p.y, a.z += p.z, a.i += p.intensity, ++a.n;
     }
+    last_key = key, last_voxel = v;
   }
   for (size_t v = 0; v < voxels.size(); ++v) {
     const Acc& a = voxels[v];
     ScanPoint out = pts[a.first];  // a.first >= v: never overwritten before it is read
-    if (prm.mode == VoxelParams::Mode::Centroid) {
+    if (centroid) {
       const double k = 1.0 / a.n;
       out.x = static_cast<float>(a.x * k), out.y = static_cast<float>(a.y * k);
       out.z = static_cast<float>(a.z * k), out.intensity = static_cast<float>(a.i * k);

@@ -10,6 +10,31 @@ namespace roadslam::preprocess {
 namespace {
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
+/// atan2 by a minimax polynomial on [0, 1] (max error ~1e-5 rad, far below a sector's width);
+/// libm's atan2f was a third of the labelling time.
+inline float fastAtan2(float y, float x) {
+  const float ax = std::abs(x), ay = std::abs(y);
+  const float mx = std::max(ax, ay);
+  if (mx == 0.f) return 0.f;
+  const float a = std::min(ax, ay) / mx, s = a * a;
+  float r = ((-0.0464964749f * s + 0.15931422f) * s - 0.327622764f) * s * a + a;
+  if (ay > ax) r = 1.57079637f - r;
+  if (x < 0) r = 3.14159274f - r;
+  return y < 0 ? -r : r;
+}
+
+/// One (sector, range bin) cell: its prototype (lowest return) and highest return.
+struct Cell {
+  float min_z = kInf;  ///< z of the lowest return [m]
+  float r = 0;         ///< horizontal range of the lowest return [m]
+  float top_z = -kInf; ///< z of the highest return [m]
+};
+
+/// Ground line z = m r + b assigned to a cell; b = +inf when none is in reach.
+struct CellLine {
+  float m = 0, b = kInf;
+};
+
 struct Segment {
   double m, b, r0, r1;  // z = m r + b over [r0, r1] (horizontal range [m])
   double at(double r) const { return m * r + b; }
@@ -39,8 +64,7 @@ struct LineAccumulator {
 /// prototype that breaks the current line (slope or fit error) starts a new line together with the
 /// last ground prototype when the slope between the two is admissible, so slope changes at crests
 /// and dips are followed even between sparse rings (Himmelsbach 2010, Sec. III-B; linefit).
-std::vector<Segment> fitSector(const float* proto_r, const float* proto_z, const float* top_z,
-                               int bins, const GroundSegParams& p) {
+std::vector<Segment> fitSector(const Cell* cells, int bins, const GroundSegParams& p) {
   std::vector<Segment> segs;
   LineAccumulator cur;
   bool have_last = false;  // last prototype accepted as ground
@@ -65,10 +89,11 @@ std::vector<Segment> fitSector(const float* proto_r, const float* proto_z, const
     return std::abs(z - last.at(r)) <= tol;
   };
   for (int i = 0; i < bins; ++i) {
-    if (proto_z[i] == kInf) continue;
-    const double r = proto_r[i], z = proto_z[i];
+    const Cell& cell = cells[i];
+    if (cell.min_z == kInf) continue;
+    const double r = cell.r, z = cell.min_z;
     bool accepted = false;
-    if (top_z[i] - proto_z[i] > p.tall_cell_height_m) {
+    if (cell.top_z - cell.min_z > p.tall_cell_height_m) {
       // The lowest return under a vertical structure (wall, car side) only extends the ground
       // profile when it lies on it: the foot of a wall a few cm up would otherwise bend the line.
       double cm = 0, cb = 0, cr = 0;
@@ -114,8 +139,7 @@ std::vector<Segment> fitSector(const float* proto_r, const float* proto_z, const
 }
 
 /// For every bin of a sector, the segment covering it (or the nearest within max_gap_m).
-void assignBins(const std::vector<Segment>& segs, int bins, const GroundSegParams& p, float* m_out,
-                float* b_out) {
+void assignBins(const std::vector<Segment>& segs, int bins, const GroundSegParams& p, CellLine* out) {
   std::vector<float> best(static_cast<size_t>(bins), kInf);
   for (const auto& s : segs) {
     const int i0 = std::max(0, static_cast<int>((s.r0 - p.max_gap_m) / p.bin_length_m));
@@ -125,67 +149,82 @@ void assignBins(const std::vector<Segment>& segs, int bins, const GroundSegParam
       const float dist = static_cast<float>(std::max({0.0, s.r0 - rc, rc - s.r1}));
       if (dist < best[static_cast<size_t>(i)]) {
         best[static_cast<size_t>(i)] = dist;
-        m_out[i] = static_cast<float>(s.m);
-        b_out[i] = static_cast<float>(s.b);
+        out[i] = {static_cast<float>(s.m), static_cast<float>(s.b)};
       }
     }
   }
+}
+/// Cell index of every point (-1 beyond max range) and the prototype of every cell.
+struct Grid {
+  int sectors = 0, bins = 0;
+  std::vector<Cell> cells;
+  std::vector<int32_t> cell_of;
+};
+
+Grid binPoints(const std::vector<ScanPoint>& pts, const GroundSegParams& p) {
+  Grid g;
+  g.sectors = p.num_sectors;
+  g.bins = static_cast<int>(std::ceil(p.max_range_m / p.bin_length_m));
+  g.cells.assign(static_cast<size_t>(g.sectors) * static_cast<size_t>(g.bins), Cell{});
+  g.cell_of.assign(pts.size(), -1);
+  const float inv_bin = static_cast<float>(1.0 / p.bin_length_m);
+  const float sec_scale = static_cast<float>(g.sectors / (2 * M_PI));
+  for (size_t i = 0; i < pts.size(); ++i) {
+    const auto& q = pts[i];
+    const float r = std::sqrt(q.x * q.x + q.y * q.y);
+    const int bin = static_cast<int>(r * inv_bin);
+    if (bin >= g.bins) continue;
+    const float az = fastAtan2(q.y, q.x) + static_cast<float>(M_PI);
+    const int sec = std::min(g.sectors - 1, static_cast<int>(az * sec_scale));
+    const int c = sec * g.bins + bin;
+    g.cell_of[i] = c;
+    Cell& cell = g.cells[static_cast<size_t>(c)];
+    if (q.z < cell.min_z) cell.min_z = q.z, cell.r = r;
+    cell.top_z = std::max(cell.top_z, q.z);
+  }
+  return g;
+}
+
+/// The line for cell \p c, or a neighbour sector's (same bin) when its own sector has none.
+const CellLine* lineFor(const Grid& g, const std::vector<CellLine>& lines, size_t c) {
+  if (lines[c].b != kInf) return &lines[c];
+  const auto S = static_cast<size_t>(g.sectors), B = static_cast<size_t>(g.bins);
+  const size_t bin = c % B, sec = c / B;
+  for (size_t n : {(sec + S - 1) % S * B + bin, (sec + 1) % S * B + bin})
+    if (lines[n].b != kInf) return &lines[n];
+  return nullptr;
 }
 }  // namespace
 
 std::vector<uint8_t> segmentGround(const std::vector<ScanPoint>& pts, const GroundSegParams& p,
                                    GroundSegStats* stats) {
-  const int S = p.num_sectors;
-  const int B = static_cast<int>(std::ceil(p.max_range_m / p.bin_length_m));
-  const size_t cells = static_cast<size_t>(S) * static_cast<size_t>(B);
-  std::vector<float> proto_z(cells, kInf), proto_r(cells, 0.f), top_z(cells, -kInf);
-  std::vector<int32_t> cell_of(pts.size(), -1);
-  const float inv_bin = static_cast<float>(1.0 / p.bin_length_m);
-  const float sec_scale = static_cast<float>(S / (2 * M_PI));
-  for (size_t i = 0; i < pts.size(); ++i) {
-    const auto& q = pts[i];
-    const float r = std::sqrt(q.x * q.x + q.y * q.y);
-    const int bin = static_cast<int>(r * inv_bin);
-    if (bin >= B) continue;
-    const int sec = std::min(S - 1, static_cast<int>((std::atan2(q.y, q.x) + static_cast<float>(M_PI)) * sec_scale));
-    const int c = sec * B + bin;
-    cell_of[i] = c;
-    const auto cu = static_cast<size_t>(c);
-    if (q.z < proto_z[cu]) proto_z[cu] = q.z, proto_r[cu] = r;
-    top_z[cu] = std::max(top_z[cu], q.z);
-  }
-  std::vector<float> line_m(cells, 0.f), line_b(cells, kInf);
+  const Grid g = binPoints(pts, p);
+  std::vector<CellLine> lines(g.cells.size());
   GroundSegStats st;
-  for (int s = 0; s < S; ++s) {
-    const size_t off = static_cast<size_t>(s) * static_cast<size_t>(B);
-    const auto segs = fitSector(&proto_r[off], &proto_z[off], &top_z[off], B, p);
+  for (int s = 0; s < g.sectors; ++s) {
+    const size_t off = static_cast<size_t>(s) * static_cast<size_t>(g.bins);
+    const auto segs = fitSector(&g.cells[off], g.bins, p);
     st.segments += segs.size();
-    assignBins(segs, B, p, &line_m[off], &line_b[off]);
+    assignBins(segs, g.bins, p, &lines[off]);
   }
   std::vector<uint8_t> labels(pts.size(), 0);
-  const float tol = static_cast<float>(p.max_dist_to_line_m);
-  const float tol_tall = static_cast<float>(std::min(p.max_dist_to_line_m, p.max_dist_to_line_tall_m));
-  const float tall = static_cast<float>(p.tall_cell_height_m);
+  const auto tol = static_cast<float>(p.max_dist_to_line_m);
+  const auto tol_tall = static_cast<float>(std::min(p.max_dist_to_line_m, p.max_dist_to_line_tall_m));
+  const auto tall = static_cast<float>(p.tall_cell_height_m);
   for (size_t i = 0; i < pts.size(); ++i) {
-    if (cell_of[i] < 0) continue;
-    auto c = static_cast<size_t>(cell_of[i]);
-    if (line_b[c] == kInf) {  // no segment in this sector: borrow a neighbour sector's (same bin)
-      const size_t bin = c % static_cast<size_t>(B), sec = c / static_cast<size_t>(B);
-      const size_t left = ((sec + static_cast<size_t>(S) - 1) % static_cast<size_t>(S)) * static_cast<size_t>(B) + bin;
-      const size_t right = ((sec + 1) % static_cast<size_t>(S)) * static_cast<size_t>(B) + bin;
-      c = line_b[left] != kInf ? left : right;
-      if (line_b[c] == kInf) {
-        ++st.unassigned;
-        continue;
-      }
+    if (g.cell_of[i] < 0) continue;
+    const auto c = static_cast<size_t>(g.cell_of[i]);
+    const CellLine* line = lineFor(g, lines, c);
+    if (!line) {
+      ++st.unassigned;
+      continue;
     }
     const auto& q = pts[i];
     const float r = std::sqrt(q.x * q.x + q.y * q.y);
     // A cell holding a vertical structure (wall, curb, car side) gets the tight tolerance, so the
     // foot of the structure is not taken for ground while the road in front of it still is.
-    const auto own = static_cast<size_t>(cell_of[i]);
-    const float t = top_z[own] - proto_z[own] > tall ? tol_tall : tol;
-    labels[i] = std::abs(q.z - (line_m[c] * r + line_b[c])) <= t;
+    const float t = g.cells[c].top_z - g.cells[c].min_z > tall ? tol_tall : tol;
+    labels[i] = std::abs(q.z - (line->m * r + line->b)) <= t;
     st.ground += labels[i];
   }
   if (stats) *stats = st;
