@@ -55,7 +55,7 @@ int main(int argc, char** argv) {
   try {
     if (*info) {
       const RecordingSummary s = summarizeRecording(info_in, info_opt.params());
-      fmt::print("{}\n", json ? toJson(s) : toText(s));
+      fmt::print("{}", json ? toJson(s) + "\n" : toText(s));
     } else if (*conv) {
       const ConvertSummary s = convertToRawlog(conv_in, conv_out, conv_opt.params());
       fmt::print("{}: {} sweeps ({} packets), {} GPS records\n", conv_out, s.observations,
