@@ -49,6 +49,10 @@ inline int32_t fastFloor(float x) {
   return i - (static_cast<float>(i) > x);
 }
 
+/// Voxel coordinates beyond +-2^20 would alias in packKey's 21 bits: such points (and NaN / inf)
+/// are dropped and counted as removed.
+constexpr float kMaxCell = 1048575.f;
+
 struct Acc {
   double x, y, z, i;
   uint32_t n, first;
@@ -111,7 +115,9 @@ size_t voxelDownsample(std::vector<ScanPoint>& pts, const VoxelParams& prm) {
   int32_t last_voxel = -1;  // consecutive returns often share a voxel: skip the lookup
   for (size_t i = 0; i < n; ++i) {
     const ScanPoint& p = pts[i];
-    const uint64_t key = packKey({fastFloor(p.x * inv), fastFloor(p.y * inv), fastFloor(p.z * inv)});
+    const float fx = p.x * inv, fy = p.y * inv, fz = p.z * inv;
+    if (!(std::abs(fx) < kMaxCell && std::abs(fy) < kMaxCell && std::abs(fz) < kMaxCell)) continue;
+    const uint64_t key = packKey({fastFloor(fx), fastFloor(fy), fastFloor(fz)});
     int32_t v = (last_voxel >= 0 && key == last_key)
                     ? last_voxel
                     : index.findOrInsert(key, static_cast<int32_t>(voxels.size()));

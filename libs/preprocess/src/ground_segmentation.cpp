@@ -168,12 +168,13 @@ Grid binPoints(const std::vector<ScanPoint>& pts, const GroundSegParams& p) {
   g.cells.assign(static_cast<size_t>(g.sectors) * static_cast<size_t>(g.bins), Cell{});
   g.cell_of.assign(pts.size(), -1);
   const float inv_bin = static_cast<float>(1.0 / p.bin_length_m);
+  const auto max_r = static_cast<float>(p.max_range_m);
   const float sec_scale = static_cast<float>(g.sectors / (2 * M_PI));
   for (size_t i = 0; i < pts.size(); ++i) {
     const auto& q = pts[i];
     const float r = std::sqrt(q.x * q.x + q.y * q.y);
-    const int bin = static_cast<int>(r * inv_bin);
-    if (bin >= g.bins) continue;
+    if (!(r < max_r) || !std::isfinite(q.z)) continue;  // also NaN / inf: non-ground, no UB cast
+    const int bin = std::min(g.bins - 1, static_cast<int>(r * inv_bin));
     const float az = fastAtan2(q.y, q.x) + static_cast<float>(M_PI);
     const int sec = std::min(g.sectors - 1, static_cast<int>(az * sec_scale));
     const int c = sec * g.bins + bin;

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <map>
 #include <random>
 #include <set>
@@ -93,6 +94,12 @@ TEST(VoxelGrid, NegativeCoordinatesAndEmpty) {
   EXPECT_EQ(pts.size(), 3u);
   std::vector<ScanPoint> none;
   EXPECT_EQ(voxelDownsample(none, p), 0u);
+  std::vector<ScanPoint> bad(3);
+  bad[0].x = std::numeric_limits<float>::quiet_NaN();
+  bad[1].y = 1e12f;  // finite but beyond the key range
+  EXPECT_EQ(voxelDownsample(bad, p), 2u);
+  ASSERT_EQ(bad.size(), 1u);
+  EXPECT_EQ(bad[0].y, 0.f);
 }
 
 TEST(StatisticalOutlierRemoval, RemovesInjectedOutliers) {

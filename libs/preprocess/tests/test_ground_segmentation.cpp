@@ -69,9 +69,15 @@ TEST(GroundSegmentation, EmptyAndSparseInput) {
   far[0].x = 500.f;  // beyond max range: non-ground, no crash
   far[1].z = -1.8f;  // on the sensor axis
   far[2].x = 5.f, far[2].z = -1.8f;
+  far.push_back(far[2]);
+  far.back().y = std::numeric_limits<float>::infinity();
+  far.push_back(far[2]);
+  far.back().z = std::numeric_limits<float>::quiet_NaN();
   const auto l = segmentGround(far, vlp16Params());
-  ASSERT_EQ(l.size(), 3u);
+  ASSERT_EQ(l.size(), 5u);
   EXPECT_EQ(l[0], 0);
+  EXPECT_EQ(l[3], 0);
+  EXPECT_EQ(l[4], 0);
 }
 
 // KITTI 00 scan 0 (HDL-64E 1.73 m above a street): a plausible share of ground, and the ground

@@ -26,7 +26,8 @@ size_t randomDownsample(std::vector<ScanPoint>& pts, const RandomDownsampleParam
 
 /// One point per occupied cubic voxel: the centroid of its points (x, y, z, intensity averaged; time,
 /// ring and return index of the first) or the first point that fell in it. Output in the order the
-/// voxels were first hit. Hash grid with open addressing: O(n), no sort.
+/// voxels were first hit. Hash grid with open addressing: O(n), no sort. Non-finite points and
+/// points more than 2^20 voxels from the origin are dropped (counted in the return value).
 struct VoxelParams {
   enum class Mode { Centroid, First };
   double voxel_size_m = 0.5;  ///< voxel edge [m]; ini `voxel_size_m`

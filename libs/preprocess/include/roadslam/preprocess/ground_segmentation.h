@@ -48,7 +48,7 @@ struct GroundSegStats {
 };
 
 /// Labels every point of \p pts: 1 = ground, 0 = non-ground (same order and size as \p pts).
-/// Points must be finite (see removeNonFinite); the sensor is at the origin of the frame.
+/// The sensor is at the origin of the frame; non-finite points are labelled non-ground.
 std::vector<uint8_t> segmentGround(const std::vector<ScanPoint>& pts, const GroundSegParams& p,
                                    GroundSegStats* stats = nullptr);
 
