@@ -57,8 +57,10 @@ ReadStatus PcapReader::next(UdpDatagram& out) {
       case link::Kind::Truncated: ++stats_.truncated_records; continue;
       case link::Kind::Other: ++stats_.non_udp; continue;
     }
-    const double frac = impl_->nano ? 1e-9 : 1e-6;
-    out.stamp_s = static_cast<double>(hdr->ts.tv_sec) + static_cast<double>(hdr->ts.tv_usec) * frac;
+    // With PCAP_TSTAMP_PRECISION_NANO, libpcap puts nanoseconds in tv_usec (pcap_open_offline(3)).
+    const int64_t frac_ns = static_cast<int64_t>(hdr->ts.tv_usec) * (impl_->nano ? 1 : 1000);
+    out.stamp_ns = static_cast<int64_t>(hdr->ts.tv_sec) * 1000000000LL + frac_ns;
+    out.stamp_s = static_cast<double>(hdr->ts.tv_sec) + static_cast<double>(frac_ns) * 1e-9;
     out.src_ip = p.src_ip;
     out.dst_ip = p.dst_ip;
     out.src_port = p.src_port;

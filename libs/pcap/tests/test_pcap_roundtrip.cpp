@@ -40,6 +40,8 @@ TEST(PcapRoundTrip, StampsPortsAddressesAndPayloadSurvive) {
   for (int i = 0; i < 50; ++i) {
     ASSERT_EQ(r.next(d), ReadStatus::Ok) << i;
     EXPECT_NEAR(d.stamp_s, stamps[i], 1.5e-6);  // microsecond stamps in the file
+    EXPECT_EQ(d.stamp_ns % 1000, 0);
+    EXPECT_NEAR(static_cast<double>(d.stamp_ns) * 1e-9, stamps[i], 1.5e-6);
     EXPECT_EQ(d.dst_port, i % 2 ? 2368 : 8308);
     EXPECT_EQ(d.src_port, 2368);
     EXPECT_EQ(d.src_ip, 0xC0A801C9u + i);
@@ -96,7 +98,23 @@ TEST(PcapLinkTypes, VlanSllSll2RawAndNullFramesAreDecoded) {
     EXPECT_EQ(ds[0].src_port, 7000);
     EXPECT_EQ(ds[0].dst_port, 2368);
     EXPECT_EQ(ds[1].stamp_s, 101.000002);  // second record stamp from writeClassicPcap
+    EXPECT_EQ(ds[1].stamp_ns, 101000002000LL);
     EXPECT_TRUE(err.empty()) << err;
     std::remove(path.c_str());
   }
+}
+
+TEST(PcapLinkTypes, NanosecondCapturesKeepNanoseconds) {
+  // Classic pcap with the nanosecond magic 0xA1B23C4D (pcap-savefile(5)).
+  const std::string path = tempPath("nano.pcap");
+  test::writeClassicPcap(path, 101, {test::ipv4Udp({7}, 1, 2)});
+  std::vector<uint8_t> b = test::readFile(path);
+  b[0] = 0x4D; b[1] = 0x3C; b[2] = 0xB2; b[3] = 0xA1;
+  b[24 + 4] = 0x15; b[24 + 5] = 0xCD; b[24 + 6] = 0x5B; b[24 + 7] = 0x07;  // 123456789 ns
+  std::ofstream(path, std::ios::binary | std::ios::trunc).write(reinterpret_cast<const char*>(b.data()), b.size());
+  const auto ds = readUdpDatagrams(path);
+  ASSERT_EQ(ds.size(), 1u);
+  EXPECT_EQ(ds[0].stamp_ns, 100123456789LL);
+  EXPECT_NEAR(ds[0].stamp_s, 100.123456789, 1e-9);
+  std::remove(path.c_str());
 }

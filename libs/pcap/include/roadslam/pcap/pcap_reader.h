@@ -20,7 +20,8 @@ namespace roadslam::pcap {
 
 /// One UDP datagram as captured.
 struct UdpDatagram {
-  double stamp_s = 0;      ///< capture time [s since epoch, as recorded in the file]
+  double stamp_s = 0;      ///< capture time [s since epoch, as recorded in the file]; ~0.5 us resolution
+  int64_t stamp_ns = 0;    ///< the same capture time, exact [ns since epoch]
   uint32_t src_ip = 0;     ///< IPv4 source address, host byte order
   uint32_t dst_ip = 0;     ///< IPv4 destination address, host byte order
   uint16_t src_port = 0;   ///< UDP source port

@@ -1,7 +1,7 @@
 #pragma once
 /// \file pcap_writer.h
-/// Writes UDP payloads into a classic libpcap file (LINKTYPE_ETHERNET, microsecond or nanosecond
-/// stamps) with synthetic Ethernet/IPv4/UDP headers, readable by tcpdump, Wireshark, VeloView and
+/// Writes UDP payloads into a classic libpcap file (LINKTYPE_ETHERNET, microsecond stamps: the
+/// format every tool reads) with synthetic Ethernet/IPv4/UDP headers, readable by tcpdump, Wireshark, VeloView and
 /// our own PcapReader. The capture format is the replay format.
 
 #include <cstdint>
