@@ -111,7 +111,12 @@ VehicleParams loadVehicleIni(const std::string& path, const std::string& data_ro
   } catch (const std::exception& e) {
     throw std::runtime_error(path + ": " + e.what());
   }
-  if (!data_root.empty()) p.data_root = data_root;
+  if (!data_root.empty()) {
+    p.data_root = data_root;
+  } else if (!p.data_root.empty() && std::filesystem::path(p.data_root).is_relative()) {
+    // An ini's own data_root is relative to the ini file, so it works from any working directory.
+    p.data_root = (std::filesystem::path(path).parent_path() / p.data_root).lexically_normal().string();
+  }
   if (p.dbc.empty()) throw std::runtime_error(path + ": [vehicle] dbc is required");
   return p;
 }

@@ -53,7 +53,7 @@ double unitScale(const std::string& unit);
 struct VehicleParams {
   std::string name;                 ///< car name for reports
   std::string dbc;                  ///< DBC path, relative to data_root unless absolute
-  std::string data_root;            ///< folder DBC paths are relative to (command line overrides)
+  std::string data_root;            ///< folder DBC paths are relative to (ini: relative to the ini file)
   std::string interface;            ///< only frames from this interface ("can0"); empty = all
   double wheelbase_m = 2.7;         ///< [m] front to rear axle
   double track_width_m = 1.6;       ///< [m] (rear) track width, for yaw rate from wheel speeds
@@ -71,7 +71,8 @@ struct VehicleParams {
   void saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& section) const;
 };
 
-/// Loads [vehicle] from an ini file; \p data_root (if not empty) overrides the ini's data_root.
+/// Loads [vehicle] from an ini file; \p data_root (if not empty) overrides the ini's data_root,
+/// which, when relative, is relative to the ini file's folder.
 /// Throws naming the file.
 VehicleParams loadVehicleIni(const std::string& path, const std::string& data_root = "");
 
