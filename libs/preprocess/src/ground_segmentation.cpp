@@ -60,83 +60,100 @@ struct LineAccumulator {
   }
 };
 
-/// Extracts the line segments of one sector from its prototypes (r, z) in increasing range. A
-/// prototype that breaks the current line (slope or fit error) starts a new line together with the
-/// last ground prototype when the slope between the two is admissible, so slope changes at crests
-/// and dips are followed even between sparse rings (Himmelsbach 2010, Sec. III-B; linefit).
-std::vector<Segment> fitSector(const Cell* cells, int bins, const GroundSegParams& p) {
-  std::vector<Segment> segs;
-  LineAccumulator cur;
-  bool have_last = false;  // last prototype accepted as ground
-  double last_r = 0, last_z = 0;
-  auto finish = [&] {
-    double fm, fb, fr;
-    // The first segment of a sector must pass under the car: its height at r = 0 within
-    // max_start_height_m of the road under the sensor (linefit's start check).
-    if (cur.n >= 2 && cur.fit(fm, fb, fr) &&
-        (!segs.empty() || std::abs(fb + p.sensor_height_m) <= p.max_start_height_m)) {
-      segs.push_back({fm, fb, cur.r_first, cur.r_last});
-    }
-    cur = LineAccumulator{};
-  };
-  auto slopeOk = [&](double r0, double z0, double r1, double z1) {
-    return std::abs(z1 - z0) <= p.max_slope * std::max(r1 - r0, 1e-6);
-  };
-  auto canStart = [&](double r, double z) {
-    if (segs.empty()) return std::abs(z + p.sensor_height_m) <= p.max_start_height_m + p.max_slope * r;
-    const Segment& last = segs.back();
-    const double tol = (r - last.r1 <= p.max_gap_m) ? p.max_step_m : p.max_start_height_m;
-    return std::abs(z - last.at(r)) <= tol;
-  };
-  for (int i = 0; i < bins; ++i) {
-    const Cell& cell = cells[i];
-    if (cell.min_z == kInf) continue;
-    const double r = cell.r, z = cell.min_z;
-    bool accepted = false;
-    if (cell.top_z - cell.min_z > p.tall_cell_height_m) {
+/// Extracts the line segments of one sector from its prototypes (r, z) in increasing range
+/// (Himmelsbach 2010, Sec. III-B; linefit). A prototype that breaks the current line (slope, fit
+/// error, deviation) starts a new line together with the last ground prototype when the slope
+/// between the two is admissible, so crests and dips are followed even between sparse rings.
+class SectorFitter {
+ public:
+  explicit SectorFitter(const GroundSegParams& p) : p_(p) {}
+
+  std::vector<Segment> run(const Cell* cells, int bins) {
+    for (int i = 0; i < bins; ++i) {
+      const Cell& c = cells[i];
+      if (c.min_z == kInf) continue;
       // The lowest return under a vertical structure (wall, car side) only extends the ground
       // profile when it lies on it: the foot of a wall a few cm up would otherwise bend the line.
-      double cm = 0, cb = 0, cr = 0;
-      const bool on_line = cur.n >= 2 ? (cur.fit(cm, cb, cr) && std::abs(z - (cm * r + cb)) <= p.max_dist_to_line_tall_m)
-                                      : (!segs.empty() && std::abs(z - segs.back().at(r)) <= p.max_dist_to_line_tall_m);
-      if (!on_line) continue;
-    }
-    if (cur.n >= 2) {
-      LineAccumulator trial = cur;
-      trial.add(r, z);
-      double cm, cb, cr, tm, tb, tr;
-      if (cur.fit(cm, cb, cr) && std::abs(z - (cm * r + cb)) <= p.max_step_m &&
-          slopeOk(last_r, last_z, r, z) &&
-          trial.fit(tm, tb, tr) && std::abs(tm) <= p.max_slope && tr <= p.max_fit_error_m) {
-        cur = trial;
-        accepted = true;
-      } else {
-        finish();
-      }
-    } else if (cur.n == 1 && slopeOk(cur.r_last, cur.sz, r, z)) {
-      cur.add(r, z);
-      accepted = true;
-    }
-    if (!accepted) {
-      cur = LineAccumulator{};
-      // A bridge may bend the ground profile by at most max_slope_change (crests, dips), which
-      // keeps it from climbing the foot of a wall whose lowest return is a few bins further on.
-      const bool bends_ok = segs.empty() || std::abs(z - segs.back().at(r)) <=
-                                                p.max_step_m + p.max_slope_change * (r - last_r);
-      if (have_last && slopeOk(last_r, last_z, r, z) && bends_ok && r - last_r <= p.max_bridge_m) {
-        cur.add(last_r, last_z);  // new line continues from the last ground prototype
-        cur.add(r, z);
-        accepted = true;
-      } else if (canStart(r, z)) {
-        cur.add(r, z);
-        accepted = true;
+      if (c.top_z - c.min_z > p_.tall_cell_height_m && !onProfile(c.r, c.min_z)) continue;
+      if (extend(c.r, c.min_z) || restart(c.r, c.min_z)) {
+        have_last_ = true, last_r_ = c.r, last_z_ = c.min_z;
       }
     }
-    if (accepted) have_last = true, last_r = r, last_z = z;
+    finish();
+    return std::move(segs_);
   }
-  finish();
-  return segs;
-}
+
+ private:
+  bool slopeOk(double r0, double z0, double r1, double z1) const {
+    return std::abs(z1 - z0) <= p_.max_slope * std::max(r1 - r0, 1e-6);
+  }
+
+  bool onProfile(double r, double z) const {
+    double m, b, rms;
+    if (cur_.n >= 2 && cur_.fit(m, b, rms)) return std::abs(z - (m * r + b)) <= p_.max_dist_to_line_tall_m;
+    return !segs_.empty() && std::abs(z - segs_.back().at(r)) <= p_.max_dist_to_line_tall_m;
+  }
+
+  /// Adds (r, z) to the current line if it stays a ground line; otherwise closes the line.
+  bool extend(double r, double z) {
+    if (cur_.n == 1 && slopeOk(cur_.r_last, cur_.sz, r, z)) {
+      cur_.add(r, z);
+      return true;
+    }
+    if (cur_.n < 2) return false;
+    LineAccumulator trial = cur_;
+    trial.add(r, z);
+    double cm, cb, cr, tm, tb, tr;
+    if (cur_.fit(cm, cb, cr) && std::abs(z - (cm * r + cb)) <= p_.max_step_m && slopeOk(last_r_, last_z_, r, z) &&
+        trial.fit(tm, tb, tr) && std::abs(tm) <= p_.max_slope && tr <= p_.max_fit_error_m) {
+      cur_ = trial;
+      return true;
+    }
+    finish();
+    return false;
+  }
+
+  /// Starts a new line at (r, z): bridged from the last ground prototype, or on its own.
+  bool restart(double r, double z) {
+    cur_ = LineAccumulator{};
+    // A bridge may bend the profile by at most max_slope_change (crests, dips), which keeps it
+    // from climbing the foot of a wall whose lowest return is a few bins further on.
+    const bool bends_ok = segs_.empty() || std::abs(z - segs_.back().at(r)) <=
+                                               p_.max_step_m + p_.max_slope_change * (r - last_r_);
+    if (have_last_ && slopeOk(last_r_, last_z_, r, z) && bends_ok && r - last_r_ <= p_.max_bridge_m) {
+      cur_.add(last_r_, last_z_);
+      cur_.add(r, z);
+      return true;
+    }
+    bool ok;
+    if (segs_.empty()) {
+      ok = std::abs(z + p_.sensor_height_m) <= p_.max_start_height_m + p_.max_slope * r;
+    } else {
+      const Segment& last = segs_.back();
+      const double tol = (r - last.r1 <= p_.max_gap_m) ? p_.max_step_m : p_.max_start_height_m;
+      ok = std::abs(z - last.at(r)) <= tol;
+    }
+    if (ok) cur_.add(r, z);
+    return ok;
+  }
+
+  /// Closes the current line. The first segment of a sector must pass under the car: its height
+  /// at r = 0 within max_start_height_m of the road under the sensor (linefit's start check).
+  void finish() {
+    double m, b, rms;
+    if (cur_.n >= 2 && cur_.fit(m, b, rms) &&
+        (!segs_.empty() || std::abs(b + p_.sensor_height_m) <= p_.max_start_height_m)) {
+      segs_.push_back({m, b, cur_.r_first, cur_.r_last});
+    }
+    cur_ = LineAccumulator{};
+  }
+
+  const GroundSegParams& p_;
+  std::vector<Segment> segs_;
+  LineAccumulator cur_;
+  bool have_last_ = false;  // a prototype was accepted as ground
+  double last_r_ = 0, last_z_ = 0;
+};
 
 /// For every bin of a sector, the segment covering it (or the nearest within max_gap_m).
 void assignBins(const std::vector<Segment>& segs, int bins, const GroundSegParams& p, CellLine* out) {
@@ -204,7 +221,7 @@ std::vector<uint8_t> segmentGround(const std::vector<ScanPoint>& pts, const Grou
   GroundSegStats st;
   for (int s = 0; s < g.sectors; ++s) {
     const size_t off = static_cast<size_t>(s) * static_cast<size_t>(g.bins);
-    const auto segs = fitSector(&g.cells[off], g.bins, p);
+    const auto segs = SectorFitter(p).run(&g.cells[off], g.bins);
     st.segments += segs.size();
     assignBins(segs, g.bins, p, &lines[off]);
   }
