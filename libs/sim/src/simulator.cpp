@@ -50,7 +50,7 @@ void ScenarioParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg) const 
   cfg.write("scenario", "name", name);
   cfg.write("scenario", "seed", static_cast<int>(seed));
   cfg.write("scenario", "duration_s", duration_s);
-  cfg.write("scenario", "start_epoch_s", static_cast<double>(start_epoch_s));
+  cfg.write("scenario", "start_epoch_s", std::to_string(start_epoch_s));  // exact, not %e
   cfg.write("scenario", "position_packets", position_packets);
   cfg.write("scenario", "origin_lat_deg", origin_lat_deg);
   cfg.write("scenario", "origin_lon_deg", origin_lon_deg);

@@ -66,6 +66,16 @@ void drawTopView(const Simulator& sim, const std::string& png_path, int max_px) 
   View v{xmin, ymin, scale, static_cast<int>((xmax - xmin) * scale) + 1, static_cast<int>((ymax - ymin) * scale) + 1};
   mrpt::img::CImage img(static_cast<unsigned>(v.w), static_cast<unsigned>(v.h), mrpt::img::CH_RGB);
   img.filledRectangle(0, 0, v.w - 1, v.h - 1, TColor(236, 236, 222));
+  if (w.ground.amplitude_m > 0) {  // terrain height: darker is lower, in 6 px blocks
+    const double A = 1.5 * w.ground.amplitude_m;
+    for (int y = 0; y < v.h; y += 6)
+      for (int x = 0; x < v.w; x += 6) {
+        const double f = std::clamp(0.5 + 0.5 * w.ground.height(v.x0 + (x + 3) / v.scale,
+                                                                v.y0 + (v.h - 1 - y - 3) / v.scale) / A, 0.0, 1.0);
+        const auto c = static_cast<uint8_t>(170 + 80 * f);
+        img.filledRectangle(x, y, x + 5, y + 5, TColor(c, c, static_cast<uint8_t>(c - 20)));
+      }
+  }
   for (const Road& r : w.roads)
     polyline(img, v, r.centerline, r.closed, TColor(95, 95, 95),
              static_cast<unsigned>(std::max(1.0, 2 * r.half_width_m * scale)));
@@ -84,20 +94,20 @@ void drawTopView(const Simulator& sim, const std::string& png_path, int max_px) 
     for (const auto& c : r.right_curbs) polyline(img, v, c, false, TColor(0, 170, 0), 1);
   }
   for (const MovingCar& c : w.cars) fillPrism(img, v, w.carPrism(c, 0), TColor(220, 0, 220));
-  std::vector<Vec2> path;
-  const auto& st = sim.trajectory().states();
-  const double T = sim.duration_s();
-  for (const VehicleState& s : st) {
-    if (s.t_s > T) break;
-    path.push_back({s.x, s.y});
+  // The whole planned drive thin, the simulated part (up to duration_s) thick.
+  std::vector<Vec2> planned, simulated;
+  for (const VehicleState& s : sim.trajectory().states()) {
+    planned.push_back({s.x, s.y});
+    if (s.t_s <= sim.duration_s()) simulated.push_back({s.x, s.y});
   }
-  polyline(img, v, path, false, TColor(230, 0, 0), 2);
-  if (!path.empty()) img.drawCircle(v.px(path.front().x), v.py(path.front().y), 8, TColor(0, 0, 255), 2);
+  polyline(img, v, planned, false, TColor(240, 120, 120), 1);
+  polyline(img, v, simulated, false, TColor(230, 0, 0), 3);
+  if (!planned.empty()) img.drawCircle(v.px(planned.front().x), v.py(planned.front().y), 8, TColor(0, 0, 255), 2);
   const int bar = static_cast<int>(100 * scale);
   img.line(10, v.h - 15, 10 + bar, v.h - 15, TColor(0, 0, 0), 3);
   img.textOut(12, v.h - 32, "100 m", TColor(0, 0, 0));
   img.textOut(10, 8, sim.params().name + "  seed " + std::to_string(sim.params().seed) +
-                         "  red: route, green: curbs, blue circle: start", TColor(0, 0, 0));
+                         "  red: drive (thick: simulated), green: curbs, blue circle: start, magenta: moving cars at t=0", TColor(0, 0, 0));
   const std::string tmp = tempPathFor(png_path) + ".png";  // the extension selects the format
   if (!img.saveToFile(tmp)) throw std::runtime_error("cannot write " + png_path);
   commitTempFile(tmp, png_path);
