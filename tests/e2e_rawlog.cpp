@@ -147,8 +147,11 @@ TEST(RawlogApp, ConvertThenInfoGivesTheSameCountsAndMrptReadsIt) {
     mrpt::obs::CRawlog rawlog;  // MRPT's own loader: RawLogViewer / rawlog-edit use it
     ASSERT_TRUE(rawlog.loadFromRawLogFile(out.string()));
     std::size_t scans = 0, packets = 0, gps = 0;
+    mrpt::Clock::time_point last{};
     for (std::size_t i = 0; i < rawlog.size(); ++i) {
       auto o = rawlog.getAsObservation(i);
+      EXPECT_GE(o->timestamp, last) << in << ": observations in time order, record " << i;
+      last = o->timestamp;
       if (auto v = std::dynamic_pointer_cast<mrpt::obs::CObservationVelodyneScan>(o)) {
         ++scans;
         packets += v->scan_packets.size();
@@ -179,6 +182,18 @@ TEST(RawlogApp, BadInputsFailWithOneLineNamingTheFile) {
     std::ofstream(truncated, std::ios::binary).write(bytes.data(), 100000);  // mid-record
   }
   expectOneLineFailureNaming(run("info " + truncated), truncated);
+
+  const std::string cut_rawlog = (d / "cut.rawlog").string();
+  {
+    ASSERT_EQ(run("convert " + kBox + " " + (d / "whole.rawlog").string()).exit_code, 0);
+    const std::string bytes = slurp(d / "whole.rawlog");
+    std::ofstream(cut_rawlog, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size() / 2));
+  }
+  expectOneLineFailureNaming(run("info " + cut_rawlog), cut_rawlog);
+
+  const std::string text = (d / "notes.txt").string();
+  std::ofstream(text) << "not a recording\n";
+  expectOneLineFailureNaming(run("info " + text), text);
 
   const std::string dns = (d / "dns.pcap").string();
   {

@@ -9,7 +9,7 @@ PcapPacketSource::PcapPacketSource(const std::string& path, const PortConfig& po
 
 PcapPacketSource::~PcapPacketSource() = default;
 
-const std::string& PcapPacketSource::errorMessage() const { return reader_->errorMessage(); }
+std::string PcapPacketSource::errorMessage() const { return reader_->errorMessage(); }
 
 std::optional<velodyne::RawPacket> PcapPacketSource::next() {
   pcap::UdpDatagram d;

@@ -54,8 +54,8 @@ RawlogPacketSource::RawlogPacketSource(const std::string& path, const PortConfig
 
 RawlogPacketSource::~RawlogPacketSource() = default;
 
-// Reads the next record; returns false at end of file. A record that fails to deserialize ends
-// the replay (the stream position is lost), counted in otherRecords().
+// Reads the next record; returns false at end of file. A record cut short or that fails to
+// deserialize ends the replay (the stream position is lost) and sets error_.
 bool RawlogPacketSource::readMore() {
   mrpt::obs::CObservation::Ptr obs;
   if (!impl_->pending.empty()) {
@@ -63,12 +63,19 @@ bool RawlogPacketSource::readMore() {
     impl_->pending.pop_front();
   } else {
     mrpt::serialization::CSerializable::Ptr rec;
+    const uint64_t start = impl_->in.getPosition();
     try {
       rec = mrpt::serialization::archiveFrom(impl_->in).ReadObject();
     } catch (const mrpt::serialization::CExceptionEOF&) {
+      // EOF before the first byte of a record is the clean end; inside one, a truncated file.
+      if (impl_->in.getPosition() != start)
+        error_ = path_ + ": truncated record at uncompressed byte " + std::to_string(start);
       return false;
-    } catch (const std::exception&) {
-      ++other_;
+    } catch (const std::exception& e) {
+      std::string what = e.what();
+      what = what.substr(0, what.find('\n'));
+      error_ = path_ + ": not a readable MRPT rawlog (record at byte " + std::to_string(start) +
+               ": " + what + ")";
       return false;
     }
     if (auto sf = std::dynamic_pointer_cast<mrpt::obs::CSensoryFrame>(rec)) {

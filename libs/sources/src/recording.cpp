@@ -27,11 +27,6 @@ void requireNonEmptyFile(const std::string& path) {
   if (st.st_size == 0) throw std::runtime_error(path + ": empty file");
 }
 
-std::string pcapError(const PacketSource& src) {
-  const auto* p = dynamic_cast<const PcapPacketSource*>(&src);
-  return p ? p->errorMessage() : std::string();
-}
-
 }  // namespace
 
 std::unique_ptr<PacketSource> openRecording(const std::string& path, const PortConfig& ports) {
@@ -63,7 +58,7 @@ RecordingSummary summarizeRecording(const std::string& path, const velodyne::Dec
     sweeps.takeGpsFixes();
   }
   sweeps.takeGpsFixes();
-  const std::string err = pcapError(sweeps.packets());
+  const std::string err = sweeps.packets().errorMessage();
   if (!err.empty()) throw std::runtime_error(err);
   const SourceStats& ps = sweeps.packets().stats();
   if (ps.data_packets == 0) throw std::runtime_error(path + ": no Velodyne data packets");
@@ -121,13 +116,18 @@ ConvertSummary convertToRawlog(const std::string& in, const std::string& out,
   bool model_set = params.model != velodyne::Model::Unknown;
   if (model_set) writer_params.model = params.model == velodyne::Model::HDL32 ? "HDL32" : "VLP16";
   std::unique_ptr<RawlogWriter> writer;  // opened at the first data packet, once the model is known
-  std::vector<velodyne::RawPacket> pending;
+  std::vector<velodyne::RawPacket> pending, pending_gps;
   ConvertSummary sum;
+  // Observations go out in time order: a sweep is stamped with its first packet, so the position
+  // packets that arrived during it are written after it.
   auto flush = [&] {
-    if (pending.empty()) return;
-    writer->writeSweep(pending);
-    ++sum.observations;
+    if (!pending.empty()) {
+      writer->writeSweep(pending);
+      ++sum.observations;
+    }
+    for (const auto& g : pending_gps) writer->writePosition(g);
     pending.clear();
+    pending_gps.clear();
   };
   sweeps.setPacketObserver([&](const velodyne::RawPacket& p, std::size_t closed) {
     if (!writer) {
@@ -137,14 +137,15 @@ ConvertSummary convertToRawlog(const std::string& in, const std::string& out,
       writer = std::make_unique<RawlogWriter>(out, writer_params);
     }
     if (p.payload.size() == velodyne::kPositionPacketSize) {
-      writer->writePosition(p);
+      if (pending.empty()) writer->writePosition(p);
+      else pending_gps.push_back(p);
       return;
     }
     if (closed > 0) flush();  // this packet holds the start of the next sweep
     pending.push_back(p);
   });
   while (sweeps.next()) sweeps.takeGpsFixes();
-  const std::string err = pcapError(sweeps.packets());
+  const std::string err = sweeps.packets().errorMessage();
   if (!err.empty()) throw std::runtime_error(err);
   if (sweeps.packets().stats().data_packets == 0 || !writer)
     throw std::runtime_error(in + ": no Velodyne data packets");

@@ -5,9 +5,12 @@
 #include <mrpt/obs/CObservationGPS.h>
 #include <mrpt/obs/CObservationVelodyneScan.h>
 #include <mrpt/obs/CRawlog.h>
+#include <mrpt/obs/CSensoryFrame.h>
 
 #include <filesystem>
+#include <cstring>
 #include <fstream>
+#include <iterator>
 
 #include "roadslam/sources/rawlog_source.h"
 #include "roadslam/sources/rawlog_writer.h"
@@ -150,4 +153,58 @@ TEST(Rawlog, PositionPacketWithoutNmeaIsCountedNotWritten) {
   EXPECT_EQ(w.gpsWritten(), 0u);
   w.close();
   fs::remove(path);
+}
+
+TEST(Rawlog, ReadsTheSensoryFrameFormatToo) {
+  // The older "actions + sensory frames" layout, as written by MRPT's CRawlog.
+  const Recording rec = makeRecording(2, 8);
+  const fs::path path = tempDir() / "sf.rawlog";
+  {
+    mrpt::obs::CRawlog rawlog;
+    for (const auto& sweep : rec.sweeps) {
+      auto v = mrpt::obs::CObservationVelodyneScan::Create();
+      for (const auto& p : sweep) {
+        v->scan_packets.emplace_back();
+        std::memcpy(&v->scan_packets.back(), p.payload.data(), p.payload.size());
+      }
+      v->timestamp = mrpt::Clock::fromDouble(sweep.front().stamp_s);
+      mrpt::obs::CSensoryFrame sf;
+      sf.insert(v);
+      rawlog.insert(sf);
+    }
+    ASSERT_TRUE(rawlog.saveToRawLogFile(path.string()));
+  }
+  RawlogPacketSource src(path.string());
+  std::size_t k = 0;
+  while (auto p = src.next()) {
+    EXPECT_EQ(p->payload, rec.sweeps[k / 8][k % 8].payload) << "packet " << k;
+    ++k;
+  }
+  EXPECT_EQ(k, 16u);
+  EXPECT_EQ(src.scansRead(), 2u);
+  EXPECT_TRUE(src.errorMessage().empty()) << src.errorMessage();
+  fs::remove(path);
+}
+
+TEST(Rawlog, TruncatedOrForeignFilesReportAnErrorNamingTheFile) {
+  const fs::path good = tempDir() / "good.rawlog";
+  write(good, makeRecording(4, 76));
+  const fs::path cut = tempDir() / "cut.rawlog";
+  {
+    std::ifstream in(good, std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::ofstream(cut, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size() / 2));
+  }
+  RawlogPacketSource src(cut.string());
+  std::size_t n = 0;
+  while (src.next()) ++n;
+  EXPECT_LT(n, 4u * 76u);
+  EXPECT_NE(src.errorMessage().find(cut.string()), std::string::npos) << src.errorMessage();
+
+  const fs::path text = tempDir() / "notes.rawlog";
+  std::ofstream(text) << "this is not an MRPT archive\n";
+  RawlogPacketSource foreign(text.string());
+  EXPECT_FALSE(foreign.next());
+  EXPECT_NE(foreign.errorMessage().find(text.string()), std::string::npos);
+  for (const auto& p : {good, cut, text}) fs::remove(p);
 }

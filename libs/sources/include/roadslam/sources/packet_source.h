@@ -48,6 +48,9 @@ class PacketSource {
   virtual const SourceStats& stats() const = 0;
   /// Short human-readable origin, e.g. "pcap:/path/file.pcap" or "udp:0.0.0.0:2368".
   virtual std::string describe() const = 0;
+  /// Non-empty when the recording turned out damaged (truncated, undecodable record): names the
+  /// file and the place. The packets before the damage were returned normally.
+  virtual std::string errorMessage() const { return {}; }
   /// GPS fixes the source holds already decoded (rawlog CObservationGPS records) since the last
   /// call; position packets returned by next() are not repeated here.
   virtual std::vector<TimedGpsFix> takeDecodedFixes() { return {}; }

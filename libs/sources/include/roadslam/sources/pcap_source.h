@@ -28,7 +28,7 @@ class PcapPacketSource : public PacketSource {
   const SourceStats& stats() const override { return stats_; }
   std::string describe() const override { return "pcap:" + path_; }
   /// Empty unless the capture is damaged (truncated mid-record); names the file and record.
-  const std::string& errorMessage() const;
+  std::string errorMessage() const override;
 
  private:
   std::unique_ptr<pcap::PcapReader> reader_;

@@ -27,12 +27,13 @@ class RawlogPacketSource : public PacketSource {
   bool finished() const override { return finished_ && queue_.empty(); }
   const SourceStats& stats() const override { return stats_; }
   std::string describe() const override { return "rawlog:" + path_; }
+  std::string errorMessage() const override { return error_; }
 
   /// GPS fixes (CObservationGPS records with an RMC message) read since the last call.
   std::vector<TimedGpsFix> takeDecodedFixes() override;
   /// CObservationVelodyneScan records read so far (= sweeps as written) [count].
   std::size_t scansRead() const { return scans_; }
-  /// Records that are neither Velodyne scans nor GPS, or failed to deserialize [count].
+  /// Records that are neither Velodyne scans nor GPS [count].
   std::size_t otherRecords() const { return other_; }
 
  private:
@@ -40,7 +41,7 @@ class RawlogPacketSource : public PacketSource {
 
   struct Impl;
   std::unique_ptr<Impl> impl_;
-  std::string path_;
+  std::string path_, error_;
   PortConfig ports_;
   std::deque<velodyne::RawPacket> queue_;
   std::vector<TimedGpsFix> gps_;
