@@ -212,13 +212,12 @@ const CellLine* lineFor(const Grid& g, const std::vector<CellLine>& lines, size_
     if (lines[n].b != kInf) return &lines[n];
   return nullptr;
 }
-}  // namespace
 
-std::vector<uint8_t> segmentGround(const std::vector<ScanPoint>& pts, const GroundSegParams& p,
-                                   GroundSegStats* stats) {
+/// Shared body of segmentGround / segmentGroundWithHeights; \p heights may be null.
+std::vector<uint8_t> label(const std::vector<ScanPoint>& pts, const GroundSegParams& p,
+                           GroundSegStats& st, std::vector<float>* heights) {
   const Grid g = binPoints(pts, p);
   std::vector<CellLine> lines(g.cells.size());
-  GroundSegStats st;
   for (int s = 0; s < g.sectors; ++s) {
     const size_t off = static_cast<size_t>(s) * static_cast<size_t>(g.bins);
     const auto segs = SectorFitter(p).run(&g.cells[off], g.bins);
@@ -226,6 +225,7 @@ std::vector<uint8_t> segmentGround(const std::vector<ScanPoint>& pts, const Grou
     assignBins(segs, g.bins, p, &lines[off]);
   }
   std::vector<uint8_t> labels(pts.size(), 0);
+  if (heights) heights->assign(pts.size(), std::numeric_limits<float>::quiet_NaN());
   const auto tol = static_cast<float>(p.max_dist_to_line_m);
   const auto tol_tall = static_cast<float>(std::min(p.max_dist_to_line_m, p.max_dist_to_line_tall_m));
   const auto tall = static_cast<float>(p.tall_cell_height_m);
@@ -238,15 +238,30 @@ std::vector<uint8_t> segmentGround(const std::vector<ScanPoint>& pts, const Grou
       continue;
     }
     const auto& q = pts[i];
-    const float r = std::sqrt(q.x * q.x + q.y * q.y);
+    const float h = q.z - (line->m * std::sqrt(q.x * q.x + q.y * q.y) + line->b);
+    if (heights) (*heights)[i] = h;
     // A cell holding a vertical structure (wall, curb, car side) gets the tight tolerance, so the
     // foot of the structure is not taken for ground while the road in front of it still is.
     const float t = g.cells[c].top_z - g.cells[c].min_z > tall ? tol_tall : tol;
-    labels[i] = std::abs(q.z - (line->m * r + line->b)) <= t;
+    labels[i] = std::abs(h) <= t;
     st.ground += labels[i];
   }
+  return labels;
+}
+}  // namespace
+
+std::vector<uint8_t> segmentGround(const std::vector<ScanPoint>& pts, const GroundSegParams& p,
+                                   GroundSegStats* stats) {
+  GroundSegStats st;
+  auto labels = label(pts, p, st, nullptr);
   if (stats) *stats = st;
   return labels;
+}
+
+GroundLabels segmentGroundWithHeights(const std::vector<ScanPoint>& pts, const GroundSegParams& p) {
+  GroundLabels out;
+  out.ground = label(pts, p, out.stats, &out.height_above_ground_m);
+  return out;
 }
 
 size_t removeGroundLinefit(std::vector<ScanPoint>& pts, const GroundSegParams& p) {

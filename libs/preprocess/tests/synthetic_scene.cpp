@@ -75,6 +75,10 @@ Hit cast(const StreetScene& s, const double d[3]) {
 }
 }  // namespace
 
+double terrainZ(const StreetScene& s, double x, double y) {
+  return roadZ(s, x, y) + (std::abs(y) >= s.road_half_width_m ? s.curb_height_m : 0.0);
+}
+
 LabelledScan makeStreetSweep(const StreetScene& s) {
   LabelledScan out;
   out.scan.has_rings = true;

@@ -31,6 +31,9 @@ struct LabelledScan {
   std::vector<uint8_t> ground;  // 1 = road or sidewalk surface, 0 = curb face, wall, box
 };
 
+/// Height of the road (|y| < road_half_width_m) or sidewalk surface at (x, y) [m, lidar frame].
+double terrainZ(const StreetScene& scene, double x, double y);
+
 /// VLP-16 geometry: 16 beams from -15 to +15 deg every 2 deg, max range 100 m.
 LabelledScan makeStreetSweep(const StreetScene& scene);
 

@@ -62,6 +62,26 @@ TEST(GroundSegmentation, HoldsOnSlopeWhereASinglePlaneFails) {
   EXPECT_GT(lf.accuracy, rs.accuracy);  // the reason for a per-sector method
 }
 
+// Heights above the fitted ground against the scene's true terrain: ground points sit on it, and
+// the box (a car, 1.5 m) and walls stand out by their true height, which curb detection relies on.
+TEST(GroundSegmentation, HeightsAboveGroundMatchTheTerrain) {
+  const StreetScene scene;
+  const auto sweep = makeStreetSweep(scene);
+  const GroundLabels gl = segmentGroundWithHeights(sweep.scan.points, vlp16Params());
+  ASSERT_EQ(gl.height_above_ground_m.size(), sweep.scan.points.size());
+  EXPECT_EQ(gl.ground, segmentGround(sweep.scan.points, vlp16Params()));
+  size_t n = 0, close = 0;
+  for (size_t i = 0; i < sweep.scan.points.size(); ++i) {
+    const auto& q = sweep.scan.points[i];
+    const float h = gl.height_above_ground_m[i];
+    if (std::isnan(h) || std::hypot(q.x, q.y) > 30.f) continue;
+    ++n;
+    close += std::abs(h - (q.z - fixtures::terrainZ(scene, q.x, q.y))) < 0.06;
+  }
+  EXPECT_GT(n, 15000u);
+  EXPECT_GT(double(close) / n, 0.95);
+}
+
 TEST(GroundSegmentation, EmptyAndSparseInput) {
   std::vector<ScanPoint> none;
   EXPECT_TRUE(segmentGround(none, vlp16Params()).empty());

@@ -52,6 +52,15 @@ struct GroundSegStats {
 std::vector<uint8_t> segmentGround(const std::vector<ScanPoint>& pts, const GroundSegParams& p,
                                    GroundSegStats* stats = nullptr);
 
+/// Labels plus, per point, its height above the local ground line (z - line(r)) [m]; NaN where no
+/// line is in reach. Road-boundary detection reads curbs off these heights (e.g. 0.08-0.3 m).
+struct GroundLabels {
+  std::vector<uint8_t> ground;               ///< 1 = ground, 0 = non-ground
+  std::vector<float> height_above_ground_m;  ///< z minus the ground line of the point's cell [m]
+  GroundSegStats stats;
+};
+GroundLabels segmentGroundWithHeights(const std::vector<ScanPoint>& pts, const GroundSegParams& p);
+
 /// segmentGround + removal of the ground points. Returns the count removed.
 size_t removeGroundLinefit(std::vector<ScanPoint>& pts, const GroundSegParams& p);
 
