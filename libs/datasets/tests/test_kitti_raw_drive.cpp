@@ -26,7 +26,8 @@ std::vector<size_t> pointCountsFromCsv(const std::string& path) {
 // Unpacks velodyne.tar.zst once into the build tree (shared by every test that needs the drive).
 TEST(KittiRawDrive, UnpackedSweepsMatchTheOxtsPointCounts) {
   if (!fs::exists(kRaw + "velodyne.tar.zst")) GTEST_SKIP() << "missing " << kRaw << "velodyne.tar.zst";
-  const std::string cache = std::string(ROADSLAM_BINARY_DIR) + "/test-cache/kitti-raw-2011_09_26-0001";
+  // Same folder as the odometry tests use, so the suite unpacks the 190 MB only once.
+  const std::string cache = std::string(ROADSLAM_BINARY_DIR) + "/data/kitti-raw-0001";
   unpackTarZstOnce(kRaw + "velodyne.tar.zst", cache);
   EXPECT_TRUE(fs::exists(cache + "/.unpacked"));
   unpackTarZstOnce(kRaw + "velodyne.tar.zst", cache);  // second call: no-op
