@@ -38,6 +38,16 @@ TimedGpsFix fixFromObservation(const mrpt::obs::CObservationGPS& o) {
   fix.course_rad = f.direction_degrees * M_PI / 180.0;
   return t;
 }
+// MRPT nests exceptions ("==== MRPT exception ====\nMessage: ...\nOriginal exception: ...");
+// the innermost "Message:" line names the cause on one line.
+std::string innermostMessage(const std::string& what) {
+  const auto at = what.rfind("Message:");
+  if (at == std::string::npos) return what.substr(0, what.find('\n'));
+  std::string line = what.substr(at + 8, what.find('\n', at) - at - 8);
+  line.erase(0, line.find_first_not_of(' '));
+  return line;
+}
+
 }  // namespace
 
 struct RawlogPacketSource::Impl {
@@ -72,10 +82,8 @@ bool RawlogPacketSource::readMore() {
         error_ = path_ + ": truncated record at uncompressed byte " + std::to_string(start);
       return false;
     } catch (const std::exception& e) {
-      std::string what = e.what();
-      what = what.substr(0, what.find('\n'));
       error_ = path_ + ": not a readable MRPT rawlog (record at byte " + std::to_string(start) +
-               ": " + what + ")";
+               ": " + innermostMessage(e.what()) + ")";
       return false;
     }
     if (auto sf = std::dynamic_pointer_cast<mrpt::obs::CSensoryFrame>(rec)) {
