@@ -4,6 +4,13 @@
 /// sweep (lidar frame), each step timed (wall clock) and counted. Non-finite points are always
 /// dropped first and counted. Frame skipping (thesis `skipF`) decides which frames are processed.
 ///
+/// The thesis's MATLAB keys are accepted as aliases with the meaning of the MATLAB calls they fed:
+/// `maxD`, `maxAngD` = maxDistance [m] and maxAngularDistance [deg] of pcfitplane (ground plane
+/// constrained to a reference vector); `downS` = percentage of pcdownsample(pc, 'random', p), the
+/// fraction of points KEPT; `skipF` = frame step (frames 0, skipF, 2 skipF, ... processed; 1 = all);
+/// `rad` = ego radius [m]; `xL`, `yL` = ROI half-widths [m] (box [-xL, xL] x [-yL, yL]). The thesis
+/// code itself was not available to check `skipF`, `xL`, `yL` against: re-check when it is.
+///
 /// Ini section (all keys optional; SI units, thesis names accepted as aliases):
 /// \code
 /// [preprocess]
