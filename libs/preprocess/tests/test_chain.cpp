@@ -40,7 +40,7 @@ TEST(PreprocessChain, EveryShippedPresetLoadsAndRuns) {
     EXPECT_GT(rep.points_out, 0u) << name;
     EXPECT_LT(rep.points_out, rep.points_in) << name;
   }
-  EXPECT_EQ(count, 3u);
+  EXPECT_GE(count, 3u);
 }
 
 TEST(PreprocessChain, ThesisKeysLoadAsTheirSiEquivalents) {
