@@ -56,44 +56,61 @@ void accumulate(const Target::Impl& t, const PointCloud& src, const Eigen::Isome
   acc.n = n;
 }
 
-}  // namespace
-
-SolveOutcome solveIcp(const Target::Impl& t, const PointCloud& src, const Eigen::Isometry3d& guess,
-                      const Params& prm) {
+// Gauss-Newton iterations until the update is below (tol_t, tol_r); false on a hard failure.
+bool iterate(const Target::Impl& t, const PointCloud& src, const Eigen::Isometry3d& guess, const Params& prm,
+             double tol_t, double tol_r, SolveOutcome& out, bool& converged) {
   const bool p2pl = prm.method == Method::IcpPointToPlane;
-  SolveOutcome out;
-  out.T_target_source = guess;
   Normal6 acc;
+  converged = false;
   for (int it = 0; it < prm.max_iterations; ++it) {
     accumulate(t, src, out.T_target_source, prm, p2pl, acc);
-    out.iterations = it + 1;
+    ++out.iterations;
     if (acc.n < std::max(prm.min_inliers, 6)) {
       out.status = Status::TooFewCorrespondences;
       out.reason = "iteration " + std::to_string(it) + ": " + std::to_string(acc.n) +
                    " correspondences within " + std::to_string(prm.max_correspondence_distance_m) + " m";
-      return out;
+      return false;
     }
     const Eigen::LDLT<Matrix6d> ldlt(acc.H);
     const Vector6d delta = ldlt.solve(-acc.b);
     if (ldlt.info() != Eigen::Success || !delta.allFinite()) {
       out.status = Status::Diverged;
       out.reason = "singular normal equations at iteration " + std::to_string(it);
-      return out;
+      return false;
     }
     out.T_target_source = applyIncrement(delta, out.T_target_source);
     if ((out.T_target_source.translation() - guess.translation()).norm() > prm.max_correction_m) {
       out.status = Status::Diverged;
       out.reason = "correction beyond max_correction_m = " + std::to_string(prm.max_correction_m) + " m";
-      return out;
+      return false;
     }
-    if (delta.head<3>().norm() < prm.convergence_translation_m &&
-        delta.tail<3>().norm() < prm.convergence_rotation_rad) {
-      out.status = Status::Converged;
-      return out;
+    if (delta.head<3>().norm() < tol_t && delta.tail<3>().norm() < tol_r) {
+      converged = true;
+      return true;
     }
   }
-  out.status = Status::MaxIterations;
-  out.reason = "no convergence in " + std::to_string(prm.max_iterations) + " iterations";
+  return true;
+}
+
+}  // namespace
+
+SolveOutcome solveIcp(const Target::Impl& t, const PointCloud& src, const Eigen::Isometry3d& guess,
+                      const Params& prm) {
+  SolveOutcome out;
+  out.T_target_source = guess;
+  bool converged = false;
+  // Coarse phase on a strided subset until the update is below coarse_tolerance_m (rotation: the
+  // same displacement at a 10 m lever), then the full source refines from there.
+  const PointCloud coarse = strided(src, prm.coarse_stride);
+  if (prm.coarse_stride > 1 && coarse.size() >= 100 &&
+      !iterate(t, coarse, guess, prm, prm.coarse_tolerance_m, prm.coarse_tolerance_m / 10.0, out, converged)) {
+    return out;
+  }
+  if (!iterate(t, src, guess, prm, prm.convergence_translation_m, prm.convergence_rotation_rad, out, converged)) {
+    return out;
+  }
+  out.status = converged ? Status::Converged : Status::MaxIterations;
+  if (!converged) out.reason = "no convergence in " + std::to_string(prm.max_iterations) + " iterations";
   return out;
 }
 

@@ -81,64 +81,87 @@ Vector6d newtonDirection(const Matrix6d& H, const Vector6d& g) {
   return -(es.eigenvectors() * ev.cwiseInverse().asDiagonal() * es.eigenvectors().transpose() * g);
 }
 
+// Newton iterations on one grid level; returns false (with out.status set) on a hard failure.
+bool solveLevel(const NdtGrid& g, const PointCloud& src, const Eigen::Isometry3d& guess, const Params& prm,
+                SolveOutcome& out, bool& converged) {
+  const NdtConstants k = ndtConstants(prm.ndt_outlier_ratio, g.resolution_m);
+  converged = false;
+  Vector6d grad, grad_new;
+  Matrix6d hess, hess_new;
+  int hits = 0, hits_new = 0;
+  double f = evaluate(g, k, src, out.T_target_source, &grad, &hess, &hits);
+  for (int it = 0; it < prm.max_iterations && !converged; ++it) {
+    ++out.iterations;
+    if (hits < std::max(prm.min_inliers, 6)) {
+      out.status = Status::TooFewCorrespondences;
+      out.reason = std::to_string(hits) + " point-cell pairs at resolution " + std::to_string(g.resolution_m) + " m";
+      return false;
+    }
+    Vector6d delta = newtonDirection(hess, grad);
+    if (!delta.allFinite()) {
+      out.status = Status::Diverged;
+      out.reason = "non-finite Newton step";
+      return false;
+    }
+    const double step = delta.norm();
+    if (step > prm.ndt_max_step_m) delta *= prm.ndt_max_step_m / step;
+    // Backtracking line search, Armijo condition c = 1e-4 (Nocedal & Wright, Alg. 3.1). The full
+    // step is evaluated with derivatives: it is accepted in most iterations and then reused.
+    const double slope = grad.dot(delta);
+    double alpha = 1.0, f_new = f;
+    Eigen::Isometry3d T_new = out.T_target_source;
+    int accepted = -1;
+    for (int ls = 0; ls < 10; ++ls) {
+      T_new = applyIncrement(alpha * delta, out.T_target_source);
+      f_new = ls == 0 ? evaluate(g, k, src, T_new, &grad_new, &hess_new, &hits_new)
+                      : evaluate(g, k, src, T_new, nullptr, nullptr);
+      if (f_new <= f + 1e-4 * alpha * slope) {
+        accepted = ls;
+        break;
+      }
+      alpha *= 0.5;
+    }
+    if (accepted < 0) {  // no sufficient decrease along a descent direction: optimum to precision
+      converged = true;
+      break;
+    }
+    const Vector6d applied = alpha * delta;
+    out.T_target_source = T_new;
+    if (accepted == 0) {
+      f = f_new;
+      grad = grad_new;
+      hess = hess_new;
+      hits = hits_new;
+    } else {
+      f = evaluate(g, k, src, out.T_target_source, &grad, &hess, &hits);
+    }
+    if ((out.T_target_source.translation() - guess.translation()).norm() > prm.max_correction_m) {
+      out.status = Status::Diverged;
+      out.reason = "correction beyond max_correction_m = " + std::to_string(prm.max_correction_m) + " m";
+      return false;
+    }
+    converged = applied.head<3>().norm() < prm.convergence_translation_m &&
+                applied.tail<3>().norm() < prm.convergence_rotation_rad;
+  }
+  return true;
+}
+
 }  // namespace
 
 SolveOutcome solveNdt(const Target::Impl& t, const PointCloud& src, const Eigen::Isometry3d& guess,
                       const Params& prm) {
   SolveOutcome out;
   out.T_target_source = guess;
-  bool last_converged = false;
-  for (const NdtGrid& g : t.ndt) {
-    const NdtConstants k = ndtConstants(prm.ndt_outlier_ratio, g.resolution_m);
-    last_converged = false;
-    Vector6d grad;
-    Matrix6d hess;
-    int hits = 0;
-    double f = evaluate(g, k, src, out.T_target_source, &grad, &hess, &hits);
-    for (int it = 0; it < prm.max_iterations && !last_converged; ++it) {
-      ++out.iterations;
-      if (hits < std::max(prm.min_inliers, 6)) {
-        out.status = Status::TooFewCorrespondences;
-        out.reason = std::to_string(hits) + " point-cell pairs at resolution " +
-                     std::to_string(g.resolution_m) + " m";
-        return out;
-      }
-      Vector6d delta = newtonDirection(hess, grad);
-      if (!delta.allFinite()) {
-        out.status = Status::Diverged;
-        out.reason = "non-finite Newton step";
-        return out;
-      }
-      const double step = delta.norm();
-      if (step > prm.ndt_max_step_m) delta *= prm.ndt_max_step_m / step;
-      // Backtracking line search with the Armijo condition (sufficient decrease, c = 1e-4).
-      const double slope = grad.dot(delta);
-      double alpha = 1.0;
-      Eigen::Isometry3d T_new = out.T_target_source;
-      double f_new = f;
-      for (int ls = 0; ls < 10; ++ls, alpha *= 0.5) {
-        T_new = applyIncrement(alpha * delta, out.T_target_source);
-        f_new = evaluate(g, k, src, T_new, nullptr, nullptr);
-        if (f_new <= f + 1e-4 * alpha * slope) break;
-      }
-      if (f_new > f) {  // no decrease along a descent direction: at the optimum to precision
-        last_converged = true;
-        break;
-      }
-      const Vector6d applied = alpha * delta;
-      out.T_target_source = T_new;
-      f = evaluate(g, k, src, out.T_target_source, &grad, &hess, &hits);
-      if ((out.T_target_source.translation() - guess.translation()).norm() > prm.max_correction_m) {
-        out.status = Status::Diverged;
-        out.reason = "correction beyond max_correction_m = " + std::to_string(prm.max_correction_m) + " m";
-        return out;
-      }
-      last_converged = applied.head<3>().norm() < prm.convergence_translation_m &&
-                       applied.tail<3>().norm() < prm.convergence_rotation_rad;
-    }
+  // Coarse levels see a strided subset of the source: they only have to bring the pose into the
+  // basin of the finest level (Magnusson 2009, Sec. 6.3 multi-resolution).
+  const PointCloud coarse = strided(src, prm.coarse_stride);
+  bool converged = false;
+  for (size_t l = 0; l < t.ndt.size(); ++l) {
+    const bool finest = l + 1 == t.ndt.size();
+    if (!solveLevel(t.ndt[l], finest ? src : coarse, guess, prm, out, converged)) return out;
   }
-  out.status = last_converged ? Status::Converged : Status::MaxIterations;
-  if (!last_converged) out.reason = "no convergence in " + std::to_string(prm.max_iterations) + " iterations";
+  out.status = converged ? Status::Converged : Status::MaxIterations;
+  if (!converged) out.reason = "no convergence in " + std::to_string(prm.max_iterations) + " iterations";
   return out;
 }
 

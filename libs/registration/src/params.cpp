@@ -61,6 +61,8 @@ void Params::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, const st
   min_source_points = readInt(c, sec, "min_source_points", min_source_points);
   min_inliers = readInt(c, sec, "min_inliers", min_inliers);
   max_correction_m = readDouble(c, sec, "max_correction_m", max_correction_m);
+  coarse_stride = readInt(c, sec, "coarse_stride", coarse_stride);
+  coarse_tolerance_m = readDouble(c, sec, "coarse_tolerance_m", coarse_tolerance_m);
   normal_neighbours = readInt(c, sec, "normal_neighbours", normal_neighbours);
   ndt_resolution_m = readDouble(c, sec, "ndt_resolution_m", ndt_resolution_m);
   ndt_levels = readInt(c, sec, "ndt_levels", ndt_levels);
@@ -72,7 +74,7 @@ void Params::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, const st
   const auto unknown = unknownKeys(c, sec,
       {"method", "kernel", "max_iterations", "max_correspondence_distance_m", "kernel_scale_m",
        "convergence_translation_m", "convergence_rotation_deg", "min_source_points", "min_inliers",
-       "max_correction_m", "normal_neighbours", "ndt_resolution_m", "ndt_levels", "ndt_outlier_ratio",
+       "max_correction_m", "coarse_stride", "coarse_tolerance_m", "normal_neighbours", "ndt_resolution_m", "ndt_levels", "ndt_outlier_ratio",
        "ndt_min_points_per_cell", "ndt_max_step_m", "degeneracy_threshold", "degeneracy_lever_m"});
   if (!unknown.empty()) throw std::runtime_error("[" + sec + "] unknown key '" + unknown.front() + "'");
   if (ndt_resolution_m <= 0 || max_correspondence_distance_m <= 0 || kernel_scale_m <= 0 || ndt_levels < 1 ||
@@ -93,6 +95,8 @@ void Params::saveToConfigFile(mrpt::config::CConfigFileBase& c, const std::strin
   c.write(sec, "min_source_points", min_source_points);
   c.write(sec, "min_inliers", min_inliers);
   c.write(sec, "max_correction_m", max_correction_m);
+  c.write(sec, "coarse_stride", coarse_stride);
+  c.write(sec, "coarse_tolerance_m", coarse_tolerance_m);
   c.write(sec, "normal_neighbours", normal_neighbours);
   c.write(sec, "ndt_resolution_m", ndt_resolution_m);
   c.write(sec, "ndt_levels", ndt_levels);

@@ -34,6 +34,15 @@ SolveOutcome solveIcp(const Target::Impl& target, const PointCloud& src, const E
 SolveOutcome solveNdt(const Target::Impl& target, const PointCloud& src, const Eigen::Isometry3d& guess,
                       const Params& params);
 
+/// Every stride-th point (all when stride <= 1): the source of coarse iterations.
+inline PointCloud strided(const PointCloud& src, int stride) {
+  if (stride <= 1) return src;
+  PointCloud out;
+  out.reserve(src.size() / static_cast<size_t>(stride) + 1);
+  for (size_t i = 0; i < src.size(); i += static_cast<size_t>(stride)) out.push_back(src[i]);
+  return out;
+}
+
 /// Robust kernel weight w(r) for IRLS, w(0) = 1.
 inline double kernelWeight(Kernel k, double r, double s) {
   switch (k) {

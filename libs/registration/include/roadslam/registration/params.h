@@ -35,6 +35,8 @@ struct Params {
   int min_source_points = 20;                  ///< fewer valid source points: TooFewPoints [-]
   int min_inliers = 20;                        ///< fewer correspondences: TooFewCorrespondences [-]
   double max_correction_m = 5.0;               ///< correction beyond the initial guess => Diverged [m]
+  int coarse_stride = 4;                       ///< coarse phase (ICP) / coarse NDT levels use every n-th source point [-]
+  double coarse_tolerance_m = 0.01;            ///< ICP: coarse phase ends when the update is below this [m]
   int normal_neighbours = 10;                  ///< point-to-plane: k of the covariance normal [-]
   double ndt_resolution_m = 1.0;               ///< NDT finest cell size [m]
   int ndt_levels = 3;                          ///< NDT multi-resolution levels (coarsest = res*2^(n-1)) [-]
