@@ -228,6 +228,12 @@ bool parseCandumpLine(std::string_view line, CanFrame& out, const char** error) 
     *error = "interface name longer than 15 characters";
     return false;
   }
+  for (char c : ifc) {
+    if (c <= ' ' || c > '~') {
+      *error = "non-printable character in interface name";
+      return false;
+    }
+  }
   std::copy(ifc.begin(), ifc.end(), out.iface.begin());
   // candump -l may append " R"/" T" (rx/tx direction) with -x; accept and ignore a single char.
   const std::string_view extra = nextField(rest);

@@ -6,6 +6,7 @@
 #include <roadslam/can/dbc.h>
 
 #include <cctype>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -64,6 +65,7 @@ class Parser {
     char* end = nullptr;
     const double v = std::strtod(t.text.c_str(), &end);
     if (*end != 0) fail(t, "malformed number");
+    if (!std::isfinite(v)) fail(t, "number out of the double range");
     return v;
   }
   std::uint64_t unsignedInt() {
@@ -252,6 +254,7 @@ void Parser::signal() {
     s.receivers.push_back(take().text);
     if (!acceptPunct(',')) break;
   }
+  if (s.receivers.empty()) s.receivers.push_back("Vector__XXX");  // the format's "no receiver"
   msg_->signals.push_back(std::move(s));
 }
 
