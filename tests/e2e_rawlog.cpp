@@ -143,6 +143,10 @@ TEST(RawlogApp, ConvertThenInfoGivesTheSameCountsAndMrptReadsIt) {
     for (const char* key : {"sweeps", "partial_sweeps", "packets", "points", "gps_fixes"})
       EXPECT_EQ(a[key], b[key]) << in << " key " << key;
     EXPECT_EQ(b["format"], "rawlog");
+    // The configuration used is written next to the output (STYLE.md rule 4).
+    const std::string used = slurp(out.string() + ".ini");
+    EXPECT_NE(used.find("[velodyne]"), std::string::npos) << used;
+    EXPECT_NE(used.find("[rawlog]"), std::string::npos) << used;
 
     mrpt::obs::CRawlog rawlog;  // MRPT's own loader: RawLogViewer / rawlog-edit use it
     ASSERT_TRUE(rawlog.loadFromRawLogFile(out.string()));

@@ -1,5 +1,6 @@
 #include "roadslam/sources/recording.h"
 
+#include <mrpt/config/CConfigFileMemory.h>
 #include <nlohmann/json.hpp>
 #include <fmt/core.h>
 
@@ -7,6 +8,7 @@
 #include <stdexcept>
 #include <sys/stat.h>
 
+#include "roadslam/common/atomic_file.h"
 #include "roadslam/sources/pcap_source.h"
 #include "roadslam/sources/rawlog_source.h"
 #include "roadslam/sources/sweep_source.h"
@@ -151,6 +153,11 @@ ConvertSummary convertToRawlog(const std::string& in, const std::string& out,
     throw std::runtime_error(in + ": no Velodyne data packets");
   flush();
   writer->close();
+  mrpt::config::CConfigFileMemory used;
+  params.saveToConfigFile(used, "velodyne");
+  writer_params.saveToConfigFile(used, "rawlog");
+  writeFileAtomically(out + ".ini", "; written by roadslam-rawlog convert " + in + "\n" +
+                                        used.getContent());
   sum.packets = writer->packetsWritten();
   sum.gps = writer->gpsWritten();
   return sum;

@@ -2,6 +2,7 @@
 // and MRPT's own CRawlog loader opens the file (so RawLogViewer / rawlog-edit can).
 #include <gtest/gtest.h>
 
+#include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/obs/CObservationGPS.h>
 #include <mrpt/obs/CObservationVelodyneScan.h>
 #include <mrpt/obs/CRawlog.h>
@@ -207,4 +208,46 @@ TEST(Rawlog, TruncatedOrForeignFilesReportAnErrorNamingTheFile) {
   EXPECT_FALSE(foreign.next());
   EXPECT_NE(foreign.errorMessage().find(text.string()), std::string::npos);
   for (const auto& p : {good, cut, text}) fs::remove(p);
+}
+
+TEST(Rawlog, WriterParamsRoundTripThroughIniWithDegreeKeys) {
+  RawlogWriter::Params p;
+  p.sensor_label = "VLP16_ROOF";
+  p.model = "HDL32";
+  p.min_range_m = 0.5;
+  p.z_m = 1.73;
+  p.yaw_rad = M_PI / 2;
+  mrpt::config::CConfigFileMemory ini;
+  p.saveToConfigFile(ini, "rawlog");
+  EXPECT_NEAR(ini.read_double("rawlog", "yaw_deg", 0), 90.0, 1e-9);  // unit suffix on disk
+  RawlogWriter::Params q;
+  q.loadFromConfigFile(ini, "rawlog");
+  EXPECT_EQ(q.sensor_label, "VLP16_ROOF");
+  EXPECT_EQ(q.model, "HDL32");
+  EXPECT_DOUBLE_EQ(q.min_range_m, 0.5);
+  EXPECT_DOUBLE_EQ(q.z_m, 1.73);
+  EXPECT_NEAR(q.yaw_rad, M_PI / 2, 1e-12);
+  ini.write("rawlog", "min_range_m", std::string("near"));
+  EXPECT_THROW(q.loadFromConfigFile(ini, "rawlog"), std::runtime_error);
+}
+
+TEST(Rawlog, SensorPoseAndRangesReachTheObservation) {
+  RawlogWriter::Params p;
+  p.z_m = 1.73;
+  p.yaw_rad = M_PI / 2;
+  p.max_range_m = 100.0;
+  const fs::path path = tempDir() / "pose.rawlog";
+  {
+    RawlogWriter w(path.string(), p);
+    w.writeSweep(makeRecording(1, 4).sweeps[0]);
+    w.close();
+  }
+  mrpt::obs::CRawlog rawlog;
+  ASSERT_TRUE(rawlog.loadFromRawLogFile(path.string()));
+  auto v = std::dynamic_pointer_cast<mrpt::obs::CObservationVelodyneScan>(rawlog.getAsObservation(0));
+  ASSERT_TRUE(v);
+  EXPECT_NEAR(v->sensorPose.z(), 1.73, 1e-12);
+  EXPECT_NEAR(v->sensorPose.yaw(), M_PI / 2, 1e-12);
+  EXPECT_DOUBLE_EQ(v->maxRange, 100.0);
+  fs::remove(path);
 }

@@ -55,6 +55,8 @@ struct ConvertSummary {
 /// sweep as cut by the assembler (a packet in which a sweep ends opens the next observation, so
 /// every packet is stored exactly once, unchanged), one CObservationGPS per RMC position packet.
 /// \p writer_params.model / calibration_file default from \p params when empty.
+/// The configuration actually used is written next to the output as "<out>.ini" (sections
+/// [velodyne] = DecoderParams, [rawlog] = RawlogWriter::Params), loadable by both Params.
 ConvertSummary convertToRawlog(const std::string& in, const std::string& out,
                                const velodyne::DecoderParams& params = {},
                                RawlogWriter::Params writer_params = {});
