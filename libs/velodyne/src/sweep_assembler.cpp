@@ -19,6 +19,7 @@ SweepAssembler::SweepAssembler(const Decoder& decoder) : decoder_(decoder) {
 DecodeStatus SweepAssembler::addPacket(const uint8_t* data, std::size_t size,
                                        double capture_stamp_s) {
   ++stats_.packets;
+  last_cut_block_ = -1;
   scratch_.clear();
   PacketInfo info;
   const DecodeStatus st = decoder_.decode(data, size, scratch_, &info);
@@ -36,7 +37,10 @@ DecodeStatus SweepAssembler::addPacket(const uint8_t* data, std::size_t size,
       std::lround(decoder_.params().cut_azimuth_rad * 18000.0 / M_PI) % kFullTurn);
   for (int b = 0; b < kBlocksPerPacket; ++b) {
     const int shifted = (info.block_azimuth[b] - cut + 2 * kFullTurn) % kFullTurn;
-    if (prev_shifted_az_ >= 0 && shifted < prev_shifted_az_) closeSweep(first_sweep_);
+    if (prev_shifted_az_ >= 0 && shifted < prev_shifted_az_) {
+      closeSweep(first_sweep_);
+      last_cut_block_ = b;
+    }
     prev_shifted_az_ = shifted;
     appendBlock(info, b, pkt_sensor_s, pkt_ref_s);
   }

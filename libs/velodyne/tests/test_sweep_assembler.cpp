@@ -112,3 +112,24 @@ TEST(SweepAssembler, EmptyRevolutionsAreDropped) {
   EXPECT_TRUE(assemble(s, DecoderParams{}, &st).empty());
   EXPECT_GE(st.empty_sweeps_dropped, 2u);
 }
+
+TEST(SweepAssembler, ReportsTheCutBlockAndTakesRawPackets) {
+  // 10 Hz from 359.5 deg: 0.4 deg per block, so the first wrap falls inside the first packet.
+  const auto s = test::spinVlp16([](double, double) { return 5.0; }, 80, 10.0, 359.5);
+  SweepAssembler a;
+  std::vector<int> cuts;
+  for (std::size_t i = 0; i < s.packets.size(); ++i) {
+    RawPacket raw;
+    raw.stamp_s = s.stamps_s[i];
+    raw.dst_port = kDefaultDataPort;
+    raw.payload.assign(s.packets[i].begin(), s.packets[i].end());
+    ASSERT_EQ(a.addPacket(raw), DecodeStatus::Ok);
+    if (a.lastCutBlock() >= 0) cuts.push_back(static_cast<int>(i) * 100 + a.lastCutBlock());
+  }
+  // Block k of packet i starts at 359.5 + 0.39813 * (12 i + k) deg (2 x 55.296 us at 3600 deg/s):
+  // 360 is first reached at 12 i + k >= 0.5 / 0.39813 -> block 2 of packet 0, and 720 at
+  // 12 i + k >= 360.5 / 0.39813 = 905.5 -> 906 = packet 75, block 6.
+  ASSERT_EQ(cuts.size(), 2u);
+  EXPECT_EQ(cuts[0], 2);
+  EXPECT_EQ(cuts[1], 75 * 100 + 6);
+}

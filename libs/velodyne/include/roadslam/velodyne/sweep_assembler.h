@@ -40,6 +40,13 @@ class SweepAssembler {
 
   /// Feeds one UDP payload received at \p capture_stamp_s [s]; a bad packet is counted and skipped.
   DecodeStatus addPacket(const uint8_t* data, std::size_t size, double capture_stamp_s);
+  DecodeStatus addPacket(const RawPacket& packet) {
+    return addPacket(packet.payload.data(), packet.payload.size(), packet.stamp_s);
+  }
+  /// Block (0..11) of the last packet at which a sweep was cut, -1 if none: a packet with a cut
+  /// at block k > 0 straddles two sweeps (blocks < k in the closed one). For converters that
+  /// store raw packets per sweep (e.g. CObservationVelodyneScan).
+  int lastCutBlock() const { return last_cut_block_; }
   /// End of stream: emits the sweep in progress (flagged partial).
   void finish();
 
@@ -60,6 +67,7 @@ class SweepAssembler {
   bool open_ = false;            // current_ has started (first block seen)
   bool first_sweep_ = true;      // the next sweep closed is the stream's first
   int prev_shifted_az_ = -1;     // previous block azimuth relative to the cut [0.01 deg]
+  int last_cut_block_ = -1;
   double sweep_sensor_start_s_ = 0;
   int64_t last_ts_us_ = -1;      // for top-of-hour unwrapping
   double hour_offset_s_ = 0;
