@@ -3,6 +3,7 @@
 #include "param_utils.h"
 #include "rng.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace roadslam::preprocess {
@@ -59,13 +60,17 @@ struct Acc {
 };
 
 /// Open-addressing hash map voxel key -> index into the voxel list; linear probing, grown at a
-/// load factor of 1/2. Key and index share one 16-byte slot so a lookup touches one cache line.
+/// load factor of 1/2. Key, index and a generation stamp share one 16-byte slot, so a lookup touches
+/// one cache line and clear() is O(1): slots of older generations count as empty. Kept per thread
+/// and reused, so a steady stream of sweeps allocates (and page-faults) nothing.
 class VoxelIndex {
  public:
-  explicit VoxelIndex(size_t expected) {
-    size_t cap = 1024;
-    while (cap < 2 * expected) cap <<= 1;
-    slots_.assign(cap, Slot{0, -1});
+  void clear() {
+    size_ = 0;
+    if (++gen_ == 0) {  // stamp wrapped: really clear once every 2^32 calls
+      std::fill(slots_.begin(), slots_.end(), Slot{});
+      gen_ = 1;
+    }
   }
   /// Index stored for \p key, or inserts \p next_index and returns -1.
   int32_t findOrInsert(uint64_t key, int32_t next_index) {
@@ -73,8 +78,8 @@ class VoxelIndex {
     const size_t mask = slots_.size() - 1;
     for (size_t h = hashKey(key) & mask;; h = (h + 1) & mask) {
       Slot& s = slots_[h];
-      if (s.index < 0) {
-        s = {key, next_index};
+      if (s.gen != gen_) {
+        s = {key, next_index, gen_};
         ++size_;
         return -1;
       }
@@ -84,31 +89,34 @@ class VoxelIndex {
 
  private:
   struct Slot {
-    uint64_t key;
-    int32_t index;
+    uint64_t key = 0;
+    int32_t index = -1;
+    uint32_t gen = 0;
   };
   void grow() {
-    std::vector<Slot> old(slots_.size() * 2, Slot{0, -1});
+    std::vector<Slot> old(std::max<size_t>(1024, slots_.size() * 2));
     old.swap(slots_);
     const size_t mask = slots_.size() - 1;
     for (const Slot& s : old) {
-      if (s.index < 0) continue;
+      if (s.gen != gen_) continue;
       size_t h = hashKey(s.key) & mask;
-      while (slots_[h].index >= 0) h = (h + 1) & mask;
+      while (slots_[h].gen == gen_) h = (h + 1) & mask;
       slots_[h] = s;
     }
   }
   std::vector<Slot> slots_;
   size_t size_ = 0;
+  uint32_t gen_ = 1;
 };
 }  // namespace
 
 size_t voxelDownsample(std::vector<ScanPoint>& pts, const VoxelParams& prm) {
   const size_t n = pts.size();
   if (n == 0) return 0;
-  VoxelIndex index(n / 8);  // typical sweeps keep 1/3 to 1/10 of their points; grows if needed
-  std::vector<Acc> voxels;
-  voxels.reserve(n / 4 + 16);
+  thread_local VoxelIndex index;
+  thread_local std::vector<Acc> voxels;
+  index.clear();
+  voxels.clear();
   const float inv = static_cast<float>(1.0 / prm.voxel_size_m);
   const bool centroid = prm.mode == VoxelParams::Mode::Centroid;
   uint64_t last_key = 0;

@@ -178,8 +178,7 @@ struct Grid {
   std::vector<int32_t> cell_of;
 };
 
-Grid binPoints(const std::vector<ScanPoint>& pts, const GroundSegParams& p) {
-  Grid g;
+void binPoints(const std::vector<ScanPoint>& pts, const GroundSegParams& p, Grid& g) {
   g.sectors = p.num_sectors;
   g.bins = static_cast<int>(std::ceil(p.max_range_m / p.bin_length_m));
   g.cells.assign(static_cast<size_t>(g.sectors) * static_cast<size_t>(g.bins), Cell{});
@@ -200,7 +199,6 @@ Grid binPoints(const std::vector<ScanPoint>& pts, const GroundSegParams& p) {
     if (q.z < cell.min_z) cell.min_z = q.z, cell.r = r;
     cell.top_z = std::max(cell.top_z, q.z);
   }
-  return g;
 }
 
 /// The line for cell \p c, or a neighbour sector's (same bin) when its own sector has none.
@@ -216,8 +214,10 @@ const CellLine* lineFor(const Grid& g, const std::vector<CellLine>& lines, size_
 /// Shared body of segmentGround / segmentGroundWithHeights; \p heights may be null.
 std::vector<uint8_t> label(const std::vector<ScanPoint>& pts, const GroundSegParams& p,
                            GroundSegStats& st, std::vector<float>* heights) {
-  const Grid g = binPoints(pts, p);
-  std::vector<CellLine> lines(g.cells.size());
+  thread_local Grid g;  // scratch reused per thread: no per-sweep allocation or page faults
+  thread_local std::vector<CellLine> lines;
+  binPoints(pts, p, g);
+  lines.assign(g.cells.size(), CellLine{});
   for (int s = 0; s < g.sectors; ++s) {
     const size_t off = static_cast<size_t>(s) * static_cast<size_t>(g.bins);
     const auto segs = SectorFitter(p).run(&g.cells[off], g.bins);
