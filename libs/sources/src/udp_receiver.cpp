@@ -8,6 +8,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <ctime>
 #include <stdexcept>
 #include <vector>
 
@@ -89,6 +90,7 @@ UdpReceiver::UdpReceiver(const Params& p) : params_(p), gaps_(p.packet_period_s,
   const uint32_t bind_ip = parseIpv4(p.bind_address, "bind_address");
   source_ip_ = parseIpv4(p.source_filter, "source_filter");
   if (p.batch_size < 1) throw std::runtime_error("UdpReceiver: batch_size must be >= 1");
+  batch_ = std::make_unique<Batch>(std::size_t(p.batch_size));
   fds_[0] = openSocket(bind_ip, p.ports.data_port, p.rcvbuf_bytes, granted_rcvbuf_, bound_data_port_);
   int granted_pos = 0;
   try {
@@ -113,30 +115,42 @@ std::string UdpReceiver::describe() const {
          std::to_string(bound_position_port_);
 }
 
-void UdpReceiver::receiveBatch(int fd, uint16_t port, uint32_t& last_overflow) {
-  const std::size_t n = std::size_t(params_.batch_size);
-  constexpr std::size_t kBuf = 2048;  // > 1206: oversize datagrams are seen (and counted), not cut
-  constexpr std::size_t kCtl = CMSG_SPACE(sizeof(timespec)) + CMSG_SPACE(sizeof(uint32_t)) + 64;
-  std::vector<uint8_t> bufs(n * kBuf), ctl(n * kCtl);
-  std::vector<iovec> iov(n);
-  std::vector<mmsghdr> msgs(n);
-  std::vector<sockaddr_in> from(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    iov[i] = {bufs.data() + i * kBuf, kBuf};
-    msgs[i].msg_hdr = {};
-    msgs[i].msg_hdr.msg_iov = &iov[i];
-    msgs[i].msg_hdr.msg_iovlen = 1;
-    msgs[i].msg_hdr.msg_control = ctl.data() + i * kCtl;
-    msgs[i].msg_hdr.msg_controllen = kCtl;
-    msgs[i].msg_hdr.msg_name = &from[i];
-    msgs[i].msg_hdr.msg_namelen = sizeof(sockaddr_in);
+// recvmmsg(2) batch: n datagram buffers with their control (cmsg) space and sender addresses.
+struct UdpReceiver::Batch {
+  static constexpr std::size_t kBuf = 2048;  // > 1206: oversize datagrams are counted, not cut
+  static constexpr std::size_t kCtl =
+      CMSG_SPACE(sizeof(timespec)) + CMSG_SPACE(sizeof(uint32_t)) + 64;
+  explicit Batch(std::size_t n) : bufs(n * kBuf), ctl(n * kCtl), iov(n), msgs(n), from(n) {
+    for (std::size_t i = 0; i < n; ++i) iov[i] = {bufs.data() + i * kBuf, kBuf};
   }
-  const int got = recvmmsg(fd, msgs.data(), unsigned(n), MSG_DONTWAIT, nullptr);
+  // The kernel rewrites the lengths on every call.
+  void reset() {
+    for (std::size_t i = 0; i < msgs.size(); ++i) {
+      msgs[i].msg_hdr = {};
+      msgs[i].msg_hdr.msg_iov = &iov[i];
+      msgs[i].msg_hdr.msg_iovlen = 1;
+      msgs[i].msg_hdr.msg_control = ctl.data() + i * kCtl;
+      msgs[i].msg_hdr.msg_controllen = kCtl;
+      msgs[i].msg_hdr.msg_name = &from[i];
+      msgs[i].msg_hdr.msg_namelen = sizeof(sockaddr_in);
+    }
+  }
+  std::vector<uint8_t> bufs, ctl;
+  std::vector<iovec> iov;
+  std::vector<mmsghdr> msgs;
+  std::vector<sockaddr_in> from;
+};
+
+void UdpReceiver::receiveBatch(int fd, uint16_t port, uint32_t& last_overflow) {
+  Batch& b = *batch_;
+  b.reset();
+  const int got = recvmmsg(fd, b.msgs.data(), unsigned(b.msgs.size()), MSG_DONTWAIT, nullptr);
   for (int i = 0; i < got; ++i) {
     velodyne::RawPacket pkt;
     pkt.dst_port = port;
-    pkt.src_ip = ntohl(from[i].sin_addr.s_addr);
-    for (cmsghdr* c = CMSG_FIRSTHDR(&msgs[i].msg_hdr); c; c = CMSG_NXTHDR(&msgs[i].msg_hdr, c)) {
+    pkt.src_ip = ntohl(b.from[i].sin_addr.s_addr);
+    msghdr& h = b.msgs[i].msg_hdr;
+    for (cmsghdr* c = CMSG_FIRSTHDR(&h); c; c = CMSG_NXTHDR(&h, c)) {
       if (c->cmsg_level != SOL_SOCKET) continue;
       if (c->cmsg_type == SCM_TIMESTAMPNS) {
         timespec ts;
@@ -149,12 +163,17 @@ void UdpReceiver::receiveBatch(int fd, uint16_t port, uint32_t& last_overflow) {
         last_overflow = drops;
       }
     }
+    if (pkt.stamp_s == 0) {  // no kernel stamp (control space truncated): read the clock now
+      timespec now;
+      clock_gettime(CLOCK_REALTIME, &now);
+      pkt.stamp_s = double(now.tv_sec) + 1e-9 * double(now.tv_nsec);
+    }
     if (source_ip_ != 0 && pkt.src_ip != source_ip_) {
       ++stats_.skipped_packets;
       continue;
     }
-    const uint8_t* b = bufs.data() + std::size_t(i) * kBuf;
-    pkt.payload.assign(b, b + msgs[i].msg_len);
+    const uint8_t* data = b.bufs.data() + std::size_t(i) * Batch::kBuf;
+    pkt.payload.assign(data, data + b.msgs[i].msg_len);
     if (accountPacket(params_.ports, pkt, stats_, gaps_)) queue_.push_back(std::move(pkt));
   }
 }

@@ -7,6 +7,7 @@
 /// packets at 1,508 packets/s here (MRPT-NOTES.md).
 
 #include <deque>
+#include <memory>
 #include <string>
 
 #include "roadslam/sources/packet_source.h"
@@ -55,6 +56,8 @@ class UdpReceiver : public PacketSource {
  private:
   void receiveBatch(int fd, uint16_t port, uint32_t& last_overflow);
 
+  struct Batch;  // recvmmsg buffers, allocated once
+  std::unique_ptr<Batch> batch_;
   Params params_;
   int fds_[2] = {-1, -1};
   uint16_t bound_data_port_ = 0, bound_position_port_ = 0;
