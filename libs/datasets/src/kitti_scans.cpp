@@ -105,6 +105,9 @@ std::string unpackTarZstOnce(const std::string& tar_zst, const std::string& dest
   const fs::path marker = fs::path(dest_dir) / ".unpacked";
   if (fs::exists(marker)) return dest_dir;
   if (!fs::is_regular_file(tar_zst)) throw std::runtime_error("archive '" + tar_zst + "' not found");
+  if ((tar_zst + dest_dir).find('\'') != std::string::npos) {  // the paths go into a shell command
+    throw std::runtime_error("unpackTarZstOnce: quote character in '" + tar_zst + "' or '" + dest_dir + "'");
+  }
   const fs::path tmp = fs::path(dest_dir).string() + ".tmp-" + std::to_string(::getpid());
   fs::remove_all(tmp);
   fs::create_directories(tmp);
