@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """Independent oracle: decode the first N frames of a candump log on can0 with python3-canmatrix and
 print "frame_index MESSAGE.SIGNAL raw_value" for every signal (used by test_real_data.cpp)."""
+import contextlib
 import sys
 
 import canmatrix
@@ -9,7 +10,8 @@ import canmatrix.formats
 
 def main():
     dbc, log, n = sys.argv[1], sys.argv[2], int(sys.argv[3])
-    db = canmatrix.formats.loadp_flat(dbc)
+    with contextlib.redirect_stdout(sys.stderr):  # canmatrix prints its DBC parse complaints to stdout
+        db = canmatrix.formats.loadp_flat(dbc)
     with open(log) as f:
         for i, line in enumerate(f):
             if i >= n:
