@@ -92,6 +92,29 @@ TEST(UdpReceiver, EveryPacketArrivesIntactWithMonotonicKernelStamps) {
   EXPECT_EQ(rx.stats().data_packets, std::size_t(kData));
 }
 
+TEST(UdpReceiver, KernelOverflowIsCountedExactly) {
+  // A tiny socket buffer and nobody reading: most datagrams are dropped by the kernel. Every one
+  // sent is then either received or counted by SO_RXQ_OVFL (the counter value rides on the next
+  // queued datagram, hence the final sentinel sent after draining).
+  auto params = loopbackParams();
+  params.rcvbuf_bytes = 1;  // the kernel rounds up to its minimum
+  UdpReceiver rx(params);
+  const int fd = socket(AF_INET, SOCK_DGRAM, 0);
+  constexpr int kBurst = 200;
+  for (int k = 0; k < kBurst; ++k)
+    sendTo(fd, rx.dataPort(), makeDataPacket(uint32_t(k * 1327104LL / 1000), 0, k));
+  int got = 0, idle = 0;
+  while (idle < 3) rx.next() ? ++got : ++idle;
+  sendTo(fd, rx.dataPort(), makeDataPacket(uint32_t(kBurst * 1327104LL / 1000), 0, kBurst));
+  idle = 0;
+  while (idle < 3) rx.next() ? ++got : ++idle;
+  close(fd);
+  EXPECT_GT(rx.stats().kernel_drops, 0u);
+  EXPECT_EQ(uint64_t(got) + rx.stats().kernel_drops, uint64_t(kBurst + 1));
+  // The sensor clock shows the same loss.
+  EXPECT_EQ(rx.stats().missing_packets, rx.stats().kernel_drops);
+}
+
 TEST(UdpReceiver, SourceFilterRejectsOtherSenders) {
   auto params = loopbackParams();
   params.source_filter = "192.168.1.201";  // the VLP-16 factory address; we send from 127.0.0.1
