@@ -223,6 +223,8 @@ void addMovingCars(const WorldParams& p, Rng& rng, World& world) {
     const bool same_dir = p.lanes_per_side >= 2 && rng.uniform() < 0.5;
     // The vehicle drives in the innermost right lane: same-direction traffic uses the next lane.
     c.speed_mps = same_dir ? v : -v;
+    // The grid's serpentine drives odd streets against their centreline: keep traffic oncoming.
+    if (p.layout == "grid" && c.road < p.streets && c.road % 2 == 1) c.speed_mps = -c.speed_mps;
     c.lateral_m = p.lane_width_m * (same_dir ? 1.5 : 0.5 + std::floor(rng.uniform(0, p.lanes_per_side)));
     c.length_m = rng.uniform(4.0, 5.0);
     c.width_m = rng.uniform(1.7, 1.9);

@@ -40,6 +40,25 @@ std::vector<std::string> TrajectoryParams::keys() {
           "end_standing_s", "laps", "track_width_m"};
 }
 
+namespace {
+/// Speed at each dense route point [m/s]: the curvature limit v^2 |k| <= a_lat, then a forward pass
+/// (acceleration from standstill) and a backward pass (braking to standstill at the end).
+std::vector<double> speedProfile(const std::vector<double>& s, const std::vector<double>& k,
+                                 const TrajectoryParams& p) {
+  const std::size_t m = s.size();
+  std::vector<double> v(m);
+  for (std::size_t j = 0; j < m; ++j)
+    v[j] = std::min(p.max_speed_mps(), std::sqrt(p.lateral_accel_mps2 / std::max(1e-6, std::abs(k[j]))));
+  v[0] = 0;
+  for (std::size_t j = 1; j < m; ++j)
+    v[j] = std::min(v[j], std::sqrt(v[j - 1] * v[j - 1] + 2 * p.accel_mps2 * (s[j] - s[j - 1])));
+  v[m - 1] = 0;
+  for (std::size_t j = m - 1; j-- > 0;)
+    v[j] = std::min(v[j], std::sqrt(v[j + 1] * v[j + 1] + 2 * p.decel_mps2 * (s[j + 1] - s[j])));
+  return v;
+}
+}  // namespace
+
 Trajectory::Trajectory(const Road& route, const Ground& ground, const TrajectoryParams& p)
     : ground_(ground), p_(p), closed_(route.closed), route_len_(roadLength(route)) {
   // Dense route with smooth heading (mean of the adjacent segments) and curvature dh/ds.
@@ -70,16 +89,7 @@ Trajectory::Trajectory(const Road& route, const Ground& ground, const Trajectory
     const std::size_t a = j > 0 ? j - 1 : j, b = j + 1 < m ? j + 1 : j;
     k_[j] = s_[b] > s_[a] ? (h_[b] - h_[a]) / (s_[b] - s_[a]) : 0;
   }
-  // Speed profile: curvature limit, then forward (acceleration) and backward (braking) passes.
-  std::vector<double> v(m);
-  for (std::size_t j = 0; j < m; ++j)
-    v[j] = std::min(p.max_speed_mps(), std::sqrt(p.lateral_accel_mps2 / std::max(1e-6, std::abs(k_[j]))));
-  v[0] = 0;
-  for (std::size_t j = 1; j < m; ++j)
-    v[j] = std::min(v[j], std::sqrt(v[j - 1] * v[j - 1] + 2 * p.accel_mps2 * (s_[j] - s_[j - 1])));
-  v[m - 1] = 0;
-  for (std::size_t j = m - 1; j-- > 0;)
-    v[j] = std::min(v[j], std::sqrt(v[j + 1] * v[j + 1] + 2 * p.decel_mps2 * (s_[j + 1] - s_[j])));
+  const std::vector<double> v = speedProfile(s_, k_, p);
   std::vector<double> t(m);
   t[0] = p.start_standing_s;
   for (std::size_t j = 1; j < m; ++j) t[j] = t[j - 1] + 2 * (s_[j] - s_[j - 1]) / std::max(1e-9, v[j - 1] + v[j]);

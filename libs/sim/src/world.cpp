@@ -216,9 +216,12 @@ CarPose World::carPose(const MovingCar& car, double t_s) const {
   const Road& r = roads[static_cast<std::size_t>(car.road)];
   const double len = roadLength(r);
   // Open roads wrap too (the car leaves at one end and re-enters at the other), so a car never
-  // turns around into the vehicle's lane.
-  double s = std::fmod(car.s0_m + car.speed_mps * t_s, len);
-  if (s < 0) s += len;
+  // turns around into the vehicle's lane; it stays 15 m clear of the ends, which are junctions
+  // in the grid layouts where the vehicle turns.
+  const double margin = r.closed ? 0.0 : std::min(15.0, 0.25 * len);
+  double s = std::fmod(car.s0_m + car.speed_mps * t_s, len - 2 * margin);
+  if (s < 0) s += len - 2 * margin;
+  s += margin;
   const bool backwards = car.speed_mps < 0;
   Vec2 p;
   double h;

@@ -100,3 +100,24 @@ TEST(Scenarios, SameSeedSameWorldOtherSeedOtherWorld) {
   for (std::size_t i = 0; !differs && i < a.world().prisms.size(); ++i) differs = a.world().prisms[i].cx != c.world().prisms[i].cx;
   EXPECT_TRUE(differs);
 }
+
+// Traffic never drives through the sensor: moving cars keep to their lanes (oncoming or the next
+// lane), so no car footprint (grown by 0.5 m) ever contains the lidar (checked every 0.1 s).
+TEST(Scenarios, MovingCarsNeverDriveThroughTheSensor) {
+  for (const auto& e : std::filesystem::directory_iterator(iniPath(""))) {
+    if (e.path().extension() != ".ini") continue;
+    SCOPED_TRACE(e.path().string());
+    const Simulator sim(ScenarioParams::fromFile(e.path().string()));
+    int inside = 0;
+    for (double t = 0; t < sim.trajectory().duration_s(); t += 0.1) {
+      const Pose3 T = sim.lidar().lidarPose(t);
+      for (const MovingCar& c : sim.world().cars) {
+        const Prism q = sim.world().carPrism(c, t);
+        const double dx = T.t.x - q.cx, dy = T.t.y - q.cy;
+        const double u = std::cos(q.yaw) * dx + std::sin(q.yaw) * dy, v = -std::sin(q.yaw) * dx + std::cos(q.yaw) * dy;
+        inside += std::abs(u) <= q.hu + 0.5 && std::abs(v) <= q.hv + 0.5;
+      }
+    }
+    EXPECT_EQ(inside, 0);
+  }
+}
