@@ -62,6 +62,20 @@ bool fromKernel(const canfd_frame& k, std::size_t bytes, CanFrame& f) {
   return true;
 }
 
+// Kernel receive time (SO_TIMESTAMP) and the socket's cumulative drop counter (SO_RXQ_OVFL).
+void readControl(msghdr& msg, std::int64_t& t_us, std::uint32_t& ovfl) {
+  for (cmsghdr* c = CMSG_FIRSTHDR(&msg); c; c = CMSG_NXTHDR(&msg, c)) {
+    if (c->cmsg_level != SOL_SOCKET) continue;
+    if (c->cmsg_type == SO_TIMESTAMP) {
+      timeval tv{};
+      std::memcpy(&tv, CMSG_DATA(c), sizeof(tv));
+      t_us = static_cast<std::int64_t>(tv.tv_sec) * 1000000 + tv.tv_usec;
+    } else if (c->cmsg_type == SO_RXQ_OVFL) {
+      std::memcpy(&ovfl, CMSG_DATA(c), sizeof(ovfl));
+    }
+  }
+}
+
 }  // namespace
 
 std::vector<CanFilter> parseFilters(const std::string& text) {
@@ -131,6 +145,9 @@ SocketCanSource::SocketCanSource(const SocketCanParams& params) : params_(params
 SocketCanSource SocketCanSource::fromFd(int fd, const std::string& interface_name) {
   SocketCanSource s;
   s.fd_ = fd;
+  const int one = 1;  // AF_UNIX datagram sockets also stamp on receive; failures just mean host stamps
+  (void)::setsockopt(fd, SOL_SOCKET, SO_TIMESTAMP, &one, sizeof(one));
+  (void)::setsockopt(fd, SOL_SOCKET, SO_RXQ_OVFL, &one, sizeof(one));
   s.params_.interface = interface_name;
   return s;
 }
@@ -245,19 +262,10 @@ ReadStatus SocketCanSource::read(CanFrame& frame, int timeout_ms) {
     return ReadStatus::kTimeout;
   }
   std::int64_t t_us = -1;
-  for (cmsghdr* c = CMSG_FIRSTHDR(&msg); c; c = CMSG_NXTHDR(&msg, c)) {
-    if (c->cmsg_level != SOL_SOCKET) continue;
-    if (c->cmsg_type == SO_TIMESTAMP) {
-      timeval tv{};
-      std::memcpy(&tv, CMSG_DATA(c), sizeof(tv));
-      t_us = static_cast<std::int64_t>(tv.tv_sec) * 1000000 + tv.tv_usec;
-    } else if (c->cmsg_type == SO_RXQ_OVFL) {
-      std::uint32_t ovfl = 0;
-      std::memcpy(&ovfl, CMSG_DATA(c), sizeof(ovfl));
-      stats_.dropped += ovfl - last_ovfl_;  // cumulative counter of the socket, wraps modulo 2^32
-      last_ovfl_ = ovfl;
-    }
-  }
+  std::uint32_t ovfl = last_ovfl_;
+  readControl(msg, t_us, ovfl);
+  stats_.dropped += ovfl - last_ovfl_;  // cumulative counter of the socket, wraps modulo 2^32
+  last_ovfl_ = ovfl;
   if (!fromKernel(k, static_cast<std::size_t>(n), frame)) {
     ++stats_.malformed;
     return ReadStatus::kTimeout;
