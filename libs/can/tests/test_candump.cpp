@@ -135,7 +135,7 @@ TEST(Candump, ReaderCountsBadLinesAndKeepsTheRest) {
   EXPECT_EQ(r2.stats().issues.at(0).line, 2U);
 }
 
-TEST(Candump, CanUtilsLog2ascReadsWhatWeWrite) {
+TEST(Candump, CanUtilsLog2ascAndAsc2logRoundTrip) {
   if (std::system("command -v log2asc >/dev/null 2>&1") != 0) GTEST_SKIP() << "can-utils log2asc not installed";
   const std::string path = ::testing::TempDir() + "/roadslam_log2asc.log";
   std::vector<CanFrame> frames(3);
@@ -152,6 +152,13 @@ TEST(Candump, CanUtilsLog2ascReadsWhatWeWrite) {
   frames[2].t_us += 200000;
   frames[2].flags = kRemote;
   frames[2].len = 0;
+  CanFrame fd = frames[0];
+  fd.t_us += 300000;
+  fd.flags = kFd;
+  fd.fd_flags = kFdBrs;
+  fd.len = 12;
+  for (std::uint8_t b = 0; b < 12; ++b) fd.data[b] = static_cast<std::uint8_t>(0x10 + b);
+  frames.push_back(fd);
   writeCandumpFile(path, frames);
   const std::string asc = path + ".asc";
   ASSERT_EQ(std::system(("log2asc -I " + path + " -O " + asc + " can0").c_str()), 0);
@@ -163,4 +170,19 @@ TEST(Candump, CanUtilsLog2ascReadsWhatWeWrite) {
   EXPECT_NE(text.find("0.100000 1  12345678x       Rx   d 4 DE AD BE EF"), std::string::npos) << text;
   EXPECT_NE(text.find("0.200000 1  123             Rx   r"), std::string::npos) << text;
   EXPECT_EQ(readCandumpFile(path), frames);
+
+  // And back with can-utils' asc2log, whose candump output (with the " R" direction suffix) we read.
+  const std::string back = path + ".back.log";
+  ASSERT_EQ(std::system(("asc2log -I " + asc + " -O " + back + " >/dev/null 2>&1").c_str()), 0);
+  CandumpStats st;
+  const auto again = readCandumpFile(back, &st);
+  EXPECT_EQ(st.bad, 0U);
+  ASSERT_EQ(again.size(), frames.size());
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    CanFrame a = again[i];
+    a.t_us = frames[i].t_us - frames[0].t_us + again[0].t_us;  // asc keeps relative times only
+    EXPECT_EQ(a.t_us, again[i].t_us);
+    a.t_us = frames[i].t_us;
+    EXPECT_EQ(a, frames[i]) << formatCandumpLine(again[i]);
+  }
 }
