@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <iomanip>
 #include <sstream>
 #include <stdexcept>
 
@@ -78,6 +79,21 @@ void PreprocessParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, cons
   random.saveToConfigFile(cfg, s);
   voxel.saveToConfigFile(cfg, s);
   sor.saveToConfigFile(cfg, s);
+}
+
+std::string formatTotals(const PreprocessTotals& t) {
+  std::ostringstream out;
+  const size_t processed = t.frames - t.skipped;
+  out << "frames: " << t.frames << " (" << t.skipped << " skipped), points " << t.points_in << " -> "
+      << t.points_out << '\n';
+  out << std::fixed;
+  for (const auto& s : t.steps) {
+    const double pct = s.points_in ? 100.0 * static_cast<double>(s.removed) / static_cast<double>(s.points_in) : 0.0;
+    const double ms = processed ? 1e3 * s.wall_time_s / static_cast<double>(processed) : 0.0;
+    out << "  " << s.name << ": " << s.points_in << " in, " << s.removed << " removed ("
+        << std::setprecision(1) << pct << " %), " << std::setprecision(3) << ms << " ms/frame\n";
+  }
+  return out.str();
 }
 
 PreprocessChain::PreprocessChain(PreprocessParams params) : params_(std::move(params)) {

@@ -105,6 +105,10 @@ TEST(PreprocessChain, ReportCountsEveryStepAndFramesAreSkipped) {
     EXPECT_EQ(rep.points_in - removed, rep.points_out);
     EXPECT_EQ(s.points.size(), rep.points_out);
   }
+  const std::string text = formatTotals(chain.totals());
+  EXPECT_NE(text.find("frames: 7 (4 skipped)"), std::string::npos) << text;
+  EXPECT_NE(text.find("non_finite: "), std::string::npos) << text;
+  EXPECT_NE(text.find(" 6 removed"), std::string::npos) << text;  // 2 per processed frame
   EXPECT_EQ(chain.totals().frames, 7u);
   EXPECT_EQ(chain.totals().skipped, 4u);
   EXPECT_EQ(chain.totals().steps[0].removed, 6u);
