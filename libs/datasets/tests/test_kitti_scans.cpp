@@ -74,8 +74,8 @@ TEST(KittiScans, BadSizeNamesTheFile) {
     EXPECT_NE(std::string(e.what()).find("multiple of 16"), std::string::npos) << e.what();
   }
   EXPECT_THROW(readKittiBin((dir / "missing.bin").string()), std::runtime_error);
-  EXPECT_TRUE(readKittiBin((writeKittiBin((dir / "e.bin").string(), Scan{}), (dir / "e.bin").string()))
-                  .points.empty());
+  writeKittiBin((dir / "empty.bin").string(), Scan{});
+  EXPECT_TRUE(readKittiBin((dir / "empty.bin").string()).points.empty());  // 0 bytes is a valid sweep
 }
 
 TEST(KittiScans, FolderOrderAndTimesBesideOrOneLevelUp) {
