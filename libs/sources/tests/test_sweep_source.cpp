@@ -15,6 +15,7 @@
 
 #include "roadslam/sources/boxroom.h"
 #include "roadslam/sources/pcap_source.h"
+#include "roadslam/sources/scan_source.h"
 #include "roadslam/sources/sweep_source.h"
 #include "roadslam/sources/udp_receiver.h"
 
@@ -41,9 +42,12 @@ TEST(SweepSource, BoxRoomPointsLieOnTheWalls) {
   BoxRoomParams p;
   p.revolutions = 3;
   const fs::path file = boxRoomFile(p, "sweep_walls_");
-  SweepSource src(std::make_unique<PcapPacketSource>(file.string()));
+  SweepSource sweep_source(std::make_unique<PcapPacketSource>(file.string()));
+  ScanSource& src = sweep_source;  // consumers see only the generic interface
   std::vector<roadslam::Scan> sweeps;
   while (auto s = src.next()) sweeps.push_back(std::move(*s));
+  EXPECT_TRUE(src.finished());
+  EXPECT_EQ(src.describe(), "velodyne:pcap:" + file.string());
   ASSERT_EQ(sweeps.size(), 4u);  // partial lead-in, 2 complete, partial lead-out
   EXPECT_TRUE(sweeps.front().partial);
   EXPECT_TRUE(sweeps.back().partial);
@@ -62,7 +66,8 @@ TEST(SweepSource, BoxRoomPointsLieOnTheWalls) {
   // Range quantisation (2 mm) and the 0.01 deg azimuth encoding at <= 9.4 m: well under 2 cm.
   EXPECT_LT(worst, 0.02);
   EXPECT_EQ(src.takeGpsFixes().size(), 3u);
-  EXPECT_NEAR(src.stats().sweepRate_hz(), 1.0 / (76 * 1327.104e-6), 1e-3);
+  EXPECT_NEAR(sweep_source.stats().sweepRate_hz(), 1.0 / (76 * 1327.104e-6), 1e-3);
+  for (std::size_t i = 1; i < sweeps.size(); ++i) EXPECT_GT(sweeps[i].stamp_s, sweeps[i - 1].stamp_s);
   fs::remove(file);
 }
 
@@ -107,6 +112,7 @@ TEST(SweepSource, LiveUdpReplayGivesTheSameSweepsAsThePcap) {
   }
   sender.join();
   ASSERT_EQ(got.size() + 1, expected.size());
+  EXPECT_FALSE(live.finished()) << "a live source never finishes";
   for (std::size_t i = 0; i < got.size(); ++i) EXPECT_EQ(got[i], expected[i]) << "sweep " << i;
   EXPECT_EQ(live.packets().stats().kernel_drops, 0u);
   fs::remove(file);

@@ -12,6 +12,7 @@
 #include "roadslam/common/scan.h"
 #include "roadslam/sources/gps_fix.h"
 #include "roadslam/sources/packet_source.h"
+#include "roadslam/sources/scan_source.h"
 #include "roadslam/velodyne/sweep_assembler.h"
 
 namespace roadslam::sources {
@@ -29,16 +30,18 @@ struct SweepSourceStats {
   double sweepRate_hz() const;
 };
 
-class SweepSource {
+class SweepSource : public ScanSource {
  public:
   /// \p packets is owned; \p params select model, calibration, cut angle, stamp clock.
   SweepSource(std::unique_ptr<PacketSource> packets, const velodyne::DecoderParams& params = {});
 
   /// Next sweep; nullopt when the recording is exhausted (after the final partial sweep) or, live,
   /// when no packet arrived within the receiver's timeout.
-  std::optional<Scan> next();
+  std::optional<Scan> next() override;
+  bool finished() const override { return finished_ && !assembler_.hasSweep(); }
   /// GPS fixes received since the last call, in arrival order.
-  std::vector<TimedGpsFix> takeGpsFixes();
+  std::vector<TimedGpsFix> takeGpsFixes() override;
+  std::string describe() const override { return "velodyne:" + packets_->describe(); }
 
   /// Optional observer of every raw packet (data and position) in arrival order, with the number
   /// of sweeps the assembler closed while taking it (data packets only): lets a recorder store the
