@@ -1,0 +1,28 @@
+// roadslam-map: LiDAR odometry (and, as it grows, the maps) over a recording.
+#include <CLI/CLI.hpp>
+#include <iostream>
+
+#include "roadslam/common/stop_signal.h"
+#include "roadslam/pipeline/map_job.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"LiDAR odometry and mapping over a recording (.pcap, .rawlog or a KITTI .bin folder)"};
+  roadslam::pipeline::MapRequest req;
+  bool quiet = false;
+  app.add_option("--config", req.config_path, "ini file (e.g. ini/default.ini)")->required()->check(CLI::ExistingFile);
+  app.add_option("--input", req.input_path, "recording: .pcap, .rawlog or folder of KITTI .bin sweeps")->required();
+  app.add_option("--out", req.out_dir, "output folder (created when missing)")->required();
+  app.add_option("--max-frames", req.max_frames, "stop after this many frames (0 = all)");
+  app.add_flag("--quiet", quiet, "no progress bar and no summary on stdout");
+  CLI11_PARSE(app, argc, argv);
+  req.progress = !quiet;
+  roadslam::installStopSignalHandlers();
+  try {
+    const auto out = roadslam::pipeline::runMapJob(req);
+    if (!quiet) std::cout << out.summary.dump(2) << "\n";
+    return out.interrupted ? 130 : 0;
+  } catch (const std::exception& e) {
+    std::cerr << "roadslam-map: " << e.what() << "\n";
+    return 1;
+  }
+}

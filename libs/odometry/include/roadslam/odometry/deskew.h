@@ -1,0 +1,25 @@
+#pragma once
+/// \file deskew.h
+/// Motion compensation of a sweep: each point, fired at time t after the sweep start, is moved into
+/// the lidar frame at the sweep start assuming constant velocity over the sweep (KISS-ICP, Vizzo et
+/// al. 2023, Sec. III-A, eq. 1-2: the motion of the previous frame interpolated by t / dt).
+
+#include <Eigen/Geometry>
+#include <vector>
+
+#include "roadslam/common/scan.h"
+
+namespace roadslam::odometry {
+
+/// \param delta_T_start_end lidar motion over \p sweep_duration_s (pose at the end of the sweep in the
+///        frame at its start, T_start_end); \param sweep_duration_s [s].
+/// Points keep their order; ScanPoint::t is the time after scan.stamp_s [s].
+std::vector<Eigen::Vector3d> deskew(const Scan& scan, const Eigen::Isometry3d& delta_T_start_end,
+                                    double sweep_duration_s);
+
+/// Per-point times from the azimuth for sweeps without them (KITTI HDL-64E: the sweep starts and ends
+/// behind the car, rotating counter-clockwise seen from above; KISS-ICP GetTimestamps): fills
+/// ScanPoint::t in [0, sweep_duration_s) and sets scan.has_point_times.
+void timesFromAzimuth(Scan& scan, double sweep_duration_s);
+
+}  // namespace roadslam::odometry

@@ -1,0 +1,88 @@
+#pragma once
+/// \file gaussian_voxel_map.h
+/// An incremental map of Gaussians on a voxel grid, and scan-to-map registration against it.
+///
+/// Each voxel accumulates the sum and the scatter of the points that fell in it (so inserting a
+/// sweep is O(points), no tree to rebuild) and keeps its mean and a regularised inverse
+/// covariance. A source point is paired with the nearest voxel mean among the 27 voxels around it
+/// and the residual is weighed by that voxel's information: the point-to-distribution cost of
+/// VGICP (Koide et al., ICRA 2021) with a zero source covariance, whose plane regularisation
+/// (GICP, Segal et al. 2009: eigenvalues (1, 1, eps)) makes it point-to-plane on flat voxels.
+/// Solved by Gauss-Newton with a Geman-McClure kernel (IRLS), left perturbations [t, w] in the
+/// map frame. Frames: points inserted and the result are in the map (world) frame.
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+#include "roadslam/registration/registration.h"
+
+namespace roadslam::odometry {
+
+class GaussianVoxelMap {
+ public:
+  /// \param voxel_m voxel edge [m]; \param max_points_per_voxel a voxel stops growing there [-];
+  /// \param radius_m voxels farther than this from the vehicle are dropped [m]
+  /// \param neighbours voxels searched for a pair: 1 (the one holding the point) or 7 (and its faces)
+  GaussianVoxelMap(double voxel_m, int max_points_per_voxel, double radius_m, int neighbours = 7);
+
+  /// Adds points in the map frame [m] and refreshes the statistics of the voxels they touched.
+  void insert(const std::vector<Eigen::Vector3d>& points_map);
+  /// Drops voxels whose mean is farther than radius_m from \p origin_map [m].
+  void removeFar(const Eigen::Vector3d& origin_map);
+  size_t numVoxels() const { return voxels_.size(); }
+  bool empty() const { return voxels_.empty(); }
+  /// Voxel means [m, map frame] (for pictures and keyframe maps).
+  std::vector<Eigen::Vector3d> means() const;
+
+  struct Voxel {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();  ///< sum of p p^T
+    int n = 0;
+    uint32_t batch = 0;                                 ///< last insert() that touched it
+    bool valid = false;                                 ///< enough points for a covariance
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    Eigen::Matrix3d info = Eigen::Matrix3d::Zero();     ///< regularised inverse covariance [1/m^2]
+  };
+  /// Nearest valid voxel mean to \p x within \p max_dist_m among the searched voxels; nullptr if none.
+  const Voxel* nearest(const Eigen::Vector3d& x, double max_dist_m) const;
+
+ private:
+  struct KeyHash {
+    size_t operator()(const Eigen::Vector3i& k) const noexcept {
+      return static_cast<size_t>(k.x()) * 73856093u ^ static_cast<size_t>(k.y()) * 19349669u ^
+             static_cast<size_t>(k.z()) * 83492791u;
+    }
+  };
+  Eigen::Vector3i keyOf(const Eigen::Vector3d& p) const {
+    return (p * inv_voxel_).array().floor().cast<int>();
+  }
+  void refresh(Voxel& v) const;
+
+  double voxel_m_, inv_voxel_, radius_m_;
+  int max_points_;
+  int neighbours_;
+  uint32_t batch_ = 0;
+  std::unordered_map<Eigen::Vector3i, Voxel, KeyHash> voxels_;
+};
+
+struct VoxelAlignParams {
+  int max_iterations = 30;
+  double max_correspondence_distance_m = 2.0;  ///< [m]
+  double kernel_scale_m = 0.5;                 ///< Geman-McClure scale on the Mahalanobis-free distance [m]
+  double convergence_translation_m = 1e-4;     ///< [m]
+  double convergence_rotation_rad = 1e-4;      ///< [rad]
+  int min_inliers = 20;
+  double max_correction_m = 5.0;               ///< beyond the guess => Diverged [m]
+  double degeneracy_threshold = 0.02;          ///< normalised Hessian eigenvalue [-]
+};
+
+/// Aligns \p points_source (lidar frame) to \p map from \p T_map_source_guess.
+registration::RegistrationResult alignToVoxelMap(const GaussianVoxelMap& map,
+                                                 const std::vector<Eigen::Vector3d>& points_source,
+                                                 const Eigen::Isometry3d& T_map_source_guess,
+                                                 const VoxelAlignParams& params);
+
+}  // namespace roadslam::odometry

@@ -1,0 +1,144 @@
+#pragma once
+/// \file odometry.h
+/// LiDAR odometry: scan-to-local-map registration with constant-velocity (or external) motion
+/// prediction, deskewing, an adaptive correspondence threshold, keyframes and standstill handling.
+/// Per frame (KISS-ICP's pipeline, Vizzo et al. 2023, with a motion prior and degeneracy handling):
+///   preprocess -> deskew with the predicted motion -> voxelize -> register against the local map
+///   -> (prior along degenerate directions) -> standstill check -> update the local map.
+/// Frames: "world" is the odometry frame = lidar frame of the first sweep; poses are T_world_lidar at
+/// the sweep's stamp (its first firing).
+
+#include <Eigen/Geometry>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "roadslam/common/scan.h"
+#include "roadslam/odometry/gaussian_voxel_map.h"
+#include "roadslam/odometry/local_map.h"
+#include "roadslam/preprocess/chain.h"
+#include "roadslam/registration/adaptive_threshold.h"
+#include "roadslam/registration/registration.h"
+
+namespace mrpt::config {
+class CConfigFileBase;
+}
+
+namespace roadslam::odometry {
+
+/// Odometry parameters. Ini section [odometry]; the preprocessing chain and the registration read
+/// their own sections ([preprocess], [registration]).
+struct Params {
+  /// Scan matcher. `voxel_map`: the incremental Gaussian voxel map (fast, default);
+  /// `registration`: the [registration] method (ICP/NDT) against a target rebuilt from the local map
+  /// points whenever the map changes (slow: for comparisons and the thesis configs).
+  std::string matcher = "voxel_map";
+  double registration_voxel_m = 1.0;   ///< voxel of the source points registered [m]
+  double map_voxel_m = 1.0;            ///< voxel of the local map [m]
+  int map_points_per_voxel = 20;       ///< points kept per map voxel [-]
+  double map_radius_m = 60.0;          ///< local map radius around the vehicle [m]
+  bool adaptive_threshold = true;      ///< KISS-ICP adaptive max correspondence distance
+  double initial_threshold_m = 2.0;    ///< threshold before the adaptive one has data [m]
+  double min_motion_m = 0.1;           ///< motions below this do not feed the adaptive threshold [m]
+  double max_range_m = 100.0;          ///< sensor range for the adaptive threshold [m]
+  bool deskew = true;                  ///< motion-compensate sweeps that carry point times
+  bool times_from_azimuth = false;     ///< estimate point times from the azimuth (KITTI .bin)
+  double sweep_duration_s = 0.1;       ///< nominal sweep period, used when stamps are missing [s]
+  double keyframe_distance_m = 1.0;    ///< new keyframe after this translation [m]
+  double keyframe_angle_rad = 0.1745;  ///< ... or this rotation [rad]; ini keyframe_angle_deg
+  double standstill_translation_m = 0.02;  ///< motion below this and ... [m/frame]
+  double standstill_rotation_rad = 0.0017; ///< ... below this is standing [rad/frame]; ini _deg
+  double standstill_speed_mps = 0.05;  ///< a prior speed below this is standing [m/s]
+  bool use_prior_on_degeneracy = true; ///< replace the weak directions by the motion prior
+
+  preprocess::PreprocessParams preprocess;
+  registration::Params registration;
+
+  /// Reads [odometry] keys from \p section plus the [preprocess] and [registration] sections.
+  /// Throws naming section/key on malformed values.
+  void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section = "odometry",
+                          const std::string& preprocess_section = "preprocess",
+                          const std::string& registration_section = "registration");
+  void saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& section = "odometry",
+                        const std::string& preprocess_section = "preprocess",
+                        const std::string& registration_section = "registration") const;
+};
+
+/// Motion between the previous and the current sweep from another sensor (wheel odometry).
+struct MotionPrior {
+  Eigen::Isometry3d T_prev_curr = Eigen::Isometry3d::Identity();  ///< lidar motion, prev to current frame
+  double speed_mps = 0;                                           ///< vehicle speed [m/s]
+};
+
+enum class FrameStatus {
+  Ok,             ///< registered and converged
+  First,          ///< first frame: defines the world frame
+  Standstill,     ///< vehicle standing: pose held, map not updated
+  Degenerate,     ///< converged, weak directions filled from the prior / prediction
+  NotConverged,   ///< registration failed: pose from the prediction (reason in FrameResult::reason)
+  Skipped,        ///< dropped by frame skipping (no pose)
+  Empty           ///< no usable points: pose from the prediction
+};
+const char* toString(FrameStatus s);
+
+/// What the odometry did with one frame.
+struct FrameResult {
+  size_t index = 0;             ///< 0-based frame counter
+  double stamp_s = 0;           ///< sweep stamp [s]
+  Eigen::Isometry3d T_world_lidar = Eigen::Isometry3d::Identity();
+  FrameStatus status = FrameStatus::Ok;
+  std::string reason;           ///< registration status text when not Ok
+  bool keyframe = false;
+  int points_in = 0, points_registered = 0;  ///< raw and registered source points [-]
+  int iterations = 0, inliers = 0;
+  double fitness_m = 0;         ///< inlier RMSE [m]
+  double threshold_m = 0;       ///< correspondence threshold used [m]
+  int weak_directions = 0;      ///< degenerate directions of the registration [-]
+  double ms_preprocess = 0, ms_register = 0, ms_map = 0, ms_total = 0;  ///< wall time [ms]
+  Eigen::Matrix<double, 6, 6> information = Eigen::Matrix<double, 6, 6>::Zero();
+};
+
+class Odometry {
+ public:
+  explicit Odometry(Params params);
+  ~Odometry();
+
+  /// Processes one sweep (lidar frame). Never throws on data problems: they come back as a status.
+  FrameResult process(Scan scan, const std::optional<MotionPrior>& prior = std::nullopt);
+
+  const Params& params() const { return params_; }
+  const LocalMap& localMap() const { return map_; }
+  const GaussianVoxelMap& voxelMap() const { return gmap_; }
+  /// Deskewed, preprocessed points of the last frame (lidar frame) [m] (for keyframe maps).
+  const std::vector<Eigen::Vector3d>& lastFramePoints() const { return last_frame_points_; }
+  const preprocess::PreprocessTotals& preprocessTotals() const { return chain_.totals(); }
+
+ private:
+  Eigen::Isometry3d predict(const std::optional<MotionPrior>& prior) const;
+  void applyPriorOnWeakDirections(const registration::RegistrationResult& r,
+                                  const Eigen::Isometry3d& T_pred, Eigen::Isometry3d& T_est) const;
+  bool isStandstill(const Eigen::Isometry3d& delta, const std::optional<MotionPrior>& prior) const;
+  void updateKeyframe(FrameResult& res);
+  registration::RegistrationResult match(const std::vector<Eigen::Vector3d>& source,
+                                         const Eigen::Isometry3d& T_pred, FrameResult& res);
+  void updateMap(const Eigen::Isometry3d& T_world_lidar);
+
+  Params params_;
+  preprocess::PreprocessChain chain_;
+  LocalMap map_;
+  GaussianVoxelMap gmap_;
+  registration::AdaptiveThreshold threshold_;
+  std::unique_ptr<registration::Target> target_;
+  bool target_stale_ = true;
+  size_t frames_ = 0;
+  bool have_pose_ = false;
+  double last_stamp_s_ = 0;
+  double last_dt_s_ = 0;
+  Eigen::Isometry3d T_world_last_ = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d delta_last_ = Eigen::Isometry3d::Identity();  ///< T_prev_curr of the last frame
+  Eigen::Isometry3d T_world_keyframe_ = Eigen::Isometry3d::Identity();
+  std::vector<Eigen::Vector3d> last_frame_points_;
+};
+
+}  // namespace roadslam::odometry

@@ -1,0 +1,36 @@
+#include "roadslam/odometry/deskew.h"
+
+#include <cmath>
+
+namespace roadslam::odometry {
+
+std::vector<Eigen::Vector3d> deskew(const Scan& scan, const Eigen::Isometry3d& delta_T_start_end,
+                                    double sweep_duration_s) {
+  std::vector<Eigen::Vector3d> out;
+  out.reserve(scan.points.size());
+  const Eigen::Quaterniond q_end(delta_T_start_end.rotation());
+  const Eigen::Quaterniond q_id = Eigen::Quaterniond::Identity();
+  const Eigen::Vector3d t_end = delta_T_start_end.translation();
+  const double inv_dt = sweep_duration_s > 0 ? 1.0 / sweep_duration_s : 0.0;
+  for (const auto& p : scan.points) {
+    const Eigen::Vector3d x(p.x, p.y, p.z);
+    if (!scan.has_point_times) {
+      out.push_back(x);
+      continue;
+    }
+    // pose of the lidar at time t in the start frame: slerp/lerp of the constant-velocity motion
+    const double s = static_cast<double>(p.t) * inv_dt;
+    out.push_back(q_id.slerp(s, q_end) * x + s * t_end);
+  }
+  return out;
+}
+
+void timesFromAzimuth(Scan& scan, double sweep_duration_s) {
+  for (auto& p : scan.points) {
+    const double yaw = -std::atan2(static_cast<double>(p.y), static_cast<double>(p.x));
+    p.t = static_cast<float>(0.5 * (yaw / M_PI + 1.0) * sweep_duration_s);
+  }
+  scan.has_point_times = true;
+}
+
+}  // namespace roadslam::odometry

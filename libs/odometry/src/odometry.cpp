@@ -1,0 +1,218 @@
+#include "roadslam/odometry/odometry.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "roadslam/odometry/deskew.h"
+
+namespace roadslam::odometry {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+double angleOf(const Eigen::Isometry3d& T) {
+  return Eigen::AngleAxisd(T.rotation()).angle();
+}
+
+/// Constant-velocity scaling of a motion: s = 0 identity, s = 1 \p T, s = 2 twice \p T (slerp/lerp).
+Eigen::Isometry3d scaleMotion(const Eigen::Isometry3d& T, double s) {
+  const Eigen::AngleAxisd aa(T.rotation());
+  Eigen::Isometry3d out = Eigen::Isometry3d::Identity();
+  out.linear() = Eigen::AngleAxisd(aa.angle() * s, aa.axis()).toRotationMatrix();
+  out.translation() = T.translation() * s;
+  return out;
+}
+
+}  // namespace
+
+const char* toString(FrameStatus s) {
+  switch (s) {
+    case FrameStatus::Ok: return "ok";
+    case FrameStatus::First: return "first";
+    case FrameStatus::Standstill: return "standstill";
+    case FrameStatus::Degenerate: return "degenerate";
+    case FrameStatus::NotConverged: return "not_converged";
+    case FrameStatus::Skipped: return "skipped";
+    case FrameStatus::Empty: return "empty";
+  }
+  return "?";
+}
+
+Odometry::Odometry(Params params)
+    : params_(std::move(params)),
+      chain_(params_.preprocess),
+      map_(params_.map_voxel_m, params_.map_points_per_voxel, params_.map_radius_m),
+      gmap_(params_.map_voxel_m, params_.map_points_per_voxel, params_.map_radius_m),
+      threshold_(params_.initial_threshold_m, params_.min_motion_m, params_.max_range_m) {}
+
+Odometry::~Odometry() = default;
+
+Eigen::Isometry3d Odometry::predict(const std::optional<MotionPrior>& prior) const {
+  if (prior) return prior->T_prev_curr;
+  return delta_last_;
+}
+
+bool Odometry::isStandstill(const Eigen::Isometry3d& delta, const std::optional<MotionPrior>& prior) const {
+  if (prior) return std::abs(prior->speed_mps) < params_.standstill_speed_mps;
+  return delta.translation().norm() < params_.standstill_translation_m &&
+         angleOf(delta) < params_.standstill_rotation_rad;
+}
+
+void Odometry::applyPriorOnWeakDirections(const registration::RegistrationResult& r,
+                                          const Eigen::Isometry3d& T_pred,
+                                          Eigen::Isometry3d& T_est) const {
+  // Correction of the registration over the prediction as a left increment [t, L*r] in the world
+  // frame (the registration's convention); its components along the weak eigenvectors of the
+  // Hessian are not observed by the scan, so they are removed (Zhang et al. 2016, solution remapping).
+  const Eigen::Isometry3d corr = T_est * T_pred.inverse();
+  const Eigen::AngleAxisd aa(corr.rotation());
+  const double L = r.degeneracy.length_scale_m;
+  Eigen::Matrix<double, 6, 1> xi;
+  xi << corr.translation(), aa.axis() * aa.angle() * L;
+  for (int i = 0; i < r.degeneracy.num_weak; ++i) {
+    const Eigen::Matrix<double, 6, 1> v = r.degeneracy.directions.col(i).normalized();
+    xi -= v.dot(xi) * v;
+  }
+  Eigen::Isometry3d kept = Eigen::Isometry3d::Identity();
+  const Eigen::Vector3d rv = xi.tail<3>() / L;
+  if (rv.norm() > 0) kept.linear() = Eigen::AngleAxisd(rv.norm(), rv.normalized()).toRotationMatrix();
+  kept.translation() = xi.head<3>();
+  T_est = kept * T_pred;
+}
+
+void Odometry::updateKeyframe(FrameResult& res) {
+  const Eigen::Isometry3d d = T_world_keyframe_.inverse() * res.T_world_lidar;
+  if (res.status == FrameStatus::First || d.translation().norm() >= params_.keyframe_distance_m ||
+      angleOf(d) >= params_.keyframe_angle_rad) {
+    res.keyframe = true;
+    T_world_keyframe_ = res.T_world_lidar;
+  }
+}
+
+registration::RegistrationResult Odometry::match(const std::vector<Eigen::Vector3d>& source,
+                                                 const Eigen::Isometry3d& T_pred, FrameResult& res) {
+  registration::Params rp = params_.registration;
+  if (params_.adaptive_threshold) {
+    // KISS-ICP: correspondences within 3 sigma, kernel scale sigma / 3 (Vizzo et al. 2023, Sec. III-C)
+    const double tau = threshold_.threshold();
+    rp.max_correspondence_distance_m = 3.0 * tau;
+    rp.kernel_scale_m = tau / 3.0;
+  }
+  res.threshold_m = rp.max_correspondence_distance_m;
+  if (params_.matcher == "voxel_map") {
+    VoxelAlignParams vp;
+    vp.max_iterations = rp.max_iterations;
+    vp.max_correspondence_distance_m = rp.max_correspondence_distance_m;
+    vp.kernel_scale_m = rp.kernel_scale_m;
+    vp.convergence_translation_m = rp.convergence_translation_m;
+    vp.convergence_rotation_rad = rp.convergence_rotation_rad;
+    vp.min_inliers = rp.min_inliers;
+    vp.max_correction_m = rp.max_correction_m;
+    vp.degeneracy_threshold = rp.degeneracy_threshold;
+    return alignToVoxelMap(gmap_, source, T_pred, vp);
+  }
+  if (target_stale_ && !map_.empty()) {
+    target_ = std::make_unique<registration::Target>(map_.points(), rp);
+    target_stale_ = false;
+  }
+  return registration::align(*target_, source, T_pred, rp);
+}
+
+void Odometry::updateMap(const Eigen::Isometry3d& T_world_lidar) {
+  std::vector<Eigen::Vector3d> world;
+  world.reserve(last_frame_points_.size());
+  for (const auto& p : last_frame_points_) world.push_back(T_world_lidar * p);
+  if (params_.matcher == "voxel_map") {
+    gmap_.insert(world);
+    gmap_.removeFar(T_world_lidar.translation());
+  } else {
+    map_.insert(world);
+    map_.removeFar(T_world_lidar.translation());
+    target_stale_ = true;
+  }
+}
+
+FrameResult Odometry::process(Scan scan, const std::optional<MotionPrior>& prior) {
+  const auto t0 = Clock::now();
+  FrameResult res;
+  res.index = frames_++;
+  res.stamp_s = scan.stamp_s;
+  res.points_in = static_cast<int>(scan.points.size());
+  const auto report = chain_.process(scan);
+  res.ms_preprocess = msSince(t0);
+  if (report.skipped) {
+    res.status = FrameStatus::Skipped;
+    return res;
+  }
+
+  // constant velocity: the last motion rescaled to this frame's time step
+  const double dt = have_pose_ ? scan.stamp_s - last_stamp_s_ : params_.sweep_duration_s;
+  Eigen::Isometry3d delta_pred = predict(prior);
+  if (!prior && have_pose_ && dt > 0 && last_dt_s_ > 0) delta_pred = scaleMotion(delta_pred, dt / last_dt_s_);
+  const Eigen::Isometry3d T_pred = T_world_last_ * delta_pred;
+
+  if (params_.times_from_azimuth && !scan.has_point_times) timesFromAzimuth(scan, params_.sweep_duration_s);
+  const double sweep = params_.sweep_duration_s;
+  const Eigen::Isometry3d delta_sweep =
+      scaleMotion(delta_pred, dt > 0 && have_pose_ ? sweep / dt : 1.0);
+  if (!params_.deskew) scan.has_point_times = false;  // deskew() then keeps the points as they are
+  last_frame_points_ = deskew(scan, delta_sweep, sweep);
+
+  const auto t_reg = Clock::now();
+  const auto source = registration::voxelDownsample(last_frame_points_, params_.registration_voxel_m);
+  res.points_registered = static_cast<int>(source.size());
+  if (!have_pose_) {
+    res.status = source.empty() ? FrameStatus::Empty : FrameStatus::First;
+    if (source.empty()) return res;
+    res.T_world_lidar = Eigen::Isometry3d::Identity();
+  } else {
+    const auto r = match(source, T_pred, res);
+    res.iterations = r.iterations;
+    res.inliers = r.inliers;
+    res.fitness_m = r.fitness;
+    res.information = r.information;
+    res.weak_directions = r.degeneracy.num_weak;
+    Eigen::Isometry3d T_est = r.T_target_source;
+    if (!r.converged) {
+      res.status = source.empty() ? FrameStatus::Empty : FrameStatus::NotConverged;
+      res.reason = registration::toString(r.status) + (r.reason.empty() ? "" : ": " + r.reason);
+      T_est = T_pred;
+    } else if (r.degeneracy.degenerate && params_.use_prior_on_degeneracy) {
+      applyPriorOnWeakDirections(r, T_pred, T_est);
+      res.status = FrameStatus::Degenerate;
+    }
+    const Eigen::Isometry3d delta = T_world_last_.inverse() * T_est;
+    if (res.status == FrameStatus::Ok && isStandstill(delta, prior)) {
+      res.status = FrameStatus::Standstill;
+      T_est = T_world_last_;
+    }
+    if (res.status == FrameStatus::Ok || res.status == FrameStatus::Degenerate) {
+      threshold_.update(T_pred.inverse() * T_est, delta);
+    }
+    res.T_world_lidar = T_est;
+  }
+  res.ms_register = msSince(t_reg);
+
+  const auto t_map = Clock::now();
+  const bool update_map = res.status == FrameStatus::Ok || res.status == FrameStatus::First ||
+                          res.status == FrameStatus::Degenerate;
+  if (update_map) updateMap(res.T_world_lidar);
+  res.ms_map = msSince(t_map);
+
+  if (have_pose_ && dt > 0) {
+    delta_last_ = T_world_last_.inverse() * res.T_world_lidar;
+    last_dt_s_ = dt;
+  }
+  if (res.status == FrameStatus::Standstill) delta_last_ = Eigen::Isometry3d::Identity();
+  T_world_last_ = res.T_world_lidar;
+  last_stamp_s_ = scan.stamp_s;
+  have_pose_ = true;
+  updateKeyframe(res);
+  res.ms_total = msSince(t0);
+  return res;
+}
+
+}  // namespace roadslam::odometry

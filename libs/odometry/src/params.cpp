@@ -1,0 +1,69 @@
+#include <mrpt/config/CConfigFileBase.h>
+
+#include <cmath>
+
+#include "roadslam/common/config.h"
+#include "roadslam/odometry/odometry.h"
+
+namespace roadslam::odometry {
+namespace {
+constexpr double kDeg = M_PI / 180.0;
+}
+
+void Params::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, const std::string& s,
+                                const std::string& pre, const std::string& reg) {
+  matcher = readString(c, s, "matcher", matcher);
+  if (matcher != "voxel_map" && matcher != "registration") {
+    throw std::runtime_error("[" + s + "] matcher = '" + matcher + "': expected voxel_map or registration");
+  }
+  registration_voxel_m = readDouble(c, s, "registration_voxel_m", registration_voxel_m);
+  map_voxel_m = readDouble(c, s, "map_voxel_m", map_voxel_m);
+  map_points_per_voxel = readInt(c, s, "map_points_per_voxel", map_points_per_voxel);
+  map_radius_m = readDouble(c, s, "map_radius_m", map_radius_m);
+  adaptive_threshold = readBool(c, s, "adaptive_threshold", adaptive_threshold);
+  initial_threshold_m = readDouble(c, s, "initial_threshold_m", initial_threshold_m);
+  min_motion_m = readDouble(c, s, "min_motion_m", min_motion_m);
+  max_range_m = readDouble(c, s, "max_range_m", max_range_m);
+  deskew = readBool(c, s, "deskew", deskew);
+  times_from_azimuth = readBool(c, s, "times_from_azimuth", times_from_azimuth);
+  sweep_duration_s = readDouble(c, s, "sweep_duration_s", sweep_duration_s);
+  keyframe_distance_m = readDouble(c, s, "keyframe_distance_m", keyframe_distance_m);
+  keyframe_angle_rad = readDouble(c, s, "keyframe_angle_deg", keyframe_angle_rad / kDeg) * kDeg;
+  standstill_translation_m = readDouble(c, s, "standstill_translation_m", standstill_translation_m);
+  standstill_rotation_rad = readDouble(c, s, "standstill_rotation_deg", standstill_rotation_rad / kDeg) * kDeg;
+  standstill_speed_mps = readDouble(c, s, "standstill_speed_mps", standstill_speed_mps);
+  use_prior_on_degeneracy = readBool(c, s, "use_prior_on_degeneracy", use_prior_on_degeneracy);
+  if (registration_voxel_m <= 0 || map_voxel_m <= 0 || map_points_per_voxel < 1 || map_radius_m <= 0 ||
+      sweep_duration_s <= 0) {
+    throw std::runtime_error("[" + s + "] voxel sizes, map_points_per_voxel, map_radius_m and "
+                             "sweep_duration_s must be positive");
+  }
+  preprocess.loadFromConfigFile(c, pre);
+  registration.loadFromConfigFile(c, reg);
+}
+
+void Params::saveToConfigFile(mrpt::config::CConfigFileBase& c, const std::string& s,
+                              const std::string& pre, const std::string& reg) const {
+  c.write(s, "matcher", matcher);
+  c.write(s, "registration_voxel_m", registration_voxel_m);
+  c.write(s, "map_voxel_m", map_voxel_m);
+  c.write(s, "map_points_per_voxel", map_points_per_voxel);
+  c.write(s, "map_radius_m", map_radius_m);
+  c.write(s, "adaptive_threshold", adaptive_threshold);
+  c.write(s, "initial_threshold_m", initial_threshold_m);
+  c.write(s, "min_motion_m", min_motion_m);
+  c.write(s, "max_range_m", max_range_m);
+  c.write(s, "deskew", deskew);
+  c.write(s, "times_from_azimuth", times_from_azimuth);
+  c.write(s, "sweep_duration_s", sweep_duration_s);
+  c.write(s, "keyframe_distance_m", keyframe_distance_m);
+  c.write(s, "keyframe_angle_deg", keyframe_angle_rad / kDeg);
+  c.write(s, "standstill_translation_m", standstill_translation_m);
+  c.write(s, "standstill_rotation_deg", standstill_rotation_rad / kDeg);
+  c.write(s, "standstill_speed_mps", standstill_speed_mps);
+  c.write(s, "use_prior_on_degeneracy", use_prior_on_degeneracy);
+  preprocess.saveToConfigFile(c, pre);
+  registration.saveToConfigFile(c, reg);
+}
+
+}  // namespace roadslam::odometry

@@ -1,0 +1,134 @@
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+#include <cmath>
+
+#include "roadslam/odometry/gaussian_voxel_map.h"
+
+namespace roadslam::odometry {
+namespace {
+
+using Matrix6d = Eigen::Matrix<double, 6, 6>;
+using Vector6d = Eigen::Matrix<double, 6, 1>;
+using registration::RegistrationResult;
+using registration::Status;
+
+Eigen::Isometry3d applyIncrement(const Vector6d& delta, const Eigen::Isometry3d& T) {
+  Eigen::Isometry3d D = Eigen::Isometry3d::Identity();
+  const Eigen::Vector3d w = delta.tail<3>();
+  const double angle = w.norm();
+  if (angle > 0) D.linear() = Eigen::AngleAxisd(angle, w / angle).toRotationMatrix();
+  D.translation() = delta.head<3>();
+  return D * T;
+}
+
+Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
+  Eigen::Matrix3d S;
+  S << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
+  return S;
+}
+
+struct LinearSystem {
+  Matrix6d H = Matrix6d::Zero();
+  Vector6d b = Vector6d::Zero();
+  int inliers = 0;
+  double sq_sum = 0;  ///< sum of squared Mahalanobis residuals of inliers [m^2]
+  double range_sq_sum = 0;
+};
+
+// Gauss-Newton normal equations of sum_i rho(d_i^T Omega_i d_i), d_i = T p_i - mu_i, with IRLS
+// Geman-McClure weights w = s^4 / (s^2 + r^2)^2 (Black & Rangarajan 1996).
+LinearSystem buildSystem(const GaussianVoxelMap& map, const std::vector<Eigen::Vector3d>& src,
+                         const Eigen::Isometry3d& T, const VoxelAlignParams& p) {
+  LinearSystem ls;
+  const double s2 = p.kernel_scale_m * p.kernel_scale_m;
+  Eigen::Matrix<double, 3, 6> J;
+  J.leftCols<3>().setIdentity();
+  for (const auto& ps : src) {
+    const Eigen::Vector3d x = T * ps;
+    const auto* v = map.nearest(x, p.max_correspondence_distance_m);
+    if (!v) continue;
+    const Eigen::Vector3d d = x - v->mean;
+    const double r2 = d.dot(v->info * d);
+    const double den = s2 + r2;
+    const double w = s2 * s2 / (den * den);
+    J.rightCols<3>() = -skew(x);
+    const Eigen::Matrix<double, 6, 3> JtO = J.transpose() * v->info;
+    ls.H.noalias() += w * JtO * J;
+    ls.b.noalias() += w * JtO * d;
+    ls.sq_sum += r2;
+    ls.range_sq_sum += ps.squaredNorm();
+    ++ls.inliers;
+  }
+  return ls;
+}
+
+// Zhang, Kaess & Singh 2016: same normalisation as the registration library's analyse().
+registration::Degeneracy analyse(const Matrix6d& H, int n, double lever_m, double threshold) {
+  registration::Degeneracy d;
+  d.length_scale_m = lever_m;
+  Vector6d s;
+  s << 1, 1, 1, 1 / lever_m, 1 / lever_m, 1 / lever_m;
+  const Matrix6d Hs = s.asDiagonal() * H * s.asDiagonal() / std::max(n, 1);
+  Eigen::SelfAdjointEigenSolver<Matrix6d> es(Hs);
+  d.eigenvalues = es.eigenvalues();
+  d.directions = es.eigenvectors();
+  for (int i = 0; i < 6; ++i) d.num_weak += d.eigenvalues(i) < threshold ? 1 : 0;
+  d.degenerate = d.num_weak > 0;
+  return d;
+}
+
+RegistrationResult failed(const Eigen::Isometry3d& T, Status s, std::string why) {
+  RegistrationResult r;
+  r.T_target_source = T;
+  r.converged = false;
+  r.status = s;
+  r.reason = std::move(why);
+  return r;
+}
+
+}  // namespace
+
+RegistrationResult alignToVoxelMap(const GaussianVoxelMap& map, const std::vector<Eigen::Vector3d>& src,
+                                   const Eigen::Isometry3d& guess, const VoxelAlignParams& p) {
+  if (!guess.matrix().allFinite()) return failed(guess, Status::NonFiniteInput, "initial guess is not finite");
+  if (map.empty()) return failed(guess, Status::EmptyTarget, "local map is empty");
+  if (static_cast<int>(src.size()) < p.min_inliers) {
+    return failed(guess, Status::TooFewPoints, std::to_string(src.size()) + " source points");
+  }
+  Eigen::Isometry3d T = guess;
+  RegistrationResult r;
+  r.status = Status::MaxIterations;
+  for (int it = 0; it < p.max_iterations; ++it) {
+    const LinearSystem ls = buildSystem(map, src, T, p);
+    r.iterations = it + 1;
+    if (ls.inliers < p.min_inliers) {
+      return failed(T, Status::TooFewCorrespondences,
+                    std::to_string(ls.inliers) + " correspondences within " +
+                        std::to_string(p.max_correspondence_distance_m) + " m");
+    }
+    const Vector6d delta = ls.H.ldlt().solve(-ls.b);
+    if (!delta.allFinite()) return failed(T, Status::Diverged, "singular normal equations");
+    T = applyIncrement(delta, T);
+    if ((T.translation() - guess.translation()).norm() > p.max_correction_m) {
+      return failed(T, Status::Diverged, "correction beyond max_correction_m");
+    }
+    if (delta.head<3>().norm() < p.convergence_translation_m &&
+        delta.tail<3>().norm() < p.convergence_rotation_rad) {
+      r.status = Status::Converged;
+      break;
+    }
+  }
+  const LinearSystem fin = buildSystem(map, src, T, p);
+  r.T_target_source = T;
+  r.converged = r.status == Status::Converged;
+  r.inliers = fin.inliers;
+  r.fitness = fin.inliers ? std::sqrt(fin.sq_sum / fin.inliers) : 0.0;
+  const double var = std::max(r.fitness * r.fitness, 1e-4);
+  r.information = fin.H / var;
+  const double lever = fin.inliers ? std::sqrt(fin.range_sq_sum / fin.inliers) : 1.0;
+  r.degeneracy = analyse(fin.H, fin.inliers, std::max(lever, 1.0), p.degeneracy_threshold);
+  if (!r.converged) r.reason = "no convergence in " + std::to_string(p.max_iterations) + " iterations";
+  return r;
+}
+
+}  // namespace roadslam::odometry

@@ -1,0 +1,46 @@
+#pragma once
+/// \file map_job.h
+/// The job behind `roadslam-map`: read sweeps from an input, run the odometry, and write the
+/// results into an output folder. Every file is written to a temporary name and renamed, so a crash
+/// never leaves a half-written output; SIGINT/SIGTERM stop between frames and the outputs then hold
+/// what was processed.
+///
+/// Outputs in DIR: trajectory.tum (T_world_lidar at each sweep stamp), trajectory_kitti.txt (3x4)
+/// with trajectory_times.txt, frames.csv (one row per frame: status, timing, registration figures),
+/// config_used.ini (every parameter as used), summary.json.
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "roadslam/odometry/odometry.h"
+
+namespace roadslam::pipeline {
+
+struct MapRequest {
+  std::string config_path;  ///< ini with [odometry], [preprocess], [registration], [velodyne]
+  std::string input_path;   ///< .pcap, .rawlog or KITTI folder
+  std::string out_dir;      ///< created when missing
+  size_t max_frames = 0;    ///< 0 = all
+  bool progress = true;     ///< progress bar when stderr is a terminal
+};
+
+struct MapOutcome {
+  std::vector<odometry::FrameResult> frames;
+  nlohmann::json summary;
+  bool interrupted = false;
+};
+
+/// Runs the job. Throws std::runtime_error with a one-line reason on configuration or file
+/// problems (bad ini key, unreadable input, output folder not writable); per-frame problems are
+/// counted in the summary.
+MapOutcome runMapJob(const MapRequest& req);
+
+/// Writes the outputs listed above for \p frames into \p out_dir.
+void writeMapOutputs(const std::string& out_dir, const std::vector<odometry::FrameResult>& frames,
+                     const nlohmann::json& summary);
+
+/// Summary statistics of \p frames (counts per status, ms per frame mean/p50/p95/max).
+nlohmann::json summarize(const std::vector<odometry::FrameResult>& frames);
+
+}  // namespace roadslam::pipeline

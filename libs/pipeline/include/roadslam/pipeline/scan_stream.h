@@ -1,0 +1,41 @@
+#pragma once
+/// \file scan_stream.h
+/// Sweeps from any recorded input, by what the path is: a .pcap (Velodyne UDP capture), a .rawlog
+/// (MRPT, CObservationVelodyneScan packets), or a folder of KITTI NNNNNN.bin sweeps (times.txt beside
+/// or above it). The pipeline never knows which.
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "roadslam/common/scan.h"
+
+namespace mrpt::config {
+class CConfigFileBase;
+}
+
+namespace roadslam::pipeline {
+
+struct StreamStats {
+  size_t sweeps = 0;             ///< sweeps returned
+  size_t partial_sweeps = 0;     ///< first/last partial sweeps (returned, flagged)
+  size_t packets = 0;            ///< packets read (Velodyne inputs)
+  size_t malformed_packets = 0;  ///< packets rejected by the decoder or the source
+};
+
+class ScanStream {
+ public:
+  virtual ~ScanStream() = default;
+  /// The next sweep, or nullopt at the end of the input.
+  virtual std::optional<Scan> next() = 0;
+  virtual StreamStats stats() const = 0;
+  virtual std::string describe() const = 0;
+  /// Total sweeps when known in advance (KITTI folders), else 0: for progress and ETA.
+  virtual size_t sizeHint() const { return 0; }
+};
+
+/// Opens \p path; the decoder reads the [velodyne] section of \p cfg (model, calibration, ...).
+/// Throws std::runtime_error naming the path when it is missing or of an unknown kind.
+std::unique_ptr<ScanStream> openScanStream(const std::string& path, const mrpt::config::CConfigFileBase& cfg);
+
+}  // namespace roadslam::pipeline

@@ -1,0 +1,94 @@
+#include "roadslam/pipeline/scan_stream.h"
+
+#include <mrpt/config/CConfigFileBase.h>
+
+#include <filesystem>
+#include <stdexcept>
+
+#include "roadslam/datasets/kitti_scans.h"
+#include "roadslam/sources/pcap_source.h"
+#include "roadslam/sources/rawlog_source.h"
+#include "roadslam/velodyne/decoder_params.h"
+#include "roadslam/velodyne/sweep_assembler.h"
+
+namespace fs = std::filesystem;
+
+namespace roadslam::pipeline {
+namespace {
+
+/// Velodyne packets (pcap or rawlog) cut into sweeps by our decoder.
+class VelodyneStream : public ScanStream {
+ public:
+  VelodyneStream(std::unique_ptr<sources::PacketSource> src, const velodyne::DecoderParams& p)
+      : src_(std::move(src)), assembler_(p) {}
+
+  std::optional<Scan> next() override {
+    while (!assembler_.hasSweep()) {
+      if (finished_) return std::nullopt;
+      auto pkt = src_->next();
+      if (!pkt) {
+        if (src_->finished()) {
+          assembler_.finish();
+          finished_ = true;
+        }
+        continue;
+      }
+      if (pkt->payload.size() == velodyne::kDataPacketSize) {
+        assembler_.addPacket(pkt->payload.data(), pkt->payload.size(), pkt->stamp_s);
+      }
+    }
+    return assembler_.takeSweep();
+  }
+
+  StreamStats stats() const override {
+    const auto& a = assembler_.stats();
+    const auto& s = src_->stats();
+    return {a.sweeps, a.partial_sweeps, static_cast<size_t>(s.packets),
+            static_cast<size_t>(s.malformed_packets) + a.malformed()};
+  }
+  std::string describe() const override { return src_->describe(); }
+
+ private:
+  std::unique_ptr<sources::PacketSource> src_;
+  velodyne::SweepAssembler assembler_;
+  bool finished_ = false;
+};
+
+class KittiStream : public ScanStream {
+ public:
+  explicit KittiStream(const std::string& dir) : folder_(dir), dir_(dir) {}
+  std::optional<Scan> next() override {
+    if (i_ >= folder_.size()) return std::nullopt;
+    ++stats_.sweeps;
+    return folder_.read(i_++);
+  }
+  StreamStats stats() const override { return stats_; }
+  std::string describe() const override { return "kitti:" + dir_; }
+  size_t sizeHint() const override { return folder_.size(); }
+
+ private:
+  datasets::KittiScanFolder folder_;
+  std::string dir_;
+  size_t i_ = 0;
+  StreamStats stats_;
+};
+
+}  // namespace
+
+std::unique_ptr<ScanStream> openScanStream(const std::string& path, const mrpt::config::CConfigFileBase& cfg) {
+  if (!fs::exists(path)) throw std::runtime_error("input '" + path + "' does not exist");
+  if (fs::is_directory(path)) return std::make_unique<KittiStream>(path);
+  velodyne::DecoderParams dp;
+  dp.loadFromConfigFile(cfg, "velodyne");
+  const std::string ext = fs::path(path).extension().string();
+  if (ext == ".pcap" || ext == ".pcapng") {
+    return std::make_unique<VelodyneStream>(std::make_unique<sources::PcapPacketSource>(path), dp);
+  }
+  if (ext == ".rawlog" || ext == ".gz") {
+    return std::make_unique<VelodyneStream>(std::make_unique<sources::RawlogPacketSource>(path), dp);
+  }
+  throw std::runtime_error("input '" + path +
+                           "': unknown kind (expected .pcap, .rawlog or a folder of KITTI .bin sweeps)");
+}
+
+}  // namespace roadslam::pipeline
