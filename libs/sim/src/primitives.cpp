@@ -59,7 +59,7 @@ bool intersect(const Ray& ray, const Prism& p, double c, double s, double t_min,
   Clip k{-1e300, hit.valid ? hit.t : 1e300};
   if (!clipHalfSpace(du, p.hu - ou, 0, k) || !clipHalfSpace(-du, p.hu + ou, 1, k) ||
       !clipHalfSpace(dv, p.hv - ov, 2, k) || !clipHalfSpace(-dv, p.hv + ov, 3, k) ||
-      !clipHalfSpace(-ray.d.z, ray.o.z - p.zb, 4, k) ||
+      !clipHalfSpace(-(ray.d.z - p.su * du - p.sv * dv), ray.o.z - p.su * ou - p.sv * ov - p.zb, 4, k) ||
       !clipHalfSpace(ray.d.z - p.su * du - p.sv * dv, p.zt + p.su * ou + p.sv * ov - ray.o.z, 5, k))
     return false;
   if (k.t0 <= t_min || k.face0 < 0) return false;  // behind, or origin inside the prism
@@ -69,11 +69,11 @@ bool intersect(const Ray& ray, const Prism& p, double c, double s, double t_min,
     case 1: n = {-c, -s, 0}; break;
     case 2: n = {-s, c, 0}; break;
     case 3: n = {s, -c, 0}; break;
-    case 4: n = {0, 0, -1}; break;
     default: {
-      // top plane z - su*u - sv*v = const: gradient (-su, -sv, 1) in (u, v, z), rotated to world
+      // top/bottom planes z - su*u - sv*v = const: gradient (-su, -sv, 1) in (u, v, z), rotated
+      // to the world; the bottom face looks the other way
       const double gx = -p.su * c + p.sv * s, gy = -p.su * s - p.sv * c;
-      const double inv = 1.0 / std::sqrt(gx * gx + gy * gy + 1.0);
+      const double inv = (k.face0 == 4 ? -1.0 : 1.0) / std::sqrt(gx * gx + gy * gy + 1.0);
       n = {gx * inv, gy * inv, inv};
     }
   }

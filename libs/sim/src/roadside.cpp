@@ -38,7 +38,7 @@ Prism groundPrism(const World& w, Vec2 c, double yaw, double hu, double hv, doub
   q.su = grad.x * std::cos(yaw) + grad.y * std::sin(yaw);
   q.sv = -grad.x * std::sin(yaw) + grad.y * std::cos(yaw);
   q.zt = g + top_above_ground;
-  q.zb = g - bottom_below - std::abs(q.su) * hu - std::abs(q.sv) * hv;
+  q.zb = g - bottom_below;
   q.material = m;
   return q;
 }
@@ -85,11 +85,9 @@ double RoadIndex::clearance(double x, double y, int exclude) const {
 
 void addSidewalks(const WorldParams& p, const RoadIndex& index, World& world) {
   if (p.sidewalk_width_m <= 0) return;
-  constexpr double kPiece = 4.0;  // [m] sidewalk pieces follow curves and slopes
   for (std::size_t ri = 0; ri < world.roads.size(); ++ri) {
     Road& r = world.roads[ri];
     const double len = roadLength(r), hw = r.half_width_m, sw = p.sidewalk_width_m;
-    const int n = static_cast<int>(std::floor(len / kPiece));
     for (int side : {+1, -1}) {
       auto& curbs = side > 0 ? r.left_curbs : r.right_curbs;
       std::vector<Vec2> cur;
@@ -97,18 +95,28 @@ void addSidewalks(const WorldParams& p, const RoadIndex& index, World& world) {
         if (cur.size() >= 2) curbs.push_back(cur);
         cur.clear();
       };
-      for (int k = 0; k < n; ++k) {
-        const double s = k * kPiece;
-        const Station mid = station(r, s + 0.5 * kPiece);
+      for (double s = 0, piece = 4.0; len - s > 0.25; s += piece) {
+        // Straight pieces (<= 4 m) tangent to the curb line at their middle. On a curve turning by
+        // dh over a piece whose curb length is Lc, the curb chord (the ground-truth polyline) and
+        // the piece's face each stand off the arc by about Lc dh / 8: halve the piece until the sum
+        // is <= 2 cm, so the curb face stays within ~2 cm of the ground-truth polyline.
+        const Station a = station(r, s);
+        piece = std::min(4.0, len - s);
+        while (piece > 0.3) {
+          const double dh = std::abs(std::remainder(station(r, s + piece).h - a.h, 2 * M_PI));
+          if ((piece + hw * dh) * dh / 4 <= 0.02) break;
+          piece *= 0.5;
+        }
+        const Station mid = station(r, s + 0.5 * piece);
         const Vec2 c = mid.at(0, side * (hw + 0.5 * sw));
         if (index.clearance(c.x, c.y, static_cast<int>(ri)) < 0.5 * sw - 0.3) {
           flush();
           continue;
         }
-        world.prisms.push_back(groundPrism(world, c, mid.h, 0.5 * kPiece + 0.05, 0.5 * sw, 1.0,
+        world.prisms.push_back(groundPrism(world, c, mid.h, 0.5 * piece + 0.05, 0.5 * sw, 1.0,
                                            p.curb_height_m, Material::Concrete));
-        if (cur.empty()) cur.push_back(station(r, s).at(0, side * hw));
-        cur.push_back(station(r, s + kPiece).at(0, side * hw));
+        if (cur.empty()) cur.push_back(a.at(0, side * hw));
+        cur.push_back(station(r, s + piece).at(0, side * hw));
       }
       flush();
     }
@@ -126,7 +134,7 @@ void addTunnel(const WorldParams& p, World& world) {
                                          p.tunnel_height_m + 0.5, Material::TunnelWall));
     Prism ceiling = groundPrism(world, st.p, st.h, 2.05, wall + 0.25, 0, p.tunnel_height_m + 0.5,
                                 Material::TunnelWall);
-    ceiling.zb = ceiling.zt - 0.5 - std::abs(ceiling.su) * ceiling.hu - std::abs(ceiling.sv) * ceiling.hv;
+    ceiling.zb = ceiling.zt - 0.5;
     world.prisms.push_back(ceiling);
   }
 }

@@ -243,6 +243,9 @@ Prism World::carPrism(const MovingCar& car, double t_s) const {
   p.yaw = q.yaw;
   p.hu = 0.5 * car.length_m;
   p.hv = 0.5 * car.width_m;
+  const Vec2 g = ground.gradient(q.x, q.y);  // the body follows the terrain
+  p.su = g.x * std::cos(q.yaw) + g.y * std::sin(q.yaw);
+  p.sv = -g.x * std::sin(q.yaw) + g.y * std::cos(q.yaw);
   p.zb = q.z + 0.25;  // ground clearance: low beams pass under the body
   p.zt = q.z + car.height_m;
   p.material = car.material;

@@ -84,7 +84,8 @@ TEST(RayCast, SlopedTopPrismAgainstMarchingReference) {
   auto inside = [&](double x, double y, double z) {
     const double c = std::cos(p.yaw), s = std::sin(p.yaw);
     const double u = c * (x - p.cx) + s * (y - p.cy), v = -s * (x - p.cx) + c * (y - p.cy);
-    return std::abs(u) <= p.hu && std::abs(v) <= p.hv && z >= p.zb && z <= p.zt + p.su * u + p.sv * v;
+    return std::abs(u) <= p.hu && std::abs(v) <= p.hv && z >= p.zb + p.su * u + p.sv * v &&
+           z <= p.zt + p.su * u + p.sv * v;
   };
   Rng rng{7};
   int hits = 0;
@@ -161,4 +162,46 @@ TEST(RayCast, GridTraversalEqualsBruteForce) {
     }
   }
   EXPECT_GT(hits, 2000);
+}
+
+// Oracle for boundary work: the ground-truth curb polylines lie on the curb faces the sensor sees.
+// A horizontal ray cast from 1 m inside the road, at half the curb height, towards each curb
+// segment's midpoint hits concrete 1 m away (straight pieces stand off curves by <= 2 cm).
+TEST(RayCast, GroundTruthCurbsLieOnTheCurbFaces) {
+  for (const bool hills : {false, true}) {
+    WorldParams p;
+    if (hills) {
+      p.hill_amplitude_m = 6;
+      p.hill_wavelength_m = 300;
+    }
+    Road route;
+    const World w = buildWorld(p, 5, route);
+    std::size_t n = 0;
+    double worst = 0;
+    for (const Road& r : w.roads)
+      for (int side : {+1, -1})
+        for (const auto& line : side > 0 ? r.left_curbs : r.right_curbs)
+          for (std::size_t i = 1; i < line.size(); ++i) {
+            const Vec2 a = line[i - 1], b = line[i];
+            const double len = std::hypot(b.x - a.x, b.y - a.y);
+            // left curbs have the road on their right (inward = -left normal), right curbs on their left
+            const Vec2 in{side * (b.y - a.y) / len, -side * (b.x - a.x) / len};
+            const Vec2 m{0.5 * (a.x + b.x), 0.5 * (a.y + b.y)};
+            // aim along the terrain: from 1 m inside the road to the curb point, both at half curb height
+            const Vec3 o{m.x + in.x, m.y + in.y, w.ground.height(m.x + in.x, m.y + in.y) + 0.5 * p.curb_height_m};
+            const Vec3 target{m.x, m.y, w.ground.height(m.x, m.y) + 0.5 * p.curb_height_m};
+            const Vec3 d{target.x - o.x, target.y - o.y, target.z - o.z};
+            const double dist = std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
+            Hit h;
+            ASSERT_TRUE(w.raycast(ray(o, d), 10, 0, nullptr, 0, h)) << r.name << " " << i;
+            EXPECT_EQ(h.material, Material::Concrete) << r.name << " " << i << " hills " << hills;
+            if (std::abs(h.t - dist) > 0.03)
+              ADD_FAILURE() << r.name << " curb segment " << i << " at " << m.x << ", " << m.y << ": hit at "
+                            << h.t << " m instead of " << dist << " m";
+            worst = std::max(worst, std::abs(h.t - dist));
+            ++n;
+          }
+    EXPECT_GT(n, 300u);
+    EXPECT_LT(worst, 0.03) << (hills ? "hills" : "flat");
+  }
 }

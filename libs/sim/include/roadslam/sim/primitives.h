@@ -38,9 +38,10 @@ struct Hit {
   bool valid = false;
 };
 
-/// A right prism on an oriented rectangle: footprint centred at (cx, cy) with heading yaw [rad]
-/// and half extents hu (along) / hv (across) [m]; bottom at z = zb [m]; top is the plane
-/// z = zt + su*u + sv*v in the prism's local (u, v) coordinates [m] (sloped tops for sidewalks on hills).
+/// A prism on an oriented rectangle: footprint centred at (cx, cy) with heading yaw [rad] and half
+/// extents hu (along) / hv (across) [m]; top and bottom are the parallel planes z = zt + su*u + sv*v
+/// and z = zb + su*u + sv*v in the prism's local (u, v) coordinates [m] (slopes follow the terrain:
+/// sidewalks, cars and tunnel ceilings on hills).
 /// Boxes, buildings, facade bands, curbs/sidewalks, cars and tunnel walls are all prisms.
 struct Prism {
   double cx = 0, cy = 0, yaw = 0, hu = 0.5, hv = 0.5, zb = 0, zt = 1, su = 0, sv = 0;
