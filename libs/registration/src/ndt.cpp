@@ -26,7 +26,7 @@ constexpr int kNeighbourOffsets[7][3] = {{0, 0, 0}, {1, 0, 0}, {-1, 0, 0}, {0, 1
 // (Magnusson 2009, eq. 6.12-6.13) for the left perturbation x = R(w) x0 + t, whose second
 // derivative d2x/dw_i dw_j gives the term 1/2 (x a^T + a x^T) - (a.x) I with a = C^-1 x'.
 double evaluate(const NdtGrid& g, const NdtConstants& k, const PointCloud& src, const Eigen::Isometry3d& T,
-                Vector6d* grad, Matrix6d* hess, int* hits = nullptr) {
+                Vector6d* grad, Matrix6d* hess, int* hits, int n_cells) {
   const double inv = 1.0 / g.resolution_m;
   double f = 0;
   if (grad) grad->setZero();
@@ -39,7 +39,8 @@ double evaluate(const NdtGrid& g, const NdtConstants& k, const PointCloud& src, 
     const int64_t cx = static_cast<int64_t>(std::floor(x.x() * inv));
     const int64_t cy = static_cast<int64_t>(std::floor(x.y() * inv));
     const int64_t cz = static_cast<int64_t>(std::floor(x.z() * inv));
-    for (const auto& o : kNeighbourOffsets) {
+    for (int oi = 0; oi < n_cells; ++oi) {
+      const int* o = kNeighbourOffsets[oi];
       const auto it = g.index.find(voxelKey(cx + o[0], cy + o[1], cz + o[2]));
       if (it == g.index.end()) continue;
       const NdtCell& c = g.cells[static_cast<size_t>(it->second)];
@@ -83,13 +84,13 @@ Vector6d newtonDirection(const Matrix6d& H, const Vector6d& g) {
 
 // Newton iterations on one grid level; returns false (with out.status set) on a hard failure.
 bool solveLevel(const NdtGrid& g, const PointCloud& src, const Eigen::Isometry3d& guess, const Params& prm,
-                SolveOutcome& out, bool& converged) {
+                SolveOutcome& out, bool& converged, int n_cells) {
   const NdtConstants k = ndtConstants(prm.ndt_outlier_ratio, g.resolution_m);
   converged = false;
   Vector6d grad, grad_new;
   Matrix6d hess, hess_new;
   int hits = 0, hits_new = 0;
-  double f = evaluate(g, k, src, out.T_target_source, &grad, &hess, &hits);
+  double f = evaluate(g, k, src, out.T_target_source, &grad, &hess, &hits, n_cells);
   for (int it = 0; it < prm.max_iterations && !converged; ++it) {
     ++out.iterations;
     if (hits < std::max(prm.min_inliers, 6)) {
@@ -113,8 +114,8 @@ bool solveLevel(const NdtGrid& g, const PointCloud& src, const Eigen::Isometry3d
     int accepted = -1;
     for (int ls = 0; ls < 10; ++ls) {
       T_new = applyIncrement(alpha * delta, out.T_target_source);
-      f_new = ls == 0 ? evaluate(g, k, src, T_new, &grad_new, &hess_new, &hits_new)
-                      : evaluate(g, k, src, T_new, nullptr, nullptr);
+      f_new = ls == 0 ? evaluate(g, k, src, T_new, &grad_new, &hess_new, &hits_new, n_cells)
+                      : evaluate(g, k, src, T_new, nullptr, nullptr, nullptr, n_cells);
       if (f_new <= f + 1e-4 * alpha * slope) {
         accepted = ls;
         break;
@@ -133,7 +134,7 @@ bool solveLevel(const NdtGrid& g, const PointCloud& src, const Eigen::Isometry3d
       hess = hess_new;
       hits = hits_new;
     } else {
-      f = evaluate(g, k, src, out.T_target_source, &grad, &hess, &hits);
+      f = evaluate(g, k, src, out.T_target_source, &grad, &hess, &hits, n_cells);
     }
     if ((out.T_target_source.translation() - guess.translation()).norm() > prm.max_correction_m) {
       out.status = Status::Diverged;
@@ -158,7 +159,8 @@ SolveOutcome solveNdt(const Target::Impl& t, const PointCloud& src, const Eigen:
   bool converged = false;
   for (size_t l = 0; l < t.ndt.size(); ++l) {
     const bool finest = l + 1 == t.ndt.size();
-    if (!solveLevel(t.ndt[l], finest ? src : coarse, guess, prm, out, converged)) return out;
+    const int n_cells = finest && prm.ndt_neighbour_cells < 7 ? 1 : 7;
+    if (!solveLevel(t.ndt[l], finest ? src : coarse, guess, prm, out, converged, n_cells)) return out;
   }
   out.status = converged ? Status::Converged : Status::MaxIterations;
   if (!converged) out.reason = "no convergence in " + std::to_string(prm.max_iterations) + " iterations";

@@ -67,6 +67,7 @@ void Params::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, const st
   ndt_resolution_m = readDouble(c, sec, "ndt_resolution_m", ndt_resolution_m);
   ndt_levels = readInt(c, sec, "ndt_levels", ndt_levels);
   ndt_outlier_ratio = readDouble(c, sec, "ndt_outlier_ratio", ndt_outlier_ratio);
+  ndt_neighbour_cells = readInt(c, sec, "ndt_neighbour_cells", ndt_neighbour_cells);
   ndt_min_points_per_cell = readInt(c, sec, "ndt_min_points_per_cell", ndt_min_points_per_cell);
   ndt_max_step_m = readDouble(c, sec, "ndt_max_step_m", ndt_max_step_m);
   degeneracy_threshold = readDouble(c, sec, "degeneracy_threshold", degeneracy_threshold);
@@ -75,11 +76,11 @@ void Params::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, const st
       {"method", "kernel", "max_iterations", "max_correspondence_distance_m", "kernel_scale_m",
        "convergence_translation_m", "convergence_rotation_deg", "min_source_points", "min_inliers",
        "max_correction_m", "coarse_stride", "coarse_tolerance_m", "normal_neighbours", "ndt_resolution_m", "ndt_levels", "ndt_outlier_ratio",
-       "ndt_min_points_per_cell", "ndt_max_step_m", "degeneracy_threshold", "degeneracy_lever_m"});
+       "ndt_neighbour_cells", "ndt_min_points_per_cell", "ndt_max_step_m", "degeneracy_threshold", "degeneracy_lever_m"});
   if (!unknown.empty()) throw std::runtime_error("[" + sec + "] unknown key '" + unknown.front() + "'");
-  if (ndt_resolution_m <= 0 || max_correspondence_distance_m <= 0 || kernel_scale_m <= 0 || ndt_levels < 1 ||
+  if (ndt_resolution_m <= 0 || max_correspondence_distance_m <= 0 || kernel_scale_m <= 0 || ndt_levels < 1 || (ndt_neighbour_cells != 1 && ndt_neighbour_cells != 7) ||
       ndt_outlier_ratio <= 0 || ndt_outlier_ratio >= 1 || degeneracy_lever_m <= 0) {
-    throw std::runtime_error("[" + sec + "] out-of-range value among ndt_resolution_m, ndt_levels, "
+    throw std::runtime_error("[" + sec + "] out-of-range value among ndt_resolution_m, ndt_levels, ndt_neighbour_cells, "
                              "ndt_outlier_ratio, max_correspondence_distance_m, kernel_scale_m");
   }
 }
@@ -101,6 +102,7 @@ void Params::saveToConfigFile(mrpt::config::CConfigFileBase& c, const std::strin
   c.write(sec, "ndt_resolution_m", ndt_resolution_m);
   c.write(sec, "ndt_levels", ndt_levels);
   c.write(sec, "ndt_outlier_ratio", ndt_outlier_ratio);
+  c.write(sec, "ndt_neighbour_cells", ndt_neighbour_cells);
   c.write(sec, "ndt_min_points_per_cell", ndt_min_points_per_cell);
   c.write(sec, "ndt_max_step_m", ndt_max_step_m);
   c.write(sec, "degeneracy_threshold", degeneracy_threshold);
