@@ -12,20 +12,21 @@
 int main(int argc, char** argv) {
   CLI::App app{"roadslam-sim: packet-level VLP-16 simulator with ground truth"};
   std::string scenario, out, udp, top_view;
-  long long seed = -1;
-  double duration = -1, speed = 1.0;
+  unsigned long long seed = 0;
+  double duration = 0, speed = 1.0;
   app.add_option("--scenario", scenario, "scenario ini (ini/sim/*.ini)")->required()->check(CLI::ExistingFile);
   app.add_option("--out", out, "output folder")->required();
-  app.add_option("--seed", seed, "override [scenario] seed (>= 0)");
-  app.add_option("--duration", duration, "override [scenario] duration_s [s] (0 = whole drive)");
+  auto* seed_opt = app.add_option("--seed", seed, "override [scenario] seed (>= 0)")->check(CLI::Range(0, 2147483647));
+  auto* duration_opt = app.add_option("--duration", duration, "override [scenario] duration_s [s] (0 = whole drive)")
+                           ->check(CLI::Range(0.0, 1e6));
   app.add_option("--udp", udp, "also stream the data packets to HOST:PORT (IPv4)");
-  app.add_option("--speed", speed, "UDP pace as a multiple of real time (> 0)");
+  app.add_option("--speed", speed, "UDP pace as a multiple of real time (> 0)")->check(CLI::PositiveNumber);
   app.add_option("--top-view", top_view, "draw a top view of the world to this PNG");
   CLI11_PARSE(app, argc, argv);
   try {
     auto params = roadslam::sim::ScenarioParams::fromFile(scenario);
-    if (seed >= 0) params.seed = static_cast<uint64_t>(seed);
-    if (duration >= 0) params.duration_s = duration;
+    if (seed_opt->count() > 0) params.seed = seed;
+    if (duration_opt->count() > 0) params.duration_s = duration;
     roadslam::sim::OutputOptions opt;
     opt.dir = out;
     opt.top_view_png = top_view;
