@@ -6,15 +6,24 @@
 #include <mrpt/obs/CObservationGPS.h>
 #include <mrpt/obs/CObservationVelodyneScan.h>
 #include <mrpt/obs/CRawlog.h>
+#include <arpa/inet.h>
+#include <fmt/core.h>
+#include <netinet/in.h>
 #include <nlohmann/json.hpp>
+#include <sys/socket.h>
+#include <unistd.h>
 
+#include <atomic>
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <thread>
 
 #include "roadslam/pcap/pcap_writer.h"
 #include "roadslam/sources/boxroom.h"
+#include "roadslam/sources/pcap_source.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -166,6 +175,64 @@ TEST(RawlogApp, ConvertThenInfoGivesTheSameCountsAndMrptReadsIt) {
     EXPECT_EQ(packets, a["packets"].get<std::size_t>());
     EXPECT_EQ(gps, a["gps_fixes"].get<std::size_t>());
   }
+}
+
+namespace {
+uint16_t freeUdpPort() {
+  const int fd = socket(AF_INET, SOCK_DGRAM, 0);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof a);
+  socklen_t len = sizeof a;
+  getsockname(fd, reinterpret_cast<sockaddr*>(&a), &len);
+  close(fd);
+  return ntohs(a.sin_port);
+}
+}  // namespace
+
+TEST(RawlogApp, RecordCapturesLiveLoopbackTrafficThatInfoReads) {
+  ASSERT_TRUE(fs::exists(kBox)) << kBox;
+  std::vector<roadslam::velodyne::RawPacket> packets;
+  {
+    roadslam::sources::PcapPacketSource src(kBox);
+    while (auto p = src.next()) packets.push_back(*p);
+  }
+  const uint16_t data_port = freeUdpPort(), pos_port = freeUdpPort();
+  const fs::path out = tmpDir() / "live.pcap";
+  constexpr int kWanted = 300;
+  std::atomic<bool> done{false};
+  AppRun rec;
+  std::thread app([&] {
+    rec = run(fmt::format("record {} --bind 127.0.0.1 --port {} --position-port {} --packets {} --seconds 20",
+                  out.string(), data_port, pos_port, kWanted));
+    done = true;
+  });
+  // The app binds at its own pace: send the box room over and over until it has enough.
+  const int fd = socket(AF_INET, SOCK_DGRAM, 0);
+  sockaddr_in to{};
+  to.sin_family = AF_INET;
+  to.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  for (std::size_t i = 0; !done; ++i) {
+    const auto& p = packets[i % packets.size()];
+    to.sin_port = htons(p.dst_port == 2368 ? data_port : pos_port);
+    sendto(fd, p.payload.data(), p.payload.size(), 0, reinterpret_cast<sockaddr*>(&to), sizeof to);
+    if (i % 10 == 0) std::this_thread::sleep_for(std::chrono::microseconds(500));
+  }
+  close(fd);
+  app.join();
+  ASSERT_EQ(rec.exit_code, 0) << rec.err;
+  EXPECT_NE(rec.out.find(fmt::format("{} packets", kWanted)), std::string::npos) << rec.out;
+  // Recorded on the standard ports whatever the live ones: info reads it as any capture.
+  const json j = info(out.string());
+  EXPECT_EQ(j["packets"].get<int>() + j["position_packets"].get<int>(), kWanted);
+  EXPECT_EQ(j["malformed_packets"], 0);
+  EXPECT_GT(j["points"].get<int>(), 0);
+
+  const AppRun none = run(fmt::format("record {} --bind 127.0.0.1 --port {} --position-port {} --seconds 0.2",
+                              (tmpDir() / "none.pcap").string(), freeUdpPort(), freeUdpPort()));
+  expectOneLineFailureNaming(none, (tmpDir() / "none.pcap").string());
+  EXPECT_FALSE(fs::exists(tmpDir() / "none.pcap"));
 }
 
 TEST(RawlogApp, BadInputsFailWithOneLineNamingTheFile) {

@@ -3,13 +3,20 @@
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
 
+#include <atomic>
+#include <csignal>
 #include <exception>
 #include <string>
 
 #include "roadslam/sources/boxroom.h"
+#include "roadslam/sources/recorder.h"
 #include "roadslam/sources/recording.h"
+#include "roadslam/sources/udp_receiver.h"
 
 namespace {
+std::atomic<bool> g_stop{false};
+extern "C" void onSignal(int) { g_stop = true; }
+
 struct DecoderOptions {
   std::string model = "auto";
   std::string calibration;
@@ -46,6 +53,18 @@ int main(int argc, char** argv) {
   conv->add_option("OUT", conv_out, "output .rawlog")->required();
   conv_opt.addTo(conv);
 
+  std::string rec_out;
+  roadslam::sources::UdpReceiver::Params udp;
+  roadslam::sources::RecordLimits limits;
+  auto* rec = app.add_subcommand("record", "Live capture from the sensor's UDP ports into a .pcap (Ctrl-C stops)");
+  rec->add_option("OUT", rec_out, "output .pcap")->required();
+  rec->add_option("--seconds", limits.duration_s, "stop after this long [s] (0 = until Ctrl-C)");
+  rec->add_option("--packets", limits.max_packets, "stop after this many packets (0 = no limit)");
+  rec->add_option("--port", udp.ports.data_port, "data port")->capture_default_str();
+  rec->add_option("--position-port", udp.ports.position_port, "position port")->capture_default_str();
+  rec->add_option("--bind", udp.bind_address, "local IPv4 address to listen on (default: all)");
+  rec->add_option("--source", udp.source_filter, "accept only this sensor IPv4 address");
+
   std::string box_out;
   auto* box = app.add_subcommand("make-boxroom", "Write the deterministic box-room VLP-16 capture");
   box->add_option("OUT", box_out, "output .pcap (bundled: rawlogs/boxroom-vlp16.pcap)")->required();
@@ -60,6 +79,16 @@ int main(int argc, char** argv) {
       const ConvertSummary s = convertToRawlog(conv_in, conv_out, conv_opt.params());
       fmt::print("{}: {} sweeps ({} packets), {} GPS records\n", conv_out, s.observations,
                  s.packets, s.gps);
+    } else if (*rec) {
+      std::signal(SIGINT, onSignal);
+      std::signal(SIGTERM, onSignal);
+      UdpReceiver rx(udp);
+      const RecordSummary r = recordToPcap(rx, rec_out, limits, &g_stop);
+      fmt::print("{}: {} packets ({} data, {} position); kernel drops {}, missing {}, malformed {}, "
+                 "SO_RCVBUF granted {} bytes\n",
+                 rec_out, r.packets, r.source.data_packets, r.source.position_packets,
+                 r.source.kernel_drops, r.source.missing_packets, r.source.malformed_packets,
+                 rx.grantedRcvbufBytes());
     } else if (*box) {
       const BoxRoomSummary s = writeBoxRoomPcap(box_out);
       fmt::print("{}: {} data packets, {} position packets, {} points, {} complete sweeps\n",

@@ -6,6 +6,7 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <ctime>
@@ -183,9 +184,11 @@ std::optional<velodyne::RawPacket> UdpReceiver::next() {
     pollfd pfd[2] = {{fds_[0], POLLIN, 0}, {fds_[1], POLLIN, 0}};
     const int ms = int(params_.poll_timeout_s * 1e3);
     if (poll(pfd, 2, ms) > 0) {
-      // Position packets first: at equal readiness they are older than most of the data batch.
-      if (pfd[1].revents & POLLIN) receiveBatch(fds_[1], bound_position_port_, overflow_[1]);
       if (pfd[0].revents & POLLIN) receiveBatch(fds_[0], bound_data_port_, overflow_[0]);
+      if (pfd[1].revents & POLLIN) receiveBatch(fds_[1], bound_position_port_, overflow_[1]);
+      // Two sockets: merge their batches in kernel arrival order.
+      std::stable_sort(queue_.begin(), queue_.end(),
+                       [](const auto& a, const auto& b) { return a.stamp_s < b.stamp_s; });
     }
   }
   if (queue_.empty()) return std::nullopt;

@@ -42,7 +42,8 @@ class UdpReceiver : public PacketSource {
   UdpReceiver& operator=(const UdpReceiver&) = delete;
 
   /// Next packet stamped with the kernel receive time [s since epoch]; nullopt after
-  /// poll_timeout_s without traffic.
+  /// poll_timeout_s without traffic. In arrival order per port, and across the two ports within
+  /// each batch.
   std::optional<velodyne::RawPacket> next() override;
   bool finished() const override { return false; }
   const SourceStats& stats() const override { return stats_; }
