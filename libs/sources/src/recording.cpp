@@ -51,9 +51,14 @@ RecordingSummary summarizeRecording(const std::string& path, const velodyne::Dec
   RecordingSummary s;
   s.path = path;
   s.format = dynamic_cast<const PcapPacketSource*>(&sweeps.packets()) ? "pcap" : "rawlog";
+  double first_data_s = 0, last_data_s = 0;
   sweeps.setPacketObserver([&](const velodyne::RawPacket& p, std::size_t) {
-    if (s.model.empty() && p.payload.size() == velodyne::kDataPacketSize)
+    if (p.payload.size() != velodyne::kDataPacketSize) return;
+    if (s.model.empty()) {
       s.model = velodyne::modelName(sweeps.decoder().modelOf(p.payload.data(), p.payload.size()));
+      first_data_s = p.stamp_s;
+    }
+    last_data_s = p.stamp_s;
   });
   while (auto scan = sweeps.next()) {
     (scan->partial ? s.partial_sweeps : s.sweeps)++;
@@ -72,7 +77,7 @@ RecordingSummary summarizeRecording(const std::string& path, const velodyne::Dec
   s.malformed_packets = ps.malformed_packets + ss.undecodable_packets;
   s.skipped_packets = ps.skipped_packets;
   s.missing_packets = ps.missing_packets;
-  s.duration_s = ps.last_stamp_s - ps.first_stamp_s;
+  s.duration_s = last_data_s - first_data_s;
   s.sweeps_per_s = ss.sweepRate_hz();
   s.packets_per_s = s.duration_s > 0 ? double(s.packets - 1) / s.duration_s : 0.0;
   return s;
