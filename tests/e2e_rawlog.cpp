@@ -223,6 +223,8 @@ TEST(RawlogApp, RecordCapturesLiveLoopbackTrafficThatInfoReads) {
   app.join();
   ASSERT_EQ(rec.exit_code, 0) << rec.err;
   EXPECT_NE(rec.out.find(fmt::format("{} packets", kWanted)), std::string::npos) << rec.out;
+  const std::string used = slurp(out.string() + ".ini");
+  EXPECT_NE(used.find(fmt::format("data_port = {}", data_port)), std::string::npos) << used;
   // Recorded on the standard ports whatever the live ones: info reads it as any capture.
   const json j = info(out.string());
   EXPECT_EQ(j["packets"].get<int>() + j["position_packets"].get<int>(), kWanted);

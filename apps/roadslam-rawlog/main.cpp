@@ -1,6 +1,7 @@
 // roadslam-rawlog: summarise and convert Velodyne recordings (.pcap, MRPT .rawlog); regenerate
 // the bundled box-room capture. All logic lives in libs/sources; see docs/apps/roadslam-rawlog.md.
 #include <CLI/CLI.hpp>
+#include <mrpt/config/CConfigFileMemory.h>
 #include <fmt/core.h>
 
 #include <atomic>
@@ -8,6 +9,7 @@
 #include <exception>
 #include <string>
 
+#include "roadslam/common/atomic_file.h"
 #include "roadslam/sources/boxroom.h"
 #include "roadslam/sources/recorder.h"
 #include "roadslam/sources/recording.h"
@@ -84,6 +86,9 @@ int main(int argc, char** argv) {
       std::signal(SIGTERM, onSignal);
       UdpReceiver rx(udp);
       const RecordSummary r = recordToPcap(rx, rec_out, limits, &g_stop);
+      mrpt::config::CConfigFileMemory used;  // the configuration used, next to the output
+      udp.saveToConfigFile(used, "udp");
+      roadslam::writeFileAtomically(rec_out + ".ini", used.getContent());
       fmt::print("{}: {} packets ({} data, {} position); kernel drops {}, missing {}, malformed {}, "
                  "SO_RCVBUF granted {} bytes\n",
                  rec_out, r.packets, r.source.data_packets, r.source.position_packets,
