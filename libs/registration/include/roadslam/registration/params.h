@@ -38,7 +38,7 @@ struct Params {
   int coarse_stride = 4;                       ///< coarse phase (ICP) / coarse NDT levels use every n-th source point [-]
   double coarse_tolerance_m = 0.01;            ///< ICP: coarse phase ends when the update is below this [m]
   int normal_neighbours = 10;                  ///< point-to-plane: k of the covariance normal [-]
-  double ndt_resolution_m = 1.0;               ///< NDT finest cell size [m]
+  double ndt_resolution_m = 1.5;               ///< NDT finest cell size [m]; >= 3x the map voxel size
   int ndt_levels = 2;                          ///< NDT multi-resolution levels (coarsest = res*2^(n-1)) [-]
   double ndt_outlier_ratio = 0.55;             ///< NDT outlier mixture weight (Magnusson 2009 eq. 6.7) [-]
   int ndt_neighbour_cells = 1;                 ///< NDT finest level: cells scored per point, 1 (own) or 7 (+ faces); coarse levels use 7 [-]
