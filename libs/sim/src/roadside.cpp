@@ -162,8 +162,8 @@ void addBuilding(const WorldParams& p, const Station& st, int side, double w, do
                                        2.0, H, Material::Facade));
 }
 
-void addParkedCar(const Station& st, int side, double off, Rng& rng, World& world) {
-  const double yaw = st.h + rng.uniform(-0.04, 0.04);
+void addParkedCar(const Station& st, int side, double off, double angle, Rng& rng, World& world) {
+  const double yaw = st.h + angle + rng.uniform(-0.04, 0.04);
   const Material m = rng.uniform() < 0.3 ? Material::DarkPaint : Material::CarPaint;
   const Vec2 c = st.at(rng.uniform(-0.3, 0.3), side * off);
   Prism body = groundPrism(world, c, yaw, 2.2, 0.9, 0, 1.0, m);
@@ -211,12 +211,15 @@ void addRoadsideObjects(const WorldParams& p, const RoadIndex& index, Rng& rng, 
         world.spheres.push_back({{c.x, c.y, g + trunk + 0.7 * cr}, cr, Material::Foliage});
       }
       if (p.parking_width_m < 1.5) continue;
-      for (double s = 3.25; s < len - 3.25; s += 6.5) {
+      // Parallel parking: 6.5 m slots; angled (perpendicular) parking: 2.7 m slots.
+      const double angle = p.parking_angle_deg * M_PI / 180.0;
+      const double slot = p.parking_angle_deg > 45 ? 2.7 : 6.5;
+      for (double s = 0.5 * slot; s < len - 0.5 * slot; s += slot) {
         if (rng.uniform() >= p.parked_car_prob || inTunnel(p, ir, s, 10)) continue;
         const Station st = station(r, s);
         const Vec2 c = st.at(0, side * (hw - 0.5 * p.parking_width_m));
         if (index.clearance(c.x, c.y, ir) < 1.5) continue;
-        addParkedCar(st, side, hw - 0.5 * p.parking_width_m, rng, world);
+        addParkedCar(st, side, hw - 0.5 * p.parking_width_m, angle, rng, world);
       }
     }
   }

@@ -11,7 +11,7 @@ namespace roadslam::sim {
   X(length_m) X(width_m) X(corner_radius_m) X(curviness_m) X(lane_width_m) X(parking_width_m) \
   X(curb_height_m) X(sidewalk_width_m) X(building_density) X(building_min_height_m)           \
   X(building_max_height_m) X(building_setback_m) X(pole_spacing_m) X(tree_spacing_m)          \
-  X(parked_car_prob) X(moving_car_speed_kmh) X(hill_amplitude_m) X(hill_wavelength_m)         \
+  X(parked_car_prob) X(parking_angle_deg) X(moving_car_speed_kmh) X(hill_amplitude_m) X(hill_wavelength_m)         \
   X(tunnel_start_m) X(tunnel_length_m) X(tunnel_height_m) X(grid_cell_m) X(margin_m)
 #define RS_INTS(X) X(streets) X(lanes_per_side) X(moving_cars)
 
@@ -30,6 +30,8 @@ void WorldParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
                              "hill_wavelength_m must be > 0, streets and lanes_per_side >= 1");
   if (curb_height_m < 0 || curb_height_m > 0.5)
     throw std::runtime_error("[" + s + "] curb_height_m must be in [0, 0.5]");
+  if (parking_angle_deg > 45 && parking_width_m < 4.6)
+    throw std::runtime_error("[" + s + "] parking_angle_deg > 45 needs parking_width_m >= 4.6");
   if (building_min_height_m > building_max_height_m)
     throw std::runtime_error("[" + s + "] building_min_height_m > building_max_height_m");
 }

@@ -33,7 +33,9 @@ struct WorldParams {
   double building_setback_m = 1.0;  ///< back of sidewalk to facade [m]
   double pole_spacing_m = 25;       ///< mean spacing of poles per side [m]; 0 = none
   double tree_spacing_m = 15;       ///< mean spacing of trees per side [m]; 0 = none
-  double parked_car_prob = 0.3;     ///< probability of a parked car per 6.5 m slot [0..1]
+  double parked_car_prob = 0.3;     ///< probability of a parked car per slot [0..1]
+  double parking_angle_deg = 0;     ///< 0 parallel (6.5 m slots), 90 perpendicular (2.7 m slots,
+                                    ///< needs parking_width_m >= 4.6) [deg in the ini]
   int moving_cars = 6;              ///< cars driving on the roads [-]
   double moving_car_speed_kmh = 40;  ///< their mean speed (stored in m/s) [km/h in the ini]
   double hill_amplitude_m = 0;      ///< ground height amplitude [m]
