@@ -10,6 +10,9 @@
 #include <roadslam/datasets/trajectory_io.h>
 #include <roadslam/registration/registration.h>
 
+#include <nanoflann.hpp>
+#include <unordered_map>
+
 #include <time.h>
 
 #include <algorithm>
@@ -217,6 +220,85 @@ void BM_OdometryLike(benchmark::State& state, reg::Method method) {
   state.counters["map_points"] = map_pts / k;
   report(state, name);
 }
+
+// Neighbour search for correspondences, same queries (4k source at 1 m voxels after the GT motion)
+// against the same target (one sweep, 0.5 m voxels), 1 m reach: nanoflann kd-tree vs a KISS-ICP
+// style voxel hash (1 m voxels, <= 20 points each, 27-voxel search).
+struct Adaptor {
+  const reg::PointCloud* pts;
+  size_t kdtree_get_point_count() const { return pts->size(); }
+  double kdtree_get_pt(size_t i, size_t d) const { return (*pts)[i][static_cast<Eigen::Index>(d)]; }
+  template <class B>
+  bool kdtree_get_bbox(B&) const { return false; }
+};
+
+std::vector<Eigen::Vector3d> nnQueries(const reg::PointCloud& src, int pair) {
+  std::vector<Eigen::Vector3d> q;
+  for (const auto& p : reg::voxelDownsample(src, 1.0)) q.push_back(truth(pair) * p);
+  return q;
+}
+
+void BM_NearestNeighbour_nanoflann(benchmark::State& state) {
+  if (!data().ok) return state.SkipWithError("missing raw drive");
+  const reg::PointCloud& tgt = data().clouds[0];
+  const auto q = nnQueries(data().clouds[1], 0);
+  Adaptor a{&tgt};
+  using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Adaptor>, Adaptor, 3, uint32_t>;
+  const Tree tree(3, a, nanoflann::KDTreeSingleIndexAdaptorParams(10));
+  size_t found = 0;
+  for (auto _ : state) {
+    found = 0;
+    for (const auto& x : q) {
+      uint32_t idx = 0;
+      double d2 = 0;
+      nanoflann::KNNResultSet<double, uint32_t> rs(1);
+      rs.init(&idx, &d2);
+      tree.findNeighbors(rs, x.data(), nanoflann::SearchParams(10));
+      found += d2 < 1.0 ? 1 : 0;
+    }
+    benchmark::DoNotOptimize(found);
+  }
+  state.counters["queries"] = static_cast<double>(q.size());
+  state.counters["found"] = static_cast<double>(found);
+}
+
+void BM_NearestNeighbour_voxelhash(benchmark::State& state) {
+  if (!data().ok) return state.SkipWithError("missing raw drive");
+  const reg::PointCloud& tgt = data().clouds[0];
+  const auto q = nnQueries(data().clouds[1], 0);
+  const auto key = [](int64_t x, int64_t y, int64_t z) {
+    return (static_cast<uint64_t>(x + (1 << 20)) << 42) | (static_cast<uint64_t>(y + (1 << 20)) << 21) |
+           static_cast<uint64_t>(z + (1 << 20));
+  };
+  std::unordered_map<uint64_t, std::vector<Eigen::Vector3d>> map;
+  for (const auto& p : tgt) {
+    auto& v = map[key(static_cast<int64_t>(std::floor(p.x())), static_cast<int64_t>(std::floor(p.y())),
+                      static_cast<int64_t>(std::floor(p.z())))];
+    if (v.size() < 20) v.push_back(p);
+  }
+  size_t found = 0;
+  for (auto _ : state) {
+    found = 0;
+    for (const auto& x : q) {
+      const int64_t cx = static_cast<int64_t>(std::floor(x.x())), cy = static_cast<int64_t>(std::floor(x.y())),
+                    cz = static_cast<int64_t>(std::floor(x.z()));
+      double best = 1e30;
+      for (int64_t i = -1; i <= 1; ++i)
+        for (int64_t j = -1; j <= 1; ++j)
+          for (int64_t k = -1; k <= 1; ++k) {
+            const auto it = map.find(key(cx + i, cy + j, cz + k));
+            if (it == map.end()) continue;
+            for (const auto& p : it->second) best = std::min(best, (p - x).squaredNorm());
+          }
+      found += best < 1.0 ? 1 : 0;
+    }
+    benchmark::DoNotOptimize(found);
+  }
+  state.counters["queries"] = static_cast<double>(q.size());
+  state.counters["found"] = static_cast<double>(found);
+}
+BENCHMARK(BM_NearestNeighbour_nanoflann)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_NearestNeighbour_voxelhash)->Unit(benchmark::kMicrosecond);
 
 BENCHMARK_CAPTURE(BM_OdometryLike, icp_point_to_point, reg::Method::IcpPointToPoint)->Iterations(kPairs - 6)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_OdometryLike, icp_point_to_plane, reg::Method::IcpPointToPlane)->Iterations(kPairs - 6)->Unit(benchmark::kMillisecond);
