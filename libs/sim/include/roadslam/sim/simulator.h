@@ -59,6 +59,9 @@ class Simulator {
  public:
   explicit Simulator(const ScenarioParams& params);
   ~Simulator();
+  // The trajectory and the lidar model refer to world_: neither copyable nor movable.
+  Simulator(const Simulator&) = delete;
+  Simulator& operator=(const Simulator&) = delete;
   const ScenarioParams& params() const { return p_; }
   const World& world() const { return world_; }
   const Road& route() const { return route_; }
