@@ -12,11 +12,13 @@ namespace roadslam::sim {
 namespace {
 using mrpt::img::TColor;
 
+constexpr int kBand = 30;  // [px] text band above and scale band below the map
+
 struct View {
   double x0, y0, scale;
-  int w, h;
+  int w, h;  ///< whole image [px]
   int px(double x) const { return static_cast<int>(std::lround((x - x0) * scale)); }
-  int py(double y) const { return h - 1 - static_cast<int>(std::lround((y - y0) * scale)); }
+  int py(double y) const { return h - 1 - kBand - static_cast<int>(std::lround((y - y0) * scale)); }
 };
 
 TColor colorOf(Material m) {
@@ -63,7 +65,8 @@ void drawTopView(const Simulator& sim, const std::string& png_path, int max_px) 
   const double margin = 40;
   xmin -= margin; ymin -= margin; xmax += margin; ymax += margin;
   const double scale = max_px / std::max(xmax - xmin, ymax - ymin);
-  View v{xmin, ymin, scale, static_cast<int>((xmax - xmin) * scale) + 1, static_cast<int>((ymax - ymin) * scale) + 1};
+  View v{xmin, ymin, scale, static_cast<int>((xmax - xmin) * scale) + 1,
+         static_cast<int>((ymax - ymin) * scale) + 1 + 2 * kBand};
   mrpt::img::CImage img(static_cast<unsigned>(v.w), static_cast<unsigned>(v.h), mrpt::img::CH_RGB);
   img.filledRectangle(0, 0, v.w - 1, v.h - 1, TColor(236, 236, 222));
   if (w.ground.amplitude_m > 0) {  // terrain height: darker is lower, in 6 px blocks
@@ -71,7 +74,7 @@ void drawTopView(const Simulator& sim, const std::string& png_path, int max_px) 
     for (int y = 0; y < v.h; y += 6)
       for (int x = 0; x < v.w; x += 6) {
         const double f = std::clamp(0.5 + 0.5 * w.ground.height(v.x0 + (x + 3) / v.scale,
-                                                                v.y0 + (v.h - 1 - y - 3) / v.scale) / A, 0.0, 1.0);
+                                                                v.y0 + (v.h - 1 - kBand - y - 3) / v.scale) / A, 0.0, 1.0);
         const auto c = static_cast<uint8_t>(170 + 80 * f);
         img.filledRectangle(x, y, x + 5, y + 5, TColor(c, c, static_cast<uint8_t>(c - 20)));
       }
