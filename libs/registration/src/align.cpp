@@ -42,7 +42,7 @@ FinalStats finalStats(const Target::Impl& t, const PointCloud& src, const Eigen:
         q = grid->cells[static_cast<size_t>(it->second)].mean;
       }
     } else {
-      n = t.normals[static_cast<size_t>(j)];
+      n = t.normal(static_cast<size_t>(j));
     }
     ++st.inliers;
     st.sum_d2 += d2;

@@ -30,7 +30,7 @@ void accumulate(const Target::Impl& t, const PointCloud& src, const Eigen::Isome
     if (j < 0) continue;
     const Eigen::Vector3d& q = t.points[static_cast<size_t>(j)];
     if (point_to_plane) {
-      const Eigen::Vector3d& nn = t.normals[static_cast<size_t>(j)];
+      const Eigen::Vector3d& nn = t.normal(static_cast<size_t>(j));
       const double r = nn.dot(x - q);
       Vector6d J;
       J.head<3>() = nn;

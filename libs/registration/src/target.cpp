@@ -1,34 +1,12 @@
 #include "target_impl.h"
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace roadslam::registration {
 namespace {
-
-// Normal = eigenvector of the smallest eigenvalue of the k-neighbourhood covariance (Hoppe et al. 1992).
-void computeNormals(Target::Impl& t, int k) {
-  t.normals.assign(t.points.size(), Eigen::Vector3d::Zero());
-  if (t.points.size() < 3) return;
-  const size_t kk = std::min<size_t>(static_cast<size_t>(std::max(k, 3)), t.points.size());
-  std::vector<uint32_t> idx(kk);
-  std::vector<double> d2(kk);
-  for (size_t i = 0; i < t.points.size(); ++i) {
-    const size_t n = t.tree->knnSearch(t.points[i].data(), kk, idx.data(), d2.data());
-    if (n < 3) continue;
-    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-    for (size_t j = 0; j < n; ++j) mean += t.points[idx[j]];
-    mean /= static_cast<double>(n);
-    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-    for (size_t j = 0; j < n; ++j) {
-      const Eigen::Vector3d d = t.points[idx[j]] - mean;
-      cov.noalias() += d * d.transpose();
-    }
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
-    es.computeDirect(cov);
-    t.normals[i] = es.eigenvectors().col(0);
-  }
-}
 
 NdtGrid buildNdtGrid(const PointCloud& pts, double res, int min_pts) {
   struct Acc {
@@ -71,6 +49,28 @@ NdtGrid buildNdtGrid(const PointCloud& pts, double res, int min_pts) {
 
 }  // namespace
 
+// Normal = eigenvector of the smallest eigenvalue of the k-neighbourhood covariance (Hoppe et al. 1992).
+void Target::Impl::computeNormal(size_t i) const {
+  constexpr size_t kMaxK = 32;
+  std::array<uint32_t, kMaxK> idx{};
+  std::array<double, kMaxK> d2{};
+  const size_t kk = std::min({static_cast<size_t>(std::max(normal_k, 3)), kMaxK, points.size()});
+  has_normal[i] = 1;
+  const size_t n = tree->knnSearch(points[i].data(), kk, idx.data(), d2.data());
+  if (n < 3) return;
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (size_t j = 0; j < n; ++j) mean += points[idx[j]];
+  mean /= static_cast<double>(n);
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (size_t j = 0; j < n; ++j) {
+    const Eigen::Vector3d d = points[idx[j]] - mean;
+    cov.noalias() += d * d.transpose();
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
+  es.computeDirect(cov);
+  normals[i] = es.eigenvectors().col(0);
+}
+
 Target::Target(const PointCloud& points_target, const Params& params) : impl_(std::make_unique<Impl>()) {
   Impl& t = *impl_;
   t.method = params.method;
@@ -87,7 +87,9 @@ Target::Target(const PointCloud& points_target, const Params& params) : impl_(st
                                    params.ndt_min_points_per_cell));
     }
   } else {
-    computeNormals(t, params.normal_neighbours);
+    t.normal_k = params.normal_neighbours;
+    t.normals.assign(t.points.size(), Eigen::Vector3d::Zero());
+    t.has_normal.assign(t.points.size(), 0);
   }
 }
 

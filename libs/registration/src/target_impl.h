@@ -56,7 +56,17 @@ struct NdtGrid {
 struct Target::Impl {
   Method method = Method::IcpPointToPlane;
   PointCloud points;   ///< finite target points [m]
-  PointCloud normals;  ///< unit normals (ICP methods); zero where undefined
+  int normal_k = 10;   ///< neighbours of the covariance normal [-]
+  /// Normals are computed on first use and cached: a scan-to-map alignment touches a fraction of
+  /// the map, so computing all of them up front costs more than the alignment (measured 20 ms for a
+  /// 17.7k-point map vs 7.6 ms of alignment).
+  mutable PointCloud normals;               ///< unit normals; zero where undefined (< 3 neighbours)
+  mutable std::vector<uint8_t> has_normal;  ///< 1 once normals[i] is computed
+  const Eigen::Vector3d& normal(size_t i) const {
+    if (!has_normal[i]) computeNormal(i);
+    return normals[i];
+  }
+  void computeNormal(size_t i) const;
   size_t dropped = 0;
   CloudAdaptor adaptor;
   std::unique_ptr<KdTree> tree;

@@ -57,7 +57,9 @@ struct RegistrationResult {
 };
 
 /// Search structures over the target points, built once and reused for many alignments.
-/// Holds a kd-tree (ICP), normals (point-to-plane, degeneracy) and NDT grids as the method needs.
+/// Holds a kd-tree, normals (ICP: point-to-plane and degeneracy; computed on first use and cached)
+/// and NDT grids as the method needs. Single-threaded: do not call align() on one Target from
+/// several threads at once (the normal cache is filled during align()).
 class Target {
  public:
   /// Builds the structures needed by params.method from points in the target frame [m].
