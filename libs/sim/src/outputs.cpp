@@ -50,6 +50,23 @@ void writeTum(const Simulator& sim, double duration_s, const std::string& path) 
   f.commit();
 }
 
+/// Vehicle states every 10 ms (the future CAN simulation and wheel-odometry tests read these).
+void writeVehicleCsv(const Simulator& sim, double duration_s, const std::string& path) {
+  AtomicFile f(path);
+  f.stream() << "t,x,y,z,yaw_rad,pitch_rad,roll_rad,speed_mps,accel_mps2,yaw_rate_rps,"
+                "wheel_left_mps,wheel_right_mps,distance_m\n";
+  const double t0 = static_cast<double>(sim.params().start_epoch_s);
+  char line[320];
+  for (const VehicleState& s : sim.trajectory().states()) {
+    if (s.t_s > duration_s + 1e-9) break;
+    std::snprintf(line, sizeof(line), "%.6f,%.4f,%.4f,%.4f,%.6f,%.6f,%.6f,%.4f,%.4f,%.6f,%.4f,%.4f,%.3f\n",
+                  t0 + s.t_s, s.x, s.y, s.z, s.yaw, s.pitch, s.roll, s.speed_mps, s.accel_mps2,
+                  s.yaw_rate_rps, s.wheel_speed_left_mps, s.wheel_speed_right_mps, s.s_m);
+    f.stream() << line;
+  }
+  f.commit();
+}
+
 json polyline3(const World& w, const std::vector<Vec2>& line, std::size_t stride = 1) {
   json a = json::array();
   auto r3 = [](double v) { return std::round(v * 1000.0) / 1000.0; };
@@ -115,6 +132,7 @@ RunReport runToDirectory(Simulator& sim, const OutputOptions& opt) {
     pcap.commit();
   }
   writeTum(sim, rep.stats.duration_s, d + "gt_trajectory.tum");
+  writeVehicleCsv(sim, rep.stats.duration_s, d + "gt_vehicle.csv");
   writeBoundaries(sim, d + "gt_boundaries.json");
   writeObjects(sim, rep.stats.duration_s, d + "gt_objects.json");
   mrpt::config::CConfigFileMemory used;

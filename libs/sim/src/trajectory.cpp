@@ -132,7 +132,7 @@ VehicleState Trajectory::stateAtArcLength(double s, double v, double a) const {
   const double kappa = k_[i - 1] + f * (k_[i] - k_[i - 1]);
   const Vec2 g = ground_.gradient(st.x, st.y);
   const double ch = std::cos(st.yaw), sh = std::sin(st.yaw);
-  st.pitch = -std::atan(g.x * ch + g.y * sh);  // nose up on an uphill (ZYX: +pitch is nose down)
+  st.pitch = 0.0 - std::atan(g.x * ch + g.y * sh);  // (no -0) nose up on an uphill (ZYX: +pitch is nose down)
   st.roll = std::atan(-g.x * sh + g.y * ch);   // left side up when the ground rises to the left
   st.speed_mps = v;
   st.accel_mps2 = a;

@@ -108,6 +108,25 @@ TEST(SimPackets, TimestampsCaptureTimesAndGroundTruthAgree) {
   ASSERT_EQ(gt.size(), static_cast<std::size_t>(std::floor(rep.stats.duration_s / 0.01)) + 1);
   EXPECT_DOUBLE_EQ(gt.front()[0], static_cast<double>(p.start_epoch_s));
   for (std::size_t i = 1; i < gt.size(); ++i) ASSERT_NEAR(gt[i][0] - gt[i - 1][0], 0.01, 2e-6);
+  // gt_vehicle.csv (vehicle reference) and the TUM (lidar) are one rigid mount apart.
+  std::ifstream csv(dir.str() + "/gt_vehicle.csv");
+  std::string line;
+  std::getline(csv, line);
+  ASSERT_EQ(line.rfind("t,x,y,z,yaw_rad", 0), 0u) << line;
+  std::size_t rows = 0;
+  while (std::getline(csv, line)) {
+    double v[13];
+    ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf", &v[0], &v[1], &v[2],
+                          &v[3], &v[4], &v[5], &v[6], &v[7], &v[8], &v[9], &v[10], &v[11], &v[12]), 13);
+    ASSERT_LT(rows, gt.size());
+    const auto& g = gt[rows++];
+    ASSERT_DOUBLE_EQ(v[0], g[0]);
+    // flat start: lidar = vehicle + R(yaw) (mount_x, mount_y, mount_height)
+    EXPECT_NEAR(g[1], v[1] + std::cos(v[4]) * p.lidar.mount_x_m - std::sin(v[4]) * p.lidar.mount_y_m, 1e-3);
+    EXPECT_NEAR(g[2], v[2] + std::sin(v[4]) * p.lidar.mount_x_m + std::cos(v[4]) * p.lidar.mount_y_m, 1e-3);
+    EXPECT_NEAR(g[3], v[3] + p.lidar.mount_height_m, 1e-3);
+  }
+  EXPECT_EQ(rows, gt.size());
   // $GPRMC gives the vehicle reference; the lidar is mount_x_m ahead of it (standing, yaw 0).
   for (const auto& [stamp, fix] : fixes) {
     const std::size_t i = static_cast<std::size_t>(std::llround((stamp - gt.front()[0]) / 0.01));

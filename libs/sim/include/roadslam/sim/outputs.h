@@ -3,6 +3,8 @@
 /// Running a scenario into an output folder (all files written atomically):
 ///   velodyne.pcap       data packets (port 2368) and $GPRMC position packets (port 8308)
 ///   gt_trajectory.tum   T_world_lidar every 10 ms, "t x y z qx qy qz qw", t on the capture clock
+///   gt_vehicle.csv      vehicle reference state every 10 ms: pose, speed, acceleration, yaw rate,
+///                       rear wheel speeds, distance (header line names the columns and units)
 ///   gt_boundaries.json  per road: centreline and left/right curb polylines [x, y, z] (world frame)
 ///   gt_objects.json     moving cars' tracks at 10 Hz [t, x, y, z, yaw]
 ///   summary.json        scenario, seed, duration_s, packets, sweeps, points, distance_m,
