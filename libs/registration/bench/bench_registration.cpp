@@ -55,7 +55,7 @@ const Data& data() {
 Eigen::Isometry3d truth(int i) { return data().T_world_velo[static_cast<size_t>(i)].inverse() * data().T_world_velo[static_cast<size_t>(i) + 1]; }
 
 struct Stats {
-  std::vector<double> ms, build_ms, terr, rerr_deg;
+  std::vector<double> ms, build_ms, terr, rerr_deg, iterations;
   int failed = 0;
 };
 std::map<std::string, Stats>& table() {
@@ -85,6 +85,7 @@ void report(benchmark::State& state, const std::string& name) {
   Stats& s = table()[name];
   state.counters["median_ms"] = median(s.ms);
   state.counters["median_build_ms"] = median(s.build_ms);
+  state.counters["median_iterations"] = median(s.iterations);
   state.counters["median_terr_m"] = median(s.terr);
   state.counters["p90_terr_m"] = percentile90(s.terr);
   state.counters["median_rerr_deg"] = median(s.rerr_deg);
@@ -94,8 +95,9 @@ void report(benchmark::State& state, const std::string& name) {
 }
 
 void record(const std::string& name, int pair, double ms, const Eigen::Isometry3d& T, bool converged,
-            double build_ms = 0) {
+            double build_ms = 0, int iterations = 0) {
   Stats& s = table()[name];
+  s.iterations.push_back(iterations);
   s.build_ms.push_back(build_ms);
   const Eigen::Isometry3d E = truth(pair).inverse() * T;
   s.ms.push_back(ms);
@@ -121,6 +123,9 @@ reg::Params benchParams(reg::Method method) {
   if (const char* e = std::getenv("REG_NDT_LEVELS")) prm.ndt_levels = std::atoi(e);
   if (const char* e = std::getenv("REG_NDT_RES")) prm.ndt_resolution_m = std::atof(e);
   if (const char* e = std::getenv("REG_NDT_CELLS")) prm.ndt_neighbour_cells = std::atoi(e);
+  if (const char* e = std::getenv("REG_STRIDE")) prm.coarse_stride = std::atoi(e);
+  if (const char* e = std::getenv("REG_COARSE_TOL")) prm.coarse_tolerance_m = std::atof(e);
+  if (const char* e = std::getenv("REG_CONV_M")) prm.convergence_translation_m = std::atof(e);
   if (const char* e = std::getenv("REG_MAXIT")) prm.max_iterations = std::atoi(e);
   return prm;
 }
@@ -142,7 +147,7 @@ void BM_Ours(benchmark::State& state, reg::Method method) {
         reg::align(target, data().clouds[static_cast<size_t>(pair) + 1], Eigen::Isometry3d::Identity(), prm);
     const double ms = cpuMs() - t0;
     benchmark::DoNotOptimize(r.T_target_source);
-    record(name, pair, ms, r.T_target_source, r.converged, t1 - t0);
+    record(name, pair, ms, r.T_target_source, r.converged, t1 - t0, r.iterations);
     pair = (pair + 1) % kPairs;
   }
   report(state, name);
@@ -211,7 +216,7 @@ void BM_OdometryLike(benchmark::State& state, reg::Method method) {
     const reg::RegistrationResult r = reg::align(target, src, guess, prm);
     const double t2 = cpuMs();
     benchmark::DoNotOptimize(r.T_target_source);
-    record(name, i - 1, t2 - t1, r.T_target_source, r.converged, t1 - t0);
+    record(name, i - 1, t2 - t1, r.T_target_source, r.converged, t1 - t0, r.iterations);
     src_pts += static_cast<double>(src.size());
     map_pts += static_cast<double>(map.size());
     ++k;
@@ -311,10 +316,11 @@ BENCHMARK(BM_MrptCicp)->Iterations(kPairs)->Unit(benchmark::kMillisecond);
 int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
   benchmark::RunSpecifiedBenchmarks();
-  std::printf("\n%-26s %10s %9s %14s %12s %14s %8s\n", "method", "median_ms", "build_ms", "median_terr_m",
-              "p90_terr_m", "median_rerr_deg", ">0.3m");
+  std::printf("\n%-26s %10s %9s %6s %14s %12s %14s %8s\n", "method", "median_ms", "build_ms", "iters",
+              "median_terr_m", "p90_terr_m", "median_rerr_deg", ">0.3m");
   for (const auto& [name, s] : table()) {
-    std::printf("%-26s %10.1f %9.1f %14.3f %12.3f %14.3f %8ld\n", name.c_str(), median(s.ms), median(s.build_ms), median(s.terr),
+    std::printf("%-26s %10.1f %9.1f %6.0f %14.3f %12.3f %14.3f %8ld\n", name.c_str(), median(s.ms), median(s.build_ms),
+                median(s.iterations), median(s.terr),
                 percentile90(s.terr), median(s.rerr_deg),
                 static_cast<long>(std::count_if(s.terr.begin(), s.terr.end(), [](double e) { return e > 0.3; })));
   }
