@@ -39,7 +39,7 @@ struct Degeneracy {
   bool degenerate = false;                  ///< at least one weak direction
   int num_weak = 0;                         ///< number of weak directions [-]
   Eigen::Matrix<double, 6, 1> eigenvalues = Eigen::Matrix<double, 6, 1>::Zero();  ///< normalized, ascending [-]
-  Eigen::Matrix<double, 6, 6> directions = Eigen::Matrix<double, 6, 6>::Identity();  ///< col i: eigenvector i, [t, r/lever]
+  Eigen::Matrix<double, 6, 6> directions = Eigen::Matrix<double, 6, 6>::Identity();  ///< col i: eigenvector i in [t, lever*r] coordinates
   double length_scale_m = 1;  ///< lever used for the rotation scaling [m]
 };
 
