@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 #include <roadslam/registration/registration.h>
 
+#include <Eigen/Eigenvalues>
+
 #include <cmath>
 #include <limits>
 
@@ -78,6 +80,10 @@ TEST_P(SyntheticTest, RecoversModerateMotionFromIdentity) {
     EXPECT_GT(r.inliers, static_cast<int>(src.size()) / 2);
     EXPECT_LT(r.fitness, 0.3);
     EXPECT_FALSE(r.degeneracy.degenerate) << "normalized eigenvalues " << r.degeneracy.eigenvalues.transpose();
+    // Information: symmetric positive definite.
+    EXPECT_LT((r.information - r.information.transpose()).norm(), 1e-9 * r.information.norm());
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> es(r.information);
+    EXPECT_GT(es.eigenvalues()(0), 0.0);
   }
 }
 
@@ -94,6 +100,9 @@ TEST_P(SyntheticTest, CorridorFlagsAlongCorridorDirection) {
   EXPECT_GT(std::abs(r.degeneracy.directions(0, 0)), 0.95) << r.degeneracy.directions.col(0).transpose();
   EXPECT_LT(r.degeneracy.eigenvalues(0), prm.degeneracy_threshold);
   EXPECT_GT(r.degeneracy.eigenvalues(1), prm.degeneracy_threshold);
+  // The information along the corridor is small against the across-corridor one (measured: ICP
+  // < 1 %, NDT 4.4 %: its normals come from 1 m cells, some spanning the wall-floor corner).
+  EXPECT_LT(r.information(0, 0), 0.1 * r.information(1, 1));
   // The constrained directions are still recovered.
   EXPECT_NEAR(r.T_target_source.translation().y(), 0.1, 0.01);
   EXPECT_LT(rotationErrorDeg(r.T_target_source, T_target_source), 0.1);
