@@ -1,0 +1,120 @@
+// Grabber lifecycle: session folder, threads, status and watchdog, summary.json.
+#include <fmt/format.h>
+#include <mrpt/config/CConfigFileMemory.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+
+#include "impl.h"
+#include "roadslam/can/socketcan_source.h"
+#include "roadslam/common/atomic_file.h"
+
+namespace roadslam::grabber {
+namespace fs = std::filesystem;
+
+namespace {
+
+/// Session files: the parameters actually used, and each sensor's calibration file (or a note
+/// that MRPT's default calibration for the model is used).
+void writeSessionFiles(const GrabParams& p, const std::string& dir) {
+  mrpt::config::CConfigFileMemory cfg;
+  p.saveToConfigFile(cfg);
+  writeFileAtomically(dir + "/params_used.ini", cfg.getContent());
+  for (const auto& s : p.sensors) {
+    if (!s.scan.calibration_file.empty()) {
+      std::error_code ec;
+      fs::copy_file(s.scan.calibration_file, dir + "/" + s.section + ".calibration.xml",
+                    fs::copy_options::overwrite_existing, ec);
+      if (ec) throw std::runtime_error("cannot copy calibration '" + s.scan.calibration_file + "': " + ec.message());
+    }
+  }
+}
+
+}  // namespace
+
+Grabber::Grabber(const GrabParams& params, const std::string& out_dir)
+    : impl_(std::make_unique<Impl>()) {
+  Impl& g = *impl_;
+  g.params = params;
+  g.out_dir = out_dir;
+  std::error_code ec;
+  fs::create_directories(out_dir, ec);
+  if (ec) throw std::runtime_error("cannot create output folder '" + out_dir + "': " + ec.message());
+  for (const auto& sp : params.sensors) {
+    auto rt = std::make_unique<SensorRt>(params.writer.queue_capacity);
+    rt->params = sp;
+    rt->rx = std::make_unique<sources::UdpReceiver>(sp.udp);
+    g.sensors.push_back(std::move(rt));
+  }
+  const CanParams& cp = params.can;
+  if (cp.source != CanParams::Source::None) {
+    g.can = std::make_unique<CanRt>(params.writer.can_queue_capacity);
+    if (cp.source == CanParams::Source::Candump) {
+      g.can->source = std::make_unique<can::LogReplaySource>(cp.candump_file, cp.candump_realtime);
+      g.can->replay = true;
+    } else {
+      g.can->source = std::make_unique<can::SocketCanSource>(cp.socketcan);
+    }
+  }
+  writeSessionFiles(params, out_dir);
+  g.writer_task = makeWriter(g);
+}
+
+void Grabber::useCanSocket(int fd, const std::string& interface_name) {
+  Impl& g = *impl_;
+  if (g.started) throw std::logic_error("Grabber::useCanSocket after start()");
+  if (!g.can) {
+    // The writer opens the candump sidecar only when CAN is configured: rebuild it.
+    g.can = std::make_unique<CanRt>(g.params.writer.can_queue_capacity);
+    g.params.can.source = CanParams::Source::SocketCan;
+    g.writer_task.reset();
+    g.writer_task = makeWriter(g);
+  }
+  g.can->source = std::make_unique<can::SocketCanSource>(can::SocketCanSource::fromFd(fd, interface_name));
+  g.can->replay = false;
+}
+
+Grabber::~Grabber() {
+  try {
+    stop();
+  } catch (...) {
+  }
+}
+
+void Grabber::start() {
+  Impl& g = *impl_;
+  if (g.started) return;
+  g.started = true;
+  g.start_s = wallNow();
+  g.rate_prev_s = g.start_s;
+  g.receiving = true;
+  g.writing = true;
+  for (auto& s : g.sensors) {
+    s->last_packet_s = g.start_s;
+    SensorRt* sp = s.get();
+    s->thread = std::thread([&g, sp] { g.sensorLoop(*sp); });
+  }
+  if (g.can) g.can->thread = std::thread([&g] { g.canLoop(); });
+  g.writer_thread = std::thread([&g] { g.writer_task->run(); });
+}
+
+void Grabber::stop() {
+  Impl& g = *impl_;
+  if (!g.started || g.stopped) return;
+  g.stopped = true;
+  g.receiving = false;
+  for (auto& s : g.sensors)
+    if (s->thread.joinable()) s->thread.join();
+  if (g.can && g.can->thread.joinable()) g.can->thread.join();
+  g.writing = false;  // the writer drains every queue, then closes the files
+  if (g.writer_thread.joinable()) g.writer_thread.join();
+  writeSummary(status());
+}
+
+std::uint16_t Grabber::dataPort(std::size_t i) const { return impl_->sensors.at(i)->rx->dataPort(); }
+std::uint16_t Grabber::positionPort(std::size_t i) const {
+  return impl_->sensors.at(i)->rx->positionPort();
+}
+
+}  // namespace roadslam::grabber

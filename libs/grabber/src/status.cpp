@@ -1,0 +1,144 @@
+// Grabber::status (with the watchdog), the one-line status text and summary.json.
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+
+#include "impl.h"
+#include "roadslam/common/atomic_file.h"
+
+namespace roadslam::grabber {
+
+GrabStatus Grabber::status() {
+  Impl& g = *impl_;
+  std::lock_guard<std::mutex> lock(g.status_mutex);
+  GrabStatus st;
+  const double now = wallNow();
+  st.elapsed_s = g.started ? now - g.start_s : 0;
+  const double dt = std::max(1e-6, now - g.rate_prev_s);
+  const bool running = g.started && !g.stopped;
+  for (auto& s : g.sensors) {
+    SensorStatus o;
+    o.label = s->params.scan.sensor_label;
+    o.data_port = s->rx->dataPort();
+    o.position_port = s->rx->positionPort();
+    o.packets = s->packets;
+    o.data_packets = s->data_packets;
+    o.position_packets = s->position_packets;
+    o.malformed = s->malformed;
+    o.foreign = s->foreign;
+    o.missing = s->missing;
+    o.kernel_drops = s->kernel_drops;
+    o.queue_drops = s->queue_drops;
+    o.sweeps = s->sweeps;
+    o.queue_depth = s->queue.size();
+    o.rate_pps = double(o.data_packets - s->rate_prev_packets) / dt;
+    s->rate_prev_packets = o.data_packets;
+    o.clock_offset_s = s->offset_s;
+    o.clock_offset_min_s = o.packets ? s->offset_min_s.load() : 0;
+    o.clock_offset_max_s = o.packets ? s->offset_max_s.load() : 0;
+    // Watchdog: report the transition to silence and back, once each.
+    const double quiet = now - s->last_packet_s;
+    if (running && !s->silent && quiet > s->params.silent_after_s) {
+      s->silent = true;
+      ++s->silent_events;
+      st.events.push_back(fmt::format("{}: silent for {:.1f} s (no packet on port {})", o.label, quiet,
+                                      o.data_port));
+    } else if (s->silent && quiet <= s->params.silent_after_s) {
+      s->silent = false;
+      st.events.push_back(fmt::format("{}: receiving again", o.label));
+    }
+    o.silent = s->silent;
+    o.silent_events = s->silent_events;
+    st.sensors.push_back(o);
+  }
+  if (g.can) {
+    CanRt& c = *g.can;
+    st.can.enabled = true;
+    st.can.frames = c.frames;
+    st.can.error_frames = c.error_frames;
+    st.can.bus_off = c.bus_off;
+    st.can.kernel_drops = c.kernel_drops;
+    st.can.malformed = c.malformed;
+    st.can.queue_drops = c.queue_drops;
+    st.can.vehicle_observations = c.vehicle_obs;
+    st.can.queue_depth = c.queue.size();
+    st.can.rate_fps = double(st.can.frames - c.rate_prev_frames) / dt;
+    c.rate_prev_frames = st.can.frames;
+    std::lock_guard<std::mutex> el(c.error_mutex);
+    st.can.error = c.error;
+  }
+  g.rate_prev_s = now;
+  WriterStatus& w = st.writer;
+  w.observations = g.writer.observations;
+  w.sweeps = g.writer.sweeps;
+  w.packets = g.writer.packets;
+  w.gps = g.writer.gps;
+  w.bytes = g.writer.bytes;
+  w.segments = g.writer.segments;
+  w.pending = g.writer.pending;
+  w.late = g.writer.late;
+  w.write_errors = g.writer.write_errors;
+  std::lock_guard<std::mutex> tl(g.writer.text_mutex);
+  w.current_segment = g.writer.current_segment;
+  w.error = g.writer.error;
+  return st;
+}
+
+std::string Grabber::formatStatus(const GrabStatus& s) {
+  std::string line = fmt::format("[{:7.1f} s]", s.elapsed_s);
+  for (const auto& o : s.sensors)
+    line += fmt::format(" {}: {:.0f} pkt/s {} pkt, gaps {} ovfl {} qdrop {} q {}{} off {:+.3f} s |", o.label,
+                        o.rate_pps, o.packets, o.missing, o.kernel_drops, o.queue_drops, o.queue_depth,
+                        o.silent ? " SILENT" : "", o.clock_offset_s);
+  if (s.can.enabled)
+    line += fmt::format(" CAN: {:.0f} fr/s {} fr, err {} busoff {} drop {} q {} |", s.can.rate_fps,
+                        s.can.frames, s.can.error_frames, s.can.bus_off,
+                        s.can.kernel_drops + s.can.queue_drops, s.can.queue_depth);
+  line += fmt::format(" rawlog: {} sweeps, {:.1f} MB in {} file(s), pending {}", s.writer.sweeps,
+                      double(s.writer.bytes) / 1e6, s.writer.segments, s.writer.pending);
+  if (s.writer.write_errors) line += fmt::format(", {} WRITE ERRORS: {}", s.writer.write_errors, s.writer.error);
+  return line;
+}
+
+void Grabber::writeSummary(const GrabStatus& s) const {
+  using nlohmann::json;
+  json sensors = json::array();
+  std::uint64_t received = 0, dropped = 0;
+  for (const auto& o : s.sensors) {
+    received += o.packets;
+    // Packets lost before the writer: sequence gaps cover the network and kernel drops (both
+    // leave a hole in the sensor's timestamps); the queue drops happen after reception.
+    dropped += o.queue_drops + std::max(o.missing, o.kernel_drops);
+    sensors.push_back({{"label", o.label}, {"data_port", o.data_port}, {"position_port", o.position_port},
+                       {"packets", o.packets}, {"data_packets", o.data_packets},
+                       {"position_packets", o.position_packets}, {"malformed", o.malformed},
+                       {"foreign", o.foreign}, {"missing", o.missing}, {"kernel_drops", o.kernel_drops},
+                       {"queue_drops", o.queue_drops}, {"sweeps_queued", o.sweeps},
+                       {"clock_offset_s", o.clock_offset_s}, {"clock_offset_min_s", o.clock_offset_min_s},
+                       {"clock_offset_max_s", o.clock_offset_max_s}, {"silent_events", o.silent_events}});
+  }
+  json j = {{"elapsed_s", s.elapsed_s},
+            {"packets_received", received},
+            {"packets_dropped", dropped},
+            {"sweeps", s.writer.sweeps},
+            {"packets_written", s.writer.packets},
+            {"gps_written", s.writer.gps},
+            {"observations", s.writer.observations},
+            {"rawlog_bytes", s.writer.bytes},
+            {"rawlog_segments", s.writer.segments},
+            {"late_observations", s.writer.late},
+            {"write_errors", s.writer.write_errors},
+            {"write_error", s.writer.error},
+            {"can_frames", s.can.frames},
+            {"can_frames_dropped", s.can.kernel_drops + s.can.queue_drops},
+            {"can_error_frames", s.can.error_frames},
+            {"can_bus_off", s.can.bus_off},
+            {"can_malformed", s.can.malformed},
+            {"can_vehicle_observations", s.can.vehicle_observations},
+            {"can_error", s.can.error},
+            {"sensors", sensors}};
+  writeFileAtomically(impl_->out_dir + "/summary.json", j.dump(2) + "\n");
+}
+
+}  // namespace roadslam::grabber
