@@ -1,0 +1,178 @@
+// End to end on loopback: the simulator streams real-format VLP-16 packets, CAN frames come over a
+// socketpair; the rawlog read back must hold every packet, byte for byte, in order.
+#include <gtest/gtest.h>
+#include <linux/can.h>
+#include <linux/can/error.h>
+
+#include <atomic>
+#include <cstring>
+#include <nlohmann/json.hpp>
+
+#include "grab_test_util.h"
+#include "roadslam/can/candump.h"
+#include "roadslam/grabber/grabber.h"
+#include "roadslam/pcap/pcap_reader.h"
+#include "roadslam/sim/outputs.h"
+#include "roadslam/velodyne/sweep_assembler.h"
+
+using namespace roadslam;
+using namespace roadslam::grabber;
+
+namespace {
+
+/// Sends \p n frames over \p fd 1 ms apart: ids 0x100 + i; every 40th an error frame, the 100th
+/// a bus-off error frame. Returns how many were error frames (\p bus_off: bus-off ones).
+std::size_t sendCan(int fd, int n, std::size_t* bus_off) {
+  std::size_t errors = 0;
+  *bus_off = 0;
+  for (int i = 0; i < n; ++i) {
+    can_frame f{};
+    f.can_id = canid_t(0x100 + i % 0x400);
+    f.len = 8;
+    for (int b = 0; b < 8; ++b) f.data[b] = uint8_t(i + b);
+    if (i == 100) {
+      f.can_id = CAN_ERR_FLAG | CAN_ERR_BUSOFF;
+      ++errors;
+      ++*bus_off;
+    } else if (i % 40 == 39) {
+      f.can_id = CAN_ERR_FLAG | CAN_ERR_CRTL;
+      ++errors;
+    }
+    EXPECT_EQ(::send(fd, &f, sizeof(f), 0), ssize_t(sizeof(f)));
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  return errors;
+}
+
+std::vector<std::vector<uint8_t>> pcapPayloads(const std::string& path, uint16_t port) {
+  std::vector<std::vector<uint8_t>> out;
+  for (auto& d : pcap::readUdpDatagrams(path, port)) out.push_back(d.payload);
+  return out;
+}
+
+}  // namespace
+
+class GrabZeroLoss : public ::testing::TestWithParam<double> {};
+
+TEST_P(GrabZeroLoss, EveryPacketAndFrameRecordedInOrder) {
+  const double speed = GetParam();
+  const auto& pkts = test::simPackets(2.0);
+  const auto expected = test::dataPayloads(pkts);
+  test::TempDir dir("e2e_" + std::to_string(int(speed)));
+  Grabber g(test::paramsFromText(test::testIni()), dir.str());
+  int sv[2];
+  ASSERT_EQ(::socketpair(AF_UNIX, SOCK_SEQPACKET, 0, sv), 0);
+  g.useCanSocket(sv[0], "can0");
+  g.start();
+  std::size_t bus_off = 0, can_errors = 0;
+  std::thread can_tx([&] { can_errors = sendCan(sv[1], 300, &bus_off); });
+  std::size_t sent = 0;
+  {
+    sim::UdpStreamer streamer("127.0.0.1", g.dataPort(0), speed);  // the simulator's own streamer
+    for (const auto& p : pkts)
+      if (p.port == 2368) streamer.packet(p.capture_s, p.port, p.bytes.data(), p.bytes.size());
+    sent = streamer.sent();
+  }
+  can_tx.join();
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  g.stop();
+  ::close(sv[1]);
+  const GrabStatus st = g.status();
+
+  ASSERT_EQ(sent, expected.size());
+  const SensorStatus& s = st.sensors.at(0);
+  EXPECT_EQ(s.data_packets, sent);
+  EXPECT_EQ(s.missing, 0u);
+  EXPECT_EQ(s.kernel_drops, 0u);
+  EXPECT_EQ(s.queue_drops, 0u);
+  EXPECT_EQ(st.writer.packets, sent);
+  EXPECT_EQ(st.writer.write_errors, 0u);
+
+  std::size_t scans = 0;
+  std::string error;
+  const auto recorded = test::readRawlog(dir.str() + "/grab_000.rawlog", &scans, &error);
+  EXPECT_TRUE(error.empty()) << error;
+  EXPECT_TRUE(recorded == expected) << recorded.size() << " of " << expected.size() << " packets";
+  // Sweeps: as many observations as the decoder's sweep assembler cuts from the same packets.
+  velodyne::SweepAssembler a;
+  for (const auto& p : expected) a.addPacket(p.data(), p.size(), 0);
+  a.finish();
+  EXPECT_EQ(scans, a.stats().sweeps);
+  EXPECT_EQ(st.writer.sweeps, scans);
+  // Lossless sidecar.
+  EXPECT_TRUE(pcapPayloads(dir.str() + "/lidar.pcap", 2368) == expected);
+
+  EXPECT_EQ(st.can.frames, 300u);
+  EXPECT_EQ(st.can.error_frames, can_errors);
+  EXPECT_EQ(st.can.bus_off, bus_off);
+  EXPECT_EQ(st.can.queue_drops + st.can.kernel_drops, 0u);
+  const auto frames = can::readCandumpFile(dir.str() + "/can.candump.log");
+  ASSERT_EQ(frames.size(), 300u);
+  EXPECT_EQ(frames[5].id, 0x105u);
+  EXPECT_EQ(frames[5].data[0], 5);
+  EXPECT_TRUE(frames[100].error());
+
+  const auto summary = nlohmann::json::parse(test::readAll(dir.str() + "/summary.json"));
+  EXPECT_EQ(summary["packets_received"].get<std::size_t>(), sent);
+  EXPECT_EQ(summary["packets_dropped"].get<std::size_t>(), 0u);
+  EXPECT_EQ(summary["sweeps"].get<std::size_t>(), scans);
+  EXPECT_EQ(summary["can_frames"].get<std::size_t>(), 300u);
+  EXPECT_EQ(summary["can_frames_dropped"].get<std::size_t>(), 0u);
+}
+
+INSTANTIATE_TEST_SUITE_P(Speeds, GrabZeroLoss, ::testing::Values(1.0, 2.0),
+                         [](const auto& info) { return "x" + std::to_string(int(info.param)); });
+
+// Malformed payloads and a second sensor on the same port are counted; recording goes on.
+TEST(GrabBadInput, MalformedAndForeignPacketsCountedRecordingGoesOn) {
+  const auto& pkts = test::simPackets(1.2);
+  test::TempDir dir("bad");
+  Grabber g(test::paramsFromText(test::testIni("", "source_filter = 127.0.0.1\n")), dir.str());
+  g.start();
+  const uint16_t dport = g.dataPort(0), pport = g.positionPort(0);
+  std::thread intruder([&] {
+    std::vector<test::SimPacket> other(pkts.begin(), pkts.begin() + 100);
+    for (auto& p : other) p.port = 2368;
+    test::sendPaced(other, dport, pport, 1.0, "127.0.0.2");  // a second sensor, same port
+  });
+  std::vector<test::SimPacket> junk;
+  for (int i = 0; i < 20; ++i) junk.push_back({pkts[std::size_t(i)].capture_s, 2368, std::vector<uint8_t>(100 + i, 0xAB)});
+  test::sendPaced(junk, dport, pport, 1.0);
+  const std::size_t sent = test::sendPaced(pkts, dport, pport, 2.0);
+  intruder.join();
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  g.stop();
+  const GrabStatus st = g.status();
+  ASSERT_EQ(sent, pkts.size());
+  const SensorStatus& s = st.sensors.at(0);
+  EXPECT_EQ(s.foreign, 100u);
+  EXPECT_EQ(s.malformed, 20u);
+  EXPECT_EQ(s.missing, 0u);
+  std::size_t positions = 0;
+  for (const auto& p : pkts) positions += p.port == 8308;
+  EXPECT_GE(positions, 1u);
+  EXPECT_EQ(s.position_packets, positions);
+  EXPECT_EQ(st.writer.gps, positions);  // $GPRMC -> CObservationGPS
+  EXPECT_TRUE(test::readRawlog(dir.str() + "/grab_000.rawlog") == test::dataPayloads(pkts));
+}
+
+TEST(GrabWatchdog, ReportsASilentSensorAndItsReturn) {
+  const auto& pkts = test::simPackets(0.3);
+  test::TempDir dir("wd");
+  Grabber g(test::paramsFromText(test::testIni()), dir.str());
+  g.start();
+  test::sendPaced(pkts, g.dataPort(0), g.positionPort(0), 1.0);
+  EXPECT_TRUE(g.status().events.empty());
+  std::this_thread::sleep_for(std::chrono::milliseconds(700));  // silent_after_ms = 400
+  GrabStatus st = g.status();
+  ASSERT_EQ(st.events.size(), 1u);
+  EXPECT_NE(st.events[0].find("silent"), std::string::npos) << st.events[0];
+  EXPECT_TRUE(st.sensors[0].silent);
+  test::sendPaced(pkts, g.dataPort(0), g.positionPort(0), 1.0);
+  st = g.status();
+  ASSERT_EQ(st.events.size(), 1u);
+  EXPECT_NE(st.events[0].find("receiving again"), std::string::npos) << st.events[0];
+  EXPECT_EQ(st.sensors[0].silent_events, 1u);
+  EXPECT_NE(Grabber::formatStatus(st).find("LIDAR"), std::string::npos);
+  g.stop();
+}
