@@ -96,9 +96,6 @@ TEST_P(KittiTest, ConsecutivePairsMatchGroundTruthWithConstantVelocityGuess) {
 TEST_P(KittiTest, RawDrivePairsFromIdentityGuess) {
   const std::string raw = std::string(ROADSLAM_SHARED_DATA) + "/kitti/raw-2011_09_26-0001/";
   if (!std::filesystem::exists(raw + "velodyne.tar.zst")) GTEST_SKIP() << "missing " << raw << "velodyne.tar.zst";
-  if (GetParam() == Method::IcpPointToPoint) {
-    GTEST_SKIP() << "point-to-point from identity stalls on the ground plane (bench: 12 cm median, 100 iterations)";
-  }
   const std::string cache =
       ds::unpackTarZstOnce(raw + "velodyne.tar.zst", std::string(ROADSLAM_BINARY_DIR) + "/test-cache/kitti-raw-2011_09_26-0001");
   const ds::KittiScanFolder folder(cache + "/velodyne");
@@ -110,12 +107,20 @@ TEST_P(KittiTest, RawDrivePairsFromIdentityGuess) {
   }
   Params prm;
   prm.method = GetParam();
+  const bool p2p = prm.method == Method::IcpPointToPoint;
+  if (p2p) {  // the documented point-to-point setting: Geman-McClure keeps it at identity here
+    prm.kernel = Kernel::Huber;
+    prm.kernel_scale_m = 1.0;
+    prm.max_iterations = 100;
+  }
   const Errors e = registerPairs(k, prm, [](size_t) { return Eigen::Isometry3d::Identity(); });
   // Measured here: max 0.087 (p2pl) / 0.098 (ndt) m, max 0.074 deg, medians 0.052 / 0.042 m.
+  // Point-to-point slides along the ground in sub-0.5 mm steps and stops 0-25 cm short of the
+  // motion: max 0.247 m, median 0.139 m, max 0.12 deg. It needs a motion prediction (see above).
   EXPECT_EQ(e.not_converged, 0);
-  EXPECT_LT(maxOf(e.terr_m), 0.15);
+  EXPECT_LT(maxOf(e.terr_m), p2p ? 0.35 : 0.15);
   EXPECT_LT(maxOf(e.rerr_deg), 0.2);
-  EXPECT_LT(median(e.terr_m), 0.07);
+  EXPECT_LT(median(e.terr_m), p2p ? 0.2 : 0.07);
   EXPECT_EQ(e.num_weak, 0) << "weakest " << e.weakest_eigenvalue;
 }
 
