@@ -6,6 +6,7 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -71,7 +72,8 @@ inline std::vector<std::vector<uint8_t>> dataPayloads(const std::vector<SimPacke
 /// Sends packets to 127.0.0.1 (data -> data_port, position -> position_port) paced on their
 /// capture times / speed, from \p src_addr. Returns the number of datagrams sent.
 inline std::size_t sendPaced(const std::vector<SimPacket>& pkts, uint16_t data_port, uint16_t position_port,
-                             double speed, const char* src_addr = "127.0.0.1") {
+                             double speed, const char* src_addr = "127.0.0.1",
+                             std::atomic<std::size_t>* progress = nullptr) {
   const int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
   sockaddr_in src{};
   src.sin_family = AF_INET;
@@ -90,6 +92,7 @@ inline std::size_t sendPaced(const std::vector<SimPacket>& pkts, uint16_t data_p
     if (::sendto(fd, p.bytes.data(), p.bytes.size(), 0, reinterpret_cast<sockaddr*>(&dst), sizeof(dst)) ==
         ssize_t(p.bytes.size()))
       ++sent;
+    if (progress) progress->store(sent);
   }
   ::close(fd);
   return sent;
