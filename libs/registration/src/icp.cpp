@@ -71,6 +71,9 @@ bool iterate(const Target::Impl& t, const PointCloud& src, const Eigen::Isometry
                    " correspondences within " + std::to_string(prm.max_correspondence_distance_m) + " m";
       return false;
     }
+    // A tiny Levenberg damping keeps unobservable directions (a flat ground alone leaves x, y and
+    // yaw free) at zero update instead of an arbitrary null-space step; degeneracy reports them.
+    acc.H.diagonal().array() += 1e-9 * acc.H.trace() + 1e-12;
     const Eigen::LDLT<Matrix6d> ldlt(acc.H);
     const Vector6d delta = ldlt.solve(-acc.b);
     if (ldlt.info() != Eigen::Success || !delta.allFinite()) {
