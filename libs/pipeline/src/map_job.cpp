@@ -10,6 +10,7 @@
 #include "roadslam/common/config.h"
 #include "roadslam/common/progress.h"
 #include "roadslam/common/stop_signal.h"
+#include "roadslam/mapping/mapper.h"
 #include "roadslam/pipeline/scan_stream.h"
 #include "roadslam/velodyne/decoder_params.h"
 
@@ -29,38 +30,69 @@ void prepareOutDir(const std::string& dir) {
   fs::remove(dir + "/.write_test");
 }
 
-std::string usedConfig(const odometry::Params& p, const velodyne::DecoderParams& dp) {
-  mrpt::config::CConfigFileMemory out;
-  p.saveToConfigFile(out);
-  dp.saveToConfigFile(out, "velodyne");
-  return out.getContent();
+struct JobParams {
+  odometry::Params odometry;
+  velodyne::DecoderParams decoder;
+  mapping::MapperParams mapper;
+
+  void load(const mrpt::config::CConfigFileBase& cfg) {
+    odometry.loadFromConfigFile(cfg);
+    decoder.loadFromConfigFile(cfg, "velodyne");
+    mapper.loadFromConfigFile(cfg);
+  }
+  std::string used() const {
+    mrpt::config::CConfigFileMemory out;
+    odometry.saveToConfigFile(out);
+    decoder.saveToConfigFile(out, "velodyne");
+    mapper.saveToConfigFile(out);
+    return out.getContent();
+  }
+};
+
+nlohmann::json loopsJson(const mapping::Mapper& m) {
+  nlohmann::json acc = nlohmann::json::array(), rej = nlohmann::json::array();
+  for (const auto& l : m.loopResults()) {
+    const auto& kq = m.keyframes()[l.query];
+    const auto& km = m.keyframes()[l.match];
+    nlohmann::json j = {{"query_frame", kq.frame_index}, {"match_frame", km.frame_index},
+                        {"query_keyframe", l.query}, {"match_keyframe", l.match},
+                        {"fitness_m", l.fitness_m}, {"overlap", l.overlap},
+                        {"correction_m", l.correction_m}, {"ms", l.ms}, {"reason", l.reason}};
+    (l.accepted ? acc : rej).push_back(j);
+  }
+  return {{"accepted", acc}, {"rejected", rej}};
 }
 
 }  // namespace
 
 MapOutcome runMapJob(const MapRequest& req) {
   const auto cfg = loadIniFile(req.config_path);
-  odometry::Params params;
-  params.loadFromConfigFile(*cfg);
-  velodyne::DecoderParams dp;
-  dp.loadFromConfigFile(*cfg, "velodyne");
+  JobParams params;
+  params.load(*cfg);
   prepareOutDir(req.out_dir);
-  writeFileAtomically(req.out_dir + "/config_used.ini", usedConfig(params, dp));
+  writeFileAtomically(req.out_dir + "/config_used.ini", params.used());
   auto stream = openScanStream(req.input_path, *cfg);
 
   MapOutcome out;
-  odometry::Odometry odo(params);
+  odometry::Odometry odo(params.odometry);
+  mapping::Mapper mapper(params.mapper);
   ProgressBar bar("roadslam-map", stream->sizeHint());
   const auto t0 = std::chrono::steady_clock::now();
+  double ms_mapping = 0;
   while (!stopRequested()) {
     if (req.max_frames && out.frames.size() >= req.max_frames) break;
     auto scan = stream->next();
     if (!scan) break;
     out.frames.push_back(odo.process(std::move(*scan)));
+    const auto tm = std::chrono::steady_clock::now();
+    mapper.addFrame(out.frames.back(), odo.lastFramePoints());
+    ms_mapping += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - tm).count();
     if (req.progress) bar.update(out.frames.size());
   }
   bar.finish();
   out.interrupted = stopRequested();
+  const auto T_map_kf = mapper.keyframePoses();
+  for (const auto& f : out.frames) out.T_map_lidar.push_back(mapper.correctedPose(f, T_map_kf));
   out.summary = summarize(out.frames);
   const auto st = stream->stats();
   out.summary["input"] = stream->describe();
@@ -68,8 +100,14 @@ MapOutcome runMapJob(const MapRequest& req) {
   out.summary["malformed_packets"] = st.malformed_packets;
   out.summary["partial_sweeps"] = st.partial_sweeps;
   out.summary["interrupted"] = out.interrupted;
+  const auto loops = loopsJson(mapper);
+  out.summary["loop_closures"] = loops["accepted"].size();
+  out.summary["loop_candidates_rejected"] = loops["rejected"].size();
+  out.summary["loops"] = loops;
+  out.summary["ms_mapping_total"] = ms_mapping;
+  mapper.graph().saveToTextFile(req.out_dir + "/posegraph.graph");
   out.summary["wall_time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  writeMapOutputs(req.out_dir, out.frames, out.summary);
+  writeMapOutputs(req.out_dir, out.frames, out.T_map_lidar, out.summary);
   return out;
 }
 

@@ -81,14 +81,19 @@ nlohmann::json summarize(const std::vector<odometry::FrameResult>& frames) {
 }
 
 void writeMapOutputs(const std::string& out_dir, const std::vector<odometry::FrameResult>& frames,
+                     const std::vector<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>>& T_map_lidar,
                      const nlohmann::json& summary) {
-  datasets::Trajectory traj;
-  for (const auto& f : frames) {
+  datasets::Trajectory traj, odom;
+  for (size_t i = 0; i < frames.size(); ++i) {
+    const auto& f = frames[i];
     if (!hasPose(f)) continue;
     traj.stamps_s.push_back(f.stamp_s);
-    traj.poses.push_back(f.T_world_lidar);
+    traj.poses.push_back(T_map_lidar.empty() ? f.T_world_lidar : T_map_lidar.at(i));
+    odom.stamps_s.push_back(f.stamp_s);
+    odom.poses.push_back(f.T_world_lidar);
   }
   datasets::writeTum(out_dir + "/trajectory.tum", traj);
+  datasets::writeTum(out_dir + "/trajectory_odometry.tum", odom);
   datasets::writeKittiPoses(out_dir + "/trajectory_kitti.txt", traj.poses);
   datasets::writeTimes(out_dir + "/trajectory_times.txt", traj.stamps_s);
   writeFileAtomically(out_dir + "/frames.csv", framesCsv(frames));

@@ -5,9 +5,12 @@
 /// never leaves a half-written output; SIGINT/SIGTERM stop between frames and the outputs then hold
 /// what was processed.
 ///
-/// Outputs in DIR: trajectory.tum (T_world_lidar at each sweep stamp), trajectory_kitti.txt (3x4)
-/// with trajectory_times.txt, frames.csv (one row per frame: status, timing, registration figures),
-/// config_used.ini (every parameter as used), summary.json.
+/// Outputs in DIR: trajectory.tum (T_map_lidar at each sweep stamp, corrected by loop closure through
+/// each frame's keyframe), trajectory_odometry.tum (odometry only, T_world_lidar), trajectory_kitti.txt
+/// (3x4, corrected) with trajectory_times.txt, frames.csv (one row per frame: status, timing,
+/// registration figures, odometry pose), posegraph.graph (MRPT text graph of the keyframes),
+/// the maps (see roadslam/mapping/map_outputs.h), config_used.ini (every parameter as used) and
+/// summary.json (with loop_closures and loop_candidates_rejected).
 
 #include <nlohmann/json.hpp>
 #include <string>
@@ -26,7 +29,8 @@ struct MapRequest {
 };
 
 struct MapOutcome {
-  std::vector<odometry::FrameResult> frames;
+  std::vector<odometry::FrameResult> frames;   ///< odometry results (T_world_lidar: odometry only)
+  std::vector<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>> T_map_lidar;  ///< corrected, per frame
   nlohmann::json summary;
   bool interrupted = false;
 };
@@ -36,8 +40,11 @@ struct MapOutcome {
 /// counted in the summary.
 MapOutcome runMapJob(const MapRequest& req);
 
-/// Writes the outputs listed above for \p frames into \p out_dir.
+/// Writes the trajectory files, frames.csv and summary.json for \p frames into \p out_dir;
+/// trajectory.tum / trajectory_kitti.txt hold \p T_map_lidar (one per frame) when it is not empty,
+/// else the odometry poses.
 void writeMapOutputs(const std::string& out_dir, const std::vector<odometry::FrameResult>& frames,
+                     const std::vector<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>>& T_map_lidar,
                      const nlohmann::json& summary);
 
 /// Summary statistics of \p frames (counts per status, ms per frame mean/p50/p95/max).

@@ -1,0 +1,85 @@
+#pragma once
+/// \file loop_closure.h
+/// Loop closure between keyframes (map frame = odometry world frame, lidar frames per keyframe):
+///  1. candidates: older keyframes within search_radius_m of the query in the current graph estimate,
+///     with at least min_travel_m of path driven in between (so neighbours in time never qualify);
+///  2. verification, coarse to fine (libs/registration): a local submap of the query (its last few
+///     keyframes) is aligned to a submap around the candidate by NDT (wide basin), then by
+///     point-to-plane ICP (precise);
+///  3. acceptance: fine ICP converged, inlier RMSE <= max_fitness_m, overlap (inliers / source points)
+///     >= min_overlap, and the correction of the graph's guess within what odometry may have drifted
+///     over the path between the two keyframes (consistency_abs_m + consistency_ratio * path, and the
+///     same for the rotation).
+/// The graph-level check after optimisation (the loop edge must be satisfied once the graph is
+/// optimised) lives in Mapper.
+
+#include <Eigen/Geometry>
+#include <string>
+#include <vector>
+
+#include "roadslam/mapping/pose_graph.h"
+#include "roadslam/registration/params.h"
+
+namespace roadslam::mapping {
+
+/// A keyframe: its odometry pose and its (downsampled) points in its own lidar frame.
+struct Keyframe {
+  size_t frame_index = 0;          ///< index of the odometry frame [-]
+  double stamp_s = 0;              ///< sweep stamp [s]
+  Eigen::Isometry3d T_odom_lidar = Eigen::Isometry3d::Identity();  ///< odometry-only pose
+  double path_m = 0;               ///< odometry path length driven up to this keyframe [m]
+  std::vector<Eigen::Vector3f> points_lidar;  ///< lidar frame [m]
+};
+
+/// Ini section [loop_closure]; the coarse and fine registrations read [loop_closure_coarse] and
+/// [loop_closure_fine] (registration::Params keys).
+struct LoopClosureParams {
+  bool enabled = true;
+  double search_radius_m = 12.0;     ///< candidate: closer than this in the graph estimate [m]
+  double min_travel_m = 60.0;        ///< ... and at least this much path in between [m]
+  double check_every_m = 2.0;        ///< queries are this much path apart [m]
+  int max_candidates = 2;            ///< nearest candidates verified per query [-]
+  int query_keyframes = 5;           ///< keyframes (query and the ones before) in the source submap [-]
+  int target_half_width = 10;        ///< keyframes on each side of the candidate in the target submap [-]
+  double source_voxel_m = 0.4;       ///< source submap voxel [m]
+  double target_voxel_m = 0.3;       ///< target submap voxel [m]
+  double max_fitness_m = 0.35;       ///< fine ICP inlier RMSE (point to point, sparse submaps) below [m]
+  double min_overlap = 0.55;         ///< fine ICP inliers / source points must be above [-]
+  double consistency_abs_m = 1.5;    ///< correction allowed regardless of the path [m]
+  double consistency_ratio = 0.03;   ///< ... plus this fraction of the path between the keyframes [-]
+  double consistency_rot_rad = 0.0349; ///< rotation correction allowed regardless of the path [rad]; ini _deg
+  double consistency_rot_rad_per_m = 5.236e-4; ///< ... plus this per metre of path [rad/m]; ini consistency_rot_deg_per_100m
+  double max_loop_residual_m = 0.5;  ///< after optimisation the loop edge must hold within this [m]
+  double information_scale = 1.0;    ///< multiplies the fine ICP information of a loop edge [-]
+  double skip_after_loop_m = 10.0;   ///< no query for this much path after an accepted loop [m]
+  registration::Params coarse;       ///< NDT by default
+  registration::Params fine;         ///< point-to-plane ICP by default
+
+  LoopClosureParams();
+  void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section = "loop_closure");
+  void saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& section = "loop_closure") const;
+};
+
+/// One verified candidate, accepted or not (reason says which check failed).
+struct LoopResult {
+  size_t query = 0, match = 0;      ///< keyframe ids (match older) [-]
+  bool accepted = false;
+  std::string reason;               ///< "accepted" or the failed check
+  double fitness_m = 0;             ///< fine ICP inlier RMSE [m]
+  double overlap = 0;               ///< fine inliers / source points [-]
+  double correction_m = 0;          ///< |translation| of guess^-1 * measured [m]
+  double correction_rad = 0;        ///< rotation angle of guess^-1 * measured [rad]
+  double ms = 0;                    ///< verification wall time [ms]
+  Eigen::Isometry3d T_match_query = Eigen::Isometry3d::Identity();  ///< measured relative pose
+  Matrix6d information = Matrix6d::Zero();  ///< [t, r] order, 1/m^2, 1/rad^2
+};
+
+/// Older keyframes that qualify as candidates for \p query, nearest first (at most max_candidates).
+std::vector<size_t> findLoopCandidates(const std::vector<Keyframe>& kfs, const PoseVector& T_map_kf, size_t query,
+                                       const LoopClosureParams& p);
+
+/// Registers the query submap against the candidate's and applies the acceptance checks 3 above.
+LoopResult verifyLoop(const std::vector<Keyframe>& kfs, const PoseVector& T_map_kf, size_t query, size_t match,
+                      const LoopClosureParams& p);
+
+}  // namespace roadslam::mapping

@@ -1,0 +1,79 @@
+#pragma once
+/// \file pose_graph.h
+/// 3D pose graph of keyframes: MRPT's CNetworkOfPoses3DInf optimised with its sparse
+/// Levenberg-Marquardt (mrpt::graphslam::optimize_graph_spa_levmarq). The MRPT headers stay in
+/// pose_graph.cpp (graphslam/levmarq.h alone costs ~4 s per translation unit).
+///
+/// Frames: node i holds T_map_keyframe_i (map = world frame of the odometry, anchored at node 0,
+/// which stays fixed). Edge (i, j) measures T_i_j = T_map_i^-1 * T_map_j. Information matrices are
+/// 6x6 in the order [tx ty tz rx ry rz] (m, rad), the order of the SE(3) logarithm MRPT's optimiser
+/// uses for the residual, which is also the order of registration::RegistrationResult::information.
+
+#include <Eigen/Geometry>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace mrpt::config {
+class CConfigFileBase;
+}
+
+namespace roadslam::mapping {
+
+using Matrix6d = Eigen::Matrix<double, 6, 6>;
+using PoseVector = std::vector<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>>;
+
+/// Ini section [pose_graph].
+struct PoseGraphParams {
+  int max_iterations = 100;               ///< Levenberg-Marquardt iterations per optimisation [-]
+  bool use_registration_information = true;  ///< odometry edges carry the registration information
+  double odometry_information_scale = 1.0;   ///< multiplies the registration information [-]
+  double odometry_sigma_t_m = 0.05;       ///< fallback / floor std of an odometry edge translation [m]
+  double odometry_sigma_r_rad = 0.005;    ///< ... and rotation [rad]; ini odometry_sigma_r_deg
+
+  void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section = "pose_graph");
+  void saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& section = "pose_graph") const;
+};
+
+struct OptimizeStats {
+  int iterations = 0;       ///< LM iterations run [-]
+  double final_error = 0;   ///< sum of squared Mahalanobis residuals at the end [-]
+  double ms = 0;            ///< wall time [ms]
+};
+
+class PoseGraph {
+ public:
+  explicit PoseGraph(PoseGraphParams params = {});
+  ~PoseGraph();
+  PoseGraph(PoseGraph&&) noexcept;
+  PoseGraph& operator=(PoseGraph&&) noexcept;
+
+  /// Adds a node with initial estimate T_map_node; returns its id (0, 1, ...). Node 0 is fixed.
+  size_t addNode(const Eigen::Isometry3d& T_map_node);
+  /// Adds the measurement T_from_to with its information [1/m^2, 1/rad^2]; returns the edge index.
+  size_t addEdge(size_t from, size_t to, const Eigen::Isometry3d& T_from_to, const Matrix6d& information);
+  /// Removes the most recently added edge (a loop that failed its consistency check).
+  void removeLastEdge();
+
+  OptimizeStats optimize();
+
+  size_t numNodes() const;
+  size_t numEdges() const;
+  Eigen::Isometry3d pose(size_t node) const;  ///< T_map_node
+  PoseVector poses() const;
+  /// Restores node estimates (e.g. the state before a rejected loop); size must equal numNodes().
+  void setPoses(const PoseVector& T_map_nodes);
+  /// Squared Mahalanobis residual of edge \p e at the current estimates [-].
+  double edgeChi2(size_t e) const;
+
+  /// Writes MRPT's text graph format (VERTEX3 / EDGE3 lines) atomically; throws naming the path.
+  void saveToTextFile(const std::string& path) const;
+  /// Information of an odometry edge from the registration's information (see PoseGraphParams).
+  Matrix6d odometryInformation(const Matrix6d& registration_information) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace roadslam::mapping

@@ -1,0 +1,157 @@
+#include "roadslam/mapping/loop_closure.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include "roadslam/common/config.h"
+#include "roadslam/registration/registration.h"
+
+namespace roadslam::mapping {
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+
+double angleOf(const Eigen::Isometry3d& T) { return Eigen::AngleAxisd(T.rotation()).angle(); }
+
+/// Points of keyframes [first, last] mapped into keyframe \p frame's lidar frame by the graph estimate.
+registration::PointCloud submap(const std::vector<Keyframe>& kfs, const PoseVector& T_map_kf, size_t first,
+                                size_t last, size_t frame, double voxel_m) {
+  registration::PointCloud pts;
+  const Eigen::Isometry3d T_frame_map = T_map_kf[frame].inverse();
+  for (size_t i = first; i <= last; ++i) {
+    const Eigen::Isometry3d T = T_frame_map * T_map_kf[i];
+    for (const auto& q : kfs[i].points_lidar) pts.push_back(T * q.cast<double>());
+  }
+  return registration::voxelDownsample(pts, voxel_m);
+}
+
+}  // namespace
+
+LoopClosureParams::LoopClosureParams() {
+  coarse.method = registration::Method::Ndt;
+  coarse.ndt_resolution_m = 2.0;
+  coarse.ndt_levels = 3;
+  coarse.max_iterations = 40;
+  coarse.max_correction_m = 15.0;
+  fine.method = registration::Method::IcpPointToPlane;
+  fine.max_correspondence_distance_m = 1.0;
+  fine.max_iterations = 40;
+  fine.max_correction_m = 3.0;
+}
+
+void LoopClosureParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& s) {
+  enabled = readBool(cfg, s, "enabled", enabled);
+  search_radius_m = readDouble(cfg, s, "search_radius_m", search_radius_m);
+  min_travel_m = readDouble(cfg, s, "min_travel_m", min_travel_m);
+  check_every_m = readDouble(cfg, s, "check_every_m", check_every_m);
+  max_candidates = readInt(cfg, s, "max_candidates", max_candidates);
+  query_keyframes = readInt(cfg, s, "query_keyframes", query_keyframes);
+  target_half_width = readInt(cfg, s, "target_half_width", target_half_width);
+  source_voxel_m = readDouble(cfg, s, "source_voxel_m", source_voxel_m);
+  target_voxel_m = readDouble(cfg, s, "target_voxel_m", target_voxel_m);
+  max_fitness_m = readDouble(cfg, s, "max_fitness_m", max_fitness_m);
+  min_overlap = readDouble(cfg, s, "min_overlap", min_overlap);
+  consistency_abs_m = readDouble(cfg, s, "consistency_abs_m", consistency_abs_m);
+  consistency_ratio = readDouble(cfg, s, "consistency_ratio", consistency_ratio);
+  consistency_rot_rad = readDouble(cfg, s, "consistency_rot_deg", consistency_rot_rad / kDeg) * kDeg;
+  consistency_rot_rad_per_m =
+      readDouble(cfg, s, "consistency_rot_deg_per_100m", consistency_rot_rad_per_m / kDeg * 100) * kDeg / 100;
+  max_loop_residual_m = readDouble(cfg, s, "max_loop_residual_m", max_loop_residual_m);
+  information_scale = readDouble(cfg, s, "information_scale", information_scale);
+  skip_after_loop_m = readDouble(cfg, s, "skip_after_loop_m", skip_after_loop_m);
+  if (search_radius_m <= 0 || check_every_m <= 0 || max_candidates < 1 || query_keyframes < 1 ||
+      target_half_width < 0 || source_voxel_m <= 0 || target_voxel_m <= 0 || information_scale <= 0) {
+    throw std::runtime_error("[" + s + "]: search_radius_m, check_every_m, max_candidates, query_keyframes, "
+                             "*_voxel_m and information_scale must be > 0");
+  }
+  coarse.loadFromConfigFile(cfg, s + "_coarse");
+  fine.loadFromConfigFile(cfg, s + "_fine");
+}
+
+void LoopClosureParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& s) const {
+  cfg.write(s, "enabled", enabled);
+  cfg.write(s, "search_radius_m", search_radius_m);
+  cfg.write(s, "min_travel_m", min_travel_m);
+  cfg.write(s, "check_every_m", check_every_m);
+  cfg.write(s, "max_candidates", max_candidates);
+  cfg.write(s, "query_keyframes", query_keyframes);
+  cfg.write(s, "target_half_width", target_half_width);
+  cfg.write(s, "source_voxel_m", source_voxel_m);
+  cfg.write(s, "target_voxel_m", target_voxel_m);
+  cfg.write(s, "max_fitness_m", max_fitness_m);
+  cfg.write(s, "min_overlap", min_overlap);
+  cfg.write(s, "consistency_abs_m", consistency_abs_m);
+  cfg.write(s, "consistency_ratio", consistency_ratio);
+  cfg.write(s, "consistency_rot_deg", consistency_rot_rad / kDeg);
+  cfg.write(s, "consistency_rot_deg_per_100m", consistency_rot_rad_per_m / kDeg * 100);
+  cfg.write(s, "max_loop_residual_m", max_loop_residual_m);
+  cfg.write(s, "information_scale", information_scale);
+  cfg.write(s, "skip_after_loop_m", skip_after_loop_m);
+  coarse.saveToConfigFile(cfg, s + "_coarse");
+  fine.saveToConfigFile(cfg, s + "_fine");
+}
+
+std::vector<size_t> findLoopCandidates(const std::vector<Keyframe>& kfs, const PoseVector& T_map_kf, size_t query,
+                                       const LoopClosureParams& p) {
+  std::vector<std::pair<double, size_t>> near;
+  const Eigen::Vector3d q = T_map_kf[query].translation();
+  for (size_t j = 0; j < query; ++j) {
+    if (kfs[query].path_m - kfs[j].path_m < p.min_travel_m) break;  // path grows with j
+    const double d = (T_map_kf[j].translation() - q).norm();
+    if (d < p.search_radius_m) near.emplace_back(d, j);
+  }
+  std::sort(near.begin(), near.end());
+  std::vector<size_t> out;
+  // one candidate per stretch of road: skip candidates next to an already chosen one
+  for (const auto& [d, j] : near) {
+    bool close = false;
+    for (size_t o : out) close |= std::abs(kfs[o].path_m - kfs[j].path_m) < 2 * p.search_radius_m;
+    if (!close) out.push_back(j);
+    if (out.size() >= static_cast<size_t>(p.max_candidates)) break;
+  }
+  return out;
+}
+
+LoopResult verifyLoop(const std::vector<Keyframe>& kfs, const PoseVector& T_map_kf, size_t query, size_t match,
+                      const LoopClosureParams& p) {
+  const auto t0 = std::chrono::steady_clock::now();
+  LoopResult r;
+  r.query = query;
+  r.match = match;
+  const size_t qfirst = query + 1 >= static_cast<size_t>(p.query_keyframes) ? query + 1 - p.query_keyframes : 0;
+  const size_t tfirst = match >= static_cast<size_t>(p.target_half_width) ? match - p.target_half_width : 0;
+  const size_t tlast = std::min(match + p.target_half_width, qfirst > 0 ? qfirst - 1 : 0);
+  const auto source = submap(kfs, T_map_kf, qfirst, query, query, p.source_voxel_m);
+  const auto target_pts = submap(kfs, T_map_kf, tfirst, std::max(tlast, match), match, p.target_voxel_m);
+  const Eigen::Isometry3d guess = T_map_kf[match].inverse() * T_map_kf[query];
+  auto finish = [&](const std::string& why) {
+    r.reason = why;
+    r.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    return r;
+  };
+  const registration::Target coarse_target(target_pts, p.coarse);
+  const auto c = registration::align(coarse_target, source, guess, p.coarse);
+  if (!c.converged) return finish("coarse: " + registration::toString(c.status));
+  const registration::Target fine_target(target_pts, p.fine);
+  const auto f = registration::align(fine_target, source, c.T_target_source, p.fine);
+  r.T_match_query = f.T_target_source;
+  r.fitness_m = f.fitness;
+  r.overlap = source.empty() ? 0.0 : static_cast<double>(f.inliers) / source.size();
+  r.information = p.information_scale * f.information;
+  const Eigen::Isometry3d corr = guess.inverse() * f.T_target_source;
+  r.correction_m = corr.translation().norm();
+  r.correction_rad = angleOf(corr);
+  if (!f.converged) return finish("fine: " + registration::toString(f.status));
+  if (r.fitness_m > p.max_fitness_m) return finish("fitness");
+  if (r.overlap < p.min_overlap) return finish("overlap");
+  const double path = kfs[query].path_m - kfs[match].path_m;
+  if (r.correction_m > p.consistency_abs_m + p.consistency_ratio * path || r.correction_rad > p.consistency_rot_rad + p.consistency_rot_rad_per_m * path) {
+    return finish("inconsistent with odometry");
+  }
+  r.accepted = true;
+  return finish("accepted");
+}
+
+}  // namespace roadslam::mapping

@@ -1,0 +1,126 @@
+#include "roadslam/mapping/mapper.h"
+
+#include <unordered_set>
+
+#include "roadslam/common/config.h"
+
+namespace roadslam::mapping {
+namespace {
+
+struct VoxelHash {
+  size_t operator()(const Eigen::Vector3i& v) const {
+    return (static_cast<size_t>(v.x()) * 73856093u) ^ (static_cast<size_t>(v.y()) * 19349669u) ^
+           (static_cast<size_t>(v.z()) * 83492791u);
+  }
+};
+
+std::vector<Eigen::Vector3f> downsample(const std::vector<Eigen::Vector3d>& pts, double voxel_m) {
+  std::unordered_set<Eigen::Vector3i, VoxelHash> seen;
+  std::vector<Eigen::Vector3f> out;
+  for (const auto& p : pts) {
+    if (!p.allFinite()) continue;
+    if (seen.insert((p / voxel_m).array().floor().cast<int>().matrix()).second) out.push_back(p.cast<float>());
+  }
+  return out;
+}
+
+}  // namespace
+
+void MapperParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& s) {
+  keyframe_voxel_m = readDouble(cfg, s, "keyframe_voxel_m", keyframe_voxel_m);
+  if (keyframe_voxel_m <= 0) throw std::runtime_error("[" + s + "] keyframe_voxel_m must be > 0");
+  graph.loadFromConfigFile(cfg, "pose_graph");
+  loop.loadFromConfigFile(cfg, "loop_closure");
+}
+
+void MapperParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& s) const {
+  cfg.write(s, "keyframe_voxel_m", keyframe_voxel_m);
+  graph.saveToConfigFile(cfg, "pose_graph");
+  loop.saveToConfigFile(cfg, "loop_closure");
+}
+
+Mapper::Mapper(MapperParams params) : p_(std::move(params)), graph_(p_.graph) {}
+
+size_t Mapper::acceptedLoops() const {
+  size_t n = 0;
+  for (const auto& l : loops_) n += l.accepted ? 1 : 0;
+  return n;
+}
+
+bool Mapper::addFrame(const odometry::FrameResult& f, const std::vector<Eigen::Vector3d>& points_lidar) {
+  if (f.status == odometry::FrameStatus::Skipped) return false;
+  if (have_last_) path_m_ += (f.T_world_lidar.translation() - T_odom_last_.translation()).norm();
+  T_odom_last_ = f.T_world_lidar;
+  have_last_ = true;
+  if (f.keyframe || kfs_.empty()) {
+    addKeyframe(f, points_lidar);
+  }
+  if (frame_kf_.size() <= f.index) frame_kf_.resize(f.index + 1, -1);
+  frame_kf_[f.index] = static_cast<long>(kfs_.size()) - 1;
+  if (!(f.keyframe || kfs_.size() == 1) || !p_.loop.enabled) return false;
+  return detectLoop();
+}
+
+void Mapper::addKeyframe(const odometry::FrameResult& f, const std::vector<Eigen::Vector3d>& points_lidar) {
+  Keyframe kf;
+  kf.frame_index = f.index;
+  kf.stamp_s = f.stamp_s;
+  kf.T_odom_lidar = f.T_world_lidar;
+  kf.path_m = path_m_;
+  kf.points_lidar = downsample(points_lidar, p_.keyframe_voxel_m);
+  if (kfs_.empty()) {
+    graph_.addNode(f.T_world_lidar);
+  } else {
+    const size_t prev = kfs_.size() - 1;
+    const Eigen::Isometry3d T_prev_cur = kfs_[prev].T_odom_lidar.inverse() * f.T_world_lidar;
+    const size_t id = graph_.addNode(graph_.pose(prev) * T_prev_cur);
+    graph_.addEdge(prev, id, T_prev_cur, graph_.odometryInformation(f.information));
+  }
+  kfs_.push_back(std::move(kf));
+}
+
+bool Mapper::detectLoop() {
+  const auto& lp = p_.loop;
+  if (path_m_ - last_query_path_m_ < lp.check_every_m || path_m_ - last_loop_path_m_ < lp.skip_after_loop_m) {
+    return false;
+  }
+  last_query_path_m_ = path_m_;
+  const size_t query = kfs_.size() - 1;
+  const PoseVector T_map_kf = graph_.poses();
+  for (size_t match : findLoopCandidates(kfs_, T_map_kf, query, lp)) {
+    if (tryLoop(verifyLoop(kfs_, T_map_kf, query, match, lp))) return true;
+  }
+  return false;
+}
+
+bool Mapper::tryLoop(LoopResult r) {
+  if (!r.accepted) {
+    loops_.push_back(std::move(r));
+    return false;
+  }
+  // graph-level consistency: a loop the optimised graph cannot satisfy contradicts the odometry
+  const PoseVector before = graph_.poses();
+  graph_.addEdge(r.match, r.query, r.T_match_query, r.information);
+  graph_.optimize();
+  const Eigen::Isometry3d T_est = graph_.pose(r.match).inverse() * graph_.pose(r.query);
+  const double residual_m = (r.T_match_query.inverse() * T_est).translation().norm();
+  if (residual_m > p_.loop.max_loop_residual_m) {
+    graph_.removeLastEdge();
+    graph_.setPoses(before);
+    r.accepted = false;
+    r.reason = "graph residual";
+    loops_.push_back(std::move(r));
+    return false;
+  }
+  last_loop_path_m_ = path_m_;
+  loops_.push_back(std::move(r));
+  return true;
+}
+
+Eigen::Isometry3d Mapper::correctedPose(const odometry::FrameResult& f, const PoseVector& T_map_kf) const {
+  if (f.index >= frame_kf_.size() || frame_kf_[f.index] < 0) return f.T_world_lidar;
+  const auto k = static_cast<size_t>(frame_kf_[f.index]);
+  return T_map_kf[k] * kfs_[k].T_odom_lidar.inverse() * f.T_world_lidar;
+}
+
+}  // namespace roadslam::mapping

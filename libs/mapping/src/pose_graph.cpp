@@ -1,0 +1,165 @@
+// The only translation unit that includes MRPT's graph-SLAM headers (levmarq.h costs ~4 s to parse).
+#include "roadslam/mapping/pose_graph.h"
+
+#include <mrpt/graphs/CNetworkOfPoses.h>
+#include <mrpt/graphslam/levmarq.h>
+
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include "roadslam/common/atomic_file.h"
+#include "roadslam/common/config.h"
+
+namespace roadslam::mapping {
+namespace {
+
+mrpt::poses::CPose3D toMrpt(const Eigen::Isometry3d& T) {
+  mrpt::math::CMatrixDouble44 M;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) M(r, c) = T.matrix()(r, c);
+  return mrpt::poses::CPose3D::FromHomogeneousMatrix(M);
+}
+
+Eigen::Isometry3d toEigen(const mrpt::poses::CPose3D& p) {
+  const auto M = p.getHomogeneousMatrixVal<mrpt::math::CMatrixDouble44>();
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 4; ++c) T.matrix()(r, c) = M(r, c);
+  return T;
+}
+
+/// se(3) residual [t, rotation vector] of the measurement against the estimate (small-error form).
+Eigen::Matrix<double, 6, 1> residual(const Eigen::Isometry3d& T_meas, const Eigen::Isometry3d& T_est) {
+  const Eigen::Isometry3d E = T_meas.inverse() * T_est;
+  Eigen::Matrix<double, 6, 1> e;
+  const Eigen::AngleAxisd aa(E.rotation());
+  e.head<3>() = E.translation();
+  e.tail<3>() = aa.angle() * aa.axis();
+  return e;
+}
+
+}  // namespace
+
+void PoseGraphParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& s) {
+  max_iterations = readInt(cfg, s, "max_iterations", max_iterations);
+  use_registration_information = readBool(cfg, s, "use_registration_information", use_registration_information);
+  odometry_information_scale = readDouble(cfg, s, "odometry_information_scale", odometry_information_scale);
+  odometry_sigma_t_m = readDouble(cfg, s, "odometry_sigma_t_m", odometry_sigma_t_m);
+  odometry_sigma_r_rad = readDouble(cfg, s, "odometry_sigma_r_deg", odometry_sigma_r_rad * 180 / M_PI) * M_PI / 180;
+  if (max_iterations < 1 || odometry_sigma_t_m <= 0 || odometry_sigma_r_rad <= 0 || odometry_information_scale <= 0) {
+    throw std::runtime_error("[" + s + "]: max_iterations, odometry_sigma_* and odometry_information_scale must be > 0");
+  }
+}
+
+void PoseGraphParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& s) const {
+  cfg.write(s, "max_iterations", max_iterations);
+  cfg.write(s, "use_registration_information", use_registration_information);
+  cfg.write(s, "odometry_information_scale", odometry_information_scale);
+  cfg.write(s, "odometry_sigma_t_m", odometry_sigma_t_m);
+  cfg.write(s, "odometry_sigma_r_deg", odometry_sigma_r_rad * 180 / M_PI);
+}
+
+struct PoseGraph::Impl {
+  PoseGraphParams p;
+  mrpt::graphs::CNetworkOfPoses3DInf graph;
+  std::vector<mrpt::graphs::CNetworkOfPoses3DInf::edges_map_t::iterator> edges;
+};
+
+PoseGraph::PoseGraph(PoseGraphParams params) : impl_(std::make_unique<Impl>()) {
+  impl_->p = params;
+  impl_->graph.root = 0;
+}
+PoseGraph::~PoseGraph() = default;
+PoseGraph::PoseGraph(PoseGraph&&) noexcept = default;
+PoseGraph& PoseGraph::operator=(PoseGraph&&) noexcept = default;
+
+size_t PoseGraph::addNode(const Eigen::Isometry3d& T_map_node) {
+  const size_t id = impl_->graph.nodes.size();
+  impl_->graph.nodes[id] = toMrpt(T_map_node);
+  return id;
+}
+
+size_t PoseGraph::addEdge(size_t from, size_t to, const Eigen::Isometry3d& T_from_to, const Matrix6d& information) {
+  if (from >= numNodes() || to >= numNodes()) throw std::out_of_range("PoseGraph::addEdge: unknown node");
+  mrpt::poses::CPose3DPDFGaussianInf pdf;
+  pdf.mean = toMrpt(T_from_to);
+  for (int r = 0; r < 6; ++r)
+    for (int c = 0; c < 6; ++c) pdf.cov_inv(r, c) = 0.5 * (information(r, c) + information(c, r));
+  impl_->edges.push_back(impl_->graph.edges.insert({{from, to}, pdf}));
+  return impl_->edges.size() - 1;
+}
+
+void PoseGraph::removeLastEdge() {
+  if (impl_->edges.empty()) return;
+  impl_->graph.edges.erase(impl_->edges.back());
+  impl_->edges.pop_back();
+}
+
+OptimizeStats PoseGraph::optimize() {
+  OptimizeStats st;
+  if (numNodes() < 2 || impl_->edges.empty()) return st;
+  const auto t0 = std::chrono::steady_clock::now();
+  mrpt::graphslam::TResultInfoSpaLevMarq info{};
+  mrpt::containers::yaml extra = mrpt::containers::yaml::Map();
+  extra["max_iterations"] = static_cast<uint64_t>(impl_->p.max_iterations);
+  mrpt::graphslam::optimize_graph_spa_levmarq(impl_->graph, info, nullptr, extra);
+  st.iterations = static_cast<int>(info.num_iters);
+  st.final_error = info.final_total_sq_error;
+  st.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  return st;
+}
+
+size_t PoseGraph::numNodes() const { return impl_->graph.nodes.size(); }
+size_t PoseGraph::numEdges() const { return impl_->edges.size(); }
+Eigen::Isometry3d PoseGraph::pose(size_t node) const { return toEigen(impl_->graph.nodes.at(node)); }
+
+PoseVector PoseGraph::poses() const {
+  PoseVector out;
+  out.reserve(numNodes());
+  for (const auto& [id, p] : impl_->graph.nodes) out.push_back(toEigen(p));
+  return out;
+}
+
+void PoseGraph::setPoses(const PoseVector& T_map_nodes) {
+  if (T_map_nodes.size() != numNodes()) throw std::invalid_argument("PoseGraph::setPoses: size mismatch");
+  for (size_t i = 0; i < T_map_nodes.size(); ++i) impl_->graph.nodes[i] = toMrpt(T_map_nodes[i]);
+}
+
+double PoseGraph::edgeChi2(size_t e) const {
+  const auto& it = impl_->edges.at(e);
+  const Eigen::Isometry3d T_est = pose(it->first.first).inverse() * pose(it->first.second);
+  const auto r = residual(toEigen(it->second.mean), T_est);
+  Matrix6d I;
+  for (int a = 0; a < 6; ++a)
+    for (int b = 0; b < 6; ++b) I(a, b) = it->second.cov_inv(a, b);
+  return r.dot(I * r);
+}
+
+void PoseGraph::saveToTextFile(const std::string& path) const {
+  const std::string tmp = tempPathFor(path);
+  try {
+    impl_->graph.saveToTextFile(tmp);
+  } catch (const std::exception& e) {
+    throw std::runtime_error("cannot write pose graph '" + path + "': " + e.what());
+  }
+  commitTempFile(tmp, path);
+}
+
+Matrix6d PoseGraph::odometryInformation(const Matrix6d& reg_info) const {
+  const auto& p = impl_->p;
+  Matrix6d floor = Matrix6d::Zero();
+  floor.diagonal() << Eigen::Vector3d::Constant(1.0 / (p.odometry_sigma_t_m * p.odometry_sigma_t_m)),
+      Eigen::Vector3d::Constant(1.0 / (p.odometry_sigma_r_rad * p.odometry_sigma_r_rad));
+  if (!p.use_registration_information || !reg_info.allFinite() || reg_info.isZero()) return floor;
+  // The registration's information (J^T J / sigma^2 over thousands of points) is the precision of one
+  // scan-to-map match, not of the drift between keyframes: it is scaled, and never less certain than
+  // the fallback is allowed to dominate (the sum keeps weakly observed directions at the floor).
+  Matrix6d I = p.odometry_information_scale * 0.5 * (reg_info + reg_info.transpose());
+  Eigen::SelfAdjointEigenSolver<Matrix6d> es(I);
+  const Eigen::Matrix<double, 6, 1> ev = es.eigenvalues().cwiseMax(0.0);
+  I = es.eigenvectors() * ev.asDiagonal() * es.eigenvectors().transpose();
+  return I + floor * 1e-3;
+}
+
+}  // namespace roadslam::mapping

@@ -1,0 +1,77 @@
+#include "sim_drive.h"
+
+#include <cmath>
+
+#include "roadslam/eval/trajectory_metrics.h"
+#include "roadslam/odometry/deskew.h"
+#include "roadslam/registration/point_cloud.h"
+#include "roadslam/velodyne/packet.h"
+#include "roadslam/velodyne/sweep_assembler.h"
+
+namespace roadslam::mapping::test {
+namespace {
+
+Eigen::Isometry3d toEigen(const sim::Pose3& p) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(p.R.data());
+  T.translation() = Eigen::Vector3d(p.t.x, p.t.y, p.t.z);
+  return T;
+}
+
+struct AssemblerSink : sim::PacketSink {
+  velodyne::SweepAssembler assembler;
+  std::vector<Scan> sweeps;
+  void packet(double capture_s, uint16_t port, const uint8_t* data, std::size_t size) override {
+    if (port != velodyne::kDefaultDataPort) return;
+    assembler.addPacket(data, size, capture_s);
+    while (assembler.hasSweep()) sweeps.push_back(assembler.takeSweep());
+  }
+};
+
+}  // namespace
+
+std::vector<SimFrame> simulateDrive(const sim::ScenarioParams& p, const DriftModel& drift) {
+  sim::Simulator s(p);
+  AssemblerSink sink;
+  s.run(sink);
+  std::vector<SimFrame> out;
+  Eigen::Isometry3d T_gt0 = Eigen::Isometry3d::Identity(), T_prev_gt = T_gt0, T_drift = T_gt0, T_kf = T_gt0;
+  for (size_t k = 0; k < sink.sweeps.size(); ++k) {
+    const Scan& sc = sink.sweeps[k];
+    const double t0 = sc.stamp_s - static_cast<double>(p.start_epoch_s);
+    const Eigen::Isometry3d T_gt = toEigen(s.lidar().lidarPose(t0));
+    if (k == 0) T_gt0 = T_gt;
+    SimFrame f;
+    f.T_world_lidar_gt = T_gt0.inverse() * T_gt;
+    // drifted odometry: true increment, scaled, with a heading error proportional to the distance
+    Eigen::Isometry3d d = k == 0 ? Eigen::Isometry3d::Identity() : T_prev_gt.inverse() * f.T_world_lidar_gt;
+    const double step = d.translation().norm();
+    d.translation() *= drift.scale;
+    d.linear() = Eigen::AngleAxisd(drift.yaw_rad_per_m * step, Eigen::Vector3d::UnitZ()) * d.linear();
+    T_drift = T_drift * d;
+    T_prev_gt = f.T_world_lidar_gt;
+    f.result.index = k;
+    f.result.stamp_s = sc.stamp_s;
+    f.result.T_world_lidar = T_drift;
+    f.result.status = k == 0 ? odometry::FrameStatus::First : odometry::FrameStatus::Ok;
+    f.result.keyframe = k == 0 || (T_kf.inverse() * T_drift).translation().norm() >= drift.keyframe_m;
+    if (f.result.keyframe) T_kf = T_drift;
+    // rotation ~100x stiffer than translation, like a scan registration (lever arms of ~10 m)
+    f.result.information.diagonal() << 1e4, 1e4, 1e4, 1e6, 1e6, 1e6;
+    const Eigen::Isometry3d T_start_end = toEigen(s.lidar().lidarPose(t0)).inverse() * toEigen(s.lidar().lidarPose(t0 + 0.1));
+    f.points_lidar = registration::voxelDownsample(odometry::deskew(sc, T_start_end, 0.1), 0.25);
+    out.push_back(std::move(f));
+  }
+  return out;
+}
+
+double ateRmse(const PoseVector& gt, const PoseVector& est) {
+  eval::MatchedTrajectories m;
+  m.gt.assign(gt.begin(), gt.end());
+  m.est.assign(est.begin(), est.end());
+  m.stamps_s.resize(gt.size());
+  for (size_t i = 0; i < gt.size(); ++i) m.stamps_s[i] = static_cast<double>(i);
+  return eval::computeMetrics(m).ate_rmse_m;
+}
+
+}  // namespace roadslam::mapping::test
