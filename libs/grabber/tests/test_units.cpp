@@ -194,3 +194,17 @@ TEST(GrabParams, ErrorsNameTheKey) {
     EXPECT_NE(std::string(e.what()).find("candump_file"), std::string::npos) << e.what();
   }
 }
+
+TEST(GrabParams, ShippedSimIniLoads) {
+  const GrabParams p = GrabParams::fromFile(std::string(ROADSLAM_SOURCE_DIR) + "/ini/grab-sim.ini");
+  ASSERT_EQ(p.sensors.size(), 1u);
+  EXPECT_EQ(p.sensors[0].udp.ports.data_port, 2368);
+  EXPECT_EQ(p.sensors[0].udp.source_filter, "127.0.0.1");
+  EXPECT_EQ(p.can.source, CanParams::Source::Candump);
+  EXPECT_TRUE(p.can.restamp);
+  EXPECT_TRUE(std::filesystem::exists(p.can.vehicle_ini)) << p.can.vehicle_ini;
+  // The candump path resolves into the shared data folder, relative to the ini.
+  EXPECT_EQ(std::filesystem::weakly_canonical(p.can.candump_file),
+            std::filesystem::weakly_canonical(std::string(ROADSLAM_SHARED_DATA) +
+                                              "/can/rav4-2017/rav4_2018-08-02_seg40.candump.log"));
+}
