@@ -176,3 +176,28 @@ TEST(GrabWatchdog, ReportsASilentSensorAndItsReturn) {
   EXPECT_NE(Grabber::formatStatus(st).find("LIDAR"), std::string::npos);
   g.stop();
 }
+
+// A writer that cannot keep up (queue of one item, a burst of position packets sent unpaced):
+// the receiver never blocks, the overflow is counted, and written + dropped = received.
+TEST(GrabOverflow, FullQueueDropsAreCountedNeverBlock) {
+  const auto& pkts = test::simPackets(1.2);
+  std::vector<test::SimPacket> burst;
+  for (const auto& p : pkts)
+    if (p.port == 8308) burst.push_back(p);
+  ASSERT_FALSE(burst.empty());
+  while (burst.size() < 20000) burst.push_back(burst[burst.size() % 2]);
+  test::TempDir dir("overflow");
+  Grabber g(test::paramsFromText(test::testIni("queue_capacity = 1\n")), dir.str());
+  g.start();
+  const std::size_t sent = test::sendPaced(burst, g.dataPort(0), g.positionPort(0), 1e9);  // unpaced
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  g.stop();
+  const GrabStatus st = g.status();
+  const SensorStatus& s = st.sensors.at(0);
+  EXPECT_EQ(s.position_packets + s.kernel_drops, sent);
+  EXPECT_GT(s.queue_drops, 0u);
+  EXPECT_EQ(st.writer.gps + s.queue_drops, s.position_packets);
+  const auto summary = nlohmann::json::parse(test::readAll(dir.str() + "/summary.json"));
+  EXPECT_GE(summary["packets_dropped"].get<std::size_t>(), s.queue_drops);
+  RecordProperty("queue_drops", int(s.queue_drops));
+}
