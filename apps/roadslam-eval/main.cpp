@@ -1,25 +1,46 @@
-// roadslam-eval: scores an estimated trajectory against ground truth (ATE, RPE, KITTI errors).
+// roadslam-eval: scores an estimated trajectory against ground truth (ATE, RPE, KITTI errors), or,
+// with the `bounds` subcommand, estimated road boundaries against ground-truth curbs.
 #include <CLI/CLI.hpp>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "roadslam/eval/boundary_metrics.h"
 #include "roadslam/eval/evaluate.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"Trajectory evaluation: ATE (SE(3)-aligned and first-pose-aligned), RPE, KITTI "
-               "relative translation/rotation errors over distance segments"};
+               "relative translation/rotation errors over distance segments; `bounds`: road boundaries"};
   roadslam::eval::EvalRequest req;
   bool json = false;
-  app.add_option("--gt", req.gt_path, "ground truth, TUM or KITTI 3x4")->required()->check(CLI::ExistingFile);
-  app.add_option("--est", req.est_path, "estimate, TUM or KITTI 3x4")->required()->check(CLI::ExistingFile);
+  app.add_option("--gt", req.gt_path, "ground truth, TUM or KITTI 3x4")->check(CLI::ExistingFile);
+  app.add_option("--est", req.est_path, "estimate, TUM or KITTI 3x4")->check(CLI::ExistingFile);
   app.add_option("--gt-times", req.gt_times_path, "times file for a KITTI-format GT")->check(CLI::ExistingFile);
   app.add_option("--est-times", req.est_times_path, "times file for a KITTI-format estimate")->check(CLI::ExistingFile);
   app.add_option("--max-dt", req.max_dt_s, "association tolerance [s]");
   app.add_option("--segments", req.metrics.segment_lengths_m, "segment lengths [m] (default: KITTI's or 10-90 % of the path)");
   app.add_option("--plot", req.plot_path, "write a PNG: trajectories from above and error along the distance");
   app.add_flag("--json", json, "print JSON instead of text");
+
+  auto* bounds = app.add_subcommand("bounds", "road boundaries vs ground-truth curbs in a band ahead");
+  std::string b_gt, b_traj, b_est;
+  roadslam::eval::BoundaryEvalParams bp;
+  bounds->add_option("--gt", b_gt, "gt_boundaries.json (simulator)")->required()->check(CLI::ExistingFile);
+  bounds->add_option("--gt-trajectory", b_traj, "ground-truth poses T_world_lidar, TUM")->required()->check(CLI::ExistingFile);
+  bounds->add_option("--est", b_est, "boundaries.jsonl (roadslam-bounds)")->required()->check(CLI::ExistingFile);
+  bounds->add_option("--band-min", bp.band_min_x_m, "band ahead, start [m]");
+  bounds->add_option("--band-max", bp.band_max_x_m, "band ahead, end [m]");
+  bounds->add_flag("--json", json, "print JSON instead of text");
   CLI11_PARSE(app, argc, argv);
   try {
+    if (*bounds) {
+      const auto m = roadslam::eval::evaluateBoundaryFiles(b_gt, b_traj, b_est, bp);
+      std::cout << (json ? roadslam::eval::toJson(m).dump(2) + "\n" : roadslam::eval::toText(m));
+      return 0;
+    }
+    if (req.gt_path.empty() || req.est_path.empty()) {
+      std::cerr << "roadslam-eval: --gt and --est are required (or use the bounds subcommand)\n";
+      return 1;
+    }
     const auto out = roadslam::eval::evaluate(req);
     if (json) {
       std::cout << roadslam::eval::toJson(out.metrics).dump(2) << "\n";

@@ -1,0 +1,31 @@
+// roadslam-bounds: road boundaries, obstacles and free space over a recording.
+#include <CLI/CLI.hpp>
+#include <iostream>
+
+#include "roadslam/boundary/job.h"
+#include "roadslam/common/stop_signal.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"Road boundaries (curbs), obstacles, free space and a cost grid per sweep"};
+  roadslam::boundary::BoundsRequest req;
+  bool quiet = false;
+  app.add_option("--config", req.config_path, "ini file (e.g. ini/bounds.ini)")->required()->check(CLI::ExistingFile);
+  app.add_option("--input", req.input_path, "recording: .pcap, .rawlog or folder of KITTI .bin sweeps")->required();
+  app.add_option("--out", req.out_dir, "output folder (created when missing)")->required();
+  app.add_option("--trajectory", req.trajectory_path, "TUM poses T_map_lidar (else the odometry runs)")
+      ->check(CLI::ExistingFile);
+  app.add_option("--png-every", req.png_every, "draw every N-th sweep into OUT/frames (0 = none)");
+  app.add_option("--max-frames", req.max_frames, "stop after this many sweeps (0 = all)");
+  app.add_flag("--quiet", quiet, "no progress bar and no summary on stdout");
+  CLI11_PARSE(app, argc, argv);
+  req.progress = !quiet;
+  roadslam::installStopSignalHandlers();
+  try {
+    const auto summary = roadslam::boundary::runBoundsJob(req);
+    if (!quiet) std::cout << summary.dump(2) << "\n";
+    return 0;
+  } catch (const std::exception& e) {
+    std::cerr << "roadslam-bounds: " << e.what() << "\n";
+    return 1;
+  }
+}

@@ -1,0 +1,46 @@
+#pragma once
+/// \file detector.h
+/// Road boundaries, obstacles and free space from a deskewed sweep and its pose.
+/// Per sweep: ground labels with heights (libs/preprocess, slope-following line fits) -> curb points
+/// along each ring (a 0.05-0.30 m jump between two flat pieces, nothing tall in the same cell) ->
+/// obstacle points (0.3-3 m above ground) clustered on a grid, each with a convex hull and an oriented
+/// rectangle -> free space by polar ray casting up to the first curb or obstacle -> left/right
+/// boundary: RANSAC polynomial over the curb points of the last memory_frames sweeps (kept in the map
+/// frame, moved into the current vehicle frame), scored by the distance bins it covers.
+
+#include <deque>
+#include <vector>
+
+#include "roadslam/boundary/params.h"
+#include "roadslam/boundary/types.h"
+#include "roadslam/common/scan.h"
+
+namespace roadslam::boundary {
+
+/// Class of every point of \p scan (lidar frame, sensor at the origin), same order, plus the curb
+/// points' positions. Exposed for tests and drawing.
+struct Labelling {
+  std::vector<PointClass> cls;
+  std::vector<float> height_m;          ///< height above the local ground [m], NaN when unknown
+  size_t ground = 0, curb = 0, obstacle = 0;
+};
+Labelling labelPoints(const Scan& scan, const Params& p);
+
+class BoundaryDetector {
+ public:
+  explicit BoundaryDetector(Params p);
+  /// \p scan deskewed, in the lidar frame at the pose \p T_map_lidar (time \p stamp_s).
+  /// Never throws on data: problems come back in BoundaryFrame::status and the sides' reasons.
+  BoundaryFrame process(const Scan& scan, const Eigen::Isometry3d& T_map_lidar, double stamp_s);
+  const Params& params() const { return p_; }
+  /// The labelling of the last processed sweep.
+  const Labelling& lastLabelling() const { return last_; }
+
+ private:
+  Params p_;
+  size_t frames_ = 0;
+  std::deque<std::vector<Eigen::Vector3d>> memory_map_;  ///< curb points per past sweep, map frame
+  Labelling last_;
+};
+
+}  // namespace roadslam::boundary

@@ -1,0 +1,29 @@
+#pragma once
+/// \file job.h
+/// The job behind `roadslam-bounds`: sweeps from a recording (.pcap, .rawlog, KITTI folder), a pose
+/// per sweep (a given TUM trajectory T_map_lidar, or the odometry), deskew, the boundary detector,
+/// and the outputs in DIR: boundaries.jsonl (one object per sweep, see output.h), frames/NNNNNN.png
+/// every png_every sweeps, top_view.png (last picture), summary.json, config_used.ini.
+/// All files are written atomically.
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace roadslam::boundary {
+
+struct BoundsRequest {
+  std::string config_path;      ///< ini with [boundary], [ground], [velodyne], [odometry], ...
+  std::string input_path;       ///< recording
+  std::string out_dir;          ///< created when missing
+  std::string trajectory_path;  ///< TUM T_map_lidar; empty = run the odometry
+  int png_every = 10;           ///< draw every N-th sweep (0 = none) [-]
+  size_t max_frames = 0;        ///< 0 = all
+  bool progress = true;
+};
+
+/// Runs the job; returns the summary (frames, ms_per_frame_mean, found rates, statuses, reasons).
+/// Throws std::runtime_error with a one-line reason on configuration or file problems; per-sweep
+/// problems (no pose, no ground, no curbs) are counted and reported in the summary.
+nlohmann::json runBoundsJob(const BoundsRequest& req);
+
+}  // namespace roadslam::boundary

@@ -1,0 +1,76 @@
+#pragma once
+/// \file params.h
+/// Parameters of the road-boundary detector (ini section [boundary], ground labelling in [ground]).
+/// Frames: "vehicle" is the lidar frame projected on its xy plane (x forward, y left) [m]; "map" is
+/// the frame of the poses given with each sweep (T_map_lidar).
+
+#include <string>
+
+#include "roadslam/preprocess/ground_segmentation.h"
+
+namespace mrpt::config {
+class CConfigFileBase;
+}
+
+namespace roadslam::boundary {
+
+struct Params {
+  /// Boundary fit: `ransac` (curb points along the rings, RANSAC polynomial per side) or `thesis`
+  /// (the MATLAB thesis baseline: clusters -> rectangles -> RANSAC line over their inner corners).
+  std::string method = "ransac";
+
+  // Curb detection: a low point whose 3x3-cell neighbourhood spans a curb height, next to ground,
+  // with nothing taller in reach (the rings of a VLP-16 cross curbs ahead at grazing angles, so the
+  // step is read in space, not along one ring; cf. Zhang et al. 2018 elevation-difference feature).
+  double curb_min_jump_m = 0.05;      ///< smallest curb height [m]
+  double curb_max_jump_m = 0.30;      ///< largest curb height [m]
+  double curb_cell_m = 0.20;          ///< cell of the height-difference grid (3x3 neighbourhood) [m]
+  int curb_clearance_cells = 2;       ///< no tall cell within this many cells of a curb point [-]
+  double curb_max_range_m = 40.0;     ///< rings farther than this are too sparse to read [m]
+  double tall_cell_m = 0.5;           ///< xy cell of the "something taller here" test [m]
+  double tall_height_m = 0.40;        ///< a cell with a point between this ... [m]
+  double tall_max_height_m = 1.5;     ///< ... and this high above ground is no curb (tree crowns above pass) [m]
+
+  // Obstacles: non-ground points between these heights above the local ground.
+  double obstacle_min_height_m = 0.30;  ///< lower bound [m]
+  double obstacle_max_height_m = 3.0;   ///< upper bound (overhangs, tree crowns above) [m]
+  double cluster_cell_m = 0.30;         ///< grid cell of the Euclidean clustering [m]
+  int cluster_min_points = 5;           ///< smaller clusters are noise [-]
+  double roi_range_m = 40.0;            ///< obstacles, free space and grid within this range [m]
+
+  // Free space: polar grid from the sensor.
+  int freespace_sectors = 180;          ///< azimuth sectors over 360 deg [-]
+
+  // Boundary fit (vehicle frame).
+  double band_min_x_m = 5.0;            ///< reported band ahead, start [m]
+  double band_max_x_m = 30.0;           ///< reported band ahead, end [m]
+  double fit_min_x_m = -10.0;           ///< points used for the fit, from [m]
+  double fit_max_x_m = 40.0;            ///< ... to [m]
+  double min_lateral_m = 1.0;           ///< |y| of candidates, lower bound [m]
+  double max_lateral_m = 15.0;          ///< |y| of candidates, upper bound [m]
+  int poly_degree = 2;                  ///< y = c0 + c1 x + c2 x^2 (1 or 2) [-]
+  double max_heading = 1.0;             ///< |dy/dx| of a boundary at x = 0 (|c1|) [-]
+  double max_curvature = 0.05;          ///< |c2| = 1 / (2 R): 0.05 allows a 10 m radius [1/m]
+  double ransac_inlier_m = 0.12;        ///< RANSAC inlier distance [m]
+  int ransac_iterations = 200;          ///< [-]
+  int ransac_seed = 7;                  ///< fixed seed: same input, same output [-]
+  double bin_m = 1.0;                   ///< distance bins along x for coverage [m]
+  int min_bins = 5;                     ///< fewer covered bins: side unknown [-]
+  double polyline_step_m = 1.0;         ///< output polyline vertex spacing [m]
+
+  // Time: curb points of recent sweeps, kept in the map frame and moved with the vehicle.
+  int memory_frames = 10;               ///< sweeps of curb points fitted together [-]
+
+  // Cost grid for a planner (vehicle frame).
+  double grid_resolution_m = 0.2;       ///< [m]
+  double grid_size_m = 60.0;            ///< square side, centred 15 m ahead of the vehicle [m]
+
+  preprocess::GroundSegParams ground;   ///< ground labelling (section [ground], keys seg_*)
+
+  void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section = "boundary",
+                          const std::string& ground_section = "ground");
+  void saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& section = "boundary",
+                        const std::string& ground_section = "ground") const;
+};
+
+}  // namespace roadslam::boundary

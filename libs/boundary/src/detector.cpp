@@ -1,0 +1,149 @@
+// Orchestration of one sweep: labels -> obstacles -> free space -> boundaries -> cost grid.
+#include "roadslam/boundary/detector.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "internal.h"
+
+namespace roadslam::boundary {
+namespace {
+
+std::vector<Obstacle> clusterObstacles(const Scan& scan, const Labelling& lab, const Params& p, bool with_low) {
+  std::vector<Vec2> pts;
+  std::vector<float> h;
+  for (size_t i = 0; i < scan.points.size(); ++i) {
+    const bool take = lab.cls[i] == PointClass::Obstacle ||
+                      (with_low && lab.cls[i] != PointClass::Ground && std::isfinite(lab.height_m[i]));
+    if (!take) continue;
+    pts.push_back({scan.points[i].x, scan.points[i].y});
+    h.push_back(lab.height_m[i]);
+  }
+  std::vector<Obstacle> out;
+  for (const auto& c : detail::gridClusters(pts, p.cluster_cell_m)) {
+    if (static_cast<int>(c.size()) < p.cluster_min_points) continue;
+    Obstacle o;
+    std::vector<Vec2> cp;
+    for (size_t i : c) cp.push_back(pts[i]), o.max_height_m = std::max<double>(o.max_height_m, h[i]);
+    o.points = static_cast<int>(c.size());
+    o.hull = detail::convexHull(std::move(cp));
+    detail::orientedRect(o.hull, o);
+    out.push_back(std::move(o));
+  }
+  return out;
+}
+
+/// Polar free space (where a laser passed, nothing stands): per sector, up to the nearest curb or
+/// obstacle point, and no farther than the farthest return seen in it.
+std::vector<double> freeRanges(const Scan& scan, const Labelling& lab, const Params& p) {
+  const int ns = p.freespace_sectors;
+  std::vector<double> blocked(ns, std::numeric_limits<double>::infinity()), seen(ns, 0.0);
+  for (size_t i = 0; i < scan.points.size(); ++i) {
+    const auto& q = scan.points[i];
+    const double r = std::hypot(q.x, q.y);
+    if (!(r <= p.roi_range_m)) continue;
+    const int s = std::clamp(static_cast<int>((std::atan2(q.y, q.x) + M_PI) / (2 * M_PI) * ns), 0, ns - 1);
+    seen[s] = std::max(seen[s], r);
+    if (lab.cls[i] == PointClass::Curb || lab.cls[i] == PointClass::Obstacle) blocked[s] = std::min(blocked[s], r);
+  }
+  for (int s = 0; s < ns; ++s) blocked[s] = std::min(blocked[s], seen[s]);
+  return blocked;
+}
+
+void fillGrid(const Params& p, const std::vector<double>& free_r, const BoundaryFrame& f, CostGrid& g) {
+  g.resolution_m = p.grid_resolution_m;
+  g.nx = g.ny = static_cast<int>(std::ceil(p.grid_size_m / p.grid_resolution_m));
+  g.x0_m = 15.0 - 0.5 * p.grid_size_m;  // centred 15 m ahead: the planner looks forward
+  g.y0_m = -0.5 * p.grid_size_m;
+  g.cost.assign(static_cast<size_t>(g.nx) * g.ny, CostGrid::kUnknown);
+  const int ns = static_cast<int>(free_r.size());
+  auto put = [&](double x, double y, uint8_t c) {
+    const int i = static_cast<int>(std::floor((x - g.x0_m) / g.resolution_m));
+    const int j = static_cast<int>(std::floor((y - g.y0_m) / g.resolution_m));
+    // Curb and obstacle costs exceed kUnknown and kFree: the max keeps the most severe.
+    if (i >= 0 && j >= 0 && i < g.nx && j < g.ny) g.cost[static_cast<size_t>(j) * g.nx + i] = std::max(g.cost[static_cast<size_t>(j) * g.nx + i], c);
+  };
+  for (int j = 0; j < g.ny; ++j) {
+    for (int i = 0; i < g.nx; ++i) {
+      const double x = g.x0_m + (i + 0.5) * g.resolution_m, y = g.y0_m + (j + 0.5) * g.resolution_m;
+      const int s = std::clamp(static_cast<int>((std::atan2(y, x) + M_PI) / (2 * M_PI) * ns), 0, ns - 1);
+      if (std::hypot(x, y) < free_r[s]) g.cost[static_cast<size_t>(j) * g.nx + i] = CostGrid::kFree;
+    }
+  }
+  for (const auto& c : f.curb_points) put(c.x, c.y, CostGrid::kCurb);
+  for (const SideBoundary* sb : {&f.left, &f.right})
+    for (const auto& v : sb->polyline_vehicle) put(v.x, v.y, CostGrid::kCurb);
+  for (const auto& o : f.obstacles)
+    for (const auto& v : o.hull) put(v.x, v.y, CostGrid::kObstacle);
+}
+
+void toMap(const Eigen::Isometry3d& T_map_lidar, SideBoundary& s) {
+  for (const auto& v : s.polyline_vehicle) {
+    const Eigen::Vector3d m = T_map_lidar * Eigen::Vector3d(v.x, v.y, 0.0);
+    s.polyline_map.push_back({m.x(), m.y()});
+  }
+}
+
+}  // namespace
+
+BoundaryDetector::BoundaryDetector(Params p) : p_(std::move(p)) {}
+
+BoundaryFrame BoundaryDetector::process(const Scan& scan, const Eigen::Isometry3d& T_map_lidar, double stamp_s) {
+  const auto t0 = std::chrono::steady_clock::now();
+  BoundaryFrame f;
+  f.index = frames_++;
+  f.stamp_s = stamp_s;
+  f.T_map_lidar = T_map_lidar;
+  f.points = scan.points.size();
+  last_ = labelPoints(scan, p_);
+  f.ground_points = last_.ground;
+  f.curb_count = last_.curb;
+  f.obstacle_points = last_.obstacle;
+  std::vector<Eigen::Vector3d> curbs_map;
+  for (size_t i = 0; i < scan.points.size(); ++i) {
+    if (last_.cls[i] != PointClass::Curb) continue;
+    const auto& q = scan.points[i];
+    f.curb_points.push_back({q.x, q.y});
+    curbs_map.push_back(T_map_lidar * Eigen::Vector3d(q.x, q.y, q.z));
+  }
+  memory_map_.push_back(std::move(curbs_map));
+  while (static_cast<int>(memory_map_.size()) > p_.memory_frames) memory_map_.pop_front();
+
+  if (f.points == 0 || f.ground_points == 0) {
+    f.status = f.points == 0 ? "no_points" : "no_ground";
+    const std::string why = f.points == 0 ? "no points in the sweep" : "no ground found: heights above the road unknown";
+    f.left.reason = f.right.reason = why;
+  } else {
+    f.obstacles = clusterObstacles(scan, last_, p_, p_.method == "thesis");
+    std::mt19937 rng(static_cast<unsigned>(p_.ransac_seed));
+    if (p_.method == "thesis") {
+      f.left = detail::fitSideThesis(f.obstacles, +1, p_, rng);
+      f.right = detail::fitSideThesis(f.obstacles, -1, p_, rng);
+    } else {
+      const Eigen::Isometry3d T_lidar_map = T_map_lidar.inverse();
+      std::vector<Vec2> pts;
+      for (const auto& frame : memory_map_)
+        for (const auto& m : frame) {
+          const Eigen::Vector3d v = T_lidar_map * m;
+          pts.push_back({v.x(), v.y()});
+        }
+      f.left = detail::fitSide(pts, +1, p_, rng);
+      f.right = detail::fitSide(pts, -1, p_, rng);
+    }
+    toMap(T_map_lidar, f.left);
+    toMap(T_map_lidar, f.right);
+    const auto free_r = freeRanges(scan, last_, p_);
+    const int ns = p_.freespace_sectors;
+    for (int s = 0; s < ns; ++s) {
+      const double a = -M_PI + (s + 0.5) * 2 * M_PI / ns;
+      f.free_space.push_back({free_r[s] * std::cos(a), free_r[s] * std::sin(a)});
+    }
+    fillGrid(p_, free_r, f, f.grid);
+  }
+  f.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  return f;
+}
+
+}  // namespace roadslam::boundary

@@ -1,0 +1,154 @@
+// Left/right boundary fits in the vehicle frame.
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <sstream>
+
+#include "internal.h"
+
+namespace roadslam::boundary::detail {
+namespace {
+
+const char* sideName(int side) { return side > 0 ? "left" : "right"; }
+
+/// Least squares y = sum c_i x^i over \p pts.
+std::vector<double> lsq(const std::vector<Vec2>& pts, int degree) {
+  Eigen::MatrixXd A(pts.size(), degree + 1);
+  Eigen::VectorXd b(pts.size());
+  for (size_t r = 0; r < pts.size(); ++r) {
+    double xp = 1;
+    for (int c = 0; c <= degree; ++c, xp *= pts[r].x) A(r, c) = xp;
+    b(r) = pts[r].y;
+  }
+  const Eigen::VectorXd c = A.colPivHouseholderQr().solve(b);
+  return std::vector<double>(c.data(), c.data() + c.size());
+}
+
+/// Roads bend gently: reject hypotheses that cross the vehicle's path or curl.
+bool plausible(const std::vector<double>& c, const Params& p) {
+  return std::abs(c[1]) <= p.max_heading && (c.size() < 3 || std::abs(c[2]) <= p.max_curvature);
+}
+
+struct Score {
+  int bins = 0, inliers = 0;
+  double abs_c0 = 1e9;
+  bool better(const Score& o) const {
+    if (bins != o.bins) return bins > o.bins;
+    if (inliers != o.inliers) return inliers > o.inliers;
+    return abs_c0 < o.abs_c0;
+  }
+};
+
+Score score(const std::vector<Vec2>& pts, const std::vector<double>& c, const Params& p,
+            std::vector<Vec2>* inl = nullptr) {
+  std::set<int> bins;
+  Score s;
+  for (const auto& q : pts) {
+    if (std::abs(q.y - polyEval(c, q.x)) > p.ransac_inlier_m) continue;
+    ++s.inliers;
+    bins.insert(static_cast<int>(std::floor(q.x / p.bin_m)));
+    if (inl) inl->push_back(q);
+  }
+  s.bins = static_cast<int>(bins.size());
+  s.abs_c0 = std::abs(c.front());
+  return s;
+}
+
+/// RANSAC (Fischler & Bolles 1981) over minimal samples, scored by covered distance bins so a long
+/// thin curb wins over a dense short blob; refined by least squares on the inliers.
+SideBoundary ransac(const std::vector<Vec2>& pts, int side, int degree, int min_bins, const Params& p,
+                    std::mt19937& rng) {
+  SideBoundary out;
+  out.candidates = static_cast<int>(pts.size());
+  const size_t m = static_cast<size_t>(degree) + 1;
+  std::ostringstream why;
+  if (pts.size() < std::max<size_t>(m, static_cast<size_t>(min_bins))) {
+    why << "too few " << (p.method == "thesis" ? "shapes" : "curb points") << " on the " << sideName(side)
+        << " (" << pts.size() << ")";
+    out.reason = why.str();
+    return out;
+  }
+  std::uniform_int_distribution<size_t> pick(0, pts.size() - 1);
+  Score best;
+  std::vector<double> best_c;
+  for (int it = 0; it < p.ransac_iterations; ++it) {
+    std::vector<Vec2> sample;
+    for (size_t k = 0; k < m; ++k) sample.push_back(pts[pick(rng)]);
+    bool spread = true;  // distinct x so the minimal system is well conditioned
+    for (size_t a = 0; a < m; ++a)
+      for (size_t b = a + 1; b < m; ++b) spread = spread && std::abs(sample[a].x - sample[b].x) > p.bin_m;
+    if (!spread) continue;
+    auto c = lsq(sample, degree);
+    if (!plausible(c, p)) continue;
+    const Score s = score(pts, c, p);
+    if (best_c.empty() || s.better(best)) best = s, best_c = c;
+  }
+  if (best_c.empty() || best.bins < min_bins) {
+    why << "no consistent " << sideName(side) << " boundary: best fit covers " << best.bins << " of "
+        << min_bins << " needed " << p.bin_m << " m bins";
+    out.reason = why.str();
+    return out;
+  }
+  std::vector<Vec2> inl;
+  for (int r = 0; r < 2; ++r) {
+    inl.clear();
+    score(pts, best_c, p, &inl);
+    if (inl.size() < m) break;
+    const auto c = lsq(inl, degree);
+    if (plausible(c, p)) best_c = c;
+  }
+  out.found = true;
+  out.reason = "ok";
+  out.coeffs = best_c;
+  out.inliers = static_cast<int>(inl.size());
+  double xmin = 1e9, xmax = -1e9;
+  std::set<int> band_bins;
+  for (const auto& q : inl) {
+    xmin = std::min(xmin, q.x), xmax = std::max(xmax, q.x);
+    if (q.x >= p.band_min_x_m && q.x <= p.band_max_x_m) band_bins.insert(static_cast<int>(std::floor(q.x / p.bin_m)));
+  }
+  const double band_bins_total = std::ceil((p.band_max_x_m - p.band_min_x_m) / p.bin_m);
+  out.confidence = std::min(1.0, band_bins.size() / band_bins_total) * out.inliers / std::max(1, out.candidates);
+  // Polyline over the band, no further than 5 m beyond the inliers (no long extrapolation).
+  const double x0 = std::max(p.band_min_x_m, xmin - 5.0), x1 = std::min(p.band_max_x_m, xmax + 5.0);
+  for (double x = x0; x <= x1 + 1e-9; x += p.polyline_step_m) out.polyline_vehicle.push_back({x, polyEval(best_c, x)});
+  if (out.polyline_vehicle.size() < 2) {
+    out.found = false;
+    out.reason = std::string("the ") + sideName(side) + " boundary lies outside the reported band";
+  }
+  return out;
+}
+
+}  // namespace
+
+SideBoundary fitSide(const std::vector<Vec2>& pts, int side, const Params& p, std::mt19937& rng) {
+  std::vector<Vec2> cand;
+  for (const auto& q : pts) {
+    const double lat = side * q.y;
+    if (q.x >= p.fit_min_x_m && q.x <= p.fit_max_x_m && lat >= p.min_lateral_m && lat <= p.max_lateral_m) cand.push_back(q);
+  }
+  return ransac(cand, side, p.poly_degree, p.min_bins, p, rng);
+}
+
+SideBoundary fitSideThesis(const std::vector<Obstacle>& rects, int side, const Params& p, std::mt19937& rng) {
+  // Thesis: each shape's rectangle stands for the shape; the corner nearest the vehicle's axis
+  // marks the boundary; a straight line is fitted through these corners.
+  std::vector<Vec2> cand;
+  for (const auto& o : rects) {
+    const double c = std::cos(o.yaw_rad), s = std::sin(o.yaw_rad);
+    Vec2 best;
+    bool any = false;
+    for (int k = 0; k < 4; ++k) {
+      const double u = (k & 1 ? 0.5 : -0.5) * o.length_m, v = (k & 2 ? 0.5 : -0.5) * o.width_m;
+      const Vec2 q{o.center.x + c * u - s * v, o.center.y + s * u + c * v};
+      if (side * q.y > 0 && (!any || std::abs(q.y) < std::abs(best.y))) best = q, any = true;
+    }
+    const double lat = side * best.y;
+    if (any && best.x >= p.fit_min_x_m && best.x <= p.fit_max_x_m && lat >= p.min_lateral_m && lat <= p.max_lateral_m) cand.push_back(best);
+  }
+  return ransac(cand, side, 1, 2, p, rng);
+}
+
+}  // namespace roadslam::boundary::detail

@@ -1,0 +1,40 @@
+#pragma once
+// Private helpers of libs/boundary.
+#include <cmath>
+#include <cstdint>
+#include <random>
+#include <vector>
+
+#include "roadslam/boundary/params.h"
+#include "roadslam/boundary/types.h"
+
+namespace roadslam::boundary::detail {
+
+inline int64_t cellKey(double x, double y, double cell) {
+  const auto ix = static_cast<int64_t>(std::floor(x / cell)), iy = static_cast<int64_t>(std::floor(y / cell));
+  return (ix << 32) ^ (iy & 0xffffffffLL);
+}
+
+/// Convex hull, counter-clockwise (Andrew's monotone chain).
+std::vector<Vec2> convexHull(std::vector<Vec2> pts);
+/// Minimum-area rectangle of a convex hull (one side on a hull edge: Freeman & Shapira 1975).
+void orientedRect(const std::vector<Vec2>& hull, Obstacle& o);
+/// Clusters \p pts on a grid of cell \p cell (8-connected cells = Euclidean clustering at ~cell).
+std::vector<std::vector<size_t>> gridClusters(const std::vector<Vec2>& pts, double cell);
+
+/// RANSAC polynomial fit of one side (side = +1 left, -1 right) over curb points, vehicle frame.
+SideBoundary fitSide(const std::vector<Vec2>& pts, int side, const Params& p, std::mt19937& rng);
+/// Thesis baseline: inner corners of the rectangles of non-ground clusters, RANSAC line.
+SideBoundary fitSideThesis(const std::vector<Obstacle>& rects, int side, const Params& p, std::mt19937& rng);
+
+/// y of the polynomial \p c at \p x.
+inline double polyEval(const std::vector<double>& c, double x) {
+  double y = 0, xp = 1;
+  for (double ci : c) {
+    y += ci * xp;
+    xp *= x;
+  }
+  return y;
+}
+
+}  // namespace roadslam::boundary::detail

@@ -1,0 +1,145 @@
+// Detector on analytic sweeps: curb lines, obstacles, free space and the reasons of bad input.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "roadslam/boundary/detector.h"
+#include "synthetic_road.h"
+
+using namespace roadslam::boundary;
+using roadslam::boundary::test::Box;
+using roadslam::boundary::test::Road;
+using roadslam::boundary::test::castSweep;
+
+namespace {
+
+Params defaults() {
+  Params p;
+  p.ground.sensor_height_m = 1.9;
+  return p;
+}
+
+/// Max |y_est - y_true| over the reported polyline within the band.
+double maxLateralError(const SideBoundary& s, double y_true) {
+  double e = 0;
+  for (const auto& v : s.polyline_vehicle) e = std::max(e, std::abs(v.y - y_true));
+  return e;
+}
+
+}  // namespace
+
+TEST(Detector, StraightCurbsFoundAtTheirLines) {
+  Road road;
+  BoundaryDetector det(defaults());
+  const auto f = det.process(castSweep(road), Eigen::Isometry3d::Identity(), 0.0);
+  ASSERT_TRUE(f.left.found) << f.left.reason;
+  ASSERT_TRUE(f.right.found) << f.right.reason;
+  EXPECT_LT(maxLateralError(f.left, 4.0), 0.10);
+  EXPECT_LT(maxLateralError(f.right, -3.5), 0.10);
+  EXPECT_GE(f.left.polyline_vehicle.front().x, 5.0 - 1e-9);
+  EXPECT_GT(f.left.confidence, 0.1);
+  EXPECT_EQ(f.status, "ok");
+}
+
+TEST(Detector, ParkedCarIsAnObstacleNotABoundary) {
+  Road road;
+  road.boxes.push_back({8, 12.5, -3.3, -1.5, -1.9, -0.4});  // car in the parking lane, right
+  BoundaryDetector det(defaults());
+  const auto f = det.process(castSweep(road), Eigen::Isometry3d::Identity(), 0.0);
+  ASSERT_TRUE(f.right.found) << f.right.reason;
+  EXPECT_LT(maxLateralError(f.right, -3.5), 0.15);
+  bool car = false;
+  for (const auto& o : f.obstacles) {
+    car = car || (std::abs(o.center.x - 10.25) < 1.0 && std::abs(o.center.y + 2.4) < 1.0);
+  }
+  EXPECT_TRUE(car) << "no obstacle at the parked car";
+  // Free space ahead stops at the car's face, not beyond.
+  double free_ahead_right = 1e9;
+  for (const auto& v : f.free_space) {
+    if (std::abs(std::atan2(v.y, v.x) - std::atan2(-2.0, 8.0)) < 0.02) free_ahead_right = std::hypot(v.x, v.y);
+  }
+  EXPECT_LT(free_ahead_right, 9.0);
+}
+
+TEST(Detector, OpenSquareSaysNoCurbs) {
+  Road road;
+  road.left_y.reset();
+  road.right_y.reset();
+  BoundaryDetector det(defaults());
+  const auto f = det.process(castSweep(road), Eigen::Isometry3d::Identity(), 0.0);
+  EXPECT_FALSE(f.left.found);
+  EXPECT_FALSE(f.right.found);
+  EXPECT_NE(f.left.reason.find("too few curb points"), std::string::npos) << f.left.reason;
+  EXPECT_EQ(f.curb_count, 0u);
+}
+
+TEST(Detector, SweepFullOfVehiclesSaysWhichSideAndWhy) {
+  Road road;
+  for (double x = -20; x < 40; x += 5.0) {
+    road.boxes.push_back({x, x + 4.5, 1.5, 3.3, -1.9, -0.4});    // a row of cars left
+    road.boxes.push_back({x, x + 4.5, -3.3, -1.5, -1.9, -0.4});  // and right
+  }
+  BoundaryDetector det(defaults());
+  const auto f = det.process(castSweep(road), Eigen::Isometry3d::Identity(), 0.0);
+  for (const SideBoundary* s : {&f.left, &f.right}) {
+    EXPECT_FALSE(s->reason.empty());
+    if (s->found) {
+      EXPECT_EQ(s->reason, "ok");
+    }
+  }
+  EXPECT_GE(f.obstacles.size(), 10u);
+}
+
+TEST(Detector, NoGroundAndNoPointsAreReported) {
+  BoundaryDetector det(defaults());
+  const auto empty = det.process(roadslam::Scan{}, Eigen::Isometry3d::Identity(), 0.0);
+  EXPECT_EQ(empty.status, "no_points");
+  EXPECT_EQ(empty.left.reason, "no points in the sweep");
+  Road road;
+  road.sensor_height = 8.0;  // the detector expects 1.9 m: nothing near its ground
+  road.left_y.reset();
+  road.right_y.reset();
+  const auto f = det.process(castSweep(road), Eigen::Isometry3d::Identity(), 0.1);
+  EXPECT_EQ(f.status, "no_ground");
+  EXPECT_NE(f.right.reason.find("no ground"), std::string::npos);
+}
+
+TEST(Detector, MemoryFollowsTheVehicle) {
+  // Two sweeps 2 m apart: the curb points of the first, moved by the pose, agree with the second.
+  Road road;
+  BoundaryDetector det(defaults());
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  det.process(castSweep(road, 1), T, 0.0);
+  T.translation().x() = 2.0;  // the road is invariant along x: same sweep 2 m further
+  const auto f = det.process(castSweep(road, 2), T, 0.1);
+  ASSERT_TRUE(f.left.found);
+  EXPECT_LT(maxLateralError(f.left, 4.0), 0.10);
+  ASSERT_FALSE(f.left.polyline_map.empty());
+  EXPECT_NEAR(f.left.polyline_map.front().x, f.left.polyline_vehicle.front().x + 2.0, 1e-6);
+}
+
+TEST(Detector, ThesisBaselineRunsAndExplains) {
+  Params p = defaults();
+  p.method = "thesis";
+  Road road;
+  BoundaryDetector det(p);
+  const auto f = det.process(castSweep(road), Eigen::Isometry3d::Identity(), 0.0);
+  for (const SideBoundary* s : {&f.left, &f.right}) EXPECT_FALSE(s->reason.empty());
+}
+
+TEST(Detector, CostGridMarksFreeAndObstacleCells) {
+  Road road;
+  road.boxes.push_back({10, 14.5, -0.9, 0.9, -1.9, -0.4});  // car ahead in our lane
+  BoundaryDetector det(defaults());
+  const auto f = det.process(castSweep(road), Eigen::Isometry3d::Identity(), 0.0);
+  const auto& g = f.grid;
+  auto at = [&](double x, double y) {
+    return g.cost[static_cast<size_t>(std::floor((y - g.y0_m) / g.resolution_m)) * g.nx +
+                  static_cast<size_t>(std::floor((x - g.x0_m) / g.resolution_m))];
+  };
+  EXPECT_EQ(at(6.0, 0.0), CostGrid::kFree);
+  EXPECT_EQ(at(20.0, 0.0), CostGrid::kUnknown);  // hidden behind the car
+  bool obstacle = false;
+  for (double y = -0.9; y <= 0.9; y += 0.1) obstacle = obstacle || at(10.05, y) == CostGrid::kObstacle;
+  EXPECT_TRUE(obstacle);
+}

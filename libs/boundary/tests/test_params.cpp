@@ -1,0 +1,51 @@
+#include <gtest/gtest.h>
+#include <mrpt/config/CConfigFileMemory.h>
+
+#include "roadslam/boundary/params.h"
+#include "roadslam/common/config.h"
+
+using roadslam::boundary::Params;
+
+TEST(Params, ShippedInisLoad) {
+  for (const char* name : {"bounds.ini", "bounds-thesis.ini"}) {
+    const auto cfg = roadslam::loadIniFile(std::string(ROADSLAM_SOURCE_DIR) + "/ini/" + name);
+    Params p;
+    ASSERT_NO_THROW(p.loadFromConfigFile(*cfg)) << name;
+    EXPECT_DOUBLE_EQ(p.ground.sensor_height_m, 1.9) << name;
+  }
+  const auto thesis = roadslam::loadIniFile(std::string(ROADSLAM_SOURCE_DIR) + "/ini/bounds-thesis.ini");
+  Params p;
+  p.loadFromConfigFile(*thesis);
+  EXPECT_EQ(p.method, "thesis");
+}
+
+TEST(Params, SaveLoadRoundTrip) {
+  Params a;
+  a.method = "thesis";
+  a.curb_min_jump_m = 0.07;
+  a.memory_frames = 4;
+  a.ground.max_slope = 0.2;
+  mrpt::config::CConfigFileMemory mem;
+  a.saveToConfigFile(mem);
+  Params b;
+  b.loadFromConfigFile(mem);
+  EXPECT_EQ(b.method, "thesis");
+  EXPECT_DOUBLE_EQ(b.curb_min_jump_m, 0.07);
+  EXPECT_EQ(b.memory_frames, 4);
+  EXPECT_DOUBLE_EQ(b.ground.max_slope, 0.2);
+}
+
+TEST(Params, BadKeysAreNamed) {
+  mrpt::config::CConfigFileMemory mem;
+  mem.write("boundary", "curb_min_jump", std::string("0.1"));
+  Params p;
+  try {
+    p.loadFromConfigFile(mem);
+    FAIL() << "unknown key accepted";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("curb_min_jump"), std::string::npos) << e.what();
+  }
+  mrpt::config::CConfigFileMemory m2;
+  m2.write("boundary", "method", std::string("magic"));
+  EXPECT_THROW(p.loadFromConfigFile(m2), std::runtime_error);
+}

@@ -1,0 +1,64 @@
+#pragma once
+/// \file boundary_metrics.h
+/// Road-boundary evaluation against ground-truth curb polylines (the simulator's gt_boundaries.json,
+/// world frame) and ground-truth sensor poses (TUM, T_world_lidar). Independent of libs/boundary: it
+/// reads the estimate as written (boundaries.jsonl: per frame stamp_s and left/right
+/// {found, polyline_map [[x, y]]}).
+///
+/// Per frame, both the ground truth and the estimate are brought into the vehicle frame of the
+/// ground-truth pose at the frame's stamp (so pose errors count), and read at stations x = band_min,
+/// band_min + step, ..., band_max ahead: the GT side's lateral offset is the nearest curb crossing
+/// of the line x = station on that side (left y > 0, right y < 0). A side is detected when the
+/// estimate is reported found and covers at least min_coverage of the stations where the GT side
+/// exists; the lateral error is |y_est - y_gt| at the stations both cover.
+
+#include <Eigen/Geometry>
+#include <nlohmann/json_fwd.hpp>
+#include <string>
+#include <vector>
+
+#include "roadslam/datasets/trajectory_io.h"
+
+namespace roadslam::eval {
+
+struct BoundaryEvalParams {
+  double band_min_x_m = 5.0;     ///< stations ahead, from [m]
+  double band_max_x_m = 30.0;    ///< ... to [m]
+  double station_step_m = 1.0;   ///< [m]
+  double max_lateral_m = 15.0;   ///< GT crossings farther aside are not this road's [m]
+  double min_coverage = 0.5;     ///< fraction of the GT stations an estimate must cover [-]
+  double max_dt_s = 0.05;        ///< largest gap to the nearest GT pose [s]
+};
+
+struct BoundaryMetrics {
+  int frames = 0;                ///< estimate frames read
+  int frames_scored = 0;         ///< frames with a GT pose and both GT sides in the band
+  int both_detected = 0, left_detected = 0, right_detected = 0;
+  double detection_rate = 0;     ///< both sides detected / frames_scored [-]
+  double left_detection_rate = 0, right_detection_rate = 0;  ///< [-]
+  int stations = 0;              ///< station errors measured
+  double lateral_error_mean_m = 0, lateral_error_p95_m = 0, lateral_error_max_m = 0;  ///< [m]
+};
+
+/// Curb polylines (x, y in the world frame) of every road, left and right, from gt_boundaries.json.
+/// Throws std::runtime_error naming the file when it is missing or malformed.
+std::vector<std::vector<Eigen::Vector2d>> readGtCurbs(const std::string& path);
+
+/// Lateral offset y at \p x of the crossing nearest to the x axis on \p side (+1 left, -1 right)
+/// among polylines in the vehicle frame; NaN when none within \p max_lateral.
+double lateralAt(const std::vector<std::vector<Eigen::Vector2d>>& polylines, double x, int side,
+                 double max_lateral);
+
+/// Scores estimate frames (parsed boundaries.jsonl objects) against \p curbs and \p gt.
+BoundaryMetrics evaluateBoundaries(const std::vector<std::vector<Eigen::Vector2d>>& curbs,
+                                   const datasets::Trajectory& gt, const std::vector<nlohmann::json>& est,
+                                   const BoundaryEvalParams& p = {});
+
+/// Files in, metrics out; throws naming the file on bad input.
+BoundaryMetrics evaluateBoundaryFiles(const std::string& gt_boundaries, const std::string& gt_trajectory,
+                                      const std::string& est_jsonl, const BoundaryEvalParams& p = {});
+
+nlohmann::json toJson(const BoundaryMetrics& m);
+std::string toText(const BoundaryMetrics& m);
+
+}  // namespace roadslam::eval

@@ -1,0 +1,190 @@
+#include "roadslam/eval/boundary_metrics.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <stdexcept>
+
+namespace roadslam::eval {
+namespace {
+
+using Polylines = std::vector<std::vector<Eigen::Vector2d>>;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+/// GT pose at \p t: linear position and slerped rotation between the bracketing poses, one of
+/// which lies within \p max_dt.
+bool poseAt(const datasets::Trajectory& gt, double t, double max_dt, Eigen::Isometry3d& T) {
+  const auto& st = gt.stamps_s;
+  if (st.empty()) return false;
+  const size_t k = static_cast<size_t>(std::lower_bound(st.begin(), st.end(), t) - st.begin());
+  if (k == 0 || k == st.size()) {
+    const size_t j = k == 0 ? 0 : st.size() - 1;
+    if (std::abs(st[j] - t) > max_dt) return false;
+    T = gt.poses[j];
+    return true;
+  }
+  if (std::min(t - st[k - 1], st[k] - t) > max_dt) return false;  // a gap in the GT
+  const double u = (t - st[k - 1]) / (st[k] - st[k - 1]);
+  const Eigen::Quaterniond qa(gt.poses[k - 1].linear()), qb(gt.poses[k].linear());
+  T = Eigen::Isometry3d::Identity();
+  T.linear() = qa.slerp(u, qb).toRotationMatrix();
+  T.translation() = (1 - u) * gt.poses[k - 1].translation() + u * gt.poses[k].translation();
+  return true;
+}
+
+Polylines toVehicle(const Polylines& world, const Eigen::Isometry3d& T_world_lidar, double reach) {
+  const Eigen::Isometry3d T_lidar_world = T_world_lidar.inverse();
+  const Eigen::Vector2d c = T_world_lidar.translation().head<2>();
+  Polylines out;
+  for (const auto& l : world) {
+    std::vector<Eigen::Vector2d> v;
+    for (const auto& q : l) {
+      if ((q - c).norm() > reach) {  // keep runs near the vehicle only: cheap and exact enough
+        if (v.size() >= 2) out.push_back(v);
+        v.clear();
+        continue;
+      }
+      const Eigen::Vector3d p = T_lidar_world * Eigen::Vector3d(q.x(), q.y(), T_world_lidar.translation().z());
+      v.emplace_back(p.x(), p.y());
+    }
+    if (v.size() >= 2) out.push_back(v);
+  }
+  return out;
+}
+
+std::vector<Eigen::Vector2d> readPolyline(const nlohmann::json& a) {
+  std::vector<Eigen::Vector2d> v;
+  for (const auto& q : a) v.emplace_back(q.at(0).get<double>(), q.at(1).get<double>());
+  return v;
+}
+
+double percentile(std::vector<double> v, double q) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  const size_t k = std::min(v.size() - 1, static_cast<size_t>(std::ceil(q * v.size())) - 1);
+  return v[k];
+}
+
+}  // namespace
+
+Polylines readGtCurbs(const std::string& path) {
+  std::ifstream f(path);
+  if (!f) throw std::runtime_error("cannot open ground-truth boundaries '" + path + "'");
+  Polylines out;
+  try {
+    const auto j = nlohmann::json::parse(f);
+    for (const auto& road : j.at("roads"))
+      for (const char* side : {"left_curbs", "right_curbs"})
+        for (const auto& l : road.at(side)) out.push_back(readPolyline(l));
+  } catch (const std::exception& e) {
+    throw std::runtime_error("'" + path + "': " + e.what());
+  }
+  return out;
+}
+
+double lateralAt(const Polylines& pl, double x, int side, double max_lateral) {
+  double best = kNaN;
+  for (const auto& l : pl) {
+    for (size_t i = 1; i < l.size(); ++i) {
+      const auto &a = l[i - 1], &b = l[i];
+      if ((x < std::min(a.x(), b.x())) || (x > std::max(a.x(), b.x())) || a.x() == b.x()) continue;
+      const double y = a.y() + (b.y() - a.y()) * (x - a.x()) / (b.x() - a.x());
+      if (side * y <= 0 || std::abs(y) > max_lateral) continue;
+      if (std::isnan(best) || std::abs(y) < std::abs(best)) best = y;
+    }
+  }
+  return best;
+}
+
+BoundaryMetrics evaluateBoundaries(const Polylines& curbs, const datasets::Trajectory& gt,
+                                   const std::vector<nlohmann::json>& est, const BoundaryEvalParams& p) {
+  BoundaryMetrics m;
+  std::vector<double> errors;
+  const double reach = std::hypot(p.band_max_x_m, p.max_lateral_m) + 20.0;
+  for (const auto& f : est) {
+    ++m.frames;
+    if (!f.contains("left") || !f.contains("right")) continue;  // e.g. frames without a pose
+    Eigen::Isometry3d T;
+    if (!poseAt(gt, f.at("stamp_s").get<double>(), p.max_dt_s, T)) continue;
+    const Polylines gt_v = toVehicle(curbs, T, reach);
+    bool both_gt = true, both_found = true;
+    for (int side : {+1, -1}) {
+      const auto& s = f.at(side > 0 ? "left" : "right");
+      Polylines est_v;
+      if (s.at("found").get<bool>()) est_v = toVehicle({readPolyline(s.at("polyline_map"))}, T, reach);
+      int gt_n = 0, both_n = 0;
+      std::vector<double> e;
+      for (double x = p.band_min_x_m; x <= p.band_max_x_m + 1e-9; x += p.station_step_m) {
+        const double yg = lateralAt(gt_v, x, side, p.max_lateral_m);
+        if (std::isnan(yg)) continue;
+        ++gt_n;
+        const double ye = lateralAt(est_v, x, side, p.max_lateral_m);
+        if (std::isnan(ye)) continue;
+        ++both_n;
+        e.push_back(std::abs(ye - yg));
+      }
+      const bool gt_side = gt_n > 0;
+      const bool found = gt_side && both_n >= p.min_coverage * gt_n;
+      both_gt = both_gt && gt_side;
+      both_found = both_found && found;
+      if (gt_side && found) (side > 0 ? m.left_detected : m.right_detected) += 1;
+      if (gt_side) errors.insert(errors.end(), e.begin(), e.end());
+    }
+    if (!both_gt) continue;
+    ++m.frames_scored;
+    m.both_detected += both_found;
+  }
+  const double n = std::max(1, m.frames_scored);
+  m.detection_rate = m.both_detected / n;
+  m.left_detection_rate = m.left_detected / n;
+  m.right_detection_rate = m.right_detected / n;
+  m.stations = static_cast<int>(errors.size());
+  if (!errors.empty()) {
+    double sum = 0;
+    for (double e : errors) sum += e, m.lateral_error_max_m = std::max(m.lateral_error_max_m, e);
+    m.lateral_error_mean_m = sum / errors.size();
+    m.lateral_error_p95_m = percentile(errors, 0.95);
+  }
+  return m;
+}
+
+BoundaryMetrics evaluateBoundaryFiles(const std::string& gt_boundaries, const std::string& gt_trajectory,
+                                      const std::string& est_jsonl, const BoundaryEvalParams& p) {
+  const auto curbs = readGtCurbs(gt_boundaries);
+  const auto gt = datasets::readTum(gt_trajectory);
+  std::ifstream f(est_jsonl);
+  if (!f) throw std::runtime_error("cannot open estimate '" + est_jsonl + "'");
+  std::vector<nlohmann::json> est;
+  std::string line;
+  for (int ln = 1; std::getline(f, line); ++ln) {
+    if (line.empty()) continue;
+    try {
+      est.push_back(nlohmann::json::parse(line));
+    } catch (const std::exception& e) {
+      throw std::runtime_error(est_jsonl + ":" + std::to_string(ln) + ": " + e.what());
+    }
+  }
+  return evaluateBoundaries(curbs, gt, est, p);
+}
+
+nlohmann::json toJson(const BoundaryMetrics& m) {
+  return {{"frames", m.frames}, {"frames_scored", m.frames_scored}, {"detection_rate", m.detection_rate},
+          {"left_detection_rate", m.left_detection_rate}, {"right_detection_rate", m.right_detection_rate},
+          {"stations", m.stations}, {"lateral_error_mean_m", m.lateral_error_mean_m},
+          {"lateral_error_p95_m", m.lateral_error_p95_m}, {"lateral_error_max_m", m.lateral_error_max_m}};
+}
+
+std::string toText(const BoundaryMetrics& m) {
+  std::ostringstream s;
+  s << "frames " << m.frames << " (scored " << m.frames_scored << ")\n"
+    << "detection_rate " << m.detection_rate << " (left " << m.left_detection_rate << ", right "
+    << m.right_detection_rate << ")\n"
+    << "lateral_error_mean_m " << m.lateral_error_mean_m << "\nlateral_error_p95_m " << m.lateral_error_p95_m
+    << "\nlateral_error_max_m " << m.lateral_error_max_m << " over " << m.stations << " stations\n";
+  return s.str();
+}
+
+}  // namespace roadslam::eval
