@@ -39,6 +39,14 @@ struct Pending {
 class Writer : public WriterTask {
  public:
   explicit Writer(Grabber::Impl& g);
+  ~Writer() override {
+    try {
+      closeSidecars();
+    } catch (...) {
+    }
+  }
+  Writer(const Writer&) = delete;
+  Writer& operator=(const Writer&) = delete;
   void run() override;
 
  private:
@@ -51,12 +59,15 @@ class Writer : public WriterTask {
   void writeObs(const mrpt::serialization::CSerializable& o);
   void flushAll();
   void updateCounters();
+  void openSidecars();
+  void closeSidecars();
 
   Grabber::Impl& g_;
   SegmentWriter seg_;
   std::vector<mrpt::obs::VelodyneCalibration> calib_;
   std::vector<std::unique_ptr<pcap::PcapWriter>> pcap_;
   std::FILE* candump_ = nullptr;
+  std::size_t sidecar_segment_ = 0;  // the sidecars follow the rawlog segment index
   std::unique_ptr<vehicle::VehicleDecoder> decoder_;
   std::unique_ptr<vehicle::DeadReckoning> dr_;
   vehicle::VehicleState vstate_;
@@ -85,15 +96,9 @@ Writer::Writer(Grabber::Impl& g)
       c = mrpt::obs::VelodyneCalibration::LoadDefaultCalibration(s.scan.model);
     }
     calib_.push_back(c);
-    if (g.params.writer.pcap_sidecar)
-      pcap_.push_back(std::make_unique<pcap::PcapWriter>(g.out_dir + "/" + s.section + ".pcap"));
   }
+  openSidecars();
   if (g.can) {
-    if (g.params.writer.candump_sidecar) {
-      const std::string path = g.out_dir + "/can.candump.log";
-      candump_ = std::fopen(path.c_str(), "w");
-      if (!candump_) throw std::runtime_error("cannot create '" + path + "'");
-    }
     if (!g.params.can.vehicle_ini.empty()) {
       const auto vp = vehicle::loadVehicleIni(g.params.can.vehicle_ini, g.params.can.data_root);
       decoder_ = std::make_unique<vehicle::VehicleDecoder>(vp);
@@ -124,10 +129,30 @@ void Writer::run() {
   }
   flushAll();
   seg_.close();
+  closeSidecars();
+  updateCounters();
+}
+
+// Sidecars are cut with the rawlog segments: <sensor>_NNN.pcap and can_NNN.candump.log hold the
+// packets / frames that arrived while grab_NNN.rawlog was the current segment.
+void Writer::openSidecars() {
+  char idx[16];
+  std::snprintf(idx, sizeof(idx), "_%03zu", sidecar_segment_);
+  if (g_.params.writer.pcap_sidecar)
+    for (const auto& s : g_.params.sensors)
+      pcap_.push_back(std::make_unique<pcap::PcapWriter>(g_.out_dir + "/" + s.section + idx + ".pcap"));
+  if (g_.can && g_.params.writer.candump_sidecar) {
+    const std::string path = g_.out_dir + "/can" + idx + ".candump.log";
+    candump_ = std::fopen(path.c_str(), "w");
+    if (!candump_) throw std::runtime_error("cannot create '" + path + "'");
+  }
+}
+
+void Writer::closeSidecars() {
   for (auto& p : pcap_) p->close();
+  pcap_.clear();
   if (candump_) std::fclose(candump_);
   candump_ = nullptr;
-  updateCounters();
 }
 
 bool Writer::drainQueues() {
@@ -190,6 +215,11 @@ void Writer::emit(Pending& p) {
 void Writer::writeObs(const mrpt::serialization::CSerializable& o) {
   seg_.write(o, wallNow());
   g_.writer.observations.fetch_add(1);
+  if (seg_.segments().size() - 1 != sidecar_segment_) {
+    closeSidecars();
+    sidecar_segment_ = seg_.segments().size() - 1;
+    openSidecars();
+  }
 }
 
 void Writer::writeSweep(const SensorItem& it) {

@@ -127,6 +127,19 @@ inline std::vector<std::vector<uint8_t>> readRawlog(const std::string& path, std
   return out;
 }
 
+/// Paths of \p dir/<stem>_NNN<ext> in index order.
+inline std::vector<std::string> segmentFiles(const std::string& dir, const std::string& stem, const std::string& ext) {
+  std::vector<std::string> out;
+  for (int i = 0;; ++i) {
+    char idx[16];
+    std::snprintf(idx, sizeof(idx), "_%03d", i);
+    const std::string p = dir + "/" + stem + idx + ext;
+    if (!std::filesystem::exists(p)) break;
+    out.push_back(p);
+  }
+  return out;
+}
+
 inline std::string readAll(const std::string& path) {
   std::ifstream f(path, std::ios::binary);
   std::stringstream ss;

@@ -29,7 +29,7 @@ TEST(GrabCan, RealCandumpReplayDecodedLikeTheVehicleExport) {
   const GrabStatus st = g.status();
   EXPECT_EQ(st.can.frames, frames.size());
   EXPECT_EQ(st.can.queue_drops, 0u);
-  EXPECT_EQ(can::readCandumpFile(dir.str() + "/can.candump.log"), frames);  // lossless sidecar
+  EXPECT_EQ(can::readCandumpFile(dir.str() + "/can_000.candump.log"), frames);  // lossless sidecar
 
   vehicle::VehicleDecoder dec(vehicle::loadVehicleIni(vini));
   const auto ref = vehicle::exportRawlog(frames, dec, vehicle::DeadReckoningParams{}, vehicle::RawlogExportParams{},

@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstring>
+#include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
 
@@ -66,7 +67,8 @@ TEST_P(GrabZeroLoss, EveryPacketAndFrameRecordedInOrder) {
   const auto& pkts = test::simPackets(2.0);
   const auto expected = test::dataPayloads(pkts);
   test::TempDir dir("e2e_" + std::to_string(int(speed)));
-  Grabber g(test::paramsFromText(test::testIni()), dir.str());
+  // Segments rotate every 0.5 s: the recording spans several rawlogs and sidecars.
+  Grabber g(test::paramsFromText(test::testIni("rotate_period_s = 0.5\n")), dir.str());
   int sv[2];
   ASSERT_EQ(::socketpair(AF_UNIX, SOCK_SEQPACKET, 0, sv), 0);
   g.useCanSocket(sv[0], "can0");
@@ -95,9 +97,16 @@ TEST_P(GrabZeroLoss, EveryPacketAndFrameRecordedInOrder) {
   EXPECT_EQ(st.writer.packets, sent);
   EXPECT_EQ(st.writer.write_errors, 0u);
 
+  // Segments concatenate into one readable rawlog (multi-member gzip).
+  const auto segments = test::segmentFiles(dir.str(), "grab", ".rawlog");
+  EXPECT_GE(segments.size(), 2u);
+  EXPECT_EQ(st.writer.segments, segments.size());
+  std::string joined;
+  for (const auto& f : segments) joined += test::readAll(f);
+  std::ofstream(dir.str() + "/all.rawlog", std::ios::binary) << joined;
   std::size_t scans = 0;
   std::string error;
-  const auto recorded = test::readRawlog(dir.str() + "/grab_000.rawlog", &scans, &error);
+  const auto recorded = test::readRawlog(dir.str() + "/all.rawlog", &scans, &error);
   EXPECT_TRUE(error.empty()) << error;
   EXPECT_TRUE(recorded == expected) << recorded.size() << " of " << expected.size() << " packets";
   // Sweeps: as many observations as the decoder's sweep assembler cuts from the same packets.
@@ -107,13 +116,20 @@ TEST_P(GrabZeroLoss, EveryPacketAndFrameRecordedInOrder) {
   EXPECT_EQ(scans, a.stats().sweeps);
   EXPECT_EQ(st.writer.sweeps, scans);
   // Lossless sidecar.
-  EXPECT_TRUE(pcapPayloads(dir.str() + "/lidar.pcap", 2368) == expected);
+  std::vector<std::vector<uint8_t>> sidecar;
+  const auto pcaps = test::segmentFiles(dir.str(), "lidar", ".pcap");
+  EXPECT_EQ(pcaps.size(), segments.size());
+  for (const auto& f : pcaps)
+    for (auto& p : pcapPayloads(f, 2368)) sidecar.push_back(std::move(p));
+  EXPECT_TRUE(sidecar == expected);
 
   EXPECT_EQ(st.can.frames, 300u);
   EXPECT_EQ(st.can.error_frames, can_errors);
   EXPECT_EQ(st.can.bus_off, bus_off);
   EXPECT_EQ(st.can.queue_drops + st.can.kernel_drops, 0u);
-  const auto frames = can::readCandumpFile(dir.str() + "/can.candump.log");
+  std::vector<can::CanFrame> frames;
+  for (const auto& f : test::segmentFiles(dir.str(), "can", ".candump.log"))
+    for (const auto& fr : can::readCandumpFile(f)) frames.push_back(fr);
   ASSERT_EQ(frames.size(), 300u);
   EXPECT_EQ(frames[5].id, 0x105u);
   EXPECT_EQ(frames[5].data[0], 5);
@@ -261,6 +277,6 @@ TEST(GrabTwoSensors, EachSensorRecordedWithItsLabelAndPoseInTimeOrder) {
   EXPECT_NEAR(pose["FRONT"].x(), 1.2, 1e-9);
   EXPECT_NEAR(pose["REAR"].x(), -0.8, 1e-9);
   EXPECT_NEAR(std::abs(pose["REAR"].yaw()), M_PI, 1e-9);
-  EXPECT_TRUE(std::filesystem::exists(dir.str() + "/front.pcap"));
-  EXPECT_TRUE(std::filesystem::exists(dir.str() + "/rear.pcap"));
+  EXPECT_TRUE(std::filesystem::exists(dir.str() + "/front_000.pcap"));
+  EXPECT_TRUE(std::filesystem::exists(dir.str() + "/rear_000.pcap"));
 }
