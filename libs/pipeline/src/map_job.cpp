@@ -10,6 +10,7 @@
 #include "roadslam/common/config.h"
 #include "roadslam/common/progress.h"
 #include "roadslam/common/stop_signal.h"
+#include "roadslam/mapping/map_outputs.h"
 #include "roadslam/mapping/mapper.h"
 #include "roadslam/pipeline/scan_stream.h"
 #include "roadslam/velodyne/decoder_params.h"
@@ -34,17 +35,20 @@ struct JobParams {
   odometry::Params odometry;
   velodyne::DecoderParams decoder;
   mapping::MapperParams mapper;
+  mapping::MapOutputParams maps;
 
   void load(const mrpt::config::CConfigFileBase& cfg) {
     odometry.loadFromConfigFile(cfg);
     decoder.loadFromConfigFile(cfg, "velodyne");
     mapper.loadFromConfigFile(cfg);
+    maps.loadFromConfigFile(cfg);
   }
   std::string used() const {
     mrpt::config::CConfigFileMemory out;
     odometry.saveToConfigFile(out);
     decoder.saveToConfigFile(out, "velodyne");
     mapper.saveToConfigFile(out);
+    maps.saveToConfigFile(out);
     return out.getContent();
   }
 };
@@ -105,7 +109,11 @@ MapOutcome runMapJob(const MapRequest& req) {
   out.summary["loop_candidates_rejected"] = loops["rejected"].size();
   out.summary["loops"] = loops;
   out.summary["ms_mapping_total"] = ms_mapping;
-  mapper.graph().saveToTextFile(req.out_dir + "/posegraph.graph");
+  const auto ms = mapping::writeMaps(req.out_dir, mapper, {out.T_map_lidar.begin(), out.T_map_lidar.end()}, params.maps);
+  out.summary["maps"] = {{"points", ms.points}, {"octomap_keyframes", ms.octomap_keyframes},
+                         {"octomap_leafs", ms.octomap_leafs}, {"octomap_ms_per_keyframe", ms.octomap_ms_per_keyframe},
+                         {"grid_occupied_cells", ms.grid_occupied}, {"grid_free_cells", ms.grid_free},
+                         {"ms_total", ms.ms_total}};
   out.summary["wall_time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   writeMapOutputs(req.out_dir, out.frames, out.T_map_lidar, out.summary);
   return out;
