@@ -61,6 +61,19 @@ class Writer : public WriterTask {
   void updateCounters();
   void openSidecars();
   void closeSidecars();
+  /// Runs \p f; a write error (disk full, I/O error) is counted and the first one kept:
+  /// recording goes on, what could not be written is lost and said so.
+  template <class F>
+  void guarded(F&& f) {
+    try {
+      f();
+    } catch (const std::exception& e) {
+      if (g_.writer.write_errors.fetch_add(1) == 0) {
+        std::lock_guard<std::mutex> lock(g_.writer.text_mutex);
+        g_.writer.error = e.what();
+      }
+    }
+  }
 
   Grabber::Impl& g_;
   SegmentWriter seg_;
@@ -128,8 +141,8 @@ void Writer::run() {
     if (!got) std::this_thread::sleep_for(kIdleSleep);
   }
   flushAll();
-  seg_.close();
-  closeSidecars();
+  guarded([&] { seg_.close(); });
+  guarded([&] { closeSidecars(); });
   updateCounters();
 }
 
@@ -162,11 +175,13 @@ bool Writer::drainQueues() {
     while (s->queue.tryPop(it)) {
       got = true;
       if (!pcap_.empty()) {
-        for (const auto& p : it.packets) {
-          const uint16_t port = it.sweep ? velodyne::kDefaultDataPort : velodyne::kDefaultPositionPort;
-          pcap_[std::size_t(it.sensor)]->writeUdp(p.stamp_s, port, port, p.payload.data(),
-                                                  p.payload.size(), p.src_ip ? p.src_ip : 0xC0A801C9u);
-        }
+        guarded([&] {
+          for (const auto& p : it.packets) {
+            const uint16_t port = it.sweep ? velodyne::kDefaultDataPort : velodyne::kDefaultPositionPort;
+            pcap_[std::size_t(it.sensor)]->writeUdp(p.stamp_s, port, port, p.payload.data(),
+                                                    p.payload.size(), p.src_ip ? p.src_ip : 0xC0A801C9u);
+          }
+        });
       }
       const double t = it.packets.front().stamp_s;
       Pending p;
@@ -200,16 +215,11 @@ void Writer::emitUpTo(double stamp_s) {
 }
 
 void Writer::emit(Pending& p) {
-  try {
+  guarded([&] {
     if (p.sensor < 0) writeVehicle(p.frame);
     else if (p.item.sweep) writeSweep(p.item);
     else writePosition(p.item);
-  } catch (const std::exception& e) {
-    if (g_.writer.write_errors.fetch_add(1) == 0) {
-      std::lock_guard<std::mutex> lock(g_.writer.text_mutex);
-      g_.writer.error = e.what();
-    }
-  }
+  });
 }
 
 void Writer::writeObs(const mrpt::serialization::CSerializable& o) {
@@ -303,16 +313,12 @@ void Writer::writeVehicle(const can::CanFrame& f) {
 }
 
 void Writer::flushAll() {
-  try {
-    seg_.syncFlush();
+  guarded([&] { seg_.syncFlush(); });
+  guarded([&] {
     for (auto& p : pcap_) p->flush();
-    if (candump_) std::fflush(candump_);
-  } catch (const std::exception& e) {
-    if (g_.writer.write_errors.fetch_add(1) == 0) {
-      std::lock_guard<std::mutex> lock(g_.writer.text_mutex);
-      g_.writer.error = e.what();
-    }
-  }
+  });
+  if (candump_ && std::fflush(candump_) != 0)
+    guarded([] { throw std::runtime_error("write error on the candump sidecar"); });
 }
 
 void Writer::updateCounters() {

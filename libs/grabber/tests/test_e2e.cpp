@@ -280,3 +280,26 @@ TEST(GrabTwoSensors, EachSensorRecordedWithItsLabelAndPoseInTimeOrder) {
   EXPECT_TRUE(std::filesystem::exists(dir.str() + "/front_000.pcap"));
   EXPECT_TRUE(std::filesystem::exists(dir.str() + "/rear_000.pcap"));
 }
+
+// Disk full (the rawlog and the pcap sidecar are links to /dev/full: every write fails with
+// ENOSPC): write errors are counted and reported, the receivers go on, stop() returns.
+TEST(GrabDiskFull, WriteErrorsCountedRecordingGoesOn) {
+  if (!std::filesystem::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
+  const auto& pkts = test::simPackets(1.2);
+  test::TempDir dir("full");
+  std::filesystem::create_symlink("/dev/full", dir.path / "grab_000.rawlog");
+  std::filesystem::create_symlink("/dev/full", dir.path / "lidar_000.pcap");
+  Grabber g(test::paramsFromText(test::testIni()), dir.str());
+  g.start();
+  const std::size_t sent = test::sendPaced(pkts, g.dataPort(0), g.positionPort(0), 2.0);
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  g.stop();
+  const GrabStatus st = g.status();
+  EXPECT_EQ(st.sensors[0].packets, sent);
+  EXPECT_GT(st.writer.write_errors, 0u);
+  EXPECT_FALSE(st.writer.error.empty());
+  EXPECT_NE(Grabber::formatStatus(st).find("WRITE ERRORS"), std::string::npos);
+  const auto summary = nlohmann::json::parse(test::readAll(dir.str() + "/summary.json"));
+  EXPECT_GT(summary["write_errors"].get<std::size_t>(), 0u);
+  EXPECT_EQ(summary["packets_received"].get<std::size_t>(), sent);
+}
