@@ -42,12 +42,11 @@ Grid curbGrid(const Scan& s, const preprocess::GroundLabels& gl, const Params& p
   return g;
 }
 
-/// A low point is on a curb when its 3x3 neighbourhood holds ground, spans a curb height and holds
-/// nothing tall; both the road side and the top side of the step qualify, so the points straddle
-/// the curb line symmetrically.
-bool onCurb(const Grid& g, double x, double y, const Params& p) {
+/// A low point is on a curb face when its neighbourhood holds ground, spans a curb height, holds
+/// nothing tall, and the point lies between the road and the top of the step.
+bool onCurb(const Grid& g, double x, double y, double z, const Params& p) {
   const double c = p.curb_cell_m;
-  const int k = std::max(1, p.curb_clearance_cells);
+  const int k = std::max(p.curb_reach_cells, p.curb_clearance_cells);
   float zmin = 1e9f, zmax = -1e9f;
   bool ground = false;
   for (int dx = -k; dx <= k; ++dx) {
@@ -55,13 +54,17 @@ bool onCurb(const Grid& g, double x, double y, const Params& p) {
       auto it = g.find(detail::cellKey(x + dx * c, y + dy * c, c));
       if (it == g.end()) continue;
       if (it->second.tall) return false;
-      if (std::abs(dx) > 1 || std::abs(dy) > 1) continue;
+      if (std::abs(dx) > p.curb_reach_cells || std::abs(dy) > p.curb_reach_cells) continue;
       zmin = std::min(zmin, it->second.zmin), zmax = std::max(zmax, it->second.zmax);
       ground = ground || it->second.ground;
     }
   }
   const double jump = zmax - zmin;
-  return ground && jump >= p.curb_min_jump_m && jump <= p.curb_max_jump_m;
+  // Only points on the face itself (strictly between the road and the top) mark the curb line:
+  // a wide neighbourhood would otherwise smear it by its radius on both sides.
+  const double margin = p.curb_face_margin * jump;
+  return ground && jump >= p.curb_min_jump_m && jump <= p.curb_max_jump_m && z >= zmin + margin &&
+         z <= zmax - margin;
 }
 
 }  // namespace
@@ -78,7 +81,7 @@ Labelling labelPoints(const Scan& scan, const Params& p) {
     const auto& q = scan.points[i];
     const float h = gl.height_above_ground_m[i];
     const double r2 = q.x * q.x + q.y * q.y;
-    if (r2 <= curb2 && isLow(gl, i, p) && onCurb(grid, q.x, q.y, p)) {
+    if (r2 <= curb2 && isLow(gl, i, p) && onCurb(grid, q.x, q.y, q.z, p)) {
       out.cls[i] = PointClass::Curb;
       ++out.curb;
     } else if (gl.ground[i]) {

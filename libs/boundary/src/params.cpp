@@ -16,7 +16,7 @@ template <class P>
 auto doubleFields(P& p) {
   return std::vector<std::pair<const char*, decltype(&p.curb_min_jump_m)>>{
       {"curb_min_jump_m", &p.curb_min_jump_m}, {"curb_max_jump_m", &p.curb_max_jump_m},
-      {"curb_cell_m", &p.curb_cell_m}, {"max_heading", &p.max_heading}, {"max_curvature", &p.max_curvature},
+      {"curb_cell_m", &p.curb_cell_m}, {"curb_face_margin", &p.curb_face_margin}, {"max_heading", &p.max_heading}, {"max_curvature", &p.max_curvature},
       {"curb_max_range_m", &p.curb_max_range_m}, {"tall_cell_m", &p.tall_cell_m},
       {"tall_height_m", &p.tall_height_m},
       {"tall_max_height_m", &p.tall_max_height_m}, {"obstacle_min_height_m", &p.obstacle_min_height_m},
@@ -31,7 +31,8 @@ auto doubleFields(P& p) {
 template <class P>
 auto intFields(P& p) {
   return std::vector<std::pair<const char*, decltype(&p.min_bins)>>{
-      {"cluster_min_points", &p.cluster_min_points}, {"curb_clearance_cells", &p.curb_clearance_cells}, {"freespace_sectors", &p.freespace_sectors},
+      {"cluster_min_points", &p.cluster_min_points}, {"curb_clearance_cells", &p.curb_clearance_cells},
+      {"curb_reach_cells", &p.curb_reach_cells}, {"freespace_sectors", &p.freespace_sectors},
       {"poly_degree", &p.poly_degree}, {"ransac_iterations", &p.ransac_iterations},
       {"ransac_seed", &p.ransac_seed}, {"min_bins", &p.min_bins},
       {"memory_frames", &p.memory_frames}};

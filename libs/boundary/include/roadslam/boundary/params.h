@@ -25,6 +25,8 @@ struct Params {
   double curb_min_jump_m = 0.05;      ///< smallest curb height [m]
   double curb_max_jump_m = 0.30;      ///< largest curb height [m]
   double curb_cell_m = 0.20;          ///< cell of the height-difference grid (3x3 neighbourhood) [m]
+  int curb_reach_cells = 2;           ///< the step is read over (2k+1)^2 cells: far rings meet curbs at grazing angles and climb them over a metre or more [-]
+  double curb_face_margin = 0.2;      ///< a face point lies above road + m * jump and below top - m * jump [-]
   int curb_clearance_cells = 2;       ///< no tall cell within this many cells of a curb point [-]
   double curb_max_range_m = 40.0;     ///< rings farther than this are too sparse to read [m]
   double tall_cell_m = 0.5;           ///< xy cell of the "something taller here" test [m]
