@@ -42,8 +42,7 @@ Grabber::Grabber(const GrabParams& params, const std::string& out_dir)
   fs::create_directories(out_dir, ec);
   if (ec) throw std::runtime_error("cannot create output folder '" + out_dir + "': " + ec.message());
   for (const auto& sp : params.sensors) {
-    auto rt = std::make_unique<SensorRt>(params.writer.queue_capacity);
-    rt->params = sp;
+    auto rt = std::make_unique<SensorRt>(sp, params.writer.queue_capacity);
     rt->rx = std::make_unique<sources::UdpReceiver>(sp.udp);
     g.sensors.push_back(std::move(rt));
   }

@@ -37,6 +37,10 @@ struct SensorRt {
   SensorParams params;
   std::unique_ptr<sources::UdpReceiver> rx;
   SweepGrouper grouper;
+  sources::GapCounter gaps;          // on the recorded packets only (not a foreign sender's)
+  std::uint32_t locked_ip = 0;       // lock_first_sender: the sender being recorded
+  bool locked = false;
+  std::uint64_t other_sender = 0;    // packets of another sender, not recorded
   BoundedQueue<SensorItem> queue;
   std::thread thread;
   std::atomic<std::uint64_t> packets{0}, data_packets{0}, position_packets{0}, malformed{0},
@@ -48,7 +52,8 @@ struct SensorRt {
   bool silent = false;
   std::uint64_t silent_events = 0;
 
-  explicit SensorRt(std::size_t capacity) : queue(capacity) {}
+  SensorRt(const SensorParams& p, std::size_t capacity)
+      : params(p), gaps(p.udp.packet_period_s, p.udp.ports.model), queue(capacity) {}
 };
 
 struct CanRt {

@@ -35,7 +35,7 @@ const std::vector<std::string> kSensorKeys = {
     "data_port", "position_port", "model", "bind_address", "source_filter", "rcvbuf_bytes",
     "batch_size", "poll_timeout_ms", "packet_period_us", "sensor_label", "gps_label",
     "calibration_file", "min_range_m", "max_range_m", "x_m", "y_m", "z_m", "yaw_deg", "pitch_deg",
-    "roll_deg", "silent_after_ms"};
+    "roll_deg", "silent_after_ms", "lock_first_sender"};
 const std::vector<std::string> kCanKeys = {
     "source", "interface", "filters", "error_frames", "fd", "receive_buffer_bytes",
     "reopen_interval_ms", "candump_file", "candump_realtime", "restamp", "vehicle_ini", "data_root"};
@@ -58,12 +58,14 @@ void SensorParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, 
   scan.model = udp.ports.model == velodyne::Model::HDL32 ? "HDL32" : "VLP16";
   silent_after_s = readDouble(cfg, sec, "silent_after_ms", silent_after_s * 1e3) * 1e-3;
   if (silent_after_s <= 0) throw std::runtime_error("[" + sec + "] silent_after_ms: must be > 0");
+  lock_first_sender = readBool(cfg, sec, "lock_first_sender", lock_first_sender);
 }
 
 void SensorParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg) const {
   udp.saveToConfigFile(cfg, section);
   scan.saveToConfigFile(cfg, section);
   cfg.write(section, "silent_after_ms", silent_after_s * 1e3);
+  cfg.write(section, "lock_first_sender", lock_first_sender);
 }
 
 void CanParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& sec) {

@@ -49,8 +49,8 @@ void copyStats(SensorRt& s) {
   s.data_packets.store(st.data_packets, std::memory_order_relaxed);
   s.position_packets.store(st.position_packets, std::memory_order_relaxed);
   s.malformed.store(st.malformed_packets, std::memory_order_relaxed);
-  s.foreign.store(st.skipped_packets, std::memory_order_relaxed);
-  s.missing.store(st.missing_packets, std::memory_order_relaxed);
+  s.foreign.store(st.skipped_packets + s.other_sender, std::memory_order_relaxed);
+  s.missing.store(s.gaps.missing(), std::memory_order_relaxed);
   s.kernel_drops.store(st.kernel_drops, std::memory_order_relaxed);
 }
 
@@ -61,9 +61,20 @@ void Grabber::Impl::sensorLoop(SensorRt& s) {
   for (std::size_t i = 0; i < sensors.size(); ++i)
     if (sensors[i].get() == &s) self = int(i);
   const std::uint16_t data_port = s.rx->dataPort();
+  const bool lock = s.params.lock_first_sender && s.params.udp.source_filter.empty();
   auto handle = [&](velodyne::RawPacket&& pkt) {
+    if (lock) {
+      if (!s.locked) {
+        s.locked_ip = pkt.src_ip;
+        s.locked = true;
+      } else if (pkt.src_ip != s.locked_ip) {
+        ++s.other_sender;  // a second sensor on the same port: would corrupt the sweeps
+        return;
+      }
+    }
     s.last_packet_s.store(wallNow(), std::memory_order_relaxed);
     const bool data = pkt.dst_port == data_port;
+    if (data) s.gaps.feed(pkt.payload.data());
     const double off = clockOffset_s(pkt, data);
     s.offset_s.store(off, std::memory_order_relaxed);
     atomicMin(s.offset_min_s, off);

@@ -303,3 +303,27 @@ TEST(GrabDiskFull, WriteErrorsCountedRecordingGoesOn) {
   EXPECT_GT(summary["write_errors"].get<std::size_t>(), 0u);
   EXPECT_EQ(summary["packets_received"].get<std::size_t>(), sent);
 }
+
+// Without source_filter the first sender is locked: a second sensor that starts later on the same
+// port is counted as foreign and kept out of the sweeps (and out of the gap count).
+TEST(GrabBadInput, SecondSenderOnTheSamePortLockedOut) {
+  const auto& pkts = test::simPackets(1.2);
+  test::TempDir dir("lock");
+  Grabber g(test::paramsFromText(test::testIni()), dir.str());
+  g.start();
+  const uint16_t dport = g.dataPort(0), pport = g.positionPort(0);
+  std::thread intruder([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    std::vector<test::SimPacket> other(pkts.begin() + 500, pkts.begin() + 600);
+    test::sendPaced(other, dport, pport, 1.0, "127.0.0.2");
+  });
+  const std::size_t sent = test::sendPaced(pkts, dport, pport, 1.0);
+  intruder.join();
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  g.stop();
+  const SensorStatus s = g.status().sensors.at(0);
+  EXPECT_EQ(s.packets, sent + 100);
+  EXPECT_EQ(s.foreign, 100u);
+  EXPECT_EQ(s.missing, 0u);
+  EXPECT_TRUE(test::readRawlog(dir.str() + "/grab_000.rawlog") == test::dataPayloads(pkts));
+}

@@ -29,7 +29,7 @@ struct SensorStatus {
   std::uint64_t packets = 0;            ///< data + position packets received [count]
   std::uint64_t data_packets = 0, position_packets = 0;
   std::uint64_t malformed = 0;          ///< wrong size on a Velodyne port [count]
-  std::uint64_t foreign = 0;            ///< from another sender than source_filter [count]
+  std::uint64_t foreign = 0;            ///< from another sender than source_filter / the locked first sender [count]
   std::uint64_t missing = 0;            ///< sequence gaps from the sensor's own timestamps [count]
   std::uint64_t kernel_drops = 0;       ///< socket buffer overflows (SO_RXQ_OVFL) [count]
   std::uint64_t queue_drops = 0;        ///< packets dropped because the writer queue was full [count]

@@ -31,6 +31,9 @@ struct SensorParams {
   sources::UdpReceiver::Params udp;     ///< ports, bind address, sender filter, socket buffer
   sources::RawlogWriter::Params scan;   ///< sensorLabel, model, calibration, T_base_lidar, ranges
   double silent_after_s = 1.0;          ///< watchdog: no packet for this long = silent [s]
+  /// Without source_filter: record only the first sender seen on the ports; packets of any other
+  /// sender (a second sensor on the same port) are counted as foreign and not recorded.
+  bool lock_first_sender = true;
 
   /// Reads the UdpReceiver keys, the RawlogWriter keys and silent_after_ms (-> s).
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& sec);
