@@ -1,0 +1,33 @@
+#pragma once
+// Simulated recordings for the pipeline tests, generated once into the build tree (like
+// datasets::unpackTarZstOnce): a completion marker written last makes an interrupted run regenerate.
+#include <filesystem>
+#include <string>
+
+#include "roadslam/common/atomic_file.h"
+#include "roadslam/sim/outputs.h"
+
+namespace roadslam::pipeline::test {
+
+/// Urban loop shrunk to a 110 m x 70 m block (~330 m, ~40 s): small enough for the default suite.
+inline sim::ScenarioParams smallLoop() {
+  auto p = sim::ScenarioParams::fromFile(std::string(ROADSLAM_SOURCE_DIR) + "/ini/sim/urban-loop.ini");
+  p.world.length_m = 110;
+  p.world.width_m = 70;
+  p.world.moving_cars = 2;
+  return p;
+}
+
+/// Simulates \p p into ROADSLAM_BINARY_DIR/test-cache/<name> unless done before; returns the folder.
+inline std::string simulateOnce(const sim::ScenarioParams& p, const std::string& name) {
+  const std::string dir = std::string(ROADSLAM_BINARY_DIR) + "/test-cache/" + name;
+  if (std::filesystem::exists(dir + "/.complete")) return dir;
+  sim::Simulator s(p);
+  sim::OutputOptions opt;
+  opt.dir = dir;
+  sim::runToDirectory(s, opt);
+  writeFileAtomically(dir + "/.complete", "");
+  return dir;
+}
+
+}  // namespace roadslam::pipeline::test
