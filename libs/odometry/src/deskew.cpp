@@ -5,7 +5,7 @@
 namespace roadslam::odometry {
 
 std::vector<Eigen::Vector3d> deskew(const Scan& scan, const Eigen::Isometry3d& delta_T_start_end,
-                                    double sweep_duration_s) {
+                                    double sweep_duration_s, double reference_fraction) {
   std::vector<Eigen::Vector3d> out;
   out.reserve(scan.points.size());
   const Eigen::Quaterniond q_end(delta_T_start_end.rotation());
@@ -18,8 +18,9 @@ std::vector<Eigen::Vector3d> deskew(const Scan& scan, const Eigen::Isometry3d& d
       out.push_back(x);
       continue;
     }
-    // pose of the lidar at time t in the start frame: slerp/lerp of the constant-velocity motion
-    const double s = static_cast<double>(p.t) * inv_dt;
+    // pose at time t in the reference frame: the constant-velocity motion scaled by (t - t_ref)/dt
+    // (slerp extrapolates for negative fractions)
+    const double s = static_cast<double>(p.t) * inv_dt - reference_fraction;
     out.push_back(q_id.slerp(s, q_end) * x + s * t_end);
   }
   return out;

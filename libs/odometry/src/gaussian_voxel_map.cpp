@@ -7,10 +7,16 @@ namespace roadslam::odometry {
 namespace {
 
 constexpr int kMinPointsForCovariance = 5;
-// GICP plane regularisation (Segal et al. 2009, Sec. III-B): eigenvalues (1, eps, eps) of the
-// information, the 1 along the normal, so the Mahalanobis distance on a flat voxel is the
-// point-to-plane distance in metres.
-constexpr double kInPlaneInfo = 1e-2;
+// A surface constrains a point only across it: the information of a voxel is the projector onto the
+// directions in which its points are thinner than kThickness_m (point-to-plane on walls, point-to-
+// line on poles, nothing on foliage). The directions along a surface get no weight on purpose: the
+// pattern of scan rings moves with the sensor, and pulling points along a surface towards where
+// earlier rings lay would hold the vehicle back (with 16 rings, most visibly on the road).
+constexpr double kThickness_m = 0.1;
+// A voxel whose points lie on one horizontal line is a single scan ring crossing a surface. On the
+// road (most of a VLP-16's points, rings 1-4 m apart) it constrains height only: the plane through
+// the ring that is level across it. Elsewhere it waits until other rings make it a surface.
+constexpr double kMaxRingLineSlope = 0.7;  // |z| of the line direction below this = horizontal
 
 }  // namespace
 
@@ -23,22 +29,40 @@ GaussianVoxelMap::GaussianVoxelMap(double voxel_m, int max_points_per_voxel, dou
 
 void GaussianVoxelMap::refresh(Voxel& v) const {
   v.mean = v.sum / v.n;
-  v.valid = v.n >= kMinPointsForCovariance;
-  if (!v.valid) return;
+  v.valid = false;
+  if (v.n < kMinPointsForCovariance) return;
   const Eigen::Matrix3d cov = v.scatter / v.n - v.mean * v.mean.transpose();
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
   es.computeDirect(cov);
-  const Eigen::Matrix3d& V = es.eigenvectors();  // ascending eigenvalues: column 0 is the normal
-  const Eigen::Vector3d d(1.0, kInPlaneInfo, kInPlaneInfo);
-  v.info = V * d.asDiagonal() * V.transpose();
+  const Eigen::Vector3d lambda = es.eigenvalues().cwiseMax(0.0);  // ascending
+  const Eigen::Matrix3d& V = es.eigenvectors();
+  const double thin2 = kThickness_m * kThickness_m;
+  const bool ground = 2 * v.ground_n > v.n;
+  if (lambda(1) < thin2 && std::abs(V.col(2).z()) < kMaxRingLineSlope) {  // one ring
+    if (!ground) return;
+    const Eigen::Vector3d d = V.col(2);
+    const Eigen::Vector3d up = (Eigen::Vector3d::UnitZ() - d.z() * d).normalized();
+    v.info = up * up.transpose();
+  } else if (ground) {  // road: height, roll and pitch only
+    v.info = V.col(0) * V.col(0).transpose();
+  } else {
+    v.info.setZero();
+    for (int i = 0; i < 3; ++i) {
+      if (lambda(i) < thin2) v.info += V.col(i) * V.col(i).transpose();
+    }
+    if (lambda(0) >= thin2) return;
+  }
+  v.valid = true;
 }
 
-void GaussianVoxelMap::insert(const std::vector<Eigen::Vector3d>& points_map) {
+void GaussianVoxelMap::insert(const std::vector<Eigen::Vector3d>& points_map,
+                              const std::vector<uint8_t>& is_ground) {
   // pointers to unordered_map elements survive rehashing, so the touched list stays valid
   std::vector<Voxel*> touched;
   touched.reserve(points_map.size() / 4);
   ++batch_;
-  for (const auto& p : points_map) {
+  for (size_t i = 0; i < points_map.size(); ++i) {
+    const Eigen::Vector3d& p = points_map[i];
     Voxel& v = voxels_[keyOf(p)];
     if (v.n >= max_points_) continue;
     if (v.batch != batch_) {
@@ -48,6 +72,7 @@ void GaussianVoxelMap::insert(const std::vector<Eigen::Vector3d>& points_map) {
     v.sum += p;
     v.scatter.noalias() += p * p.transpose();
     ++v.n;
+    if (!is_ground.empty() && is_ground[i]) ++v.ground_n;
   }
   for (Voxel* v : touched) refresh(*v);
 }

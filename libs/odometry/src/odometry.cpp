@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <unordered_set>
 
 #include "roadslam/odometry/deskew.h"
 
@@ -11,6 +12,26 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double msSince(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+/// The first point in each cubic voxel of \p voxel_m, with its ground flag.
+void firstPerVoxel(const std::vector<Eigen::Vector3d>& pts, const std::vector<uint8_t>& ground,
+                   double voxel_m, std::vector<Eigen::Vector3d>& out, std::vector<uint8_t>& out_ground) {
+  struct H {
+    size_t operator()(const Eigen::Vector3i& k) const noexcept {
+      return static_cast<size_t>(k.x()) * 73856093u ^ static_cast<size_t>(k.y()) * 19349669u ^
+             static_cast<size_t>(k.z()) * 83492791u;
+    }
+  };
+  std::unordered_set<Eigen::Vector3i, H> seen;
+  seen.reserve(pts.size());
+  out.clear();
+  out_ground.clear();
+  for (size_t i = 0; i < pts.size(); ++i) {
+    if (!seen.insert((pts[i] / voxel_m).array().floor().cast<int>()).second) continue;
+    out.push_back(pts[i]);
+    out_ground.push_back(ground.empty() ? 0 : ground[i]);
+  }
 }
 
 double angleOf(const Eigen::Isometry3d& T) {
@@ -111,7 +132,7 @@ registration::RegistrationResult Odometry::match(const std::vector<Eigen::Vector
     vp.convergence_rotation_rad = rp.convergence_rotation_rad;
     vp.min_inliers = rp.min_inliers;
     vp.max_correction_m = rp.max_correction_m;
-    vp.degeneracy_threshold = rp.degeneracy_threshold;
+    vp.degeneracy_threshold = params_.degeneracy_threshold;
     return alignToVoxelMap(gmap_, source, T_pred, vp);
   }
   if (target_stale_ && !map_.empty()) {
@@ -122,11 +143,15 @@ registration::RegistrationResult Odometry::match(const std::vector<Eigen::Vector
 }
 
 void Odometry::updateMap(const Eigen::Isometry3d& T_world_lidar) {
+  // A bounded number of points of each frame per map voxel (KISS-ICP inserts the frame voxelised at
+  // half the map voxel): a voxel then fills from several frames and rings, so the scan line of one
+  // ring across the road never fills it alone.
   std::vector<Eigen::Vector3d> world;
-  world.reserve(last_frame_points_.size());
-  for (const auto& p : last_frame_points_) world.push_back(T_world_lidar * p);
+  std::vector<uint8_t> ground;
+  firstPerVoxel(last_frame_points_, last_ground_, params_.map_insert_voxel_m, world, ground);
+  for (auto& p : world) p = T_world_lidar * p;
   if (params_.matcher == "voxel_map") {
-    gmap_.insert(world);
+    gmap_.insert(world, ground);
     gmap_.removeFar(T_world_lidar.translation());
   } else {
     map_.insert(world);
@@ -159,7 +184,10 @@ FrameResult Odometry::process(Scan scan, const std::optional<MotionPrior>& prior
   const Eigen::Isometry3d delta_sweep =
       scaleMotion(delta_pred, dt > 0 && have_pose_ ? sweep / dt : 1.0);
   if (!params_.deskew) scan.has_point_times = false;  // deskew() then keeps the points as they are
-  last_frame_points_ = deskew(scan, delta_sweep, sweep);
+  const double ref = scan.has_point_times ? params_.deskew_reference : 0.0;
+  res.stamp_s = scan.stamp_s + ref * sweep;
+  last_frame_points_ = deskew(scan, delta_sweep, sweep, ref);
+  if (params_.ground_aware_map) last_ground_ = preprocess::segmentGround(scan.points, params_.preprocess.ground_seg);
 
   const auto t_reg = Clock::now();
   const auto source = registration::voxelDownsample(last_frame_points_, params_.registration_voxel_m);
@@ -175,12 +203,15 @@ FrameResult Odometry::process(Scan scan, const std::optional<MotionPrior>& prior
     res.fitness_m = r.fitness;
     res.information = r.information;
     res.weak_directions = r.degeneracy.num_weak;
+    res.min_eigenvalue = r.degeneracy.eigenvalues(0);
     Eigen::Isometry3d T_est = r.T_target_source;
-    if (!r.converged) {
+    const bool usable = r.converged || (r.status == registration::Status::MaxIterations &&
+                                        r.inliers >= params_.min_inlier_fraction * source.size());
+    if (!usable) {
       res.status = source.empty() ? FrameStatus::Empty : FrameStatus::NotConverged;
       res.reason = registration::toString(r.status) + (r.reason.empty() ? "" : ": " + r.reason);
       T_est = T_pred;
-    } else if (r.degeneracy.degenerate && params_.use_prior_on_degeneracy) {
+    } else if (r.degeneracy.degenerate && params_.use_prior_on_degeneracy && prior) {
       applyPriorOnWeakDirections(r, T_pred, T_est);
       res.status = FrameStatus::Degenerate;
     }

@@ -20,11 +20,13 @@ void Params::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, const st
   map_voxel_m = readDouble(c, s, "map_voxel_m", map_voxel_m);
   map_points_per_voxel = readInt(c, s, "map_points_per_voxel", map_points_per_voxel);
   map_radius_m = readDouble(c, s, "map_radius_m", map_radius_m);
+  map_insert_voxel_m = readDouble(c, s, "map_insert_voxel_m", map_insert_voxel_m);
   adaptive_threshold = readBool(c, s, "adaptive_threshold", adaptive_threshold);
   initial_threshold_m = readDouble(c, s, "initial_threshold_m", initial_threshold_m);
   min_motion_m = readDouble(c, s, "min_motion_m", min_motion_m);
   max_range_m = readDouble(c, s, "max_range_m", max_range_m);
   deskew = readBool(c, s, "deskew", deskew);
+  deskew_reference = readDouble(c, s, "deskew_reference", deskew_reference);
   times_from_azimuth = readBool(c, s, "times_from_azimuth", times_from_azimuth);
   sweep_duration_s = readDouble(c, s, "sweep_duration_s", sweep_duration_s);
   keyframe_distance_m = readDouble(c, s, "keyframe_distance_m", keyframe_distance_m);
@@ -33,7 +35,10 @@ void Params::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, const st
   standstill_rotation_rad = readDouble(c, s, "standstill_rotation_deg", standstill_rotation_rad / kDeg) * kDeg;
   standstill_speed_mps = readDouble(c, s, "standstill_speed_mps", standstill_speed_mps);
   use_prior_on_degeneracy = readBool(c, s, "use_prior_on_degeneracy", use_prior_on_degeneracy);
-  if (registration_voxel_m <= 0 || map_voxel_m <= 0 || map_points_per_voxel < 1 || map_radius_m <= 0 ||
+  degeneracy_threshold = readDouble(c, s, "degeneracy_threshold", degeneracy_threshold);
+  min_inlier_fraction = readDouble(c, s, "min_inlier_fraction", min_inlier_fraction);
+  ground_aware_map = readBool(c, s, "ground_aware_map", ground_aware_map);
+  if (registration_voxel_m <= 0 || map_voxel_m <= 0 || map_insert_voxel_m <= 0 || map_points_per_voxel < 1 || map_radius_m <= 0 ||
       sweep_duration_s <= 0) {
     throw std::runtime_error("[" + s + "] voxel sizes, map_points_per_voxel, map_radius_m and "
                              "sweep_duration_s must be positive");
@@ -49,11 +54,13 @@ void Params::saveToConfigFile(mrpt::config::CConfigFileBase& c, const std::strin
   c.write(s, "map_voxel_m", map_voxel_m);
   c.write(s, "map_points_per_voxel", map_points_per_voxel);
   c.write(s, "map_radius_m", map_radius_m);
+  c.write(s, "map_insert_voxel_m", map_insert_voxel_m);
   c.write(s, "adaptive_threshold", adaptive_threshold);
   c.write(s, "initial_threshold_m", initial_threshold_m);
   c.write(s, "min_motion_m", min_motion_m);
   c.write(s, "max_range_m", max_range_m);
   c.write(s, "deskew", deskew);
+  c.write(s, "deskew_reference", deskew_reference);
   c.write(s, "times_from_azimuth", times_from_azimuth);
   c.write(s, "sweep_duration_s", sweep_duration_s);
   c.write(s, "keyframe_distance_m", keyframe_distance_m);
@@ -62,6 +69,9 @@ void Params::saveToConfigFile(mrpt::config::CConfigFileBase& c, const std::strin
   c.write(s, "standstill_rotation_deg", standstill_rotation_rad / kDeg);
   c.write(s, "standstill_speed_mps", standstill_speed_mps);
   c.write(s, "use_prior_on_degeneracy", use_prior_on_degeneracy);
+  c.write(s, "degeneracy_threshold", degeneracy_threshold);
+  c.write(s, "min_inlier_fraction", min_inlier_fraction);
+  c.write(s, "ground_aware_map", ground_aware_map);
   preprocess.saveToConfigFile(c, pre);
   registration.saveToConfigFile(c, reg);
 }

@@ -1,5 +1,6 @@
 #include "roadslam/velodyne/sweep_assembler.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace roadslam::velodyne {
@@ -14,6 +15,14 @@ SweepAssembler::SweepAssembler(const DecoderParams& params) : decoder_(params) {
 
 SweepAssembler::SweepAssembler(const Decoder& decoder) : decoder_(decoder) {
   scratch_.reserve(kBlocksPerPacket * kChannelsPerBlock);
+}
+
+double SweepAssembler::packetSpan_s(const PacketInfo& info) {
+  float block_period = 0;
+  for (int b = 1; b < kBlocksPerPacket; ++b) {
+    block_period = std::max(block_period, info.block_time_s[b] - info.block_time_s[b - 1]);
+  }
+  return static_cast<double>(info.block_time_s[kBlocksPerPacket - 1] + block_period);
 }
 
 DecodeStatus SweepAssembler::addPacket(const uint8_t* data, std::size_t size,
@@ -31,8 +40,11 @@ DecodeStatus SweepAssembler::addPacket(const uint8_t* data, std::size_t size,
     hour_offset_s_ += 3600.0;
   last_ts_us_ = ts;
   const double pkt_sensor_s = hour_offset_s_ + static_cast<double>(ts) * 1e-6;
-  const double pkt_ref_s =
-      decoder_.params().stamp_source == StampSource::Sensor ? pkt_sensor_s : capture_stamp_s;
+  // A sensor sends a packet after its last firing, so its capture time lies one packet span
+  // (VLP-16 single return: 24 x 55.296 us = 1.327 ms) after the packet's first firing.
+  const double pkt_ref_s = decoder_.params().stamp_source == StampSource::Sensor
+                               ? pkt_sensor_s
+                               : capture_stamp_s - packetSpan_s(info);
   const int cut = static_cast<int>(
       std::lround(decoder_.params().cut_azimuth_rad * 18000.0 / M_PI) % kFullTurn);
   for (int b = 0; b < kBlocksPerPacket; ++b) {

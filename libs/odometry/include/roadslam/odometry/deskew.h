@@ -12,10 +12,16 @@
 namespace roadslam::odometry {
 
 /// \param delta_T_start_end lidar motion over \p sweep_duration_s (pose at the end of the sweep in the
-///        frame at its start, T_start_end); \param sweep_duration_s [s].
+///        frame at its start, T_start_end); \param sweep_duration_s [s];
+/// \param reference_fraction the points are expressed in the lidar frame at
+///        stamp + reference_fraction * sweep_duration_s (0 = sweep start, 0.5 = mid-sweep).
 /// Points keep their order; ScanPoint::t is the time after scan.stamp_s [s].
+/// Why mid-sweep by default: a velocity error dv in the deskew shifts a start-referenced cloud by
+/// about dv * dt / 2, which the registration takes for motion and feeds back into the next
+/// prediction (an oscillation at the Nyquist rate of the frame loop); referenced to the middle, the
+/// same error only stretches the cloud symmetrically (KISS-ICP deskews to the middle too).
 std::vector<Eigen::Vector3d> deskew(const Scan& scan, const Eigen::Isometry3d& delta_T_start_end,
-                                    double sweep_duration_s);
+                                    double sweep_duration_s, double reference_fraction = 0.0);
 
 /// Per-point times from the azimuth for sweeps without them (KITTI HDL-64E: the sweep starts and ends
 /// behind the car, rotating counter-clockwise seen from above; KISS-ICP GetTimestamps): fills

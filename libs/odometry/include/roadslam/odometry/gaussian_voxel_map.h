@@ -4,10 +4,10 @@
 ///
 /// Each voxel accumulates the sum and the scatter of the points that fell in it (so inserting a
 /// sweep is O(points), no tree to rebuild) and keeps its mean and a regularised inverse
-/// covariance. A source point is paired with the nearest voxel mean among the 27 voxels around it
+/// covariance. A source point is paired with the nearest voxel mean among the voxels around it
 /// and the residual is weighed by that voxel's information: the point-to-distribution cost of
-/// VGICP (Koide et al., ICRA 2021) with a zero source covariance, whose plane regularisation
-/// (GICP, Segal et al. 2009: eigenvalues (1, 1, eps)) makes it point-to-plane on flat voxels.
+/// VGICP (Koide et al., ICRA 2021) with a zero source covariance and NDT's covariance
+/// regularisation, so it acts point-to-plane on flat voxels and point-to-line on poles.
 /// Solved by Gauss-Newton with a Geman-McClure kernel (IRLS), left perturbations [t, w] in the
 /// map frame. Frames: points inserted and the result are in the map (world) frame.
 
@@ -29,7 +29,9 @@ class GaussianVoxelMap {
   GaussianVoxelMap(double voxel_m, int max_points_per_voxel, double radius_m, int neighbours = 7);
 
   /// Adds points in the map frame [m] and refreshes the statistics of the voxels they touched.
-  void insert(const std::vector<Eigen::Vector3d>& points_map);
+  /// \p is_ground (empty, or one flag per point) marks road-surface points: a voxel crossed by a
+  /// single scan ring of road then constrains height (a plane through the ring, level across it).
+  void insert(const std::vector<Eigen::Vector3d>& points_map, const std::vector<uint8_t>& is_ground = {});
   /// Drops voxels whose mean is farther than radius_m from \p origin_map [m].
   void removeFar(const Eigen::Vector3d& origin_map);
   size_t numVoxels() const { return voxels_.size(); }
@@ -41,6 +43,7 @@ class GaussianVoxelMap {
     Eigen::Vector3d sum = Eigen::Vector3d::Zero();
     Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();  ///< sum of p p^T
     int n = 0;
+    int ground_n = 0;                                   ///< points labelled ground
     uint32_t batch = 0;                                 ///< last insert() that touched it
     bool valid = false;                                 ///< enough points for a covariance
     Eigen::Vector3d mean = Eigen::Vector3d::Zero();

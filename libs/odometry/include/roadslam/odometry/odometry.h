@@ -6,7 +6,8 @@
 ///   preprocess -> deskew with the predicted motion -> voxelize -> register against the local map
 ///   -> (prior along degenerate directions) -> standstill check -> update the local map.
 /// Frames: "world" is the odometry frame = lidar frame of the first sweep; poses are T_world_lidar at
-/// the sweep's stamp (its first firing).
+/// FrameResult::stamp_s: the sweep's stamp (first firing) plus deskew_reference * sweep_duration_s
+/// for deskewed sweeps (mid-sweep by default), the sweep stamp otherwise.
 
 #include <Eigen/Geometry>
 #include <memory>
@@ -37,12 +38,14 @@ struct Params {
   double registration_voxel_m = 1.0;   ///< voxel of the source points registered [m]
   double map_voxel_m = 1.0;            ///< voxel of the local map [m]
   int map_points_per_voxel = 20;       ///< points kept per map voxel [-]
+  double map_insert_voxel_m = 0.25;    ///< each frame adds one point per voxel of this size to the map [m]
   double map_radius_m = 60.0;          ///< local map radius around the vehicle [m]
   bool adaptive_threshold = true;      ///< KISS-ICP adaptive max correspondence distance
   double initial_threshold_m = 2.0;    ///< threshold before the adaptive one has data [m]
   double min_motion_m = 0.1;           ///< motions below this do not feed the adaptive threshold [m]
   double max_range_m = 100.0;          ///< sensor range for the adaptive threshold [m]
   bool deskew = true;                  ///< motion-compensate sweeps that carry point times
+  double deskew_reference = 0.5;       ///< pose time within the sweep when deskewing [fraction of the sweep]
   bool times_from_azimuth = false;     ///< estimate point times from the azimuth (KITTI .bin)
   double sweep_duration_s = 0.1;       ///< nominal sweep period, used when stamps are missing [s]
   double keyframe_distance_m = 1.0;    ///< new keyframe after this translation [m]
@@ -50,7 +53,16 @@ struct Params {
   double standstill_translation_m = 0.02;  ///< motion below this and ... [m/frame]
   double standstill_rotation_rad = 0.0017; ///< ... below this is standing [rad/frame]; ini _deg
   double standstill_speed_mps = 0.05;  ///< a prior speed below this is standing [m/s]
-  bool use_prior_on_degeneracy = true; ///< replace the weak directions by the motion prior
+  /// Replace the weak directions by an external motion prior (wheel odometry). The constant-velocity
+  /// prediction is not used there: it carries no information of its own and measured worse.
+  bool use_prior_on_degeneracy = true;
+  double degeneracy_threshold = 0.001; ///< normalised Hessian eigenvalue below which a direction is weak [-]
+  /// A registration that used up its iterations is still taken when at least this fraction of the
+  /// source points found a partner (IRLS often ends in a tiny limit cycle, not in a bad pose) [-]
+  double min_inlier_fraction = 0.3;
+  /// Label the road in every sweep (line-fit ground segmentation, [preprocess] seg_* keys) so map
+  /// voxels crossed by a single ring of road still constrain height (16-beam sensors) [-]
+  bool ground_aware_map = true;
 
   preprocess::PreprocessParams preprocess;
   registration::Params registration;
@@ -75,7 +87,7 @@ enum class FrameStatus {
   Ok,             ///< registered and converged
   First,          ///< first frame: defines the world frame
   Standstill,     ///< vehicle standing: pose held, map not updated
-  Degenerate,     ///< converged, weak directions filled from the prior / prediction
+  Degenerate,     ///< converged, weak directions filled from the external motion prior
   NotConverged,   ///< registration failed: pose from the prediction (reason in FrameResult::reason)
   Skipped,        ///< dropped by frame skipping (no pose)
   Empty           ///< no usable points: pose from the prediction
@@ -85,7 +97,7 @@ const char* toString(FrameStatus s);
 /// What the odometry did with one frame.
 struct FrameResult {
   size_t index = 0;             ///< 0-based frame counter
-  double stamp_s = 0;           ///< sweep stamp [s]
+  double stamp_s = 0;           ///< time of T_world_lidar [s] (see the file comment)
   Eigen::Isometry3d T_world_lidar = Eigen::Isometry3d::Identity();
   FrameStatus status = FrameStatus::Ok;
   std::string reason;           ///< registration status text when not Ok
@@ -95,6 +107,7 @@ struct FrameResult {
   double fitness_m = 0;         ///< inlier RMSE [m]
   double threshold_m = 0;       ///< correspondence threshold used [m]
   int weak_directions = 0;      ///< degenerate directions of the registration [-]
+  double min_eigenvalue = 0;    ///< smallest normalised Hessian eigenvalue (degeneracy measure) [-]
   double ms_preprocess = 0, ms_register = 0, ms_map = 0, ms_total = 0;  ///< wall time [ms]
   Eigen::Matrix<double, 6, 6> information = Eigen::Matrix<double, 6, 6>::Zero();
 };
@@ -139,6 +152,7 @@ class Odometry {
   Eigen::Isometry3d delta_last_ = Eigen::Isometry3d::Identity();  ///< T_prev_curr of the last frame
   Eigen::Isometry3d T_world_keyframe_ = Eigen::Isometry3d::Identity();
   std::vector<Eigen::Vector3d> last_frame_points_;
+  std::vector<uint8_t> last_ground_;  ///< ground labels of last_frame_points_ (when ground_aware_map)
 };
 
 }  // namespace roadslam::odometry

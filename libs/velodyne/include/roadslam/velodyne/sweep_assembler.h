@@ -8,8 +8,9 @@
 /// flagged partial; sweeps without any point are dropped (VeloView's IgnoreEmptyFrames).
 ///
 /// Times: Scan::stamp_s is the first firing of the sweep on the clock chosen by
-/// DecoderParams::stamp_source (capture time of the packet, or the sensor's microseconds past the
-/// top of the hour, unwrapped across hours); ScanPoint::t is relative to it, from the sensor's
+/// DecoderParams::stamp_source (capture time of the packet less the packet's span, since the sensor
+/// sends a packet after its last firing; or the sensor's microseconds past the top of the hour,
+/// unwrapped across hours); ScanPoint::t is relative to it, from the sensor's
 /// own timestamps and firing timing (no capture jitter).
 
 #include <cstddef>
@@ -57,6 +58,8 @@ class SweepAssembler {
   const Decoder& decoder() const { return decoder_; }
 
  private:
+  /// Time from the first firing of a packet to the end of its last firing [s].
+  static double packetSpan_s(const PacketInfo& info);
   void closeSweep(bool partial);
   void appendBlock(const PacketInfo& info, int block, double pkt_sensor_s, double pkt_ref_s);
 

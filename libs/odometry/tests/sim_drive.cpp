@@ -1,0 +1,75 @@
+#include "sim_drive.h"
+
+#include <cstdio>
+#include <cstdlib>
+
+#include "roadslam/common/config.h"
+#include "roadslam/sim/simulator.h"
+#include "roadslam/velodyne/sweep_assembler.h"
+
+namespace roadslam::odometry::test {
+namespace {
+
+Eigen::Isometry3d toEigen(const sim::Pose3& p) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(p.R.data());
+  T.translation() = Eigen::Vector3d(p.t.x, p.t.y, p.t.z);
+  return T;
+}
+
+struct OdometrySink : sim::PacketSink {
+  OdometrySink(const sim::Simulator& s, const Params& p) : sim(s), odo(p) {}
+  const sim::Simulator& sim;
+  velodyne::SweepAssembler assembler;
+  Odometry odo;
+  eval::MatchedTrajectories m;
+  SimDriveResult r;
+  double ms_sum = 0;
+
+  void packet(double capture_s, uint16_t port, const uint8_t* data, std::size_t size) override {
+    if (port != velodyne::kDefaultDataPort) return;
+    assembler.addPacket(data, size, capture_s);
+    while (assembler.hasSweep()) process(assembler.takeSweep());
+  }
+  void process(Scan scan) {
+    if (scan.partial) return;
+    const auto f = odo.process(std::move(scan));
+    if (f.status == FrameStatus::Skipped) return;
+    ++r.frames;
+    r.failed += f.status == FrameStatus::NotConverged || f.status == FrameStatus::Empty;
+    r.degenerate += f.status == FrameStatus::Degenerate;
+    ms_sum += f.ms_total;
+    const double t = f.stamp_s - static_cast<double>(sim.params().start_epoch_s);
+    if (std::getenv("SIMDRIVE_VERBOSE")) {
+      const Eigen::Vector3d g = toEigen(sim.lidar().lidarPose(t)).translation();
+      const Eigen::Vector3d e = f.T_world_lidar.translation();
+      std::printf("%zu %s it=%d inl=%d/%d fit=%.3f thr=%.2f weak=%d ev=%.4f est=(%.2f %.2f %.2f) gt=(%.2f %.2f %.2f) %s\n", f.index,
+                  toString(f.status), f.iterations, f.inliers, f.points_registered, f.fitness_m, f.threshold_m,
+                  f.weak_directions, f.min_eigenvalue, e.x(), e.y(), e.z(), g.x(), g.y(), g.z(), f.reason.c_str());
+    }
+    m.gt.push_back(toEigen(sim.lidar().lidarPose(t)));
+    m.est.push_back(f.T_world_lidar);
+    m.stamps_s.push_back(f.stamp_s);
+  }
+};
+
+}  // namespace
+
+SimDriveResult runSimDrive(const std::string& scenario_ini, double duration_s, const Params& params) {
+  auto sp = sim::ScenarioParams::fromFile(scenario_ini);
+  sp.duration_s = duration_s;
+  sim::Simulator s(sp);
+  OdometrySink sink(s, params);
+  s.run(sink);
+  sink.r.ms_mean = sink.r.frames ? sink.ms_sum / sink.r.frames : 0;
+  sink.r.metrics = eval::computeMetrics(sink.m);
+  return sink.r;
+}
+
+Params paramsFromIni(const std::string& path) {
+  Params p;
+  p.loadFromConfigFile(*loadIniFile(path));
+  return p;
+}
+
+}  // namespace roadslam::odometry::test
