@@ -40,7 +40,11 @@ void GridParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std:
 Grid2D buildGrid(const std::vector<Keyframe>& kfs, const PoseVector& T_map_kf, const GridParams& p) {
   Grid2D g;
   g.resolution_m = p.resolution_m;
-  if (kfs.empty()) return g;
+  if (kfs.empty() || T_map_kf.empty()) {  // nothing mapped (an early interruption): one unknown cell
+    g.width = g.height = 1;
+    g.cells.assign(1, -1);
+    return g;
+  }
   Eigen::Vector2d lo = T_map_kf[0].translation().head<2>(), hi = lo;
   for (const auto& T : T_map_kf) {
     lo = lo.cwiseMin(T.translation().head<2>() - Eigen::Vector2d::Constant(p.max_range_m));
