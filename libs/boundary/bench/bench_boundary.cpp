@@ -1,0 +1,54 @@
+// Time per sweep of the boundary detector on a VLP-16-like sweep (28.8k rays, 10 Hz, 0.2 deg) of a
+// street with curbs and parked cars; the thesis baseline and the ground labelling alone in the same
+// run for ratios. Target: <= 20 ms per sweep on one core.
+#include <benchmark/benchmark.h>
+
+#include "../tests/synthetic_road.h"
+#include "roadslam/boundary/detector.h"
+#include "roadslam/preprocess/ground_segmentation.h"
+
+using namespace roadslam;
+
+namespace {
+
+const Scan& street() {
+  static const Scan s = [] {
+    boundary::test::Road r;
+    for (double x = -30; x < 40; x += 9.0) r.boxes.push_back({x, x + 4.5, -3.3, -1.5, -1.9, -0.4});
+    r.boxes.push_back({15, 19.5, 0.5, 2.3, -1.9, -0.4});                 // oncoming car
+    for (double x = -40; x < 60; x += 15) r.boxes.push_back({x, x + 10, 7, 12, -1.9, 10});  // buildings
+    return boundary::test::castSweep(r);
+  }();
+  return s;
+}
+
+void run(benchmark::State& st, const std::string& method) {
+  boundary::Params p;
+  p.method = method;
+  boundary::BoundaryDetector det(p);
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  for (auto _ : st) {
+    T.translation().x() += 1.0;  // memory and map-frame bookkeeping as while driving
+    benchmark::DoNotOptimize(det.process(street(), T, 0.0));
+  }
+  st.counters["points"] = static_cast<double>(street().points.size());
+}
+
+void BM_Detector_Ransac(benchmark::State& st) { run(st, "ransac"); }
+void BM_Detector_Thesis(benchmark::State& st) { run(st, "thesis"); }
+void BM_GroundLabelsOnly(benchmark::State& st) {
+  preprocess::GroundSegParams g;
+  for (auto _ : st) benchmark::DoNotOptimize(preprocess::segmentGroundWithHeights(street().points, g));
+}
+void BM_LabelPoints(benchmark::State& st) {
+  boundary::Params p;
+  for (auto _ : st) benchmark::DoNotOptimize(boundary::labelPoints(street(), p));
+}
+
+}  // namespace
+
+BENCHMARK(BM_Detector_Ransac)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Detector_Thesis)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_GroundLabelsOnly)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_LabelPoints)->Unit(benchmark::kMillisecond);
+BENCHMARK_MAIN();
