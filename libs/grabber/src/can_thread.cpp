@@ -25,6 +25,7 @@ void Grabber::Impl::canLoop() {
                      std::chrono::system_clock::now().time_since_epoch())
                      .count();
       c.frames.fetch_add(1, std::memory_order_relaxed);
+      c.last_frame_s.store(wallNow(), std::memory_order_relaxed);
       if (f.error()) {
         c.error_frames.fetch_add(1, std::memory_order_relaxed);
         if (f.id & CAN_ERR_BUSOFF) c.bus_off.fetch_add(1, std::memory_order_relaxed);

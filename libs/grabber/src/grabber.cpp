@@ -94,7 +94,10 @@ void Grabber::start() {
     SensorRt* sp = s.get();
     s->thread = std::thread([&g, sp] { g.sensorLoop(*sp); });
   }
-  if (g.can) g.can->thread = std::thread([&g] { g.canLoop(); });
+  if (g.can) {
+    g.can->last_frame_s = g.start_s;
+    g.can->thread = std::thread([&g] { g.canLoop(); });
+  }
   g.writer_thread = std::thread([&g] { g.writer_task->run(); });
 }
 

@@ -67,6 +67,9 @@ struct CanRt {
   std::mutex error_mutex;
   std::string error;
   std::uint64_t rate_prev_frames = 0;
+  std::atomic<double> last_frame_s{0};  // host time of the last frame [s]
+  bool silent = false;                  // watchdog state (under Impl::status_mutex)
+  std::uint64_t silent_events = 0;
 
   explicit CanRt(std::size_t capacity) : queue(capacity) {}
 };

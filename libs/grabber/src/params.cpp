@@ -38,7 +38,8 @@ const std::vector<std::string> kSensorKeys = {
     "roll_deg", "silent_after_ms", "lock_first_sender"};
 const std::vector<std::string> kCanKeys = {
     "source", "interface", "filters", "error_frames", "fd", "receive_buffer_bytes",
-    "reopen_interval_ms", "candump_file", "candump_realtime", "restamp", "vehicle_ini", "data_root"};
+    "reopen_interval_ms", "candump_file", "candump_realtime", "restamp", "vehicle_ini", "data_root",
+    "silent_after_ms"};
 const std::vector<std::string> kGrabKeys = {
     "sensors", "can", "queue_capacity", "can_queue_capacity", "rotate_size_mb", "rotate_period_s",
     "flush_period_ms", "reorder_window_ms", "compression_level", "pcap_sidecar", "candump_sidecar",
@@ -81,6 +82,8 @@ void CanParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, con
   restamp = readBool(cfg, sec, "restamp", restamp);
   vehicle_ini = readString(cfg, sec, "vehicle_ini", vehicle_ini);
   data_root = readString(cfg, sec, "data_root", data_root);
+  silent_after_s = readDouble(cfg, sec, "silent_after_ms", silent_after_s * 1e3) * 1e-3;
+  if (silent_after_s <= 0) throw std::runtime_error("[" + sec + "] silent_after_ms: must be > 0");
   if (source == Source::Candump && candump_file.empty())
     throw std::runtime_error("[" + sec + "] candump_file: required when source = candump");
 }
@@ -94,6 +97,7 @@ void CanParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::
   cfg.write(sec, "restamp", restamp);
   cfg.write(sec, "vehicle_ini", vehicle_ini);
   cfg.write(sec, "data_root", data_root);
+  cfg.write(sec, "silent_after_ms", silent_after_s * 1e3);
 }
 
 void WriterParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& s) {

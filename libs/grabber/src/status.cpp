@@ -65,6 +65,18 @@ GrabStatus Grabber::status() {
     st.can.queue_depth = c.queue.size();
     st.can.rate_fps = double(st.can.frames - c.rate_prev_frames) / dt;
     c.rate_prev_frames = st.can.frames;
+    const double quiet = now - c.last_frame_s;
+    const double limit = g.params.can.silent_after_s;
+    if (running && !c.silent && quiet > limit) {
+      c.silent = true;
+      ++c.silent_events;
+      st.events.push_back(fmt::format("CAN: silent for {:.1f} s (no frame)", quiet));
+    } else if (c.silent && quiet <= limit) {
+      c.silent = false;
+      st.events.push_back("CAN: receiving again");
+    }
+    st.can.silent = c.silent;
+    st.can.silent_events = c.silent_events;
     std::lock_guard<std::mutex> el(c.error_mutex);
     st.can.error = c.error;
   }
@@ -92,9 +104,10 @@ std::string Grabber::formatStatus(const GrabStatus& s) {
                         o.rate_pps, o.packets, o.missing, o.kernel_drops, o.queue_drops, o.queue_depth,
                         o.silent ? " SILENT" : "", o.clock_offset_s);
   if (s.can.enabled)
-    line += fmt::format(" CAN: {:.0f} fr/s {} fr, err {} busoff {} drop {} q {} |", s.can.rate_fps,
+    line += fmt::format(" CAN: {:.0f} fr/s {} fr, err {} busoff {} drop {} q {}{} |", s.can.rate_fps,
                         s.can.frames, s.can.error_frames, s.can.bus_off,
-                        s.can.kernel_drops + s.can.queue_drops, s.can.queue_depth);
+                        s.can.kernel_drops + s.can.queue_drops, s.can.queue_depth,
+                        s.can.silent ? " SILENT" : "");
   line += fmt::format(" rawlog: {} sweeps, {:.1f} MB in {} file(s), pending {}", s.writer.sweeps,
                       double(s.writer.bytes) / 1e6, s.writer.segments, s.writer.pending);
   if (s.writer.write_errors) line += fmt::format(", {} WRITE ERRORS: {}", s.writer.write_errors, s.writer.error);
@@ -137,6 +150,7 @@ void Grabber::writeSummary(const GrabStatus& s) const {
             {"can_malformed", s.can.malformed},
             {"can_vehicle_observations", s.can.vehicle_observations},
             {"can_error", s.can.error},
+            {"can_silent_events", s.can.silent_events},
             {"sensors", sensors}};
   writeFileAtomically(impl_->out_dir + "/summary.json", j.dump(2) + "\n");
 }

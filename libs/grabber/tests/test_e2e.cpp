@@ -327,3 +327,36 @@ TEST(GrabBadInput, SecondSenderOnTheSamePortLockedOut) {
   EXPECT_EQ(s.missing, 0u);
   EXPECT_TRUE(test::readRawlog(dir.str() + "/grab_000.rawlog") == test::dataPayloads(pkts));
 }
+
+TEST(GrabWatchdog, ReportsASilentCanBusAndItsReturn) {
+  test::TempDir dir("wdcan");
+  Grabber g(test::paramsFromText(test::testIni("can = can\n[can]\nsource = none\nsilent_after_ms = 300\n")),
+            dir.str());
+  int sv[2];
+  ASSERT_EQ(::socketpair(AF_UNIX, SOCK_SEQPACKET, 0, sv), 0);
+  g.useCanSocket(sv[0], "can0");
+  g.start();
+  auto canEvents = [&] {
+    std::vector<std::string> out;
+    for (const auto& e : g.status().events)
+      if (e.rfind("CAN", 0) == 0) out.push_back(e);
+    return out;
+  };
+  std::size_t bus_off = 0;
+  sendCan(sv[1], 20, &bus_off);
+  EXPECT_TRUE(canEvents().empty());
+  std::this_thread::sleep_for(std::chrono::milliseconds(600));
+  auto ev = canEvents();
+  ASSERT_EQ(ev.size(), 1u);
+  EXPECT_NE(ev[0].find("silent"), std::string::npos) << ev[0];
+  EXPECT_TRUE(g.status().can.silent);
+  sendCan(sv[1], 5, &bus_off);
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  ev = canEvents();
+  ASSERT_EQ(ev.size(), 1u);
+  EXPECT_EQ(ev[0], "CAN: receiving again");
+  g.stop();
+  ::close(sv[1]);
+  EXPECT_EQ(g.status().can.silent_events, 1u);
+  EXPECT_EQ(g.status().can.frames, 25u);
+}

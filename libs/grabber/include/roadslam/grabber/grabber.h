@@ -53,6 +53,8 @@ struct CanStatus {
   std::uint64_t vehicle_observations = 0;  ///< MRPT observations decoded from CAN [count]
   std::size_t queue_depth = 0;
   double rate_fps = 0;                  ///< frames per second over the last status period [1/s]
+  bool silent = false;                  ///< no frame for CanParams::silent_after_s
+  std::uint64_t silent_events = 0;      ///< times the bus went silent [count]
   std::string error;                    ///< why the CAN source stopped, if it did
 };
 

@@ -50,6 +50,7 @@ struct CanParams {
   bool restamp = true;              ///< replayed frames get the host receive time (one clock)
   std::string vehicle_ini;          ///< ini/vehicles/<car>.ini: decode into MRPT observations; empty = none
   std::string data_root;            ///< root for the vehicle ini's DBC path; empty = the ini's own
+  double silent_after_s = 1.0;      ///< watchdog: no frame for this long = bus silent [s] (ini: silent_after_ms)
 
   /// Keys: source (none|socketcan|candump), the SocketCanParams keys, candump_file,
   /// candump_realtime, restamp, vehicle_ini, data_root.
