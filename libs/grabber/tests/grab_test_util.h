@@ -2,6 +2,8 @@
 // Helpers shared by the grabber tests: simulated packets, a paced UDP sender, temp folders,
 // ini text for a grabber on kernel-chosen loopback ports, rawlog read-back.
 #include <arpa/inet.h>
+#include <linux/can.h>
+#include <linux/can/error.h>
 #include <netinet/in.h>
 #include <sys/socket.h>
 #include <unistd.h>
@@ -138,6 +140,30 @@ inline std::vector<std::string> segmentFiles(const std::string& dir, const std::
     out.push_back(p);
   }
   return out;
+}
+
+/// Sends \p n frames over \p fd 1 ms apart: ids 0x100 + i; every 40th an error frame, the 100th
+/// a bus-off error frame. Returns how many were error frames (\p bus_off: bus-off ones).
+inline std::size_t sendCan(int fd, int n, std::size_t* bus_off) {
+  std::size_t errors = 0;
+  *bus_off = 0;
+  for (int i = 0; i < n; ++i) {
+    can_frame f{};
+    f.can_id = canid_t(0x100 + i % 0x400);
+    f.len = 8;
+    for (int b = 0; b < 8; ++b) f.data[b] = uint8_t(i + b);
+    if (i == 100) {
+      f.can_id = CAN_ERR_FLAG | CAN_ERR_BUSOFF;
+      ++errors;
+      ++*bus_off;
+    } else if (i % 40 == 39) {
+      f.can_id = CAN_ERR_FLAG | CAN_ERR_CRTL;
+      ++errors;
+    }
+    if (::send(fd, &f, sizeof(f), 0) != ssize_t(sizeof(f))) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  return errors;
 }
 
 inline std::string readAll(const std::string& path) {

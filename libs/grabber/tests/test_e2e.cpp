@@ -28,30 +28,6 @@ using namespace roadslam::grabber;
 
 namespace {
 
-/// Sends \p n frames over \p fd 1 ms apart: ids 0x100 + i; every 40th an error frame, the 100th
-/// a bus-off error frame. Returns how many were error frames (\p bus_off: bus-off ones).
-std::size_t sendCan(int fd, int n, std::size_t* bus_off) {
-  std::size_t errors = 0;
-  *bus_off = 0;
-  for (int i = 0; i < n; ++i) {
-    can_frame f{};
-    f.can_id = canid_t(0x100 + i % 0x400);
-    f.len = 8;
-    for (int b = 0; b < 8; ++b) f.data[b] = uint8_t(i + b);
-    if (i == 100) {
-      f.can_id = CAN_ERR_FLAG | CAN_ERR_BUSOFF;
-      ++errors;
-      ++*bus_off;
-    } else if (i % 40 == 39) {
-      f.can_id = CAN_ERR_FLAG | CAN_ERR_CRTL;
-      ++errors;
-    }
-    EXPECT_EQ(::send(fd, &f, sizeof(f), 0), ssize_t(sizeof(f)));
-    std::this_thread::sleep_for(std::chrono::milliseconds(1));
-  }
-  return errors;
-}
-
 std::vector<std::vector<uint8_t>> pcapPayloads(const std::string& path, uint16_t port) {
   std::vector<std::vector<uint8_t>> out;
   for (auto& d : pcap::readUdpDatagrams(path, port)) out.push_back(d.payload);
@@ -74,7 +50,7 @@ TEST_P(GrabZeroLoss, EveryPacketAndFrameRecordedInOrder) {
   g.useCanSocket(sv[0], "can0");
   g.start();
   std::size_t bus_off = 0, can_errors = 0;
-  std::thread can_tx([&] { can_errors = sendCan(sv[1], 300, &bus_off); });
+  std::thread can_tx([&] { can_errors = test::sendCan(sv[1], 300, &bus_off); });
   std::size_t sent = 0;
   {
     sim::UdpStreamer streamer("127.0.0.1", g.dataPort(0), speed);  // the simulator's own streamer
@@ -179,26 +155,6 @@ TEST(GrabBadInput, MalformedAndForeignPacketsCountedRecordingGoesOn) {
   EXPECT_TRUE(test::readRawlog(dir.str() + "/grab_000.rawlog") == test::dataPayloads(pkts));
 }
 
-TEST(GrabWatchdog, ReportsASilentSensorAndItsReturn) {
-  const auto& pkts = test::simPackets(0.3);
-  test::TempDir dir("wd");
-  Grabber g(test::paramsFromText(test::testIni()), dir.str());
-  g.start();
-  test::sendPaced(pkts, g.dataPort(0), g.positionPort(0), 1.0);
-  EXPECT_TRUE(g.status().events.empty());
-  std::this_thread::sleep_for(std::chrono::milliseconds(700));  // silent_after_ms = 400
-  GrabStatus st = g.status();
-  ASSERT_EQ(st.events.size(), 1u);
-  EXPECT_NE(st.events[0].find("silent"), std::string::npos) << st.events[0];
-  EXPECT_TRUE(st.sensors[0].silent);
-  test::sendPaced(pkts, g.dataPort(0), g.positionPort(0), 1.0);
-  st = g.status();
-  ASSERT_EQ(st.events.size(), 1u);
-  EXPECT_NE(st.events[0].find("receiving again"), std::string::npos) << st.events[0];
-  EXPECT_EQ(st.sensors[0].silent_events, 1u);
-  EXPECT_NE(Grabber::formatStatus(st).find("LIDAR"), std::string::npos);
-  g.stop();
-}
 
 // A writer that cannot keep up (queue of one item, a burst of position packets sent unpaced):
 // the receiver never blocks, the overflow is counted, and written + dropped = received.
@@ -326,37 +282,4 @@ TEST(GrabBadInput, SecondSenderOnTheSamePortLockedOut) {
   EXPECT_EQ(s.foreign, 100u);
   EXPECT_EQ(s.missing, 0u);
   EXPECT_TRUE(test::readRawlog(dir.str() + "/grab_000.rawlog") == test::dataPayloads(pkts));
-}
-
-TEST(GrabWatchdog, ReportsASilentCanBusAndItsReturn) {
-  test::TempDir dir("wdcan");
-  Grabber g(test::paramsFromText(test::testIni("can = can\n[can]\nsource = none\nsilent_after_ms = 300\n")),
-            dir.str());
-  int sv[2];
-  ASSERT_EQ(::socketpair(AF_UNIX, SOCK_SEQPACKET, 0, sv), 0);
-  g.useCanSocket(sv[0], "can0");
-  g.start();
-  auto canEvents = [&] {
-    std::vector<std::string> out;
-    for (const auto& e : g.status().events)
-      if (e.rfind("CAN", 0) == 0) out.push_back(e);
-    return out;
-  };
-  std::size_t bus_off = 0;
-  sendCan(sv[1], 20, &bus_off);
-  EXPECT_TRUE(canEvents().empty());
-  std::this_thread::sleep_for(std::chrono::milliseconds(600));
-  auto ev = canEvents();
-  ASSERT_EQ(ev.size(), 1u);
-  EXPECT_NE(ev[0].find("silent"), std::string::npos) << ev[0];
-  EXPECT_TRUE(g.status().can.silent);
-  sendCan(sv[1], 5, &bus_off);
-  std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  ev = canEvents();
-  ASSERT_EQ(ev.size(), 1u);
-  EXPECT_EQ(ev[0], "CAN: receiving again");
-  g.stop();
-  ::close(sv[1]);
-  EXPECT_EQ(g.status().can.silent_events, 1u);
-  EXPECT_EQ(g.status().can.frames, 25u);
 }
