@@ -1,10 +1,7 @@
-// Grabber lifecycle: session folder, threads, status and watchdog, summary.json.
-#include <fmt/format.h>
+// Grabber lifecycle: session folder and files, receivers and sources, threads, stop and drain.
 #include <mrpt/config/CConfigFileMemory.h>
-#include <nlohmann/json.hpp>
 
 #include <filesystem>
-#include <fstream>
 
 #include "impl.h"
 #include "roadslam/can/socketcan_source.h"
