@@ -41,6 +41,7 @@ struct SensorRt {
   std::uint32_t locked_ip = 0;       // lock_first_sender: the sender being recorded
   bool locked = false;
   std::uint64_t other_sender = 0;    // packets of another sender, not recorded
+  std::uint64_t bad_flag = 0;        // 1206-byte data payloads without the 0xEEFF block flag
   BoundedQueue<SensorItem> queue;
   std::thread thread;
   std::atomic<std::uint64_t> packets{0}, data_packets{0}, position_packets{0}, malformed{0},

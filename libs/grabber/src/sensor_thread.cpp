@@ -48,7 +48,7 @@ void copyStats(SensorRt& s) {
   s.packets.store(st.packets, std::memory_order_relaxed);
   s.data_packets.store(st.data_packets, std::memory_order_relaxed);
   s.position_packets.store(st.position_packets, std::memory_order_relaxed);
-  s.malformed.store(st.malformed_packets, std::memory_order_relaxed);
+  s.malformed.store(st.malformed_packets + s.bad_flag, std::memory_order_relaxed);
   s.foreign.store(st.skipped_packets + s.other_sender, std::memory_order_relaxed);
   s.missing.store(s.gaps.missing(), std::memory_order_relaxed);
   s.kernel_drops.store(st.kernel_drops, std::memory_order_relaxed);
@@ -74,7 +74,13 @@ void Grabber::Impl::sensorLoop(SensorRt& s) {
     }
     s.last_packet_s.store(wallNow(), std::memory_order_relaxed);
     const bool data = pkt.dst_port == data_port;
-    if (data) s.gaps.feed(pkt.payload.data());
+    if (data) {
+      if (!SweepGrouper::accepts(pkt)) {  // right size, not a Velodyne data packet
+        ++s.bad_flag;
+        return;
+      }
+      s.gaps.feed(pkt.payload.data());
+    }
     const double off = clockOffset_s(pkt, data);
     s.offset_s.store(off, std::memory_order_relaxed);
     atomicMin(s.offset_min_s, off);

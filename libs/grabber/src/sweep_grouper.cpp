@@ -14,9 +14,12 @@ bool blockFlagOk(const std::uint8_t* p, int block) {
 }
 }  // namespace
 
+bool SweepGrouper::accepts(const velodyne::RawPacket& packet) {
+  return packet.payload.size() == velodyne::kDataPacketSize && blockFlagOk(packet.payload.data(), 0);
+}
+
 bool SweepGrouper::add(velodyne::RawPacket&& packet) {
-  if (packet.payload.size() != velodyne::kDataPacketSize || !blockFlagOk(packet.payload.data(), 0))
-    return false;
+  if (!accepts(packet)) return false;
   const std::uint8_t* p = packet.payload.data();
   bool closes = false;
   // Cut before this packet: the previous packet ended a revolution inside its blocks, or the

@@ -136,6 +136,7 @@ TEST(GrabBadInput, MalformedAndForeignPacketsCountedRecordingGoesOn) {
   });
   std::vector<test::SimPacket> junk;
   for (int i = 0; i < 20; ++i) junk.push_back({pkts[std::size_t(i)].capture_s, 2368, std::vector<uint8_t>(100 + i, 0xAB)});
+  for (int i = 0; i < 10; ++i) junk.push_back({pkts[std::size_t(i)].capture_s, 2368, std::vector<uint8_t>(1206, 0)});
   test::sendPaced(junk, dport, pport, 1.0);
   const std::size_t sent = test::sendPaced(pkts, dport, pport, 2.0);
   intruder.join();
@@ -145,7 +146,7 @@ TEST(GrabBadInput, MalformedAndForeignPacketsCountedRecordingGoesOn) {
   ASSERT_EQ(sent, pkts.size());
   const SensorStatus& s = st.sensors.at(0);
   EXPECT_EQ(s.foreign, 100u);
-  EXPECT_EQ(s.malformed, 20u);
+  EXPECT_EQ(s.malformed, 30u);  // 20 of a wrong size, 10 of the right size without block flags
   EXPECT_EQ(s.missing, 0u);
   std::size_t positions = 0;
   for (const auto& p : pkts) positions += p.port == 8308;

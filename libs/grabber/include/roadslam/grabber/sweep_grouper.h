@@ -19,6 +19,8 @@ class SweepGrouper {
   /// Adds one 1206-byte data packet. Returns true when it closed a sweep: take it with take().
   /// Packets of another size or without a valid block flag are not added (return false).
   bool add(velodyne::RawPacket&& packet);
+  /// True for a 1206-byte payload whose first block carries the 0xEEFF flag (what add() takes).
+  static bool accepts(const velodyne::RawPacket& packet);
   /// The closed sweep (moved out); the packets of the next sweep stay buffered.
   std::vector<velodyne::RawPacket> take();
   /// Packets of the sweep in progress (at the end of a recording: the last, partial sweep).
