@@ -31,7 +31,8 @@ struct GrabProcess {
 
   explicit GrabProcess(const std::string& dir) : out(dir + "/session") {
     data_port = freeUdpPort();
-    position_port = freeUdpPort();
+    do position_port = freeUdpPort();
+    while (position_port == data_port);
     // The test's own ini variant, written into the build dir.
     const std::string ini = std::string(ROADSLAM_BINARY_DIR) + "/grab_kill_" + std::to_string(::getpid()) + "_" +
                             std::to_string(data_port) + ".ini";
