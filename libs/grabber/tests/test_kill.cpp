@@ -4,6 +4,8 @@
 #include <signal.h>
 #include <sys/wait.h>
 
+#include <cstdlib>
+
 #include <nlohmann/json.hpp>
 
 #include "grab_test_util.h"
@@ -125,4 +127,19 @@ TEST(GrabKill, SigkillLosesAtMostAboutOneSecond) {
   // The summary refreshed while recording is there and parses (written atomically).
   const auto summary = nlohmann::json::parse(test::readAll(grab.out + "/summary.json"));
   EXPECT_GT(summary["packets_received"].get<std::size_t>(), 0u);
+}
+
+// Configuration errors end the app at once with exit code 1 and a line naming the file and key.
+TEST(GrabApp, BadIniExitsWithTheKeyNamed) {
+  const std::string exe = std::string(ROADSLAM_BINARY_DIR) + "/bin/roadslam-grab";
+  if (!std::filesystem::exists(exe)) GTEST_SKIP() << "bin/roadslam-grab not built";
+  test::TempDir dir("badini");
+  const std::string ini = dir.str() + "/bad.ini";
+  std::ofstream(ini) << "[grab]\nsensors = lidar\n[lidar]\ndata_port = 0\nposition_port = 0\nyaw_degs = 3\n";
+  const std::string cmd = exe + " --config " + ini + " --out " + dir.str() + "/s --duration 1 2> " + dir.str() + "/err";
+  const int rc = std::system(cmd.c_str());
+  EXPECT_EQ(WEXITSTATUS(rc), 1);
+  const std::string err = test::readAll(dir.str() + "/err");
+  EXPECT_NE(err.find("bad.ini"), std::string::npos) << err;
+  EXPECT_NE(err.find("yaw_degs"), std::string::npos) << err;
 }
