@@ -89,7 +89,15 @@ void Grabber::start() {
   for (auto& s : g.sensors) {
     s->last_packet_s = g.start_s;
     SensorRt* sp = s.get();
-    s->thread = std::thread([&g, sp] { g.sensorLoop(*sp); });
+    s->thread = std::thread([&g, sp] {
+      try {
+        g.sensorLoop(*sp);
+      } catch (const std::exception& e) {  // never silently: the watchdog reports it silent too
+        std::lock_guard<std::mutex> lock(g.writer.text_mutex);
+        if (g.writer.error.empty()) g.writer.error = sp->params.section + ": receiver stopped: " + e.what();
+        g.writer.write_errors.fetch_add(1);
+      }
+    });
   }
   if (g.can) {
     g.can->last_frame_s = g.start_s;
