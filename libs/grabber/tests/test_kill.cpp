@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "grab_test_util.h"
+#include "roadslam/pcap/pcap_reader.h"
 
 using namespace roadslam;
 using namespace roadslam::grabber;
@@ -79,16 +80,18 @@ struct GrabProcess {
 
 }  // namespace
 
-TEST(GrabKill, SigintFlushesAndClosesACompleteRawlog) {
+class GrabStopSignal : public ::testing::TestWithParam<int> {};
+
+TEST_P(GrabStopSignal, FlushesAndClosesACompleteRawlog) {
   if (!std::filesystem::exists(std::string(ROADSLAM_BINARY_DIR) + "/bin/roadslam-grab"))
     GTEST_SKIP() << "bin/roadslam-grab not built";
   const auto& pkts = test::simPackets(1.5);
-  test::TempDir dir("sigint");
+  test::TempDir dir("stop" + std::to_string(GetParam()));
   GrabProcess grab(dir.str());
   ASSERT_TRUE(std::filesystem::exists(grab.out + "/params_used.ini")) << test::readAll(dir.str() + "/grab.log");
   const std::size_t sent = test::sendPaced(pkts, grab.data_port, grab.position_port, 1.0);
   std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  const int status = grab.signalAndWait(SIGINT);
+  const int status = grab.signalAndWait(GetParam());
   ASSERT_TRUE(WIFEXITED(status)) << status;
   EXPECT_EQ(WEXITSTATUS(status), 0) << test::readAll(dir.str() + "/grab.log");
   std::string error;
@@ -100,6 +103,9 @@ TEST(GrabKill, SigintFlushesAndClosesACompleteRawlog) {
   EXPECT_EQ(summary["packets_dropped"].get<std::size_t>(), 0u);
   EXPECT_TRUE(std::filesystem::exists(grab.out + "/grab.ini"));
 }
+
+INSTANTIATE_TEST_SUITE_P(Signals, GrabStopSignal, ::testing::Values(SIGINT, SIGTERM),
+                         [](const auto& info) { return info.param == SIGINT ? "SIGINT" : "SIGTERM"; });
 
 TEST(GrabKill, SigkillLosesAtMostAboutOneSecond) {
   if (!std::filesystem::exists(std::string(ROADSLAM_BINARY_DIR) + "/bin/roadslam-grab"))
@@ -122,6 +128,13 @@ TEST(GrabKill, SigkillLosesAtMostAboutOneSecond) {
   for (std::size_t i = 0; i < recorded.size(); ++i) ASSERT_TRUE(recorded[i] == expected[i]) << "packet " << i;
   EXPECT_GE(recorded.size() + 754, sent_at_kill) << recorded.size() << " recorded, " << sent_at_kill << " sent";
   EXPECT_GT(recorded.size(), 0u);
+  // The pcap sidecar (flushed with the rawlog, written before the reorder window) likewise.
+  std::string pcap_error;
+  const auto sidecar = pcap::readUdpDatagrams(grab.out + "/lidar_000.pcap", 2368, &pcap_error);
+  ASSERT_LE(sidecar.size(), expected.size());
+  for (std::size_t i = 0; i < sidecar.size(); ++i) ASSERT_TRUE(sidecar[i].payload == expected[i]) << "pcap packet " << i;
+  EXPECT_GE(sidecar.size(), recorded.size());
+  RecordProperty("pcap_packets_readable", int(sidecar.size()));
   RecordProperty("packets_sent_at_kill", int(sent_at_kill));
   RecordProperty("packets_readable", int(recorded.size()));
   // The summary refreshed while recording is there and parses (written atomically).
