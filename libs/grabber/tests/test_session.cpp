@@ -58,7 +58,7 @@ TEST(GrabWatchdog, ReportsASilentCanBusAndItsReturn) {
   EXPECT_NE(ev[0].find("silent"), std::string::npos) << ev[0];
   EXPECT_TRUE(g.status().can.silent);
   sendCan(sv[1], 5, &bus_off);
-  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  std::this_thread::sleep_for(std::chrono::milliseconds(150));  // < silent_after_ms
   ev = canEvents();
   ASSERT_EQ(ev.size(), 1u);
   EXPECT_EQ(ev[0], "CAN: receiving again");
