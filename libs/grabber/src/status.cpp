@@ -32,6 +32,7 @@ GrabStatus Grabber::status() {
     o.queue_drops = s->queue_drops;
     o.sweeps = s->sweeps;
     o.queue_depth = s->queue.size();
+    o.queue_high_water = s->queue.highWater();
     o.rate_pps = double(o.data_packets - s->rate_prev_packets) / dt;
     s->rate_prev_packets = o.data_packets;
     o.clock_offset_s = s->offset_s;
@@ -63,6 +64,7 @@ GrabStatus Grabber::status() {
     st.can.queue_drops = c.queue_drops;
     st.can.vehicle_observations = c.vehicle_obs;
     st.can.queue_depth = c.queue.size();
+    st.can.queue_high_water = c.queue.highWater();
     st.can.rate_fps = double(st.can.frames - c.rate_prev_frames) / dt;
     c.rate_prev_frames = st.can.frames;
     const double quiet = now - c.last_frame_s;
@@ -127,7 +129,8 @@ void Grabber::writeSummary(const GrabStatus& s) const {
                        {"packets", o.packets}, {"data_packets", o.data_packets},
                        {"position_packets", o.position_packets}, {"malformed", o.malformed},
                        {"foreign", o.foreign}, {"missing", o.missing}, {"kernel_drops", o.kernel_drops},
-                       {"queue_drops", o.queue_drops}, {"sweeps_queued", o.sweeps},
+                       {"queue_drops", o.queue_drops}, {"queue_high_water", o.queue_high_water},
+                       {"sweeps_queued", o.sweeps},
                        {"clock_offset_s", o.clock_offset_s}, {"clock_offset_min_s", o.clock_offset_min_s},
                        {"clock_offset_max_s", o.clock_offset_max_s}, {"silent_events", o.silent_events}});
   }
@@ -151,6 +154,7 @@ void Grabber::writeSummary(const GrabStatus& s) const {
             {"can_vehicle_observations", s.can.vehicle_observations},
             {"can_error", s.can.error},
             {"can_silent_events", s.can.silent_events},
+            {"can_queue_high_water", s.can.queue_high_water},
             {"sensors", sensors}};
   writeFileAtomically(impl_->out_dir + "/summary.json", j.dump(2) + "\n");
 }

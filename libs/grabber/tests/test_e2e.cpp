@@ -176,6 +176,7 @@ TEST(GrabOverflow, FullQueueDropsAreCountedNeverBlock) {
   const SensorStatus& s = st.sensors.at(0);
   EXPECT_EQ(s.position_packets + s.kernel_drops, sent);
   EXPECT_GT(s.queue_drops, 0u);
+  EXPECT_EQ(s.queue_high_water, 1u);  // the capacity
   EXPECT_EQ(st.writer.gps + s.queue_drops, s.position_packets);
   const auto summary = nlohmann::json::parse(test::readAll(dir.str() + "/summary.json"));
   EXPECT_GE(summary["packets_dropped"].get<std::size_t>(), s.queue_drops);

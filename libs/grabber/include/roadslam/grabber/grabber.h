@@ -35,6 +35,7 @@ struct SensorStatus {
   std::uint64_t queue_drops = 0;        ///< packets dropped because the writer queue was full [count]
   std::uint64_t sweeps = 0;             ///< sweeps queued for writing [count]
   std::size_t queue_depth = 0;          ///< items waiting for the writer [count]
+  std::size_t queue_high_water = 0;     ///< largest queue_depth so far, to size queue_capacity [count]
   double rate_pps = 0;                  ///< data packets per second over the last status period [1/s]
   double clock_offset_s = 0;            ///< host receive time - sensor time (within the hour), last packet [s]
   double clock_offset_min_s = 0, clock_offset_max_s = 0;  ///< over the session [s]
@@ -52,6 +53,7 @@ struct CanStatus {
   std::uint64_t queue_drops = 0;        ///< frames dropped because the writer queue was full [count]
   std::uint64_t vehicle_observations = 0;  ///< MRPT observations decoded from CAN [count]
   std::size_t queue_depth = 0;
+  std::size_t queue_high_water = 0;     ///< largest queue_depth so far [count]
   double rate_fps = 0;                  ///< frames per second over the last status period [1/s]
   bool silent = false;                  ///< no frame for CanParams::silent_after_s
   std::uint64_t silent_events = 0;      ///< times the bus went silent [count]
