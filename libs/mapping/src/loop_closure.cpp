@@ -44,6 +44,8 @@ LoopClosureParams::LoopClosureParams() {
 void LoopClosureParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& s) {
   enabled = readBool(cfg, s, "enabled", enabled);
   search_radius_m = readDouble(cfg, s, "search_radius_m", search_radius_m);
+  search_height_m = readDouble(cfg, s, "search_height_m", search_height_m);
+  level_guess = readBool(cfg, s, "level_guess", level_guess);
   min_travel_m = readDouble(cfg, s, "min_travel_m", min_travel_m);
   check_every_m = readDouble(cfg, s, "check_every_m", check_every_m);
   max_candidates = readInt(cfg, s, "max_candidates", max_candidates);
@@ -73,6 +75,8 @@ void LoopClosureParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& 
 void LoopClosureParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& s) const {
   cfg.write(s, "enabled", enabled);
   cfg.write(s, "search_radius_m", search_radius_m);
+  cfg.write(s, "search_height_m", search_height_m);
+  cfg.write(s, "level_guess", level_guess);
   cfg.write(s, "min_travel_m", min_travel_m);
   cfg.write(s, "check_every_m", check_every_m);
   cfg.write(s, "max_candidates", max_candidates);
@@ -99,8 +103,9 @@ std::vector<size_t> findLoopCandidates(const std::vector<Keyframe>& kfs, const P
   const Eigen::Vector3d q = T_map_kf[query].translation();
   for (size_t j = 0; j < query; ++j) {
     if (kfs[query].path_m - kfs[j].path_m < p.min_travel_m) break;  // path grows with j
-    const double d = (T_map_kf[j].translation() - q).norm();
-    if (d < p.search_radius_m) near.emplace_back(d, j);
+    const Eigen::Vector3d dq = T_map_kf[j].translation() - q;
+    const double d = dq.head<2>().norm();
+    if (d < p.search_radius_m && std::abs(dq.z()) < p.search_height_m) near.emplace_back(d, j);
   }
   std::sort(near.begin(), near.end());
   std::vector<size_t> out;
@@ -126,13 +131,16 @@ LoopResult verifyLoop(const std::vector<Keyframe>& kfs, const PoseVector& T_map_
   const auto source = submap(kfs, T_map_kf, qfirst, query, query, p.source_voxel_m);
   const auto target_pts = submap(kfs, T_map_kf, tfirst, std::max(tlast, match), match, p.target_voxel_m);
   const Eigen::Isometry3d guess = T_map_kf[match].inverse() * T_map_kf[query];
+  Eigen::Isometry3d start = guess;
+  // a revisit is on the same road: the odometry's vertical drift (its largest) is not a guess
+  if (p.level_guess) start.translation().z() = 0;
   auto finish = [&](const std::string& why) {
     r.reason = why;
     r.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     return r;
   };
   const registration::Target coarse_target(target_pts, p.coarse);
-  const auto c = registration::align(coarse_target, source, guess, p.coarse);
+  const auto c = registration::align(coarse_target, source, start, p.coarse);
   if (!c.converged) return finish("coarse: " + registration::toString(c.status));
   const registration::Target fine_target(target_pts, p.fine);
   const auto f = registration::align(fine_target, source, c.T_target_source, p.fine);

@@ -1,7 +1,8 @@
 #pragma once
 /// \file loop_closure.h
 /// Loop closure between keyframes (map frame = odometry world frame, lidar frames per keyframe):
-///  1. candidates: older keyframes within search_radius_m of the query in the current graph estimate,
+///  1. candidates: older keyframes within search_radius_m (horizontally; search_height_m vertically) of
+///     the query in the current graph estimate,
 ///     with at least min_travel_m of path driven in between (so neighbours in time never qualify);
 ///  2. verification, coarse to fine (libs/registration): a local submap of the query (its last few
 ///     keyframes) is aligned to a submap around the candidate by NDT (wide basin), then by
@@ -35,7 +36,9 @@ struct Keyframe {
 /// [loop_closure_fine] (registration::Params keys).
 struct LoopClosureParams {
   bool enabled = true;
-  double search_radius_m = 12.0;     ///< candidate: closer than this in the graph estimate [m]
+  double search_radius_m = 12.0;     ///< candidate: horizontally closer than this in the graph estimate [m]
+  double search_height_m = 30.0;     ///< ... and vertically closer than this (odometry drifts most in z) [m]
+  bool level_guess = true;           ///< registration guess without the graph's vertical offset (same road) [-]
   double min_travel_m = 60.0;        ///< ... and at least this much path in between [m]
   double check_every_m = 2.0;        ///< queries are this much path apart [m]
   int max_candidates = 2;            ///< nearest candidates verified per query [-]

@@ -29,7 +29,7 @@ struct OctoMapParams {
   bool enabled = true;
   double resolution_m = 0.2;      ///< leaf size [m]
   double max_range_m = 60.0;      ///< end points farther from the sensor are dropped [m]
-  double free_max_range_m = 20.0; ///< free space cleared up to this distance along a ray [m]
+  double free_max_range_m = 10.0; ///< free space cleared up to this distance along a ray [m]
   double prob_hit = 0.7;          ///< occupancy probability of a hit [-]
   double prob_miss = 0.4;         ///< ... of a pass-through [-]
   double clamp_min = 0.12;        ///< log-odds clamping, as probabilities [-]
