@@ -90,6 +90,52 @@ void toMap(const Eigen::Isometry3d& T_map_lidar, SideBoundary& s) {
 
 BoundaryDetector::BoundaryDetector(Params p) : p_(std::move(p)) {}
 
+SideBoundary BoundaryDetector::track(SideBoundary fresh, Track& tr, const Eigen::Isometry3d& T_map_lidar) const {
+  const Eigen::Isometry3d T_lidar_map = T_map_lidar.inverse();
+  std::vector<Vec2> held;  // the track in the current vehicle frame
+  if (tr.valid) {
+    for (const auto& m : tr.map_pts) {
+      const Eigen::Vector3d v = T_lidar_map * m;
+      held.push_back({v.x(), v.y()});
+    }
+  }
+  if (fresh.found && !held.empty()) {
+    double dev = 0;
+    int n = 0;
+    for (const auto& h : held) {
+      if (h.x < p_.band_min_x_m || h.x > p_.band_max_x_m) continue;
+      dev += std::abs(detail::polyEval(fresh.coeffs, h.x) - h.y), ++n;
+    }
+    // Only a better-supported track may veto a fit: a weak track must not lock out the real curb.
+    if (n > 0 && dev / n > p_.track_gate_m && tr.held < p_.max_hold_frames && fresh.confidence < tr.confidence) {
+      fresh.found = false;
+      fresh.reason = "fit jumped " + std::to_string(dev / n).substr(0, 4) + " m from the tracked boundary";
+    }
+  }
+  if (fresh.found) {
+    tr.map_pts.clear();
+    const double x1 = fresh.polyline_vehicle.back().x;
+    for (double x = p_.fit_min_x_m; x <= x1 + 1e-9; x += p_.polyline_step_m) {
+      tr.map_pts.push_back(T_map_lidar * Eigen::Vector3d(x, detail::polyEval(fresh.coeffs, x), 0.0));
+    }
+    tr.confidence = fresh.confidence, tr.held = 0, tr.valid = true;
+    return fresh;
+  }
+  if (!tr.valid || tr.held >= p_.max_hold_frames) {
+    tr.valid = false;
+    return fresh;
+  }
+  ++tr.held;
+  SideBoundary out = fresh;
+  out.polyline_vehicle.clear();
+  for (const auto& h : held)
+    if (h.x >= p_.band_min_x_m && h.x <= p_.band_max_x_m) out.polyline_vehicle.push_back(h);
+  out.found = out.polyline_vehicle.size() >= 2;
+  out.confidence = tr.confidence * std::pow(p_.hold_decay, tr.held);
+  out.reason = (out.found ? "held " + std::to_string(tr.held) + " sweeps: " : "held track left the band: ") + fresh.reason;
+  return out;
+}
+
 BoundaryFrame BoundaryDetector::process(const Scan& scan, const Eigen::Isometry3d& T_map_lidar, double stamp_s) {
   const auto t0 = std::chrono::steady_clock::now();
   BoundaryFrame f;
@@ -129,8 +175,8 @@ BoundaryFrame BoundaryDetector::process(const Scan& scan, const Eigen::Isometry3
           const Eigen::Vector3d v = T_lidar_map * m;
           pts.push_back({v.x(), v.y()});
         }
-      f.left = detail::fitSide(pts, +1, p_, rng);
-      f.right = detail::fitSide(pts, -1, p_, rng);
+      f.left = track(detail::fitSide(pts, +1, p_, rng), tracks_[0], T_map_lidar);
+      f.right = track(detail::fitSide(pts, -1, p_, rng), tracks_[1], T_map_lidar);
     }
     toMap(T_map_lidar, f.left);
     toMap(T_map_lidar, f.right);

@@ -26,9 +26,13 @@ std::vector<double> lsq(const std::vector<Vec2>& pts, int degree) {
   return std::vector<double>(c.data(), c.data() + c.size());
 }
 
-/// Roads bend gently: reject hypotheses that cross the vehicle's path or curl.
-bool plausible(const std::vector<double>& c, const Params& p) {
-  return std::abs(c[1]) <= p.max_heading && (c.size() < 3 || std::abs(c[2]) <= p.max_curvature);
+/// Roads bend gently and a side stays on its side: reject hypotheses that curl or cross the
+/// vehicle's path within the band.
+bool plausible(const std::vector<double>& c, int side, const Params& p) {
+  if (std::abs(c[1]) > p.max_heading || (c.size() > 2 && std::abs(c[2]) > p.max_curvature)) return false;
+  for (double x = p.band_min_x_m; x <= p.band_max_x_m; x += 0.25 * (p.band_max_x_m - p.band_min_x_m))
+    if (side * polyEval(c, x) < p.min_lateral_m) return false;
+  return true;
 }
 
 struct Score {
@@ -81,7 +85,7 @@ SideBoundary ransac(const std::vector<Vec2>& pts, int side, int degree, int min_
       for (size_t b = a + 1; b < m; ++b) spread = spread && std::abs(sample[a].x - sample[b].x) > p.bin_m;
     if (!spread) continue;
     auto c = lsq(sample, degree);
-    if (!plausible(c, p)) continue;
+    if (!plausible(c, side, p)) continue;
     const Score s = score(pts, c, p);
     if (best_c.empty() || s.better(best)) best = s, best_c = c;
   }
@@ -97,7 +101,7 @@ SideBoundary ransac(const std::vector<Vec2>& pts, int side, int degree, int min_
     score(pts, best_c, p, &inl);
     if (inl.size() < m) break;
     const auto c = lsq(inl, degree);
-    if (plausible(c, p)) best_c = c;
+    if (plausible(c, side, p)) best_c = c;
   }
   out.found = true;
   out.reason = "ok";
@@ -108,6 +112,15 @@ SideBoundary ransac(const std::vector<Vec2>& pts, int side, int degree, int min_
   for (const auto& q : inl) {
     xmin = std::min(xmin, q.x), xmax = std::max(xmax, q.x);
     if (q.x >= p.band_min_x_m && q.x <= p.band_max_x_m) band_bins.insert(static_cast<int>(std::floor(q.x / p.bin_m)));
+  }
+  if (static_cast<int>(band_bins.size()) < p.min_band_bins) {
+    // Support only behind or beside the vehicle: a polynomial would be a guess in the band.
+    out.found = false;
+    why << "the " << sideName(side) << " curb is not seen ahead (" << band_bins.size() << " of " << p.min_band_bins
+        << " bins in the band; hidden by obstacles?)";
+    out.reason = why.str();
+    out.polyline_vehicle.clear();
+    return out;
   }
   const double band_bins_total = std::ceil((p.band_max_x_m - p.band_min_x_m) / p.bin_m);
   out.confidence = std::min(1.0, band_bins.size() / band_bins_total) * out.inliers / std::max(1, out.candidates);

@@ -25,7 +25,7 @@ auto doubleFields(P& p) {
       {"band_max_x_m", &p.band_max_x_m}, {"fit_min_x_m", &p.fit_min_x_m},
       {"fit_max_x_m", &p.fit_max_x_m}, {"min_lateral_m", &p.min_lateral_m},
       {"max_lateral_m", &p.max_lateral_m}, {"ransac_inlier_m", &p.ransac_inlier_m},
-      {"bin_m", &p.bin_m}, {"polyline_step_m", &p.polyline_step_m},
+      {"bin_m", &p.bin_m}, {"track_gate_m", &p.track_gate_m}, {"hold_decay", &p.hold_decay}, {"polyline_step_m", &p.polyline_step_m},
       {"grid_resolution_m", &p.grid_resolution_m}, {"grid_size_m", &p.grid_size_m}};
 }
 template <class P>
@@ -34,8 +34,8 @@ auto intFields(P& p) {
       {"cluster_min_points", &p.cluster_min_points}, {"curb_clearance_cells", &p.curb_clearance_cells},
       {"curb_reach_cells", &p.curb_reach_cells}, {"freespace_sectors", &p.freespace_sectors},
       {"poly_degree", &p.poly_degree}, {"ransac_iterations", &p.ransac_iterations},
-      {"ransac_seed", &p.ransac_seed}, {"min_bins", &p.min_bins},
-      {"memory_frames", &p.memory_frames}};
+      {"ransac_seed", &p.ransac_seed}, {"min_bins", &p.min_bins}, {"min_band_bins", &p.min_band_bins},
+      {"memory_frames", &p.memory_frames}, {"max_hold_frames", &p.max_hold_frames}};
 }
 
 void require(bool ok, const std::string& section, const std::string& key, const std::string& what) {

@@ -69,11 +69,15 @@ TEST(SimDrive, VisibleCurbsMeetTheTargets) {
 }
 
 // The shipped urban loop: parked cars (35 % of the slots) hide the right curb for seconds at a
-// time. The left curb is still held; the right side must say why it is unknown when it is.
+// time (the first 3 s here): the right side is then unknown and says why, never guessed; what is
+// reported stays within the accuracy targets, and the left curb is held throughout.
 TEST(SimDrive, ParkedCarsHideTheRightCurbAndSaySo) {
   const auto drive = cachedDrive("urban", "urban-loop.ini", 10.0, nullptr);
   const auto r = runBounds(drive, "bounds.ini", "urban");
   EXPECT_GE(r.m.left_detection_rate, 0.95);
+  EXPECT_GE(r.m.right_detection_rate, 0.40);  // measured 0.44: hidden for 3 of the 10 s
+  EXPECT_LE(r.m.lateral_error_mean_m, 0.10);
+  EXPECT_LE(r.m.lateral_error_p95_m, 0.25);
   size_t unexplained = 0;
   std::ifstream f(std::string(ROADSLAM_BINARY_DIR) + "/test_data/boundary_out_urban/boundaries.jsonl");
   std::string line;

@@ -6,8 +6,11 @@
 /// obstacle points (0.3-3 m above ground) clustered on a grid, each with a convex hull and an oriented
 /// rectangle -> free space by polar ray casting up to the first curb or obstacle -> left/right
 /// boundary: RANSAC polynomial over the curb points of the last memory_frames sweeps (kept in the map
-/// frame, moved into the current vehicle frame), scored by the distance bins it covers.
+/// frame, moved into the current vehicle frame), scored by the distance bins it covers; a side not
+/// seen (or jumping away from its track) is held from the previous sweeps, moved with the vehicle,
+/// for max_hold_frames, and says so in its reason.
 
+#include <array>
 #include <deque>
 #include <vector>
 
@@ -41,6 +44,15 @@ class BoundaryDetector {
   size_t frames_ = 0;
   std::deque<std::vector<Eigen::Vector3d>> memory_map_;  ///< curb points per past sweep, map frame
   Labelling last_;
+  /// Per side (0 left, 1 right): the last accepted boundary, map frame, and sweeps held since.
+  struct Track {
+    std::vector<Eigen::Vector3d> map_pts;
+    double confidence = 0;
+    int held = 0;
+    bool valid = false;
+  };
+  std::array<Track, 2> tracks_;
+  SideBoundary track(SideBoundary fresh, Track& tr, const Eigen::Isometry3d& T_map_lidar) const;
 };
 
 }  // namespace roadslam::boundary

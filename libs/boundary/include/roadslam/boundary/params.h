@@ -51,17 +51,21 @@ struct Params {
   double min_lateral_m = 1.0;           ///< |y| of candidates, lower bound [m]
   double max_lateral_m = 15.0;          ///< |y| of candidates, upper bound [m]
   int poly_degree = 2;                  ///< y = c0 + c1 x + c2 x^2 (1 or 2) [-]
-  double max_heading = 1.0;             ///< |dy/dx| of a boundary at x = 0 (|c1|) [-]
+  double max_heading = 0.5;             ///< |dy/dx| of a boundary at x = 0 (|c1|) [-]
   double max_curvature = 0.05;          ///< |c2| = 1 / (2 R): 0.05 allows a 10 m radius [1/m]
   double ransac_inlier_m = 0.12;        ///< RANSAC inlier distance [m]
   int ransac_iterations = 200;          ///< [-]
   int ransac_seed = 7;                  ///< fixed seed: same input, same output [-]
   double bin_m = 1.0;                   ///< distance bins along x for coverage [m]
   int min_bins = 5;                     ///< fewer covered bins: side unknown [-]
+  int min_band_bins = 3;                ///< ... and at least this many of them in the band ahead [-]
   double polyline_step_m = 1.0;         ///< output polyline vertex spacing [m]
 
   // Time: curb points of recent sweeps, kept in the map frame and moved with the vehicle.
   int memory_frames = 10;               ///< sweeps of curb points fitted together [-]
+  int max_hold_frames = 10;             ///< a side not seen is held (moved with the vehicle) this long [-]
+  double track_gate_m = 0.5;            ///< a new fit farther than this from the held side is an outlier [m]
+  double hold_decay = 0.85;             ///< confidence factor per held sweep [-]
 
   // Cost grid for a planner (vehicle frame).
   double grid_resolution_m = 0.2;       ///< [m]
