@@ -34,6 +34,21 @@ void firstPerVoxel(const std::vector<Eigen::Vector3d>& pts, const std::vector<ui
   }
 }
 
+/// Road points beyond \p max_range_m [m, lidar frame] leave the map: a small pitch error moves them
+/// vertically by range x pitch, and the map would hand that height on to the vehicle later.
+void dropFarGround(std::vector<Eigen::Vector3d>& pts, std::vector<uint8_t>& ground, double max_range_m) {
+  if (max_range_m <= 0 || ground.empty()) return;
+  const double r2 = max_range_m * max_range_m;
+  size_t k = 0;
+  for (size_t i = 0; i < pts.size(); ++i) {
+    if (ground[i] && pts[i].head<2>().squaredNorm() > r2) continue;
+    pts[k] = pts[i];
+    ground[k++] = ground[i];
+  }
+  pts.resize(k);
+  ground.resize(k);
+}
+
 double angleOf(const Eigen::Isometry3d& T) {
   return Eigen::AngleAxisd(T.rotation()).angle();
 }
@@ -118,7 +133,7 @@ registration::RegistrationResult Odometry::match(const std::vector<Eigen::Vector
   registration::Params rp = params_.registration;
   if (params_.adaptive_threshold) {
     // KISS-ICP: correspondences within 3 sigma, kernel scale sigma / 3 (Vizzo et al. 2023, Sec. III-C)
-    const double tau = threshold_.threshold();
+    const double tau = std::min(threshold_.threshold(), params_.max_threshold_m);
     rp.max_correspondence_distance_m = 3.0 * tau;
     rp.kernel_scale_m = tau / 3.0;
   }
@@ -149,11 +164,13 @@ void Odometry::updateMap(const Eigen::Isometry3d& T_world_lidar) {
   std::vector<Eigen::Vector3d> world;
   std::vector<uint8_t> ground;
   firstPerVoxel(last_frame_points_, last_ground_, params_.map_insert_voxel_m, world, ground);
+  dropFarGround(world, ground, params_.map_ground_max_range_m);
   for (auto& p : world) p = T_world_lidar * p;
   if (params_.matcher == "voxel_map") {
     gmap_.insert(world, ground);
     gmap_.removeFar(T_world_lidar.translation());
   } else {
+    if (params_.registration_target == "last_scan") map_.clear();
     map_.insert(world);
     map_.removeFar(T_world_lidar.translation());
     target_stale_ = true;

@@ -16,6 +16,11 @@ void Params::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, const st
   if (matcher != "voxel_map" && matcher != "registration") {
     throw std::runtime_error("[" + s + "] matcher = '" + matcher + "': expected voxel_map or registration");
   }
+  registration_target = readString(c, s, "registration_target", registration_target);
+  if (registration_target != "local_map" && registration_target != "last_scan") {
+    throw std::runtime_error("[" + s + "] registration_target = '" + registration_target +
+                             "': expected local_map or last_scan");
+  }
   registration_voxel_m = readDouble(c, s, "registration_voxel_m", registration_voxel_m);
   map_voxel_m = readDouble(c, s, "map_voxel_m", map_voxel_m);
   map_points_per_voxel = readInt(c, s, "map_points_per_voxel", map_points_per_voxel);
@@ -23,6 +28,7 @@ void Params::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, const st
   map_insert_voxel_m = readDouble(c, s, "map_insert_voxel_m", map_insert_voxel_m);
   adaptive_threshold = readBool(c, s, "adaptive_threshold", adaptive_threshold);
   initial_threshold_m = readDouble(c, s, "initial_threshold_m", initial_threshold_m);
+  max_threshold_m = readDouble(c, s, "max_threshold_m", max_threshold_m);
   min_motion_m = readDouble(c, s, "min_motion_m", min_motion_m);
   max_range_m = readDouble(c, s, "max_range_m", max_range_m);
   deskew = readBool(c, s, "deskew", deskew);
@@ -38,6 +44,7 @@ void Params::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, const st
   degeneracy_threshold = readDouble(c, s, "degeneracy_threshold", degeneracy_threshold);
   min_inlier_fraction = readDouble(c, s, "min_inlier_fraction", min_inlier_fraction);
   ground_aware_map = readBool(c, s, "ground_aware_map", ground_aware_map);
+  map_ground_max_range_m = readDouble(c, s, "map_ground_max_range_m", map_ground_max_range_m);
   if (registration_voxel_m <= 0 || map_voxel_m <= 0 || map_insert_voxel_m <= 0 || map_points_per_voxel < 1 || map_radius_m <= 0 ||
       sweep_duration_s <= 0) {
     throw std::runtime_error("[" + s + "] voxel sizes, map_points_per_voxel, map_radius_m and "
@@ -50,6 +57,7 @@ void Params::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, const st
 void Params::saveToConfigFile(mrpt::config::CConfigFileBase& c, const std::string& s,
                               const std::string& pre, const std::string& reg) const {
   c.write(s, "matcher", matcher);
+  c.write(s, "registration_target", registration_target);
   c.write(s, "registration_voxel_m", registration_voxel_m);
   c.write(s, "map_voxel_m", map_voxel_m);
   c.write(s, "map_points_per_voxel", map_points_per_voxel);
@@ -57,6 +65,7 @@ void Params::saveToConfigFile(mrpt::config::CConfigFileBase& c, const std::strin
   c.write(s, "map_insert_voxel_m", map_insert_voxel_m);
   c.write(s, "adaptive_threshold", adaptive_threshold);
   c.write(s, "initial_threshold_m", initial_threshold_m);
+  c.write(s, "max_threshold_m", max_threshold_m);
   c.write(s, "min_motion_m", min_motion_m);
   c.write(s, "max_range_m", max_range_m);
   c.write(s, "deskew", deskew);
@@ -72,6 +81,7 @@ void Params::saveToConfigFile(mrpt::config::CConfigFileBase& c, const std::strin
   c.write(s, "degeneracy_threshold", degeneracy_threshold);
   c.write(s, "min_inlier_fraction", min_inlier_fraction);
   c.write(s, "ground_aware_map", ground_aware_map);
+  c.write(s, "map_ground_max_range_m", map_ground_max_range_m);
   preprocess.saveToConfigFile(c, pre);
   registration.saveToConfigFile(c, reg);
 }

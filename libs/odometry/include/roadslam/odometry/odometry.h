@@ -35,6 +35,9 @@ struct Params {
   /// `registration`: the [registration] method (ICP/NDT) against a target rebuilt from the local map
   /// points whenever the map changes (slow: for comparisons and the thesis configs).
   std::string matcher = "voxel_map";
+  /// With matcher = registration: `local_map` (the map of recent frames) or `last_scan` (scan to
+  /// scan, as the MATLAB thesis matched consecutive sweeps).
+  std::string registration_target = "local_map";
   double registration_voxel_m = 1.0;   ///< voxel of the source points registered [m]
   double map_voxel_m = 1.0;            ///< voxel of the local map [m]
   int map_points_per_voxel = 20;       ///< points kept per map voxel [-]
@@ -42,6 +45,9 @@ struct Params {
   double map_radius_m = 60.0;          ///< local map radius around the vehicle [m]
   bool adaptive_threshold = true;      ///< KISS-ICP adaptive max correspondence distance
   double initial_threshold_m = 2.0;    ///< threshold before the adaptive one has data [m]
+  /// Upper bound of the adaptive sigma [m]: a few bad frames at the start (an empty map, a car that
+  /// is already moving) must not widen the kernel until nothing is an outlier any more.
+  double max_threshold_m = 10.0;
   double min_motion_m = 0.1;           ///< motions below this do not feed the adaptive threshold [m]
   double max_range_m = 100.0;          ///< sensor range for the adaptive threshold [m]
   bool deskew = true;                  ///< motion-compensate sweeps that carry point times
@@ -63,6 +69,7 @@ struct Params {
   /// Label the road in every sweep (line-fit ground segmentation, [preprocess] seg_* keys) so map
   /// voxels crossed by a single ring of road still constrain height (16-beam sensors) [-]
   bool ground_aware_map = true;
+  double map_ground_max_range_m = 0.0;   ///< road points farther than this stay out of the map (0 = all) [m]
 
   preprocess::PreprocessParams preprocess;
   registration::Params registration;

@@ -1,0 +1,126 @@
+#include <gtest/gtest.h>
+#include <mrpt/config/CConfigFileMemory.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "roadslam/odometry/odometry.h"
+
+using namespace roadslam;
+using odometry::FrameStatus;
+
+namespace {
+
+// A street canyon closed by buildings across both ends (so every direction is observable): road,
+// two facades with recesses, poles; the sensor 1.9 m above the road.
+Scan canyonSweep(double x_offset, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<float> noise(0.f, 0.01f);
+  Scan s;
+  s.stamp_s = 0;
+  auto add = [&](double x, double y, double z) {
+    ScanPoint p;
+    p.x = static_cast<float>(x - x_offset) + noise(rng);
+    p.y = static_cast<float>(y) + noise(rng);
+    p.z = static_cast<float>(z) + noise(rng);
+    s.points.push_back(p);
+  };
+  for (double x = -40; x <= 40; x += 0.2) {
+    for (double y = -8; y <= 8; y += 0.4) add(x, y, -1.9);
+    const double recess = std::fmod(std::abs(x), 6.0) < 2.0 ? 0.5 : 0.0;
+    for (double z = -1.9; z <= 8; z += 0.3) {
+      add(x, 8 + recess, z);
+      add(x, -8 - recess, z);
+    }
+  }
+  for (double y = -8; y <= 8; y += 0.2) {
+    for (double z = -1.9; z <= 8; z += 0.3) {
+      add(-40, y, z);
+      add(40, y, z);
+    }
+  }
+  for (double px = -35; px <= 35; px += 10) {
+    for (double z = -1.9; z <= 3; z += 0.1) add(px, 6.0, z);
+  }
+  return s;
+}
+
+odometry::Params testParams() {
+  odometry::Params p;
+  p.preprocess.filters = {"range"};
+  p.deskew = false;
+  return p;
+}
+
+}  // namespace
+
+TEST(OdometryUnit, StandingVehicleHoldsItsPose) {
+  odometry::Odometry odo(testParams());
+  for (int i = 0; i < 10; ++i) {
+    Scan s = canyonSweep(0.0, 100 + i);
+    s.stamp_s = 0.1 * i;
+    const auto r = odo.process(s);
+    EXPECT_LT(r.T_world_lidar.translation().norm(), 0.01) << "frame " << i << ": " << r.T_world_lidar.translation().transpose() << " " << odometry::toString(r.status) << " inl " << r.inliers << "/" << r.points_registered;
+    if (i > 0) {
+      EXPECT_EQ(r.status, FrameStatus::Standstill) << "frame " << i;
+    }
+  }
+}
+
+TEST(OdometryUnit, FollowsAConstantSpeedDriveThroughTheCanyon) {
+  odometry::Odometry odo(testParams());
+  for (int i = 0; i < 20; ++i) {
+    Scan s = canyonSweep(0.8 * i, 200 + i);  // 8 m/s
+    s.stamp_s = 0.1 * i;
+    const auto r = odo.process(s);
+    ASSERT_NE(r.status, FrameStatus::NotConverged) << r.reason;
+    EXPECT_NEAR(r.T_world_lidar.translation().x(), 0.8 * i, 0.05) << "frame " << i;
+    EXPECT_NEAR(r.T_world_lidar.translation().y(), 0.0, 0.05) << "frame " << i;
+  }
+}
+
+TEST(OdometryUnit, EmptyAndNaNSweepsAreReportedNotFatal) {
+  odometry::Odometry odo(testParams());
+  Scan first = canyonSweep(0, 1);
+  odo.process(first);
+  Scan empty;
+  empty.stamp_s = 0.1;
+  const auto r_empty = odo.process(empty);
+  EXPECT_EQ(r_empty.status, FrameStatus::Empty);
+  Scan nans;
+  nans.stamp_s = 0.2;
+  for (int i = 0; i < 1000; ++i) {
+    ScanPoint p;
+    p.x = p.y = p.z = std::numeric_limits<float>::quiet_NaN();
+    nans.points.push_back(p);
+  }
+  const auto r_nan = odo.process(nans);
+  EXPECT_EQ(r_nan.status, FrameStatus::Empty);
+  EXPECT_TRUE(r_nan.T_world_lidar.matrix().allFinite());
+  Scan again = canyonSweep(0, 2);
+  again.stamp_s = 0.3;
+  const auto r_again = odo.process(again);  // the run goes on
+  EXPECT_TRUE(r_again.status == FrameStatus::Ok || r_again.status == FrameStatus::Standstill);
+}
+
+TEST(OdometryUnit, ParamsRoundTripAndBadValuesNameTheKey) {
+  odometry::Params p;
+  p.map_voxel_m = 0.7;
+  p.keyframe_angle_rad = 0.2;
+  p.matcher = "registration";
+  mrpt::config::CConfigFileMemory cfg;
+  p.saveToConfigFile(cfg);
+  odometry::Params q;
+  q.loadFromConfigFile(cfg);
+  EXPECT_DOUBLE_EQ(q.map_voxel_m, 0.7);
+  EXPECT_NEAR(q.keyframe_angle_rad, 0.2, 1e-8);  // the ini holds degrees with 9 digits
+  EXPECT_EQ(q.matcher, "registration");
+  mrpt::config::CConfigFileMemory bad(std::string("[odometry]\nmatcher = kiss\n"));
+  try {
+    q.loadFromConfigFile(bad);
+    FAIL();
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("matcher"), std::string::npos);
+  }
+}
