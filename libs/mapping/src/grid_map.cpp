@@ -10,6 +10,7 @@
 
 #include "roadslam/common/atomic_file.h"
 #include "roadslam/common/config.h"
+#include "ini_keys.h"
 #include "roadslam/mapping/maps.h"
 
 namespace roadslam::mapping {
@@ -22,6 +23,7 @@ void GridParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, co
   max_height_m = readDouble(cfg, s, "max_height_m", max_height_m);
   max_range_m = readDouble(cfg, s, "max_range_m", max_range_m);
   margin_m = readDouble(cfg, s, "margin_m", margin_m);
+  rejectUnknownKeys(cfg, s, {"resolution_m", "lidar_height_m", "ground_tolerance_m", "min_height_m", "max_height_m", "max_range_m", "margin_m"});
   if (resolution_m <= 0 || max_height_m <= min_height_m || max_range_m <= 0 || margin_m < 0) {
     throw std::runtime_error("[" + s + "]: need resolution_m > 0, max_height_m > min_height_m, max_range_m > 0");
   }

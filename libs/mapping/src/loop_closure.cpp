@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "roadslam/common/config.h"
+#include "ini_keys.h"
 #include "roadslam/registration/registration.h"
 
 namespace roadslam::mapping {
@@ -63,6 +64,7 @@ void LoopClosureParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& 
   max_loop_residual_m = readDouble(cfg, s, "max_loop_residual_m", max_loop_residual_m);
   information_scale = readDouble(cfg, s, "information_scale", information_scale);
   skip_after_loop_m = readDouble(cfg, s, "skip_after_loop_m", skip_after_loop_m);
+  rejectUnknownKeys(cfg, s, {"enabled", "search_radius_m", "search_height_m", "level_guess", "min_travel_m", "check_every_m", "max_candidates", "query_keyframes", "target_half_width", "source_voxel_m", "target_voxel_m", "max_fitness_m", "min_overlap", "consistency_abs_m", "consistency_ratio", "consistency_rot_deg", "consistency_rot_deg_per_100m", "max_loop_residual_m", "information_scale", "skip_after_loop_m"});
   if (search_radius_m <= 0 || check_every_m <= 0 || max_candidates < 1 || query_keyframes < 1 ||
       target_half_width < 0 || source_voxel_m <= 0 || target_voxel_m <= 0 || information_scale <= 0) {
     throw std::runtime_error("[" + s + "]: search_radius_m, check_every_m, max_candidates, query_keyframes, "

@@ -12,13 +12,11 @@ void MapOutputParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cf
   point_map.loadFromConfigFile(cfg, "point_map");
   octomap.loadFromConfigFile(cfg, "octomap");
   grid.loadFromConfigFile(cfg, "grid");
-  octomap_keyframe_spacing_m = readDouble(cfg, "octomap", "keyframe_spacing_m", octomap_keyframe_spacing_m);
 }
 
 void MapOutputParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg) const {
   point_map.saveToConfigFile(cfg, "point_map");
   octomap.saveToConfigFile(cfg, "octomap");
-  cfg.write("octomap", "keyframe_spacing_m", octomap_keyframe_spacing_m);
   grid.saveToConfigFile(cfg, "grid");
 }
 
@@ -34,7 +32,7 @@ MapOutputStats writeMaps(const std::string& dir, const Mapper& mapper, const Pos
     size_t n = 0;
     double ms = 0, last_path = -1e18;
     for (size_t k = 0; p.octomap.enabled && k < kfs.size(); ++k) {
-      if (kfs[k].path_m - last_path < p.octomap_keyframe_spacing_m) continue;
+      if (kfs[k].path_m - last_path < p.octomap.keyframe_spacing_m) continue;
       last_path = kfs[k].path_m;
       ms += b.insert(kfs[k].points_lidar, T_map_kf[k]).ms;
       ++n;

@@ -3,6 +3,7 @@
 #include <unordered_set>
 
 #include "roadslam/common/config.h"
+#include "ini_keys.h"
 
 namespace roadslam::mapping {
 namespace {
@@ -28,6 +29,7 @@ std::vector<Eigen::Vector3f> downsample(const std::vector<Eigen::Vector3d>& pts,
 
 void MapperParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& s) {
   keyframe_voxel_m = readDouble(cfg, s, "keyframe_voxel_m", keyframe_voxel_m);
+  rejectUnknownKeys(cfg, s, {"keyframe_voxel_m"});
   if (keyframe_voxel_m <= 0) throw std::runtime_error("[" + s + "] keyframe_voxel_m must be > 0");
   graph.loadFromConfigFile(cfg, "pose_graph");
   loop.loadFromConfigFile(cfg, "loop_closure");

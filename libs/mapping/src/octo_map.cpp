@@ -9,6 +9,7 @@
 
 #include "roadslam/common/atomic_file.h"
 #include "roadslam/common/config.h"
+#include "ini_keys.h"
 
 namespace roadslam::mapping {
 namespace {
@@ -39,6 +40,8 @@ void OctoMapParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
   clamp_min = readDouble(cfg, s, "clamp_min", clamp_min);
   clamp_max = readDouble(cfg, s, "clamp_max", clamp_max);
   write_ot = readBool(cfg, s, "write_ot", write_ot);
+  keyframe_spacing_m = readDouble(cfg, s, "keyframe_spacing_m", keyframe_spacing_m);
+  rejectUnknownKeys(cfg, s, {"enabled", "resolution_m", "max_range_m", "free_max_range_m", "prob_hit", "prob_miss", "clamp_min", "clamp_max", "write_ot", "keyframe_spacing_m"});
   if (resolution_m <= 0 || max_range_m <= 0 || free_max_range_m < 0 || prob_hit <= 0.5 || prob_hit >= 1 ||
       prob_miss <= 0 || prob_miss >= 0.5 || clamp_min <= 0 || clamp_max >= 1 || clamp_min >= clamp_max) {
     throw std::runtime_error("[" + s + "]: need resolution_m, max_range_m > 0, 0.5 < prob_hit < 1, "
@@ -56,6 +59,7 @@ void OctoMapParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const s
   cfg.write(s, "clamp_min", clamp_min);
   cfg.write(s, "clamp_max", clamp_max);
   cfg.write(s, "write_ot", write_ot);
+  cfg.write(s, "keyframe_spacing_m", keyframe_spacing_m);
 }
 
 OctoMapBuilder::OctoMapBuilder(OctoMapParams params) : p_(params) { clear(); }

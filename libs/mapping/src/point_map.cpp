@@ -4,6 +4,7 @@
 
 #include "roadslam/common/atomic_file.h"
 #include "roadslam/common/config.h"
+#include "ini_keys.h"
 #include "roadslam/mapping/maps.h"
 
 namespace roadslam::mapping {
@@ -28,6 +29,7 @@ void writeBinaryFile(const std::string& path, const std::string& header, const s
 
 void PointMapParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& s) {
   voxel_m = readDouble(cfg, s, "voxel_m", voxel_m);
+  rejectUnknownKeys(cfg, s, {"voxel_m"});
   if (voxel_m <= 0) throw std::runtime_error("[" + s + "] voxel_m must be > 0");
 }
 void PointMapParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& s) const {

@@ -10,6 +10,7 @@
 
 #include "roadslam/common/atomic_file.h"
 #include "roadslam/common/config.h"
+#include "ini_keys.h"
 
 namespace roadslam::mapping {
 namespace {
@@ -47,6 +48,7 @@ void PoseGraphParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cf
   odometry_information_scale = readDouble(cfg, s, "odometry_information_scale", odometry_information_scale);
   odometry_sigma_t_m = readDouble(cfg, s, "odometry_sigma_t_m", odometry_sigma_t_m);
   odometry_sigma_r_rad = readDouble(cfg, s, "odometry_sigma_r_deg", odometry_sigma_r_rad * 180 / M_PI) * M_PI / 180;
+  rejectUnknownKeys(cfg, s, {"max_iterations", "use_registration_information", "odometry_information_scale", "odometry_sigma_t_m", "odometry_sigma_r_deg"});
   if (max_iterations < 1 || odometry_sigma_t_m <= 0 || odometry_sigma_r_rad <= 0 || odometry_information_scale <= 0) {
     throw std::runtime_error("[" + s + "]: max_iterations, odometry_sigma_* and odometry_information_scale must be > 0");
   }
@@ -152,9 +154,9 @@ Matrix6d PoseGraph::odometryInformation(const Matrix6d& reg_info) const {
   floor.diagonal() << Eigen::Vector3d::Constant(1.0 / (p.odometry_sigma_t_m * p.odometry_sigma_t_m)),
       Eigen::Vector3d::Constant(1.0 / (p.odometry_sigma_r_rad * p.odometry_sigma_r_rad));
   if (!p.use_registration_information || !reg_info.allFinite() || reg_info.isZero()) return floor;
-  // The registration's information (J^T J / sigma^2 over thousands of points) is the precision of one
-  // scan-to-map match, not of the drift between keyframes: it is scaled, and never less certain than
-  // the fallback is allowed to dominate (the sum keeps weakly observed directions at the floor).
+  // The registration's information is the precision of one scan-to-map match; scaled by the ini,
+  // projected onto the PSD cone, plus a thousandth of the fallback so that a degenerate direction
+  // (a tunnel) keeps a finite, weak constraint instead of a singular one.
   Matrix6d I = p.odometry_information_scale * 0.5 * (reg_info + reg_info.transpose());
   Eigen::SelfAdjointEigenSolver<Matrix6d> es(I);
   const Eigen::Matrix<double, 6, 1> ev = es.eigenvalues().cwiseMax(0.0);

@@ -19,7 +19,6 @@ struct MapOutputParams {
   PointMapParams point_map;
   OctoMapParams octomap;
   GridParams grid;
-  double octomap_keyframe_spacing_m = 10.0;  ///< keyframes inserted into the OctoMap are this far apart [m]; ini [octomap] keyframe_spacing_m
 
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg);
   void saveToConfigFile(mrpt::config::CConfigFileBase& cfg) const;

@@ -35,6 +35,7 @@ struct OctoMapParams {
   double clamp_min = 0.12;        ///< log-odds clamping, as probabilities [-]
   double clamp_max = 0.97;        ///< [-]
   bool write_ot = false;          ///< also write map.ot (full probabilities) beside map.bt
+  double keyframe_spacing_m = 10.0;  ///< keyframes inserted into the run's map are this far apart [m]
 
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section = "octomap");
   void saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& section = "octomap") const;
