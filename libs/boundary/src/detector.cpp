@@ -14,7 +14,7 @@ namespace {
 std::vector<Obstacle> clusterObstacles(const Scan& scan, const Labelling& lab, const Params& p, bool with_low) {
   std::vector<Vec2> pts;
   std::vector<float> h;
-  for (size_t i = 0; i < scan.points.size(); ++i) {
+  for (size_t i = 0; i < scan.points.size(); ++i) {  // the sweep's points only (see process())
     const bool take = lab.cls[i] == PointClass::Obstacle ||
                       (with_low && lab.cls[i] != PointClass::Ground && std::isfinite(lab.height_m[i]));
     if (!take) continue;
@@ -136,21 +136,36 @@ SideBoundary BoundaryDetector::track(SideBoundary fresh, Track& tr, const Eigen:
   return out;
 }
 
-BoundaryFrame BoundaryDetector::process(const Scan& scan, const Eigen::Isometry3d& T_map_lidar, double stamp_s) {
+BoundaryFrame BoundaryDetector::process(const Scan& scan, const Eigen::Isometry3d& T_map_lidar, double stamp_s,
+                                        const std::vector<Eigen::Vector3f>* local_map_map) {
   const auto t0 = std::chrono::steady_clock::now();
+  Scan with_map;  // the sweep followed by the local map's points near the vehicle, lidar frame
+  if (local_map_map && !local_map_map->empty() && !scan.points.empty()) {
+    with_map = scan;
+    const Eigen::Isometry3f T_lidar_map = T_map_lidar.inverse().cast<float>();
+    const float r2 = static_cast<float>(p_.curb_max_range_m * p_.curb_max_range_m);
+    for (const auto& m : *local_map_map) {
+      const Eigen::Vector3f v = T_lidar_map * m;
+      if (v.x() * v.x() + v.y() * v.y() > r2) continue;
+      ScanPoint q;
+      q.x = v.x(), q.y = v.y(), q.z = v.z();
+      with_map.points.push_back(q);
+    }
+  }
+  const Scan& all = with_map.points.empty() ? scan : with_map;
   BoundaryFrame f;
   f.index = frames_++;
   f.stamp_s = stamp_s;
   f.T_map_lidar = T_map_lidar;
   f.points = scan.points.size();
-  last_ = labelPoints(scan, p_);
+  last_ = labelPoints(all, p_);
   f.ground_points = last_.ground;
   f.curb_count = last_.curb;
   f.obstacle_points = last_.obstacle;
   std::vector<Eigen::Vector3d> curbs_map;
-  for (size_t i = 0; i < scan.points.size(); ++i) {
+  for (size_t i = 0; i < all.points.size(); ++i) {
     if (last_.cls[i] != PointClass::Curb) continue;
-    const auto& q = scan.points[i];
+    const auto& q = all.points[i];
     f.curb_points.push_back({q.x, q.y});
     curbs_map.push_back(T_map_lidar * Eigen::Vector3d(q.x, q.y, q.z));
   }

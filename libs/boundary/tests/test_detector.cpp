@@ -143,3 +143,31 @@ TEST(Detector, CostGridMarksFreeAndObstacleCells) {
   for (double y = -0.9; y <= 0.9; y += 0.1) obstacle = obstacle || at(10.05, y) == CostGrid::kObstacle;
   EXPECT_TRUE(obstacle);
 }
+
+TEST(Detector, LocalMapShowsACurbTheSweepCannotSee) {
+  // A row of cars in the left lane hides the left curb from this sweep; the local map (points of
+  // earlier sweeps, map frame) still holds it.
+  Road hidden;
+  for (double x = -10; x < 40; x += 4.6) hidden.boxes.push_back({x, x + 4.5, 1.5, 3.3, -1.9, -0.4});
+  Eigen::Isometry3d T_map_lidar = Eigen::Isometry3d::Identity();
+  T_map_lidar.translation() = Eigen::Vector3d(100, 50, 0);
+  const auto clear = castSweep(Road{}, 3);
+  std::vector<Eigen::Vector3f> map;
+  for (const auto& q : clear.points) map.push_back((T_map_lidar * Eigen::Vector3d(q.x, q.y, q.z)).cast<float>());
+
+  BoundaryDetector alone(defaults());
+  const auto a = alone.process(castSweep(hidden), T_map_lidar, 0.0);
+  EXPECT_FALSE(a.left.found) << "the cars should hide the left curb";
+  BoundaryDetector with_map(defaults());
+  const auto b = with_map.process(castSweep(hidden), T_map_lidar, 0.0, &map);
+  ASSERT_TRUE(b.left.found) << b.left.reason;
+  EXPECT_LT(maxLateralError(b.left, 4.0), 0.10);
+  // Obstacles come from the sweep: the cars are found either way.
+  auto cars = [](const BoundaryFrame& f) {
+    int n = 0;
+    for (const auto& o : f.obstacles) n += o.center.y > 1.3 && o.center.y < 3.5 && o.center.x > 0;
+    return n;
+  };
+  EXPECT_GE(cars(a), 2);  // cars 0.1 m apart merge into longer clusters
+  EXPECT_EQ(cars(a), cars(b));
+}

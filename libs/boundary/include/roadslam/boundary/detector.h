@@ -33,10 +33,15 @@ class BoundaryDetector {
  public:
   explicit BoundaryDetector(Params p);
   /// \p scan deskewed, in the lidar frame at the pose \p T_map_lidar (time \p stamp_s).
+  /// \p local_map_map: optional points of the local map around the vehicle (accumulated recent
+  /// sweeps, e.g. the mapping module's) in the map frame [m]; they join the ground and curb
+  /// labelling (curbs seen from many sweeps), while obstacles and free space stay with the current
+  /// sweep (a map smears moving cars, and its points are not rays from the sensor).
   /// Never throws on data: problems come back in BoundaryFrame::status and the sides' reasons.
-  BoundaryFrame process(const Scan& scan, const Eigen::Isometry3d& T_map_lidar, double stamp_s);
+  BoundaryFrame process(const Scan& scan, const Eigen::Isometry3d& T_map_lidar, double stamp_s,
+                        const std::vector<Eigen::Vector3f>* local_map_map = nullptr);
   const Params& params() const { return p_; }
-  /// The labelling of the last processed sweep.
+  /// The labelling of the last processed sweep (its points first, then any local-map points).
   const Labelling& lastLabelling() const { return last_; }
 
  private:
