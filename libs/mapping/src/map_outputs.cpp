@@ -21,25 +21,27 @@ void MapOutputParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg) const
 }
 
 MapOutputStats writeMaps(const std::string& dir, const Mapper& mapper, const PoseVector& trajectory,
-                         const MapOutputParams& p) {
+                         const MapOutputParams& p, OctoMapWorker* octomap) {
   const auto t0 = std::chrono::steady_clock::now();
   MapOutputStats st;
   const auto& kfs = mapper.keyframes();
   const PoseVector T_map_kf = mapper.keyframePoses();
   // the OctoMap (the slow one) on a worker thread while the other maps are written
   auto octo = std::async(std::launch::async, [&] {
-    OctoMapBuilder b(p.octomap);
-    size_t n = 0;
-    double ms = 0, last_path = -1e18;
-    for (size_t k = 0; p.octomap.enabled && k < kfs.size(); ++k) {
-      if (kfs[k].path_m - last_path < p.octomap.keyframe_spacing_m) continue;
-      last_path = kfs[k].path_m;
-      ms += b.insert(kfs[k].points_lidar, T_map_kf[k]).ms;
-      ++n;
+    if (octomap) {  // built during the run: drain its queue
+      const OctoMapBuilder& b = octomap->finish();
+      b.writeBt(dir + "/map.bt");
+      if (p.octomap.write_ot) b.writeOt(dir + "/map.ot");
+      return std::make_tuple(octomap->inserted(), b.numLeafs(), octomap->meanInsertMs());
     }
+    OctoMapBuilder b(p.octomap);
+    double ms = 0;
+    const auto items = p.octomap.enabled ? octoMapItems(kfs, T_map_kf, p.octomap.keyframe_spacing_m)
+                                         : std::vector<OctoMapWorker::Item>{};
+    for (const auto& it : items) ms += b.insert(it.points_lidar, it.T_map_lidar).ms;
     b.writeBt(dir + "/map.bt");
     if (p.octomap.write_ot) b.writeOt(dir + "/map.ot");
-    return std::make_tuple(n, b.numLeafs(), n ? ms / n : 0.0);
+    return std::make_tuple(items.size(), b.numLeafs(), items.empty() ? 0.0 : ms / items.size());
   });
   const auto points = buildPointMap(kfs, T_map_kf, p.point_map.voxel_m);
   st.points = points.size();

@@ -8,6 +8,7 @@
 #include <random>
 
 #include "roadslam/mapping/octo_map.h"
+#include "roadslam/mapping/octo_worker.h"
 
 using namespace roadslam::mapping;
 
@@ -76,4 +77,23 @@ TEST(OctoMap, BtRoundTripKeepsTheBuilderTree) {
   EXPECT_TRUE(occupied(back, 10.05, 0.1, 0.1));
   EXPECT_TRUE(freeCell(back, 5.0, 0.1, 0.1));
   std::filesystem::remove(path);
+}
+
+TEST(OctoMap, WorkerRebuildEqualsDirectInsertion) {
+  OctoMapWorker w(OctoMapParams{});
+  Eigen::Isometry3d T1 = Eigen::Isometry3d::Identity(), T2 = T1;
+  T2.translation() << 3, 0, 0;
+  w.push({scene(), T1});
+  w.push({scene(), T1});  // stale poses, replaced by the rebuild
+  w.rebuild({{scene(), T1}, {scene(), T2}});
+  const auto& map = w.finish();
+  EXPECT_EQ(w.inserted(), 2u);
+  EXPECT_EQ(w.rebuilds(), 1u);
+  OctoMapBuilder direct;
+  direct.insert(scene(), T1);
+  direct.insert(scene(), T2);
+  EXPECT_EQ(map.numLeafs(), direct.numLeafs());
+  const auto a = compareOctoMaps(direct.tree(), map.tree());
+  EXPECT_DOUBLE_EQ(a.occupied_percent, 100.0);
+  EXPECT_DOUBLE_EQ(a.free_percent, 100.0);
 }

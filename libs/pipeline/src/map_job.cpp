@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <memory>
 #include <stdexcept>
 
 #include "roadslam/common/atomic_file.h"
@@ -67,6 +68,17 @@ nlohmann::json loopsJson(const mapping::Mapper& m) {
   return {{"accepted", acc}, {"rejected", rej}};
 }
 
+/// The OctoMap follows the graph: a new keyframe is queued, a loop closure rebuilds it at the new poses.
+void feedOctoMap(mapping::OctoMapWorker& octo, const mapping::Mapper& mapper, size_t keyframes_before, bool loop,
+                 double spacing_m) {
+  const auto& kfs = mapper.keyframes();
+  if (loop) {
+    octo.rebuild(mapping::octoMapItems(kfs, mapper.keyframePoses(), spacing_m));
+  } else if (kfs.size() > keyframes_before && mapping::takesOctoMap(kfs, kfs.size() - 1, spacing_m)) {
+    octo.push({kfs.back().points_lidar, mapper.graph().pose(kfs.size() - 1)});
+  }
+}
+
 }  // namespace
 
 MapOutcome runMapJob(const MapRequest& req) {
@@ -83,13 +95,17 @@ MapOutcome runMapJob(const MapRequest& req) {
   ProgressBar bar("roadslam-map", stream->sizeHint());
   const auto t0 = std::chrono::steady_clock::now();
   double ms_mapping = 0;
+  std::unique_ptr<mapping::OctoMapWorker> octo;
+  if (params.maps.octomap.enabled) octo = std::make_unique<mapping::OctoMapWorker>(params.maps.octomap);
   while (!stopRequested()) {
     if (req.max_frames && out.frames.size() >= req.max_frames) break;
     auto scan = stream->next();
     if (!scan) break;
     out.frames.push_back(odo.process(std::move(*scan)));
     const auto tm = std::chrono::steady_clock::now();
-    mapper.addFrame(out.frames.back(), odo.lastFramePoints());
+    const size_t keyframes_before = mapper.keyframes().size();
+    const bool loop = mapper.addFrame(out.frames.back(), odo.lastFramePoints());
+    if (octo) feedOctoMap(*octo, mapper, keyframes_before, loop, params.maps.octomap.keyframe_spacing_m);
     ms_mapping += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - tm).count();
     if (req.progress) bar.update(out.frames.size());
   }
@@ -109,7 +125,8 @@ MapOutcome runMapJob(const MapRequest& req) {
   out.summary["loop_candidates_rejected"] = loops["rejected"].size();
   out.summary["loops"] = loops;
   out.summary["ms_mapping_total"] = ms_mapping;
-  const auto ms = mapping::writeMaps(req.out_dir, mapper, {out.T_map_lidar.begin(), out.T_map_lidar.end()}, params.maps);
+  const auto ms = mapping::writeMaps(req.out_dir, mapper, {out.T_map_lidar.begin(), out.T_map_lidar.end()},
+                                     params.maps, octo.get());
   out.summary["maps"] = {{"points", ms.points}, {"octomap_keyframes", ms.octomap_keyframes},
                          {"octomap_leafs", ms.octomap_leafs}, {"octomap_ms_per_keyframe", ms.octomap_ms_per_keyframe},
                          {"grid_occupied_cells", ms.grid_occupied}, {"grid_free_cells", ms.grid_free},

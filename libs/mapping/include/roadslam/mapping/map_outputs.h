@@ -11,6 +11,7 @@
 #include "roadslam/mapping/mapper.h"
 #include "roadslam/mapping/maps.h"
 #include "roadslam/mapping/octo_map.h"
+#include "roadslam/mapping/octo_worker.h"
 
 namespace roadslam::mapping {
 
@@ -34,8 +35,9 @@ struct MapOutputStats {
 };
 
 /// Writes the files listed above into \p dir for \p mapper's keyframes at its optimised poses;
-/// \p trajectory (T_map_lidar of every frame) is drawn in the top view. Throws naming the file.
+/// \p trajectory (T_map_lidar of every frame) is drawn in the top view. The OctoMap is \p octomap's
+/// (built during the run) when given, else built here. Throws naming the file.
 MapOutputStats writeMaps(const std::string& dir, const Mapper& mapper, const PoseVector& trajectory,
-                         const MapOutputParams& p);
+                         const MapOutputParams& p, OctoMapWorker* octomap = nullptr);
 
 }  // namespace roadslam::mapping
