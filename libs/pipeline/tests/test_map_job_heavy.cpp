@@ -49,10 +49,10 @@ TEST(MapJobHeavy, FullUrbanLoop) {
   std::cout << "urban loop: ATE odometry " << ate_odo << " m, with loop closure " << ate_slam << " m, loops "
             << out.summary["loop_closures"] << "\n";
   EXPECT_GE(out.summary["loop_closures"].get<int>(), 1);
+  // the acceptance criterion of the mapping issue; NOT met yet (2026-11-21: odometry 3.2-3.9 m with
+  // 12 m vertical drift, one or two loops at the end of the drive, 0.74-1.87 m after closure)
   EXPECT_LE(3 * ate_slam, ate_odo);
-  // the issue's 0.20 m is not reached with today's odometry (12 m vertical drift over the loop, one
-  // loop at its end): bound what is reached, so a regression shows
-  EXPECT_LE(ate_slam, 1.0);
+  EXPECT_LE(ate_slam, 0.20);
 }
 
 TEST(MapJobHeavy, ParallelStreetsNoFalseLoop) {
