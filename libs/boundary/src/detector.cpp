@@ -79,10 +79,11 @@ void fillGrid(const Params& p, const std::vector<double>& free_r, const Boundary
     for (const auto& v : o.hull) put(v.x, v.y, CostGrid::kObstacle);
 }
 
-void toMap(const Eigen::Isometry3d& T_map_lidar, SideBoundary& s) {
+/// Vertices on the road surface, so a rolled or pitched sensor does not shift them in the map.
+void toMap(const Eigen::Isometry3d& T_map_lidar, double sensor_height, SideBoundary& s) {
   for (const auto& v : s.polyline_vehicle) {
-    const Eigen::Vector3d m = T_map_lidar * Eigen::Vector3d(v.x, v.y, 0.0);
-    s.polyline_map.push_back({m.x(), m.y()});
+    const Eigen::Vector3d m = T_map_lidar * Eigen::Vector3d(v.x, v.y, -sensor_height);
+    s.polyline_map.push_back({m.x(), m.y(), m.z()});
   }
 }
 
@@ -116,7 +117,7 @@ SideBoundary BoundaryDetector::track(SideBoundary fresh, Track& tr, const Eigen:
     tr.map_pts.clear();
     const double x1 = fresh.polyline_vehicle.back().x;
     for (double x = p_.fit_min_x_m; x <= x1 + 1e-9; x += p_.polyline_step_m) {
-      tr.map_pts.push_back(T_map_lidar * Eigen::Vector3d(x, detail::polyEval(fresh.coeffs, x), 0.0));
+      tr.map_pts.push_back(T_map_lidar * Eigen::Vector3d(x, detail::polyEval(fresh.coeffs, x), -p_.ground.sensor_height_m));
     }
     tr.confidence = fresh.confidence, tr.held = 0, tr.valid = true;
     return fresh;
@@ -193,8 +194,8 @@ BoundaryFrame BoundaryDetector::process(const Scan& scan, const Eigen::Isometry3
       f.left = track(detail::fitSide(pts, +1, p_, rng), tracks_[0], T_map_lidar);
       f.right = track(detail::fitSide(pts, -1, p_, rng), tracks_[1], T_map_lidar);
     }
-    toMap(T_map_lidar, f.left);
-    toMap(T_map_lidar, f.right);
+    toMap(T_map_lidar, p_.ground.sensor_height_m, f.left);
+    toMap(T_map_lidar, p_.ground.sensor_height_m, f.right);
     const auto free_r = freeRanges(scan, last_, p_);
     const int ns = p_.freespace_sectors;
     for (int s = 0; s < ns; ++s) {

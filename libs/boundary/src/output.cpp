@@ -16,10 +16,17 @@ nlohmann::json pts(const std::vector<Vec2>& v) {
   return a;
 }
 
+nlohmann::json pts3(const std::vector<Vec3>& v) {
+  auto a = nlohmann::json::array();
+  for (const auto& q : v)
+    a.push_back({std::round(q.x * 1000) / 1000, std::round(q.y * 1000) / 1000, std::round(q.z * 1000) / 1000});
+  return a;
+}
+
 nlohmann::json side(const SideBoundary& s) {
   return {{"found", s.found}, {"reason", s.reason}, {"confidence", s.confidence}, {"coeffs", s.coeffs},
           {"candidates", s.candidates}, {"inliers", s.inliers}, {"polyline_vehicle", pts(s.polyline_vehicle)},
-          {"polyline_map", pts(s.polyline_map)}};
+          {"polyline_map", pts3(s.polyline_map)}};
 }
 
 }  // namespace

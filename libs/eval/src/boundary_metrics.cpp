@@ -12,6 +12,7 @@ namespace roadslam::eval {
 namespace {
 
 using Polylines = std::vector<std::vector<Eigen::Vector2d>>;
+using Polylines3 = std::vector<std::vector<Eigen::Vector3d>>;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 /// GT pose at \p t: linear position and slerped rotation between the bracketing poses, one of
@@ -35,19 +36,19 @@ bool poseAt(const datasets::Trajectory& gt, double t, double max_dt, Eigen::Isom
   return true;
 }
 
-Polylines toVehicle(const Polylines& world, const Eigen::Isometry3d& T_world_lidar, double reach) {
+Polylines toVehicle(const Polylines3& world, const Eigen::Isometry3d& T_world_lidar, double reach) {
   const Eigen::Isometry3d T_lidar_world = T_world_lidar.inverse();
   const Eigen::Vector2d c = T_world_lidar.translation().head<2>();
   Polylines out;
   for (const auto& l : world) {
     std::vector<Eigen::Vector2d> v;
     for (const auto& q : l) {
-      if ((q - c).norm() > reach) {  // keep runs near the vehicle only: cheap and exact enough
+      if ((q.head<2>() - c).norm() > reach) {  // keep runs near the vehicle only: cheap and exact enough
         if (v.size() >= 2) out.push_back(v);
         v.clear();
         continue;
       }
-      const Eigen::Vector3d p = T_lidar_world * Eigen::Vector3d(q.x(), q.y(), T_world_lidar.translation().z());
+      const Eigen::Vector3d p = T_lidar_world * (std::isnan(q.z()) ? Eigen::Vector3d(q.x(), q.y(), T_world_lidar.translation().z()) : q);
       v.emplace_back(p.x(), p.y());
     }
     if (v.size() >= 2) out.push_back(v);
@@ -55,9 +56,10 @@ Polylines toVehicle(const Polylines& world, const Eigen::Isometry3d& T_world_lid
   return out;
 }
 
-std::vector<Eigen::Vector2d> readPolyline(const nlohmann::json& a) {
-  std::vector<Eigen::Vector2d> v;
-  for (const auto& q : a) v.emplace_back(q.at(0).get<double>(), q.at(1).get<double>());
+/// [[x, y(, z)]]; a missing z is NaN (taken at the vehicle's height).
+std::vector<Eigen::Vector3d> readPolyline(const nlohmann::json& a) {
+  std::vector<Eigen::Vector3d> v;
+  for (const auto& q : a) v.emplace_back(q.at(0).get<double>(), q.at(1).get<double>(), q.size() > 2 ? q.at(2).get<double>() : kNaN);
   return v;
 }
 
@@ -70,10 +72,10 @@ double percentile(std::vector<double> v, double q) {
 
 }  // namespace
 
-Polylines readGtCurbs(const std::string& path) {
+Polylines3 readGtCurbs(const std::string& path) {
   std::ifstream f(path);
   if (!f) throw std::runtime_error("cannot open ground-truth boundaries '" + path + "'");
-  Polylines out;
+  Polylines3 out;
   try {
     const auto j = nlohmann::json::parse(f);
     for (const auto& road : j.at("roads"))
@@ -99,7 +101,7 @@ double lateralAt(const Polylines& pl, double x, int side, double max_lateral) {
   return best;
 }
 
-BoundaryMetrics evaluateBoundaries(const Polylines& curbs, const datasets::Trajectory& gt,
+BoundaryMetrics evaluateBoundaries(const Polylines3& curbs, const datasets::Trajectory& gt,
                                    const std::vector<nlohmann::json>& est, const BoundaryEvalParams& p) {
   BoundaryMetrics m;
   std::vector<double> errors;

@@ -12,9 +12,9 @@ namespace {
 
 // Road along world x: curbs at y = +4 and y = -3.5; the vehicle drives along x at y = 0, heading
 // rotated by yaw so vehicle and world frames differ.
-std::vector<std::vector<Eigen::Vector2d>> curbs() {
-  std::vector<Eigen::Vector2d> l, r;
-  for (double x = -50; x <= 200; x += 2) l.emplace_back(x, 4.0), r.emplace_back(x, -3.5);
+std::vector<std::vector<Eigen::Vector3d>> curbs() {
+  std::vector<Eigen::Vector3d> l, r;
+  for (double x = -50; x <= 200; x += 2) l.emplace_back(x, 4.0, 0.0), r.emplace_back(x, -3.5, 0.0);
   return {l, r};
 }
 

@@ -15,6 +15,10 @@ struct Vec2 {
   double x = 0, y = 0;  ///< [m]
 };
 
+struct Vec3 {
+  double x = 0, y = 0, z = 0;  ///< [m]
+};
+
 /// Per-point class of a sweep.
 enum class PointClass : uint8_t { Ground = 0, Curb = 1, Obstacle = 2, Other = 3 };
 
@@ -25,7 +29,7 @@ struct SideBoundary {
   double confidence = 0;                ///< covered band fraction x inlier fraction [0..1]
   std::vector<double> coeffs;           ///< y = sum c_i x^i in the vehicle frame [m, -, 1/m]
   std::vector<Vec2> polyline_vehicle;   ///< vertices in the vehicle frame [m]
-  std::vector<Vec2> polyline_map;       ///< the same vertices in the map frame [m]
+  std::vector<Vec3> polyline_map;       ///< the same vertices on the road (sensor_height below the lidar), map frame [m]
   int candidates = 0;                   ///< curb points on this side [-]
   int inliers = 0;                      ///< of which fitted [-]
 };

@@ -3,7 +3,7 @@
 /// Road-boundary evaluation against ground-truth curb polylines (the simulator's gt_boundaries.json,
 /// world frame) and ground-truth sensor poses (TUM, T_world_lidar). Independent of libs/boundary: it
 /// reads the estimate as written (boundaries.jsonl: per frame stamp_s and left/right
-/// {found, polyline_map [[x, y]]}).
+/// {found, polyline_map [[x, y, z]]}; without z a vertex is taken at the vehicle's height).
 ///
 /// Per frame, both the ground truth and the estimate are brought into the vehicle frame of the
 /// ground-truth pose at the frame's stamp (so pose errors count), and read at stations x = band_min,
@@ -40,9 +40,10 @@ struct BoundaryMetrics {
   double lateral_error_mean_m = 0, lateral_error_p95_m = 0, lateral_error_max_m = 0;  ///< [m]
 };
 
-/// Curb polylines (x, y in the world frame) of every road, left and right, from gt_boundaries.json.
-/// Throws std::runtime_error naming the file when it is missing or malformed.
-std::vector<std::vector<Eigen::Vector2d>> readGtCurbs(const std::string& path);
+/// Curb polylines (x, y, z in the world frame) of every road, left and right, from
+/// gt_boundaries.json. Throws std::runtime_error naming the file when it is missing or malformed.
+/// z matters: on a rolled vehicle, a point's lateral offset in the lidar frame depends on its height.
+std::vector<std::vector<Eigen::Vector3d>> readGtCurbs(const std::string& path);
 
 /// Lateral offset y at \p x of the crossing nearest to the x axis on \p side (+1 left, -1 right)
 /// among polylines in the vehicle frame; NaN when none within \p max_lateral.
@@ -50,7 +51,7 @@ double lateralAt(const std::vector<std::vector<Eigen::Vector2d>>& polylines, dou
                  double max_lateral);
 
 /// Scores estimate frames (parsed boundaries.jsonl objects) against \p curbs and \p gt.
-BoundaryMetrics evaluateBoundaries(const std::vector<std::vector<Eigen::Vector2d>>& curbs,
+BoundaryMetrics evaluateBoundaries(const std::vector<std::vector<Eigen::Vector3d>>& curbs,
                                    const datasets::Trajectory& gt, const std::vector<nlohmann::json>& est,
                                    const BoundaryEvalParams& p = {});
 
