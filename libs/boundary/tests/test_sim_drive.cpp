@@ -3,6 +3,8 @@
 // The drives are simulated once into the build folder and reused (cache keyed by the scenario).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -53,6 +55,45 @@ Run runBounds(const std::string& drive, const std::string& ini, const std::strin
   return r;
 }
 
+/// Boundary vertices reported inside a moving car's footprint (+0.3 m), and the frames in which a
+/// moving car was within 30 m of the vehicle (so the check had something to reject).
+std::pair<int, int> verticesOnMovingCars(const std::string& drive, const std::string& out_dir) {
+  std::ifstream fo(drive + "/gt_objects.json");
+  const auto objects = nlohmann::json::parse(fo);
+  std::ifstream fj(out_dir + "/boundaries.jsonl");
+  std::string line;
+  int on_cars = 0, near_frames = 0;
+  while (std::getline(fj, line)) {
+    const auto f = nlohmann::json::parse(line);
+    if (!f.contains("left")) continue;
+    const double t = f["stamp_s"].get<double>();
+    const double vx = f["T_map_lidar"][3].get<double>(), vy = f["T_map_lidar"][7].get<double>();
+    bool near = false;
+    for (const auto& car : objects["moving_cars"]) {
+      const auto& tr = car["track"];
+      size_t k = 1;
+      while (k + 1 < tr.size() && tr[k][0].get<double>() < t) ++k;
+      const double t0 = tr[k - 1][0].get<double>(), t1 = tr[k][0].get<double>();
+      const double u = std::clamp((t - t0) / (t1 - t0), 0.0, 1.0);
+      const double cx = (1 - u) * tr[k - 1][1].get<double>() + u * tr[k][1].get<double>();
+      const double cy = (1 - u) * tr[k - 1][2].get<double>() + u * tr[k][2].get<double>();
+      const double yaw = tr[k][4].get<double>();
+      const double hl = 0.5 * car["length_m"].get<double>() + 0.3, hw = 0.5 * car["width_m"].get<double>() + 0.3;
+      near = near || std::hypot(cx - vx, cy - vy) < 30.0;
+      for (const char* side : {"left", "right"}) {
+        if (!f[side]["found"].get<bool>()) continue;
+        for (const auto& q : f[side]["polyline_map"]) {
+          const double dx = q[0].get<double>() - cx, dy = q[1].get<double>() - cy;
+          const double a = std::cos(yaw) * dx + std::sin(yaw) * dy, b = -std::sin(yaw) * dx + std::cos(yaw) * dy;
+          on_cars += std::abs(a) <= hl && std::abs(b) <= hw;
+        }
+      }
+    }
+    near_frames += near;
+  }
+  return {on_cars, near_frames};
+}
+
 }  // namespace
 
 // Urban loop start (straight street, curbs both sides, trees, poles, oncoming cars), parking lanes
@@ -74,6 +115,9 @@ TEST(SimDrive, HillsMeetTheTargets) {
   const auto drive = cachedDrive("hills_noparking", "hills.ini", 12.0,
                                  [](sim::ScenarioParams& p) { p.world.parked_car_prob = 0.0; });
   const auto r = runBounds(drive, "bounds.ini", "hills_noparking");
+  const auto [on_cars, near] = verticesOnMovingCars(drive, std::string(ROADSLAM_BINARY_DIR) + "/test_data/boundary_out_hills_noparking");
+  EXPECT_GT(near, 5) << "no moving car came near: the check below tests nothing";
+  EXPECT_EQ(on_cars, 0) << "boundary vertices on moving cars";
   EXPECT_GE(r.m.frames_scored, 110);
   EXPECT_GE(r.m.detection_rate, 0.95);
   EXPECT_LE(r.m.lateral_error_mean_m, 0.10);
@@ -88,6 +132,9 @@ TEST(SimDrive, ParkedCarsHideTheRightCurbAndSaySo) {
   const auto r = runBounds(drive, "bounds.ini", "urban");
   EXPECT_GE(r.m.left_detection_rate, 0.95);
   EXPECT_GE(r.m.right_detection_rate, 0.40);  // measured 0.44: hidden for 3 of the 10 s
+  const auto [on_cars, near] = verticesOnMovingCars(drive, std::string(ROADSLAM_BINARY_DIR) + "/test_data/boundary_out_urban");
+  EXPECT_GT(near, 5) << "no moving car came near: the check below tests nothing";
+  EXPECT_EQ(on_cars, 0) << "boundary vertices on moving cars";
   EXPECT_LE(r.m.lateral_error_mean_m, 0.10);
   EXPECT_LE(r.m.lateral_error_p95_m, 0.25);
   size_t unexplained = 0;
