@@ -48,13 +48,19 @@ class PoseSource {
       const auto a = interpolatePose(traj_.stamps_s, traj_.poses, scan.stamp_s);
       const auto b = interpolatePose(traj_.stamps_s, traj_.poses, scan.stamp_s + dur);
       const auto r = interpolatePose(traj_.stamps_s, traj_.poses, t_ref);
-      if (!a || !b || !r) return why = "no pose in the trajectory at this sweep", false;
+      if (!a || !b || !r) {
+        why = "no pose in the trajectory at this sweep";
+        return false;
+      }
       T_map_ref = *r;
       deskewBetween(scan, *a, *b, dur, T_map_ref);
       return true;
     }
     const auto res = odo_->process(scan);
-    if (res.status == odometry::FrameStatus::Skipped) return why = "odometry skipped the sweep", false;
+    if (res.status == odometry::FrameStatus::Skipped) {
+      why = "odometry skipped the sweep";
+      return false;
+    }
     T_map_ref = res.T_world_lidar;
     t_ref = res.stamp_s;
     const Eigen::Isometry3d half = interpolate(Eigen::Isometry3d::Identity(), T_prev_.inverse() * T_map_ref, 0.5);

@@ -21,7 +21,8 @@ struct BoundsRequest {
   bool progress = true;
 };
 
-/// Runs the job; returns the summary (frames, ms_per_frame_mean, found rates, statuses, reasons).
+/// Runs the job; returns the summary (frames, ms_per_frame_mean/max = detector wall time per sweep,
+/// without decoding, odometry and deskew; found rates, statuses, reasons counted).
 /// Throws std::runtime_error with a one-line reason on configuration or file problems; per-sweep
 /// problems (no pose, no ground, no curbs) are counted and reported in the summary.
 nlohmann::json runBoundsJob(const BoundsRequest& req);
