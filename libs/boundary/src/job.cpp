@@ -126,6 +126,8 @@ nlohmann::json runBoundsJob(const BoundsRequest& req) {
       std::snprintf(name, sizeof name, "frames/%06zu.png", f.index);
       last_png = req.out_dir + "/" + name;
       drawTopView(last_png, *scan, det.lastLabelling(), f);
+      std::snprintf(name, sizeof name, "frames/%06zu_cost.png", f.index);
+      writeCostGridPng(req.out_dir + "/" + name, f.grid);
     }
     if (req.progress) bar.update(tot.frames);
   }

@@ -111,4 +111,15 @@ void drawTopView(const std::string& png_path, const Scan& scan, const Labelling&
   commitTempFile(tmp, png_path);
 }
 
+void writeCostGridPng(const std::string& png_path, const CostGrid& g) {
+  mrpt::img::CImage img(static_cast<unsigned>(std::max(g.nx, 1)), static_cast<unsigned>(std::max(g.ny, 1)),
+                        mrpt::img::CH_GRAY);
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i)
+      img.at<uint8_t>(static_cast<unsigned>(i), static_cast<unsigned>(g.ny - 1 - j)) = g.cost[static_cast<size_t>(j) * g.nx + i];
+  const std::string tmp = tempPathFor(png_path) + ".png";
+  if (!img.saveToFile(tmp)) throw std::runtime_error("cannot write " + png_path);
+  commitTempFile(tmp, png_path);
+}
+
 }  // namespace roadslam::boundary

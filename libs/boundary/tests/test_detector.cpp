@@ -1,9 +1,13 @@
 // Detector on analytic sweeps: curb lines, obstacles, free space and the reasons of bad input.
 #include <gtest/gtest.h>
 
+#include <mrpt/img/CImage.h>
+
 #include <cmath>
+#include <filesystem>
 
 #include "roadslam/boundary/detector.h"
+#include "roadslam/boundary/output.h"
 #include "synthetic_road.h"
 
 using namespace roadslam::boundary;
@@ -170,4 +174,23 @@ TEST(Detector, LocalMapShowsACurbTheSweepCannotSee) {
   };
   EXPECT_GE(cars(a), 2);  // cars 0.1 m apart merge into longer clusters
   EXPECT_EQ(cars(a), cars(b));
+}
+
+TEST(Detector, CostGridPngHoldsTheCosts) {
+  Road road;
+  road.boxes.push_back({10, 14.5, -0.9, 0.9, -1.9, -0.4});
+  BoundaryDetector det(defaults());
+  const auto f = det.process(castSweep(road), Eigen::Isometry3d::Identity(), 0.0);
+  const std::string path = std::string(ROADSLAM_BINARY_DIR) + "/test_data/boundary_cost_test.png";
+  std::filesystem::create_directories(std::string(ROADSLAM_BINARY_DIR) + "/test_data");
+  writeCostGridPng(path, f.grid);
+  mrpt::img::CImage img;
+  ASSERT_TRUE(img.loadFromFile(path, 0));
+  ASSERT_EQ(static_cast<int>(img.getWidth()), f.grid.nx);
+  ASSERT_EQ(static_cast<int>(img.getHeight()), f.grid.ny);
+  size_t diff = 0;
+  for (int j = 0; j < f.grid.ny; ++j)
+    for (int i = 0; i < f.grid.nx; ++i)
+      diff += img.at<uint8_t>(i, f.grid.ny - 1 - j) != f.grid.cost[static_cast<size_t>(j) * f.grid.nx + i];
+  EXPECT_EQ(diff, 0u);
 }

@@ -3,7 +3,7 @@
 /// The job behind `roadslam-bounds`: sweeps from a recording (.pcap, .rawlog, KITTI folder), a pose
 /// per sweep (a given TUM trajectory T_map_lidar, or the odometry), deskew, the boundary detector,
 /// and the outputs in DIR: boundaries.jsonl (one object per sweep, see output.h), frames/NNNNNN.png
-/// every png_every sweeps, top_view.png (last picture), summary.json, config_used.ini.
+/// (top view) and frames/NNNNNN_cost.png (cost grid, see writeCostGridPng) every png_every sweeps, top_view.png (last picture), summary.json, config_used.ini.
 /// All files are written atomically.
 
 #include <nlohmann/json.hpp>

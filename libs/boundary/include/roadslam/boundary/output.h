@@ -21,4 +21,8 @@ nlohmann::json toJson(const BoundaryFrame& f, bool with_grid = false);
 void drawTopView(const std::string& png_path, const Scan& scan, const Labelling& lab, const BoundaryFrame& f,
                  double px_per_m = 8.0);
 
+/// The cost grid as an 8-bit grey PNG (pixel = cost, see CostGrid): column i = cell i along x,
+/// row 0 = the row of largest y (left up when x points right). Atomic write; throws naming the path.
+void writeCostGridPng(const std::string& png_path, const CostGrid& g);
+
 }  // namespace roadslam::boundary
