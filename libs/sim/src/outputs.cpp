@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "roadslam/can/candump.h"
 #include "roadslam/common/atomic_file.h"
 #include "roadslam/pcap/pcap_writer.h"
 
@@ -135,6 +136,12 @@ RunReport runToDirectory(Simulator& sim, const OutputOptions& opt) {
   writeVehicleCsv(sim, rep.stats.duration_s, d + "gt_vehicle.csv");
   writeBoundaries(sim, d + "gt_boundaries.json");
   writeObjects(sim, rep.stats.duration_s, d + "gt_objects.json");
+  std::size_t can_frames = 0;
+  if (sim.params().can.enabled) {
+    const auto frames = simulateCan(sim, rep.stats.duration_s);
+    can::writeCandumpFile(d + "can.log", frames);
+    can_frames = frames.size();
+  }
   mrpt::config::CConfigFileMemory used;
   sim.params().saveToConfigFile(used);
   writeFileAtomically(d + "scenario_used.ini", used.getContent());
@@ -155,6 +162,10 @@ RunReport runToDirectory(Simulator& sim, const OutputOptions& opt) {
                               {"grazing", s.lidar.grazing}, {"dark", s.lidar.dark},
                               {"dropped", s.lidar.dropped}}},
             {"start_epoch_s", sim.params().start_epoch_s}};
+  if (sim.params().can.enabled) {
+    j["can_frames"] = can_frames;
+    j["can_dbc"] = sim.params().can.dbcPath();
+  }
   if (udp) {
     j["packets_sent"] = rep.packets_sent;
     j["packets_late"] = rep.packets_late;

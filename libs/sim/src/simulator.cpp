@@ -24,13 +24,14 @@ void ScenarioParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg
   std::vector<std::string> sections;
   cfg.getAllSections(sections);
   for (const auto& s : sections)
-    if (s != "scenario" && s != "world" && s != "trajectory" && s != "lidar")
-      throw std::runtime_error("unknown section [" + s + "] (expected scenario, world, trajectory, lidar)");
+    if (s != "scenario" && s != "world" && s != "trajectory" && s != "lidar" && s != "can")
+      throw std::runtime_error("unknown section [" + s + "] (expected scenario, world, trajectory, lidar, can)");
   rejectUnknown(cfg, "scenario", {"name", "seed", "duration_s", "start_epoch_s", "position_packets",
                                   "origin_lat_deg", "origin_lon_deg"});
   rejectUnknown(cfg, "world", WorldParams::keys());
   rejectUnknown(cfg, "trajectory", TrajectoryParams::keys());
   rejectUnknown(cfg, "lidar", LidarParams::keys());
+  rejectUnknown(cfg, "can", CanParams::keys());
   name = readString(cfg, "scenario", "name", name);
   const int s = readInt(cfg, "scenario", "seed", static_cast<int>(seed));
   if (s < 0) throw std::runtime_error("[scenario] seed must be >= 0");
@@ -44,6 +45,7 @@ void ScenarioParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg
   world.loadFromConfigFile(cfg, "world");
   trajectory.loadFromConfigFile(cfg, "trajectory");
   lidar.loadFromConfigFile(cfg, "lidar");
+  can.loadFromConfigFile(cfg, "can");
 }
 
 void ScenarioParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg) const {
@@ -57,6 +59,7 @@ void ScenarioParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg) const 
   world.saveToConfigFile(cfg, "world");
   trajectory.saveToConfigFile(cfg, "trajectory");
   lidar.saveToConfigFile(cfg, "lidar");
+  can.saveToConfigFile(cfg, "can");
 }
 
 ScenarioParams ScenarioParams::fromFile(const std::string& path) {

@@ -7,8 +7,9 @@
 ///                       rear wheel speeds, distance (header line names the columns and units)
 ///   gt_boundaries.json  per road: centreline and left/right curb polylines [x, y, z] (world frame)
 ///   gt_objects.json     moving cars' tracks at 10 Hz [t, x, y, z, yaw]
+///   can.log             the car's CAN traffic in candump -l format (can_output.h), same clock
 ///   summary.json        scenario, seed, duration_s, packets, sweeps, points, distance_m,
-///                       real_time_factor (packets_sent with UDP)
+///                       real_time_factor (packets_sent with UDP), can_frames and can_dbc
 ///   scenario_used.ini   the parameters actually used
 /// and, optionally, UDP streaming of the data packets paced at a multiple of real time.
 

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "roadslam/sim/can_output.h"
 #include "roadslam/sim/lidar.h"
 #include "roadslam/sim/trajectory.h"
 #include "roadslam/sim/world.h"
@@ -21,7 +22,7 @@ class CConfigFileBase;
 
 namespace roadslam::sim {
 
-/// Everything a scenario ini holds: sections [scenario], [world], [trajectory], [lidar].
+/// Everything a scenario ini holds: sections [scenario], [world], [trajectory], [lidar], [can].
 struct ScenarioParams {
   std::string name = "unnamed";
   uint64_t seed = 1;                 ///< world and noise seed [-]
@@ -32,6 +33,7 @@ struct ScenarioParams {
   WorldParams world;
   TrajectoryParams trajectory;
   LidarParams lidar;
+  CanParams can;
 
   /// Loads every section; throws naming the file, section and key on a bad value or an unknown key.
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg);
