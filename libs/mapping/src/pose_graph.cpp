@@ -45,10 +45,11 @@ Eigen::Matrix<double, 6, 1> residual(const Eigen::Isometry3d& T_meas, const Eige
 void PoseGraphParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& s) {
   max_iterations = readInt(cfg, s, "max_iterations", max_iterations);
   use_registration_information = readBool(cfg, s, "use_registration_information", use_registration_information);
+  isotropic_information = readBool(cfg, s, "isotropic_information", isotropic_information);
   odometry_information_scale = readDouble(cfg, s, "odometry_information_scale", odometry_information_scale);
   odometry_sigma_t_m = readDouble(cfg, s, "odometry_sigma_t_m", odometry_sigma_t_m);
   odometry_sigma_r_rad = readDouble(cfg, s, "odometry_sigma_r_deg", odometry_sigma_r_rad * 180 / M_PI) * M_PI / 180;
-  rejectUnknownKeys(cfg, s, {"max_iterations", "use_registration_information", "odometry_information_scale", "odometry_sigma_t_m", "odometry_sigma_r_deg"});
+  rejectUnknownKeys(cfg, s, {"max_iterations", "use_registration_information", "isotropic_information", "odometry_information_scale", "odometry_sigma_t_m", "odometry_sigma_r_deg"});
   if (max_iterations < 1 || odometry_sigma_t_m <= 0 || odometry_sigma_r_rad <= 0 || odometry_information_scale <= 0) {
     throw std::runtime_error("[" + s + "]: max_iterations, odometry_sigma_* and odometry_information_scale must be > 0");
   }
@@ -57,6 +58,7 @@ void PoseGraphParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cf
 void PoseGraphParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& s) const {
   cfg.write(s, "max_iterations", max_iterations);
   cfg.write(s, "use_registration_information", use_registration_information);
+  cfg.write(s, "isotropic_information", isotropic_information);
   cfg.write(s, "odometry_information_scale", odometry_information_scale);
   cfg.write(s, "odometry_sigma_t_m", odometry_sigma_t_m);
   cfg.write(s, "odometry_sigma_r_deg", odometry_sigma_r_rad * 180 / M_PI);
@@ -161,6 +163,12 @@ Matrix6d PoseGraph::odometryInformation(const Matrix6d& reg_info) const {
   Eigen::SelfAdjointEigenSolver<Matrix6d> es(I);
   const Eigen::Matrix<double, 6, 1> ev = es.eigenvalues().cwiseMax(0.0);
   I = es.eigenvectors() * ev.asDiagonal() * es.eigenvectors().transpose();
+  if (p.isotropic_information) {
+    Matrix6d J = Matrix6d::Zero();
+    J.topLeftCorner<3, 3>() = Eigen::Matrix3d::Identity() * I.topLeftCorner<3, 3>().trace() / 3;
+    J.bottomRightCorner<3, 3>() = Eigen::Matrix3d::Identity() * I.bottomRightCorner<3, 3>().trace() / 3;
+    I = J;
+  }
   return I + floor * 1e-3;
 }
 

@@ -28,6 +28,10 @@ struct PoseGraphParams {
   int max_iterations = 100;               ///< Levenberg-Marquardt iterations per optimisation [-]
   bool use_registration_information = true;  ///< odometry edges carry the registration information
   double odometry_information_scale = 1.0;   ///< multiplies the registration information [-]
+  /// Keep the registration information's directions (false), or only its translation and rotation
+  /// magnitudes (true: each 3x3 block replaced by its mean eigenvalue times identity), so a loop's
+  /// correction is not pushed into the few edges whose ground constraint happened to be weakest.
+  bool isotropic_information = true;
   double odometry_sigma_t_m = 0.05;       ///< fallback / floor std of an odometry edge translation [m]
   double odometry_sigma_r_rad = 0.005;    ///< ... and rotation [rad]; ini odometry_sigma_r_deg
 
