@@ -2,9 +2,13 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <memory>
+#include <optional>
 
 #include "roadslam/common/config.h"
+#include "roadslam/can/frame.h"
 #include "roadslam/sim/simulator.h"
+#include "roadslam/vehicle/vehicle_state.h"
 #include "roadslam/velodyne/sweep_assembler.h"
 
 namespace roadslam::odometry::test {
@@ -17,11 +21,28 @@ Eigen::Isometry3d toEigen(const sim::Pose3& p) {
   return T;
 }
 
+/// The simulated CAN stream fed up to each sweep's time into the vehicle prior.
+struct CanFeed {
+  std::vector<can::CanFrame> frames;
+  size_t next = 0;
+  vehicle::VehicleDecoder decoder;
+  vehicle::VehicleState state;
+  VehiclePrior prior;
+  CanFeed(const sim::Simulator& s, double duration_s, const vehicle::VehicleParams& vp, const VehiclePriorParams& pp)
+      : frames(sim::simulateCan(s, duration_s)), decoder(vp), prior(pp, vp) {}
+  void feedUntil(double t_s) {
+    for (; next < frames.size() && frames[next].timeSeconds() <= t_s; ++next)
+      prior.update(state, decoder.process(frames[next], state));
+  }
+};
+
 struct OdometrySink : sim::PacketSink {
   OdometrySink(const sim::Simulator& s, const Params& p) : sim(s), odo(p) {}
   const sim::Simulator& sim;
   velodyne::SweepAssembler assembler;
   Odometry odo;
+  std::unique_ptr<CanFeed> can;
+  double last_pose_stamp_s = -1, stamp_offset_s = 0;  // FrameResult::stamp_s - Scan::stamp_s
   eval::MatchedTrajectories m;
   SimDriveResult r;
   double ms_sum = 0;
@@ -33,8 +54,17 @@ struct OdometrySink : sim::PacketSink {
   }
   void process(Scan scan) {
     if (scan.partial) return;
-    const auto f = odo.process(std::move(scan));
+    std::optional<MotionPrior> prior;
+    const double scan_stamp_s = scan.stamp_s;
+    if (can) {
+      can->feedUntil(scan_stamp_s + odo.params().sweep_duration_s);  // CAN received while the sweep lasted
+      if (last_pose_stamp_s > 0) prior = can->prior.between(last_pose_stamp_s, scan_stamp_s + stamp_offset_s);
+      r.with_prior += prior.has_value();
+    }
+    const auto f = odo.process(std::move(scan), prior);
     if (f.status == FrameStatus::Skipped) return;
+    stamp_offset_s = f.stamp_s - scan_stamp_s;
+    last_pose_stamp_s = f.stamp_s;
     ++r.frames;
     r.failed += f.status == FrameStatus::NotConverged || f.status == FrameStatus::Empty;
     r.degenerate += f.status == FrameStatus::Degenerate;
@@ -56,10 +86,21 @@ struct OdometrySink : sim::PacketSink {
 }  // namespace
 
 SimDriveResult runSimDrive(const std::string& scenario_ini, double duration_s, const Params& params) {
+  return runSimDrive(scenario_ini, duration_s, params, SimDriveOptions{});
+}
+
+SimDriveResult runSimDrive(const std::string& scenario_ini, double duration_s, const Params& params,
+                           const SimDriveOptions& options) {
   auto sp = sim::ScenarioParams::fromFile(scenario_ini);
   sp.duration_s = duration_s;
   sim::Simulator s(sp);
   OdometrySink sink(s, params);
+  if (options.can_prior) {
+    VehiclePriorParams pp = options.prior;
+    pp.T_base_lidar = toEigen(s.lidar().vehicleToLidar());
+    const auto vp = vehicle::loadVehicleIni(std::string(ROADSLAM_SOURCE_DIR) + "/ini/vehicles/roadslam-sim.ini");
+    sink.can = std::make_unique<CanFeed>(s, s.duration_s(), vp, pp);
+  }
   s.run(sink);
   sink.r.ms_mean = sink.r.frames ? sink.ms_sum / sink.r.frames : 0;
   sink.r.metrics = eval::computeMetrics(sink.m);

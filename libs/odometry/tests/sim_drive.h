@@ -5,6 +5,7 @@
 
 #include "roadslam/eval/trajectory_metrics.h"
 #include "roadslam/odometry/odometry.h"
+#include "roadslam/odometry/vehicle_prior.h"
 
 namespace roadslam::odometry::test {
 
@@ -12,10 +13,20 @@ struct SimDriveResult {
   eval::TrajectoryMetrics metrics;
   size_t frames = 0, failed = 0, degenerate = 0;
   double ms_mean = 0;
+  size_t with_prior = 0;  ///< frames given a CAN motion prior
+};
+
+struct SimDriveOptions {
+  /// Simulate the car's CAN traffic (libs/sim [can]), decode it with ini/vehicles/roadslam-sim.ini
+  /// and give every frame the VehiclePrior motion; T_base_lidar is taken from the simulator's mount.
+  bool can_prior = false;
+  VehiclePriorParams prior;
 };
 
 /// \p scenario_ini path; \p duration_s 0 = the whole drive.
 SimDriveResult runSimDrive(const std::string& scenario_ini, double duration_s, const Params& params);
+SimDriveResult runSimDrive(const std::string& scenario_ini, double duration_s, const Params& params,
+                           const SimDriveOptions& options);
 
 /// Odometry params from an ini (e.g. ini/default.ini).
 Params paramsFromIni(const std::string& path);

@@ -1,0 +1,66 @@
+#pragma once
+/// \file vehicle_prior.h
+/// The CAN motion prior of the odometry: the decoded vehicle state stream (libs/vehicle) dead
+/// reckoned in the plane (wheel speeds + yaw rate, standstill yaw-rate bias estimate), turned into
+/// the lidar's motion between two sweep times:
+///     T_lidarprev_lidarcurr = T_base_lidar^-1 * T_baseprev_basecurr * T_base_lidar
+/// Frames: base = vehicle body (x forward, y left, z up, ISO 8855, origin below the rear axle);
+/// lidar = the sensor frame the odometry estimates. Times on the CAN clock [s since epoch], which
+/// must be the lidar's clock (the candump log and the pcap of one recording).
+///
+/// Use (per CAN frame, then per sweep):
+///     vehicle::VehicleDecoder dec(vehicle::loadVehicleIni(ini));  VehiclePrior prior(p, dec.params());
+///     for each frame: prior.update(state, dec.process(frame, state));
+///     odo.process(scan, prior.between(t_prev_frame_s, t_curr_frame_s));
+
+#include <Eigen/Geometry>
+#include <deque>
+#include <optional>
+#include <string>
+
+#include "roadslam/odometry/odometry.h"
+#include "roadslam/vehicle/dead_reckoning.h"
+
+namespace mrpt::config {
+class CConfigFileBase;
+}
+
+namespace roadslam::odometry {
+
+struct VehiclePriorParams {
+  /// Lidar mounting on the vehicle base (ini: lidar_x_m, lidar_y_m, lidar_z_m [m],
+  /// lidar_roll_deg, lidar_pitch_deg, lidar_yaw_deg [deg], ZYX Euler angles).
+  Eigen::Isometry3d T_base_lidar = Eigen::Isometry3d::Identity();
+  double max_extrapolation_s = 0.1;  ///< query past the last CAN pose by at most this (constant velocity) [s]
+  double history_s = 5.0;            ///< CAN poses kept behind the newest one [s]
+  vehicle::DeadReckoningParams dead_reckoning;  ///< same section: yaw_source, speed_scale, yaw_rate_bias_deg_s, ...
+
+  /// Throws naming the section and key on a bad value.
+  void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section);
+  void saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& section) const;
+};
+
+class VehiclePrior {
+ public:
+  VehiclePrior(const VehiclePriorParams& params, const vehicle::VehicleParams& vehicle);
+
+  /// Feeds the state after a CAN frame updated \p mask (vehicle::VehicleDecoder::process).
+  void update(const vehicle::VehicleState& state, vehicle::UpdateMask mask);
+  /// Lidar motion from the pose at \p t_prev_s to the pose at \p t_curr_s [s since epoch] and the
+  /// vehicle speed at \p t_curr_s; nullopt when the CAN poses do not cover both times (before the
+  /// first pose, older than history_s, or more than max_extrapolation_s after the newest pose).
+  std::optional<MotionPrior> between(double t_prev_s, double t_curr_s) const;
+  /// Base motion T_baseprev_basecurr over the same interval (planar: x, y, yaw).
+  std::optional<Eigen::Isometry3d> baseMotion(double t_prev_s, double t_curr_s) const;
+
+  const vehicle::DeadReckoning& deadReckoning() const { return dr_; }
+  const VehiclePriorParams& params() const { return p_; }
+
+ private:
+  std::optional<vehicle::Pose2D> poseAt(double t_s) const;
+  VehiclePriorParams p_;
+  vehicle::DeadReckoning dr_;
+  std::deque<vehicle::Pose2D> poses_;  ///< T_odom_base after each integration step, time order
+};
+
+}  // namespace roadslam::odometry

@@ -1,0 +1,110 @@
+#include "roadslam/odometry/vehicle_prior.h"
+
+#include <mrpt/config/CConfigFileBase.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "roadslam/common/config.h"
+
+namespace roadslam::odometry {
+namespace {
+constexpr double kDeg = M_PI / 180;
+
+double wrapPi(double a) { return std::atan2(std::sin(a), std::cos(a)); }
+
+Eigen::Isometry3d planar(double x, double y, double yaw) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  T.translation() = Eigen::Vector3d(x, y, 0);
+  return T;
+}
+}  // namespace
+
+void VehiclePriorParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& s) {
+  const Eigen::Vector3d t(readDouble(cfg, s, "lidar_x_m", T_base_lidar.translation().x()),
+                          readDouble(cfg, s, "lidar_y_m", T_base_lidar.translation().y()),
+                          readDouble(cfg, s, "lidar_z_m", T_base_lidar.translation().z()));
+  const Eigen::Vector3d ypr = T_base_lidar.linear().eulerAngles(2, 1, 0);
+  const double yaw = readDouble(cfg, s, "lidar_yaw_deg", ypr(0) / kDeg) * kDeg;
+  const double pitch = readDouble(cfg, s, "lidar_pitch_deg", ypr(1) / kDeg) * kDeg;
+  const double roll = readDouble(cfg, s, "lidar_roll_deg", ypr(2) / kDeg) * kDeg;
+  T_base_lidar = Eigen::Isometry3d::Identity();
+  T_base_lidar.linear() = (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
+                           Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
+                           Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX())).toRotationMatrix();
+  T_base_lidar.translation() = t;
+  max_extrapolation_s = readDouble(cfg, s, "max_extrapolation_s", max_extrapolation_s);
+  history_s = readDouble(cfg, s, "history_s", history_s);
+  if (max_extrapolation_s < 0) throw std::runtime_error("[" + s + "] max_extrapolation_s must be >= 0");
+  if (history_s <= 0) throw std::runtime_error("[" + s + "] history_s must be > 0");
+  dead_reckoning.loadFromConfigFile(cfg, s);
+}
+
+void VehiclePriorParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& s) const {
+  const Eigen::Vector3d& t = T_base_lidar.translation();
+  const Eigen::Vector3d ypr = T_base_lidar.linear().eulerAngles(2, 1, 0);
+  cfg.write(s, "lidar_x_m", t.x());
+  cfg.write(s, "lidar_y_m", t.y());
+  cfg.write(s, "lidar_z_m", t.z());
+  cfg.write(s, "lidar_yaw_deg", ypr(0) / kDeg);
+  cfg.write(s, "lidar_pitch_deg", ypr(1) / kDeg);
+  cfg.write(s, "lidar_roll_deg", ypr(2) / kDeg);
+  cfg.write(s, "max_extrapolation_s", max_extrapolation_s);
+  cfg.write(s, "history_s", history_s);
+  dead_reckoning.saveToConfigFile(cfg, s);
+}
+
+VehiclePrior::VehiclePrior(const VehiclePriorParams& params, const vehicle::VehicleParams& vehicle)
+    : p_(params), dr_(params.dead_reckoning, vehicle) {}
+
+void VehiclePrior::update(const vehicle::VehicleState& state, vehicle::UpdateMask mask) {
+  if (!dr_.update(state, mask)) return;
+  poses_.push_back(dr_.pose());
+  while (!poses_.empty() && poses_.front().t_s < poses_.back().t_s - p_.history_s) poses_.pop_front();
+}
+
+std::optional<vehicle::Pose2D> VehiclePrior::poseAt(double t) const {
+  if (poses_.empty() || t < poses_.front().t_s) return std::nullopt;
+  const vehicle::Pose2D& last = poses_.back();
+  if (t >= last.t_s) {  // constant velocity past the newest pose (arc of the last v, w)
+    const double dt = t - last.t_s;
+    if (dt > p_.max_extrapolation_s) return std::nullopt;
+    vehicle::Pose2D p = last;
+    const double yaw_mid = last.yaw_rad + 0.5 * last.w_radps * dt;
+    p.x_m += last.v_mps * dt * std::cos(yaw_mid);
+    p.y_m += last.v_mps * dt * std::sin(yaw_mid);
+    p.yaw_rad += last.w_radps * dt;
+    p.t_s = t;
+    return p;
+  }
+  const auto it = std::upper_bound(poses_.begin(), poses_.end(), t,
+                                   [](double x, const vehicle::Pose2D& q) { return x < q.t_s; });
+  const vehicle::Pose2D& b = *it;
+  const vehicle::Pose2D& a = *(it - 1);
+  const double u = b.t_s > a.t_s ? (t - a.t_s) / (b.t_s - a.t_s) : 0.0;
+  vehicle::Pose2D p = a;
+  p.t_s = t;
+  p.x_m += u * (b.x_m - a.x_m);
+  p.y_m += u * (b.y_m - a.y_m);
+  p.yaw_rad += u * wrapPi(b.yaw_rad - a.yaw_rad);
+  p.v_mps += u * (b.v_mps - a.v_mps);
+  return p;
+}
+
+std::optional<Eigen::Isometry3d> VehiclePrior::baseMotion(double t_prev_s, double t_curr_s) const {
+  const auto a = poseAt(t_prev_s), b = poseAt(t_curr_s);
+  if (!a || !b) return std::nullopt;
+  return planar(a->x_m, a->y_m, a->yaw_rad).inverse() * planar(b->x_m, b->y_m, b->yaw_rad);
+}
+
+std::optional<MotionPrior> VehiclePrior::between(double t_prev_s, double t_curr_s) const {
+  const auto T_baseprev_basecurr = baseMotion(t_prev_s, t_curr_s);
+  if (!T_baseprev_basecurr) return std::nullopt;
+  MotionPrior m;
+  m.T_prev_curr = p_.T_base_lidar.inverse() * *T_baseprev_basecurr * p_.T_base_lidar;
+  m.speed_mps = poseAt(t_curr_s)->v_mps;
+  return m;
+}
+
+}  // namespace roadslam::odometry
