@@ -1,4 +1,4 @@
-// roadslam-sim: simulate a scenario into DIR/velodyne.pcap + ground truth, optionally streaming
+// roadslam-sim: simulate a scenario into DIR/velodyne.pcap + DIR/can.log + ground truth, optionally streaming
 // the data packets over UDP. See docs/apps/roadslam-sim.md.
 #include <CLI/CLI.hpp>
 
@@ -46,6 +46,7 @@ int main(int argc, char** argv) {
                 static_cast<unsigned long long>(s.data_packets), static_cast<unsigned long long>(s.sweeps),
                 static_cast<unsigned long long>(s.lidar.returns), s.distance_m, rep.real_time_factor,
                 udp.empty() ? "" : (", " + std::to_string(rep.packets_sent) + " packets sent").c_str());
+    if (rep.can_frames > 0) std::printf("can.log: %zu CAN frames, DBC %s\n", rep.can_frames, rep.can_dbc.c_str());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "roadslam-sim: %s\n", e.what());
     return 1;

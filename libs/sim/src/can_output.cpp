@@ -17,6 +17,7 @@ namespace {
 constexpr double kDeg = 3.14159265358979323846 / 180;
 constexpr double kKmh = 1 / 3.6;
 constexpr int kGearDrive = 3;  // VAL_ 944 GEAR 3 "D"
+constexpr double kStillMps = 1e-3;  // below this a wheel does not turn [m/s]
 
 /// One DBC message sent every period_steps trajectory steps, phase_us after the step.
 struct Stream {
@@ -120,13 +121,17 @@ std::vector<can::CanFrame> simulateCan(const Simulator& sim, const CanParams& p,
     // Rear wheels at (0, +-tw/2), front wheels at (L, +-tw/2) in the vehicle frame: |v + w x r|.
     const double true_wheel[4] = {std::hypot(v - w * tw / 2, w * L), std::hypot(v + w * tw / 2, w * L),
                                   std::abs(v - w * tw / 2), std::abs(v + w * tw / 2)};
+    // A wheel that does not turn gives no sensor pulses: exactly 0, never noise.
+    auto wheel = [&](double truth) {
+      const double noisy = std::max(0.0, truth * scale + p.wheel_speed_noise_mps * n01(rng));
+      return truth < kStillMps ? 0.0 : noisy / kKmh;
+    };
     auto& ws = st[0].v;
-    for (int k = 0; k < 4; ++k)
-      ws[iw[k]] = std::max(0.0, true_wheel[k] * scale + p.wheel_speed_noise_mps * n01(rng)) / kKmh;
+    for (int k = 0; k < 4; ++k) ws[iw[k]] = wheel(true_wheel[k]);
     st[1].v[iyaw] = (w + p.yaw_rate_bias_radps + p.yaw_rate_noise_radps * n01(rng)) / kDeg;
     st[1].v[iax] = s.accel_mps2 + p.accel_noise_mps2 * n01(rng);
     st[1].v[iay] = v * w + p.accel_noise_mps2 * n01(rng);
-    st[2].v[ispeed] = std::max(0.0, v * scale + p.wheel_speed_noise_mps * n01(rng)) / kKmh;
+    st[2].v[ispeed] = wheel(v);
     st[2].v[istand] = v < 0.01 ? 1 : 0;
     st[3].v[isteer] = (p.steering_ratio * road_wheel + p.steering_noise_rad * n01(rng)) / kDeg;
     st[4].v[igear] = kGearDrive;

@@ -136,11 +136,11 @@ RunReport runToDirectory(Simulator& sim, const OutputOptions& opt) {
   writeVehicleCsv(sim, rep.stats.duration_s, d + "gt_vehicle.csv");
   writeBoundaries(sim, d + "gt_boundaries.json");
   writeObjects(sim, rep.stats.duration_s, d + "gt_objects.json");
-  std::size_t can_frames = 0;
   if (sim.params().can.enabled) {
     const auto frames = simulateCan(sim, rep.stats.duration_s);
     can::writeCandumpFile(d + "can.log", frames);
-    can_frames = frames.size();
+    rep.can_frames = frames.size();
+    rep.can_dbc = sim.params().can.dbcPath();
   }
   mrpt::config::CConfigFileMemory used;
   sim.params().saveToConfigFile(used);
@@ -163,8 +163,8 @@ RunReport runToDirectory(Simulator& sim, const OutputOptions& opt) {
                               {"dropped", s.lidar.dropped}}},
             {"start_epoch_s", sim.params().start_epoch_s}};
   if (sim.params().can.enabled) {
-    j["can_frames"] = can_frames;
-    j["can_dbc"] = sim.params().can.dbcPath();
+    j["can_frames"] = rep.can_frames;
+    j["can_dbc"] = rep.can_dbc;
   }
   if (udp) {
     j["packets_sent"] = rep.packets_sent;

@@ -33,6 +33,8 @@ struct RunReport {
   uint64_t packets_sent = 0;     ///< UDP datagrams sent (data packets)
   uint64_t packets_late = 0;     ///< UDP datagrams sent behind their pace time by > 10 ms
   double real_time_factor = 0;   ///< simulated seconds per wall-clock second (whole run) [-]
+  std::size_t can_frames = 0;    ///< frames written to can.log (0 when [can] enabled = false)
+  std::string can_dbc;           ///< DBC the CAN traffic was encoded with (empty without CAN)
 };
 
 /// Simulates \p sim into \p opt.dir (and UDP); throws naming the file on I/O errors.
