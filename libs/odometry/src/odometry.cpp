@@ -202,7 +202,7 @@ FrameResult Odometry::process(Scan scan, const std::optional<MotionPrior>& prior
       scaleMotion(delta_pred, dt > 0 && have_pose_ ? sweep / dt : 1.0);
   if (!params_.deskew) scan.has_point_times = false;  // deskew() then keeps the points as they are
   const double ref = scan.has_point_times ? params_.deskew_reference : 0.0;
-  res.stamp_s = scan.stamp_s + ref * sweep;
+  res.stamp_s = poseTimeOf(scan);
   last_frame_points_ = deskew(scan, delta_sweep, sweep, ref);
   if (params_.ground_aware_map) last_ground_ = preprocess::segmentGround(scan.points, params_.preprocess.ground_seg);
 

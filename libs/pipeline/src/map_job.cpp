@@ -13,6 +13,7 @@
 #include "roadslam/common/stop_signal.h"
 #include "roadslam/mapping/map_outputs.h"
 #include "roadslam/mapping/mapper.h"
+#include "roadslam/pipeline/can_prior.h"
 #include "roadslam/pipeline/scan_stream.h"
 #include "roadslam/velodyne/decoder_params.h"
 
@@ -97,11 +98,18 @@ MapOutcome runMapJob(const MapRequest& req) {
   double ms_mapping = 0;
   std::unique_ptr<mapping::OctoMapWorker> octo;
   if (params.maps.octomap.enabled) octo = std::make_unique<mapping::OctoMapWorker>(params.maps.octomap);
+  std::unique_ptr<CanPriorStream> can;
+  if (!req.can_log_path.empty()) {
+    if (req.vehicle_ini_path.empty()) throw std::runtime_error("--can needs --vehicle (the car's vehicle ini)");
+    can = std::make_unique<CanPriorStream>(req.can_log_path, req.vehicle_ini_path, *cfg);
+  }
   while (!stopRequested()) {
     if (req.max_frames && out.frames.size() >= req.max_frames) break;
     auto scan = stream->next();
     if (!scan) break;
-    out.frames.push_back(odo.process(std::move(*scan)));
+    std::optional<odometry::MotionPrior> prior;
+    if (can && !out.frames.empty()) prior = can->between(out.frames.back().stamp_s, odo.poseTimeOf(*scan));
+    out.frames.push_back(odo.process(std::move(*scan), prior));
     const auto tm = std::chrono::steady_clock::now();
     const size_t keyframes_before = mapper.keyframes().size();
     const bool loop = mapper.addFrame(out.frames.back(), odo.lastFramePoints());
@@ -120,6 +128,10 @@ MapOutcome runMapJob(const MapRequest& req) {
   out.summary["malformed_packets"] = st.malformed_packets;
   out.summary["partial_sweeps"] = st.partial_sweeps;
   out.summary["interrupted"] = out.interrupted;
+  if (can) {
+    out.summary["can"] = {{"input", can->describe()}, {"frames", can->framesRead()},
+                          {"priors_used", can->priorsGiven()}, {"priors_missing", can->priorsMissing()}};
+  }
   const auto loops = loopsJson(mapper);
   out.summary["loop_closures"] = loops["accepted"].size();
   out.summary["loop_candidates_rejected"] = loops["rejected"].size();

@@ -128,6 +128,12 @@ class Odometry {
   FrameResult process(Scan scan, const std::optional<MotionPrior>& prior = std::nullopt);
 
   const Params& params() const { return params_; }
+  /// Time the pose of \p scan will refer to (FrameResult::stamp_s) [s]: for asking a motion prior
+  /// for the interval before calling process().
+  double poseTimeOf(const Scan& scan) const {
+    const bool times = scan.has_point_times || params_.times_from_azimuth;
+    return scan.stamp_s + (params_.deskew && times ? params_.deskew_reference * params_.sweep_duration_s : 0.0);
+  }
   const LocalMap& localMap() const { return map_; }
   const GaussianVoxelMap& voxelMap() const { return gmap_; }
   /// Deskewed, preprocessed points of the last frame (lidar frame) [m] (for keyframe maps).

@@ -25,6 +25,8 @@ struct MapRequest {
   std::string input_path;   ///< .pcap, .rawlog or KITTI folder
   std::string out_dir;      ///< created when missing
   size_t max_frames = 0;    ///< 0 = all
+  std::string can_log_path;     ///< candump log of the same recording: wheel odometry prior (optional)
+  std::string vehicle_ini_path; ///< the car's vehicle ini (DBC mapping), required with can_log_path
   bool progress = true;     ///< progress bar when stderr is a terminal
 };
 

@@ -1,0 +1,69 @@
+#include "roadslam/pipeline/can_prior.h"
+
+#include <mrpt/config/CConfigFileBase.h>
+
+#include "roadslam/can/candump.h"
+#include "roadslam/odometry/vehicle_prior.h"
+#include "roadslam/vehicle/params.h"
+#include "roadslam/vehicle/vehicle_state.h"
+
+namespace roadslam::pipeline {
+
+struct CanPriorStream::Impl {
+  Impl(const std::string& log, const std::string& ini, const mrpt::config::CConfigFileBase& cfg)
+      : path(log),
+        reader(log),
+        decoder(vehicle::loadVehicleIni(ini)),
+        prior(loadPriorParams(cfg), decoder.params()) {}
+
+  static odometry::VehiclePriorParams loadPriorParams(const mrpt::config::CConfigFileBase& cfg) {
+    odometry::VehiclePriorParams p;
+    p.loadFromConfigFile(cfg, "vehicle_prior");
+    return p;
+  }
+
+  /// Feeds every frame stamped up to \p t_s [s].
+  void advanceTo(double t_s) {
+    const auto t_us = static_cast<std::int64_t>(t_s * 1e6);
+    while (!ended) {
+      if (!have_pending) {
+        if (!reader.next(pending)) {
+          ended = true;
+          break;
+        }
+        have_pending = true;
+      }
+      if (pending.t_us > t_us) break;
+      prior.update(state, decoder.process(pending, state));
+      have_pending = false;
+      ++frames;
+    }
+  }
+
+  std::string path;
+  can::CandumpReader reader;
+  vehicle::VehicleDecoder decoder;
+  odometry::VehiclePrior prior;
+  vehicle::VehicleState state;
+  can::CanFrame pending;
+  bool have_pending = false, ended = false;
+  size_t frames = 0;
+};
+
+CanPriorStream::CanPriorStream(const std::string& can_log, const std::string& vehicle_ini,
+                               const mrpt::config::CConfigFileBase& cfg)
+    : impl_(std::make_unique<Impl>(can_log, vehicle_ini, cfg)) {}
+
+CanPriorStream::~CanPriorStream() = default;
+
+std::optional<odometry::MotionPrior> CanPriorStream::between(double t_prev_s, double t_curr_s) {
+  impl_->advanceTo(t_curr_s);
+  auto p = impl_->prior.between(t_prev_s, t_curr_s);
+  ++(p ? given_ : missing_);
+  return p;
+}
+
+size_t CanPriorStream::framesRead() const { return impl_->frames; }
+std::string CanPriorStream::describe() const { return "candump:" + impl_->path; }
+
+}  // namespace roadslam::pipeline
