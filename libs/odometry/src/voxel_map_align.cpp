@@ -62,21 +62,6 @@ LinearSystem buildSystem(const GaussianVoxelMap& map, const std::vector<Eigen::V
   return ls;
 }
 
-// Zhang, Kaess & Singh 2016: same normalisation as the registration library's analyse().
-registration::Degeneracy analyse(const Matrix6d& H, int n, double lever_m, double threshold) {
-  registration::Degeneracy d;
-  d.length_scale_m = lever_m;
-  Vector6d s;
-  s << 1, 1, 1, 1 / lever_m, 1 / lever_m, 1 / lever_m;
-  const Matrix6d Hs = s.asDiagonal() * H * s.asDiagonal() / std::max(n, 1);
-  Eigen::SelfAdjointEigenSolver<Matrix6d> es(Hs);
-  d.eigenvalues = es.eigenvalues();
-  d.directions = es.eigenvectors();
-  for (int i = 0; i < 6; ++i) d.num_weak += d.eigenvalues(i) < threshold ? 1 : 0;
-  d.degenerate = d.num_weak > 0;
-  return d;
-}
-
 RegistrationResult failed(const Eigen::Isometry3d& T, Status s, std::string why) {
   RegistrationResult r;
   r.T_target_source = T;
@@ -126,7 +111,7 @@ RegistrationResult alignToVoxelMap(const GaussianVoxelMap& map, const std::vecto
   const double var = std::max(r.fitness * r.fitness, 1e-4);
   r.information = fin.H / var;
   const double lever = fin.inliers ? std::sqrt(fin.range_sq_sum / fin.inliers) : 1.0;
-  r.degeneracy = analyse(fin.H, fin.inliers, std::max(lever, 1.0), p.degeneracy_threshold);
+  r.degeneracy = registration::analyseDegeneracy(fin.H, fin.inliers, std::max(lever, 1.0), p.degeneracy_threshold);
   if (!r.converged) r.reason = "no convergence in " + std::to_string(p.max_iterations) + " iterations";
   return r;
 }

@@ -58,11 +58,13 @@ FinalStats finalStats(const Target::Impl& t, const PointCloud& src, const Eigen:
   return st;
 }
 
+}  // namespace
+
 // Zhang, Kaess & Singh 2016: eigenvalues of the Hessian below a threshold mark directions the
 // geometry does not constrain. H / N with rotations scaled by 1/lever: a translation eigenvalue is
 // the mean of (n . v)^2 over inliers (fraction of points constraining v), a rotation eigenvalue the
 // mean squared moment arm in units of lever^2.
-Degeneracy analyse(const Matrix6d& H, int n, double lever_m, double threshold) {
+Degeneracy analyseDegeneracy(const Matrix6d& H, int n, double lever_m, double threshold) {
   Degeneracy d;
   d.length_scale_m = lever_m;
   Vector6d s;
@@ -76,7 +78,6 @@ Degeneracy analyse(const Matrix6d& H, int n, double lever_m, double threshold) {
   return d;
 }
 
-}  // namespace
 
 RegistrationResult align(const Target& target, const PointCloud& points_source,
                          const Eigen::Isometry3d& T_target_source_guess, const Params& params) {
@@ -110,7 +111,7 @@ RegistrationResult align(const Target& target, const PointCloud& points_source,
     r.fitness = std::sqrt(st.sum_d2 / st.inliers);
     const double var = std::max(st.sum_r2 / st.inliers, 1e-6);  // point-to-plane residual variance [m^2]
     r.information = st.H / var;
-    r.degeneracy = analyse(st.H, st.inliers, params.degeneracy_lever_m, params.degeneracy_threshold);
+    r.degeneracy = analyseDegeneracy(st.H, st.inliers, params.degeneracy_lever_m, params.degeneracy_threshold);
   }
   return r;
 }

@@ -43,6 +43,11 @@ struct Degeneracy {
   double length_scale_m = 1;  ///< lever used for the rotation scaling [m]
 };
 
+/// Degeneracy of a 6x6 Gauss-Newton Hessian \p H built from \p n pairs in the [t, r] order above,
+/// rotation rows scaled by 1 / \p lever_m [m]; directions with a normalised eigenvalue below
+/// \p threshold are weak. Shared by every matcher so their reports compare.
+Degeneracy analyseDegeneracy(const Eigen::Matrix<double, 6, 6>& H, int n, double lever_m, double threshold);
+
 /// Result of one alignment. On failure T_target_source holds the last estimate (or the guess).
 struct RegistrationResult {
   Eigen::Isometry3d T_target_source = Eigen::Isometry3d::Identity();
