@@ -16,6 +16,7 @@
 #include "roadslam/can/candump.h"
 #include "roadslam/grabber/segment_writer.h"
 #include "roadslam/pcap/pcap_writer.h"
+#include "roadslam/sources/gps_observation.h"
 #include "roadslam/vehicle/dead_reckoning.h"
 #include "roadslam/velodyne/position.h"
 
@@ -25,8 +26,6 @@ namespace {
 using mrpt::obs::CObservationVelodyneScan;
 static_assert(sizeof(CObservationVelodyneScan::TVelodyneRawPacket) == velodyne::kDataPacketSize,
               "MRPT's packed packet struct must match the 1206-byte UDP payload");
-constexpr double kDeg = M_PI / 180.0;
-constexpr double kKnot_mps = 1852.0 / 3600.0;
 constexpr auto kIdleSleep = std::chrono::milliseconds(2);
 
 /// An observation waiting for its turn: a sensor item, or a CAN frame (sensor < 0).
@@ -257,25 +256,8 @@ void Writer::writePosition(const SensorItem& it) {
   velodyne::PositionPacket pos;
   if (!velodyne::decodePositionPacket(pkt.payload.data(), pkt.payload.size(), pos) || !pos.has_fix)
     return;  // kept in the pcap sidecar; nothing to put in an MRPT GPS record
-  const velodyne::GpsFix& f = pos.fix;
-  mrpt::obs::gnss::Message_NMEA_RMC rmc;
-  const double tod = f.time_of_day_s;
-  rmc.fields.UTCTime.hour = uint8_t(tod / 3600);
-  rmc.fields.UTCTime.minute = uint8_t(std::fmod(tod, 3600.0) / 60);
-  rmc.fields.UTCTime.sec = std::fmod(tod, 60.0);
-  rmc.fields.validity_char = f.valid ? 'A' : 'V';
-  rmc.fields.latitude_degrees = f.latitude_deg;
-  rmc.fields.longitude_degrees = f.longitude_deg;
-  rmc.fields.speed_knots = f.speed_mps / kKnot_mps;
-  rmc.fields.direction_degrees = f.course_rad / kDeg;
-  rmc.fields.date_day = uint8_t(f.day);
-  rmc.fields.date_month = uint8_t(f.month);
-  rmc.fields.date_year = uint8_t(f.year % 100);
   mrpt::obs::CObservationGPS obs;
-  obs.setMsg(rmc);
-  obs.sensorLabel = g_.params.sensors[std::size_t(it.sensor)].scan.gps_label;
-  obs.timestamp = mrpt::Clock::fromDouble(pkt.stamp_s);
-  obs.originalReceivedTimestamp = obs.timestamp;
+  sources::fillGpsObservation(pos.fix, pkt.stamp_s, g_.params.sensors[std::size_t(it.sensor)].scan.gps_label, obs);
   writeObs(obs);
   g_.writer.gps.fetch_add(1);
 }

@@ -1,5 +1,7 @@
 #include "roadslam/sources/rawlog_writer.h"
 
+#include "roadslam/sources/gps_observation.h"
+
 #include <mrpt/core/Clock.h>
 #include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/obs/CObservationGPS.h>
@@ -23,7 +25,6 @@ static_assert(sizeof(CObservationVelodyneScan::TVelodyneRawPacket) == velodyne::
 
 namespace {
 constexpr double kDeg = M_PI / 180.0;
-constexpr double kKnot_mps = 1852.0 / 3600.0;  // international knot
 }
 
 void RawlogWriter::Params::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
@@ -125,27 +126,8 @@ bool RawlogWriter::writePosition(const velodyne::RawPacket& position_packet) {
     ++skipped_;
     return false;
   }
-  // The fields MRPT's NMEA parser (CGPSInterface::parse_NMEA) fills for an RMC sentence; set
-  // from our decoder so the library does not pull in mrpt-hwdrivers (300+ shared libraries).
-  const velodyne::GpsFix& f = pos.fix;
-  mrpt::obs::gnss::Message_NMEA_RMC rmc;
-  const double tod = f.time_of_day_s;
-  rmc.fields.UTCTime.hour = uint8_t(tod / 3600);
-  rmc.fields.UTCTime.minute = uint8_t(std::fmod(tod, 3600.0) / 60);
-  rmc.fields.UTCTime.sec = std::fmod(tod, 60.0);
-  rmc.fields.validity_char = f.valid ? 'A' : 'V';
-  rmc.fields.latitude_degrees = f.latitude_deg;
-  rmc.fields.longitude_degrees = f.longitude_deg;
-  rmc.fields.speed_knots = f.speed_mps / kKnot_mps;
-  rmc.fields.direction_degrees = f.course_rad / kDeg;
-  rmc.fields.date_day = uint8_t(f.day);
-  rmc.fields.date_month = uint8_t(f.month);
-  rmc.fields.date_year = uint8_t(f.year % 100);
   mrpt::obs::CObservationGPS obs;
-  obs.setMsg(rmc);
-  obs.sensorLabel = impl_->params.gps_label;
-  obs.timestamp = mrpt::Clock::fromDouble(position_packet.stamp_s);
-  obs.originalReceivedTimestamp = obs.timestamp;
+  fillGpsObservation(pos.fix, position_packet.stamp_s, impl_->params.gps_label, obs);
   mrpt::serialization::archiveFrom(impl_->out) << obs;
   ++gps_;
   return true;
