@@ -16,6 +16,7 @@
 #include "roadslam/mapping/octo_map.h"
 #include "roadslam/odometry/deskew.h"
 #include "roadslam/sim/simulator.h"
+#include "roadslam/sim/eigen.h"
 #include "roadslam/velodyne/packet.h"
 #include "roadslam/velodyne/sweep_assembler.h"
 
@@ -34,12 +35,7 @@ struct Sink : sim::PacketSink {
   }
 };
 
-Eigen::Isometry3d toEigen(const sim::Pose3& p) {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(p.R.data());
-  T.translation() = Eigen::Vector3d(p.t.x, p.t.y, p.t.z);
-  return T;
-}
+using sim::toEigen;
 
 Cloud simCloud() {
   auto p = sim::ScenarioParams::fromFile(std::string(ROADSLAM_SOURCE_DIR) + "/ini/sim/urban-loop.ini");

@@ -8,18 +8,14 @@
 #include "roadslam/common/config.h"
 #include "roadslam/can/frame.h"
 #include "roadslam/sim/simulator.h"
+#include "roadslam/sim/eigen.h"
 #include "roadslam/vehicle/vehicle_state.h"
 #include "roadslam/velodyne/sweep_assembler.h"
 
 namespace roadslam::odometry::test {
 namespace {
 
-Eigen::Isometry3d toEigen(const sim::Pose3& p) {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(p.R.data());
-  T.translation() = Eigen::Vector3d(p.t.x, p.t.y, p.t.z);
-  return T;
-}
+using sim::toEigen;
 
 /// The simulated CAN stream fed up to each sweep's time into the vehicle prior.
 struct CanFeed {

@@ -7,18 +7,14 @@
 
 #include "roadslam/odometry/deskew.h"
 #include "roadslam/sim/simulator.h"
+#include "roadslam/sim/eigen.h"
 #include "roadslam/velodyne/sweep_assembler.h"
 
 using namespace roadslam;
 
 namespace {
 
-Eigen::Isometry3d toEigen(const sim::Pose3& p) {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(p.R.data());
-  T.translation() = Eigen::Vector3d(p.t.x, p.t.y, p.t.z);
-  return T;
-}
+using sim::toEigen;
 
 struct AssemblerSink : sim::PacketSink {
   velodyne::SweepAssembler assembler;
