@@ -10,7 +10,7 @@ PACKAGES=(
   build-essential cmake pkg-config git
   libmrpt-dev liboctomap-dev libnanoflann-dev libeigen3-dev libpcap-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  nlohmann-json3-dev libcli11-dev libfmt-dev zstd libzstd-dev
+  nlohmann-json3-dev libcli11-dev libfmt-dev zstd libzstd-dev zlib1g-dev
   python3-can python3-canmatrix python3-numpy can-utils tcpdump
 )
 
