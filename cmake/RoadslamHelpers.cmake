@@ -74,3 +74,17 @@ function(roadslam_add_bench name)
   roadslam_set_warnings(${name})
   set_target_properties(${name} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR}/bench)
 endfunction()
+
+# roadslam_add_fuzz(<name> SOURCES ... DEPS ...): a libFuzzer target (LLVMFuzzerTestOneInput) built only
+# with -DROADSLAM_FUZZ=ON and clang. The same fuzz sources also go into a gtest driver with LABELS fuzz
+# (fixed seed, bounded time) that CI runs with gcc.
+function(roadslam_add_fuzz name)
+  if(NOT ROADSLAM_FUZZ)
+    return()
+  endif()
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
+  add_executable(${name} ${ARG_SOURCES})
+  target_compile_options(${name} PRIVATE -fsanitize=fuzzer,address,undefined)
+  target_link_options(${name} PRIVATE -fsanitize=fuzzer,address,undefined)
+  target_link_libraries(${name} PRIVATE ${ARG_DEPS})
+endfunction()

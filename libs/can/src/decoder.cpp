@@ -7,24 +7,15 @@
 #include <set>
 #include <stdexcept>
 
+#include "bit_window.h"
+
 namespace roadslam::can {
 namespace {
 
-constexpr std::size_t kWindow = 8;
+using detail::kWindow;
+using detail::load;
+using detail::motorolaLinear;
 constexpr std::size_t kMaxPayload = 64;
-
-// Big-endian linear bit position (0 = MSB of byte 0) of a DBC sawtooth bit number.
-std::uint32_t motorolaLinear(std::uint32_t b) { return (b / 8) * 8 + 7 - b % 8; }
-
-std::uint64_t load(const std::uint8_t* p, bool little_endian) noexcept {
-  std::uint64_t v = 0;
-  if (little_endian) {
-    for (int i = 7; i >= 0; --i) v = (v << 8) | p[i];
-  } else {
-    for (int i = 0; i < 8; ++i) v = (v << 8) | p[i];
-  }
-  return v;
-}
 
 std::uint64_t extractBitwise(const SignalPlan& p, const CanFrame& f) noexcept {
   std::uint64_t v = 0;

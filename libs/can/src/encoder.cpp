@@ -4,21 +4,14 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "bit_window.h"
+
 namespace roadslam::can {
 namespace {
 
-constexpr std::size_t kWindow = 8;
-
-// Same byte orders as decoder.cpp's load(): Intel windows are little-endian, Motorola big-endian.
-std::uint64_t load(const std::uint8_t* p, bool little_endian) noexcept {
-  std::uint64_t v = 0;
-  if (little_endian) {
-    for (int i = 7; i >= 0; --i) v = (v << 8) | p[i];
-  } else {
-    for (int i = 0; i < 8; ++i) v = (v << 8) | p[i];
-  }
-  return v;
-}
+using detail::kWindow;
+using detail::load;
+using detail::motorolaLinear;
 
 void store(std::uint64_t v, std::uint8_t* p, bool little_endian) noexcept {
   for (std::size_t i = 0; i < kWindow; ++i) {
@@ -32,9 +25,6 @@ void setBit(CanFrame& f, unsigned b, unsigned v) noexcept {
   const auto m = static_cast<std::uint8_t>(1U << (b % 8));
   f.data[b / 8] = static_cast<std::uint8_t>(v ? (f.data[b / 8] | m) : (f.data[b / 8] & ~m));
 }
-
-// DBC sawtooth numbering, as in decoder.cpp: linear big-endian position of the MSB.
-std::uint32_t motorolaLinear(std::uint32_t b) { return (b / 8) * 8 + 7 - b % 8; }
 
 void insertBitwise(const SignalPlan& p, std::uint64_t raw, CanFrame& f) noexcept {
   if (p.little_endian) {

@@ -17,23 +17,13 @@
 #include "roadslam/odometry/deskew.h"
 #include "roadslam/sim/simulator.h"
 #include "roadslam/sim/eigen.h"
+#include "roadslam/sim/sweep_sink.h"
 #include "roadslam/velodyne/packet.h"
-#include "roadslam/velodyne/sweep_assembler.h"
 
 using namespace roadslam;
 using Cloud = std::vector<Eigen::Vector3f>;
 
 namespace {
-
-struct Sink : sim::PacketSink {
-  velodyne::SweepAssembler assembler;
-  std::vector<Scan> sweeps;
-  void packet(double capture_s, uint16_t port, const uint8_t* data, std::size_t size) override {
-    if (port != velodyne::kDefaultDataPort) return;
-    assembler.addPacket(data, size, capture_s);
-    while (assembler.hasSweep()) sweeps.push_back(assembler.takeSweep());
-  }
-};
 
 using sim::toEigen;
 
@@ -42,9 +32,10 @@ Cloud simCloud() {
   p.trajectory.start_standing_s = 0;
   p.duration_s = 3.0;
   sim::Simulator s(p);
-  Sink sink;
+  std::vector<Scan> sweeps;
+  sim::SweepSink sink([&](Scan&& sc) { sweeps.push_back(std::move(sc)); });
   s.run(sink);
-  const Scan& sc = sink.sweeps.at(sink.sweeps.size() - 2);
+  const Scan& sc = sweeps.at(sweeps.size() - 2);
   const double t0 = sc.stamp_s - static_cast<double>(p.start_epoch_s);
   const auto d = toEigen(s.lidar().lidarPose(t0)).inverse() * toEigen(s.lidar().lidarPose(t0 + 0.1));
   Cloud out;

@@ -6,34 +6,25 @@
 #include "roadslam/odometry/deskew.h"
 #include "roadslam/registration/point_cloud.h"
 #include "roadslam/sim/eigen.h"
+#include "roadslam/sim/sweep_sink.h"
 #include "roadslam/velodyne/packet.h"
-#include "roadslam/velodyne/sweep_assembler.h"
 
 namespace roadslam::mapping::test {
 namespace {
 
 using sim::toEigen;
 
-struct AssemblerSink : sim::PacketSink {
-  velodyne::SweepAssembler assembler;
-  std::vector<Scan> sweeps;
-  void packet(double capture_s, uint16_t port, const uint8_t* data, std::size_t size) override {
-    if (port != velodyne::kDefaultDataPort) return;
-    assembler.addPacket(data, size, capture_s);
-    while (assembler.hasSweep()) sweeps.push_back(assembler.takeSweep());
-  }
-};
-
 }  // namespace
 
 std::vector<SimFrame> simulateDrive(const sim::ScenarioParams& p, const DriftModel& drift) {
   sim::Simulator s(p);
-  AssemblerSink sink;
+  std::vector<Scan> sweeps;
+  sim::SweepSink sink([&](Scan&& sc) { sweeps.push_back(std::move(sc)); });
   s.run(sink);
   std::vector<SimFrame> out;
   Eigen::Isometry3d T_gt0 = Eigen::Isometry3d::Identity(), T_prev_gt = T_gt0, T_drift = T_gt0, T_kf = T_gt0;
-  for (size_t k = 0; k < sink.sweeps.size(); ++k) {
-    const Scan& sc = sink.sweeps[k];
+  for (size_t k = 0; k < sweeps.size(); ++k) {
+    const Scan& sc = sweeps[k];
     const double t0 = sc.stamp_s - static_cast<double>(p.start_epoch_s);
     const Eigen::Isometry3d T_gt = toEigen(s.lidar().lidarPose(t0));
     if (k == 0) T_gt0 = T_gt;

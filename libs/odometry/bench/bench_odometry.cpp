@@ -9,7 +9,7 @@
 #include "roadslam/common/config.h"
 #include "roadslam/odometry/odometry.h"
 #include "roadslam/sim/simulator.h"
-#include "roadslam/velodyne/sweep_assembler.h"
+#include "roadslam/sim/sweep_sink.h"
 
 using namespace roadslam;
 
@@ -19,29 +19,17 @@ struct Drive {
   std::vector<Scan> sweeps;
 };
 
-struct Collect : sim::PacketSink {
-  velodyne::SweepAssembler assembler;
-  std::vector<Scan> sweeps;
-  void packet(double capture_s, uint16_t port, const uint8_t* data, std::size_t size) override {
-    if (port != velodyne::kDefaultDataPort) return;
-    assembler.addPacket(data, size, capture_s);
-    while (assembler.hasSweep()) {
-      Scan s = assembler.takeSweep();
-      if (!s.partial) sweeps.push_back(std::move(s));
-    }
-  }
-};
-
 const Drive& urbanDrive() {
   static Drive d = [] {
     auto p = sim::ScenarioParams::fromFile(std::string(ROADSLAM_SOURCE_DIR) + "/ini/sim/urban-loop.ini");
     p.duration_s = 12.0;
     p.trajectory.start_standing_s = 0;
     sim::Simulator s(p);
-    Collect c;
-    s.run(c);
     Drive out;
-    out.sweeps = std::move(c.sweeps);
+    sim::SweepSink sink([&](Scan&& sc) {
+      if (!sc.partial) out.sweeps.push_back(std::move(sc));
+    });
+    s.run(sink);
     return out;
   }();
   return d;

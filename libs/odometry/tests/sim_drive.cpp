@@ -9,8 +9,8 @@
 #include "roadslam/can/frame.h"
 #include "roadslam/sim/simulator.h"
 #include "roadslam/sim/eigen.h"
+#include "roadslam/sim/sweep_sink.h"
 #include "roadslam/vehicle/vehicle_state.h"
-#include "roadslam/velodyne/sweep_assembler.h"
 
 namespace roadslam::odometry::test {
 namespace {
@@ -32,34 +32,28 @@ struct CanFeed {
   }
 };
 
-struct OdometrySink : sim::PacketSink {
-  OdometrySink(const sim::Simulator& s, const Params& p) : sim(s), odo(p) {}
+struct OdometryRun {
+  OdometryRun(const sim::Simulator& s, const Params& p) : sim(s), odo(p) {}
   const sim::Simulator& sim;
-  velodyne::SweepAssembler assembler;
   Odometry odo;
+  sim::SweepSink sink{[this](Scan&& scan) { process(std::move(scan)); }};
   std::unique_ptr<CanFeed> can;
-  double last_pose_stamp_s = -1, stamp_offset_s = 0;  // FrameResult::stamp_s - Scan::stamp_s
+  double last_pose_stamp_s = -1;
   eval::MatchedTrajectories m;
   SimDriveResult r;
   double ms_sum = 0;
 
-  void packet(double capture_s, uint16_t port, const uint8_t* data, std::size_t size) override {
-    if (port != velodyne::kDefaultDataPort) return;
-    assembler.addPacket(data, size, capture_s);
-    while (assembler.hasSweep()) process(assembler.takeSweep());
-  }
   void process(Scan scan) {
     if (scan.partial) return;
     std::optional<MotionPrior> prior;
     const double scan_stamp_s = scan.stamp_s;
     if (can) {
       can->feedUntil(scan_stamp_s + odo.params().sweep_duration_s);  // CAN received while the sweep lasted
-      if (last_pose_stamp_s > 0) prior = can->prior.between(last_pose_stamp_s, scan_stamp_s + stamp_offset_s);
+      if (last_pose_stamp_s > 0) prior = can->prior.between(last_pose_stamp_s, odo.poseTimeOf(scan));
       r.with_prior += prior.has_value();
     }
     const auto f = odo.process(std::move(scan), prior);
     if (f.status == FrameStatus::Skipped) return;
-    stamp_offset_s = f.stamp_s - scan_stamp_s;
     last_pose_stamp_s = f.stamp_s;
     ++r.frames;
     r.failed += f.status == FrameStatus::NotConverged || f.status == FrameStatus::Empty;
@@ -90,17 +84,17 @@ SimDriveResult runSimDrive(const std::string& scenario_ini, double duration_s, c
   auto sp = sim::ScenarioParams::fromFile(scenario_ini);
   sp.duration_s = duration_s;
   sim::Simulator s(sp);
-  OdometrySink sink(s, params);
+  OdometryRun run(s, params);
   if (options.can_prior) {
     VehiclePriorParams pp = options.prior;
     pp.T_base_lidar = toEigen(s.lidar().vehicleToLidar());
     const auto vp = vehicle::loadVehicleIni(std::string(ROADSLAM_SOURCE_DIR) + "/ini/vehicles/roadslam-sim.ini");
-    sink.can = std::make_unique<CanFeed>(s, s.duration_s(), vp, pp);
+    run.can = std::make_unique<CanFeed>(s, s.duration_s(), vp, pp);
   }
-  s.run(sink);
-  sink.r.ms_mean = sink.r.frames ? sink.ms_sum / sink.r.frames : 0;
-  sink.r.metrics = eval::computeMetrics(sink.m);
-  return sink.r;
+  s.run(run.sink);
+  run.r.ms_mean = run.r.frames ? run.ms_sum / run.r.frames : 0;
+  run.r.metrics = eval::computeMetrics(run.m);
+  return run.r;
 }
 
 Params paramsFromIni(const std::string& path) {

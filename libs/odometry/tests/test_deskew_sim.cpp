@@ -8,23 +8,13 @@
 #include "roadslam/odometry/deskew.h"
 #include "roadslam/sim/simulator.h"
 #include "roadslam/sim/eigen.h"
-#include "roadslam/velodyne/sweep_assembler.h"
+#include "roadslam/sim/sweep_sink.h"
 
 using namespace roadslam;
 
 namespace {
 
 using sim::toEigen;
-
-struct AssemblerSink : sim::PacketSink {
-  velodyne::SweepAssembler assembler;
-  std::vector<Scan> sweeps;
-  void packet(double capture_s, uint16_t port, const uint8_t* data, std::size_t size) override {
-    if (port != velodyne::kDefaultDataPort) return;
-    assembler.addPacket(data, size, capture_s);
-    while (assembler.hasSweep()) sweeps.push_back(assembler.takeSweep());
-  }
-};
 
 }  // namespace
 
@@ -35,13 +25,14 @@ TEST(DeskewSim, TrueMotionDeskewPutsPointsOnTheWorld) {
   p.lidar.range_noise_m = 0;
   p.lidar.jitter_deg = 0;
   sim::Simulator s(p);
-  AssemblerSink sink;
+  std::vector<Scan> sweeps;
+  sim::SweepSink sink([&](Scan&& sc) { sweeps.push_back(std::move(sc)); });
   s.run(sink);
-  ASSERT_GT(sink.sweeps.size(), 70u);
+  ASSERT_GT(sweeps.size(), 70u);
   double err_deskew = 0, err_raw = 0;
   size_t n = 0;
-  for (size_t k = sink.sweeps.size() - 10; k + 1 < sink.sweeps.size(); ++k) {
-    const Scan& sc = sink.sweeps[k];
+  for (size_t k = sweeps.size() - 10; k + 1 < sweeps.size(); ++k) {
+    const Scan& sc = sweeps[k];
     const double t0 = sc.stamp_s - static_cast<double>(p.start_epoch_s);
     const Eigen::Isometry3d T0 = toEigen(s.lidar().lidarPose(t0));
     const Eigen::Isometry3d T1 = toEigen(s.lidar().lidarPose(t0 + 0.1));
