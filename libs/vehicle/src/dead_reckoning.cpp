@@ -49,12 +49,15 @@ void DeadReckoning::reset(const Pose2D& start) {
   started_ = true;
 }
 
+bool DeadReckoning::yawFromSensor(const VehicleState& s) const {
+  using YS = DeadReckoningParams::YawSource;
+  return (p_.yaw_source == YS::kAuto || p_.yaw_source == YS::kYawRate) && s.has(Quantity::kYawRate);
+}
+
 double DeadReckoning::yawRate(const VehicleState& s, double v) const {
   using YS = DeadReckoningParams::YawSource;
   const YS src = p_.yaw_source;
-  if ((src == YS::kAuto || src == YS::kYawRate) && s.has(Quantity::kYawRate)) {
-    return s.value(Quantity::kYawRate) - bias_;
-  }
+  if (yawFromSensor(s)) return s.value(Quantity::kYawRate) - bias_;
   if ((src == YS::kAuto || src == YS::kSteering) && s.has(Quantity::kSteeringAngle)) {
     // Kinematic bicycle model: w = v tan(delta) / L, delta = steering-wheel angle / ratio.
     return v * std::tan(s.value(Quantity::kSteeringAngle) / vehicle_.steering_ratio) / vehicle_.wheelbase_m;
@@ -110,6 +113,8 @@ bool DeadReckoning::update(const VehicleState& s, UpdateMask mask) {
   pose_.y_m += v * dt * std::sin(yaw_mid);
   pose_.yaw_rad = std::remainder(pose_.yaw_rad + w * dt, 2.0 * 3.14159265358979323846);
   stats_.distance_m += std::abs(v) * dt;
+  pose_.raw_distance_m += std::abs(speed) * dt;
+  pose_.raw_yaw_rad += (yawFromSensor(s) ? s.value(Quantity::kYawRate) : w) * dt;
   ++stats_.steps;
   return true;
 }

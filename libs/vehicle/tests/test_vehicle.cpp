@@ -202,3 +202,33 @@ TEST(DeadReckoning, BicycleModelWithoutYawRateAndGapsReported) {
   EXPECT_EQ(dr.stats().gaps, 1U);
   EXPECT_NEAR(dr.pose().yaw_rad, w * 0.99, 1e-3);  // the gap is not integrated
 }
+
+TEST(DeadReckoning, RawIntegralsAndOnlineCalibrationSetters) {
+  // Moving from the start (no standstill): the 0.5 deg/s offset turns the heading until a bias is set.
+  const VehicleParams p = testParams();
+  VehicleDecoder dec(p, roadslam::can::parseDbc(kDbc));
+  DeadReckoning dr(DeadReckoningParams{}, p);
+  VehicleState s;
+  double t = 0;
+  auto drive = [&](int steps) {
+    for (int i = 0; i < steps; ++i, t += 0.01) {
+      dr.update(s, dec.process(yaw(t, 0.5), s));
+      dr.update(s, dec.process(wheels(t + 0.001, 72.0), s));
+    }
+  };
+  drive(501);  // 5 s at 20 m/s after the first speed update
+  const Pose2D a = dr.pose();
+  EXPECT_NEAR(a.raw_yaw_rad, 0.5 * kPi / 180 * 5, 1e-7);
+  EXPECT_NEAR(a.yaw_rad, a.raw_yaw_rad, 1e-12);
+  EXPECT_NEAR(a.raw_distance_m, 100.0, 1e-3);
+  dr.setYawRateBias(0.5 * kPi / 180);
+  dr.setSpeedScale(1.01);
+  EXPECT_EQ(dr.speedScale(), 1.01);
+  drive(500);
+  const Pose2D b = dr.pose();
+  EXPECT_NEAR(b.yaw_rad, a.yaw_rad, 1e-12);                 // the bias now cancels the offset
+  EXPECT_NEAR(b.raw_yaw_rad, 0.5 * kPi / 180 * 10, 1e-7);  // raw integrals ignore the calibration
+  EXPECT_NEAR(b.raw_distance_m, 200.0, 1e-3);
+  EXPECT_NEAR(std::hypot(b.x_m - a.x_m, b.y_m - a.y_m), 101.0, 1e-3);  // scaled speed
+  EXPECT_NEAR(dr.stats().distance_m, 201.0, 1e-3);
+}

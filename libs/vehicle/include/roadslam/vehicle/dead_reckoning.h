@@ -2,7 +2,9 @@
 /// \file dead_reckoning.h
 /// Planar dead reckoning of the vehicle body frame in a local odometry frame (T_odom_base), from
 /// wheel speeds and the yaw rate, or from the steering angle with a kinematic bicycle model when the
-/// car reports no yaw rate. The yaw-rate bias is estimated while the car stands still.
+/// car reports no yaw rate. The yaw-rate bias is estimated while the car stands still; an online
+/// estimate against another sensor (online_calibration.h) is applied with setYawRateBias() /
+/// setSpeedScale() and holds for the steps integrated after it.
 
 #include <roadslam/vehicle/vehicle_state.h>
 
@@ -23,6 +25,11 @@ struct Pose2D {
   double yaw_rad = 0;  ///< T_odom_base heading, CCW from odom x [rad]
   double v_mps = 0;    ///< body forward speed (negative in reverse) [m/s]
   double w_radps = 0;  ///< body yaw rate after bias removal [rad/s]
+  /// Uncalibrated integrals since the start, for calibrating against another sensor: the yaw rate
+  /// as measured (bias not removed; the model's yaw rate when the yaw comes from steering or
+  /// wheels), also while standing [rad], and the wheel distance before speed_scale [m].
+  double raw_yaw_rad = 0;
+  double raw_distance_m = 0;
 };
 
 struct DeadReckoningParams {
@@ -61,10 +68,16 @@ class DeadReckoning {
 
   const Pose2D& pose() const { return pose_; }
   double yawRateBias() const { return bias_; }  ///< current estimate [rad/s]
+  double speedScale() const { return p_.speed_scale; }  ///< true / wheel speed in use [-]
+  /// Calibration from another sensor (LiDAR odometry, GNSS): used from the next step on. A later
+  /// standstill still re-estimates the bias (the more direct measurement).
+  void setYawRateBias(double bias_radps) { bias_ = bias_radps; }
+  void setSpeedScale(double scale) { p_.speed_scale = scale; }
   const DeadReckoningStats& stats() const { return stats_; }
 
  private:
   double yawRate(const VehicleState& s, double v) const;
+  bool yawFromSensor(const VehicleState& s) const;
   DeadReckoningParams p_;
   VehicleParams vehicle_;
   Pose2D pose_;
