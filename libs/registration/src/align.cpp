@@ -17,7 +17,8 @@ RegistrationResult fail(const Eigen::Isometry3d& T, Status s, std::string reason
 
 // Point-to-plane Hessian at the final estimate, the geometric information every method shares
 // (for point-to-point the p2p Hessian is N*I in translation and cannot reveal a corridor).
-// Normals: target point normals (ICP) or the cell's flattest axis (NDT).
+// Normals: target point normals (ICP) or the cell's flattest axis (NDT). NDT targets have no
+// kd-tree: their nearest point is searched in the 27 finest cells around x (exact up to one cell size).
 struct FinalStats {
   Matrix6d H = Matrix6d::Zero();
   int inliers = 0;
@@ -32,14 +33,14 @@ FinalStats finalStats(const Target::Impl& t, const PointCloud& src, const Eigen:
   for (const auto& p : src) {
     const Eigen::Vector3d x = T * p;
     double d2 = 0;
-    const int j = nearest(t, x, max_d2, d2);
+    const int j = grid ? nearestInGrid(*grid, t.points, x, max_d2, d2) : nearest(t, x, max_d2, d2);
     if (j < 0) continue;
     Eigen::Vector3d n = Eigen::Vector3d::Zero(), q = t.points[static_cast<size_t>(j)];
     if (grid) {
-      const auto it = grid->index.find(voxelKey(x, 1.0 / grid->resolution_m));
-      if (it != grid->index.end()) {
-        n = grid->cells[static_cast<size_t>(it->second)].normal;
-        q = grid->cells[static_cast<size_t>(it->second)].mean;
+      const int32_t c = grid->index.find(voxelKey(x, 1.0 / grid->resolution_m));
+      if (c >= 0 && grid->cells[static_cast<size_t>(c)].valid) {
+        n = grid->normals[static_cast<size_t>(c)];
+        q = grid->cells[static_cast<size_t>(c)].mean;
       }
     } else {
       n = t.normal(static_cast<size_t>(j));
@@ -88,7 +89,7 @@ RegistrationResult align(const Target& target, const PointCloud& points_source,
     return fail(guess, Status::MethodMismatch,
                 "target built for " + toString(t.method) + ", params ask for " + toString(params.method));
   }
-  if (t.points.empty() || (params.method == Method::Ndt && t.ndt.back().cells.empty())) {
+  if (t.points.empty() || (params.method == Method::Ndt && t.ndt.back().num_valid == 0)) {
     return fail(guess, Status::EmptyTarget, "target has " + std::to_string(t.points.size()) + " points");
   }
   for (const auto& p : points_source) {

@@ -23,14 +23,19 @@ constexpr int kNeighbourOffsets[7][3] = {{0, 0, 0}, {1, 0, 0}, {-1, 0, 0}, {0, 1
                                          {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
 
 // Cost f = sum d1 exp(-d2/2 x'^T C^-1 x') (to minimise, d1 < 0) with gradient and Hessian
-// (Magnusson 2009, eq. 6.12-6.13) for the left perturbation x = R(w) x0 + t, whose second
-// derivative d2x/dw_i dw_j gives the term 1/2 (x a^T + a x^T) - (a.x) I with a = C^-1 x'.
+// (Magnusson 2009, eq. 6.12-6.13) for the left perturbation x = R(w) x0 + t, J = [I, -X] with
+// X = [x]_x. Per pair, with a = C^-1 x' and s = -d1 d2 e:
+//   g += s J^T a = s [a; x cross a]
+//   H += s (J^T M J + S),  M = C^-1 - d2 a a^T (the two first-order terms of eq. 6.13 share J),
+//   J^T M J = [[M, -M X], [X M, -X M X]], and S = 1/2 (x a^T + a x^T) - (a.x) I in the rotation
+//   block, from the second derivative of x (eq. 6.13's last term).
+// The blocks are summed as 3x3 matrices: a third of the products of the 6x6 form.
 double evaluate(const NdtGrid& g, const NdtConstants& k, const PointCloud& src, const Eigen::Isometry3d& T,
                 Vector6d* grad, Matrix6d* hess, int* hits, int n_cells) {
   const double inv = 1.0 / g.resolution_m;
   double f = 0;
-  if (grad) grad->setZero();
-  if (hess) hess->setZero();
+  Eigen::Vector3d g_t = Eigen::Vector3d::Zero(), g_r = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d H_tt = Eigen::Matrix3d::Zero(), H_tr = Eigen::Matrix3d::Zero(), H_rr = Eigen::Matrix3d::Zero();
   int n_hits = 0;
   const Eigen::Matrix3d R = T.linear();
   const Eigen::Vector3d tr = T.translation();
@@ -41,9 +46,10 @@ double evaluate(const NdtGrid& g, const NdtConstants& k, const PointCloud& src, 
     const int64_t cz = static_cast<int64_t>(std::floor(x.z() * inv));
     for (int oi = 0; oi < n_cells; ++oi) {
       const int* o = kNeighbourOffsets[oi];
-      const auto it = g.index.find(voxelKey(cx + o[0], cy + o[1], cz + o[2]));
-      if (it == g.index.end()) continue;
-      const NdtCell& c = g.cells[static_cast<size_t>(it->second)];
+      const int32_t ci = g.index.find(voxelKey(cx + o[0], cy + o[1], cz + o[2]));
+      if (ci < 0) continue;
+      const NdtCell& c = g.cells[static_cast<size_t>(ci)];
+      if (!c.valid) continue;
       const Eigen::Vector3d xd = x - c.mean;
       const Eigen::Vector3d a = c.cov_inv * xd;
       const double e = std::exp(-0.5 * k.d2 * xd.dot(a));
@@ -52,22 +58,23 @@ double evaluate(const NdtGrid& g, const NdtConstants& k, const PointCloud& src, 
       ++n_hits;
       if (!grad) continue;
       const double s = -k.d1 * k.d2 * e;  // > 0
-      Vector6d Ja;  // J^T a with J = [I, -[x]x]
-      Ja.head<3>() = a;
-      Ja.tail<3>() = x.cross(a);
-      grad->noalias() += s * Ja;
+      const Eigen::Vector3d xa = x.cross(a);
+      g_t.noalias() += s * a;
+      g_r.noalias() += s * xa;
       if (!hess) continue;
-      Matrix6d Hp;
-      Eigen::Matrix<double, 3, 6> J;
-      J.leftCols<3>().setIdentity();
-      J.rightCols<3>() << 0, x.z(), -x.y(), -x.z(), 0, x.x(), x.y(), -x.x(), 0;
-      Hp.noalias() = J.transpose() * c.cov_inv * J;
-      Hp.noalias() -= k.d2 * Ja * Ja.transpose();
-      Hp.bottomRightCorner<3, 3>() += 0.5 * (x * a.transpose() + a * x.transpose()) -
-                                      a.dot(x) * Eigen::Matrix3d::Identity();
-      hess->noalias() += s * Hp;
+      const Eigen::Matrix3d M = c.cov_inv - k.d2 * a * a.transpose();
+      Eigen::Matrix3d X;
+      X << 0, -x.z(), x.y(), x.z(), 0, -x.x(), -x.y(), x.x(), 0;
+      const Eigen::Matrix3d B = M * X;
+      Eigen::Matrix3d rr = -X * B + 0.5 * (x * a.transpose() + a * x.transpose());
+      rr.diagonal().array() -= a.dot(x);
+      H_tt.noalias() += s * M;
+      H_tr.noalias() -= s * B;
+      H_rr.noalias() += s * rr;
     }
   }
+  if (grad) *grad << g_t, g_r;
+  if (hess) *hess << H_tt, H_tr, H_tr.transpose(), H_rr;
   if (hits) *hits = n_hits;
   return f;
 }

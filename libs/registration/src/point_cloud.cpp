@@ -3,9 +3,8 @@
 #include <roadslam/common/scan.h>
 
 #include <cmath>
-#include <unordered_set>
 
-#include "target_impl.h"
+#include "ndt_grid.h"
 
 namespace roadslam::registration {
 
@@ -17,14 +16,15 @@ PointCloud toPointCloud(const roadslam::Scan& scan) {
 }
 
 PointCloud voxelDownsample(const PointCloud& points, double voxel_m) {
-  std::unordered_set<uint64_t, VoxelHash> seen;
-  seen.reserve(points.size());
+  FlatIndex seen(points.size() / 4 + 16);
   PointCloud out;
   out.reserve(points.size() / 4 + 16);
   const double inv = 1.0 / voxel_m;
   for (const auto& p : points) {
     if (!p.allFinite()) continue;
-    if (seen.insert(voxelKey(p, inv)).second) out.push_back(p);
+    bool inserted = false;
+    seen.findOrInsert(voxelKey(p, inv), inserted);
+    if (inserted) out.push_back(p);
   }
   return out;
 }

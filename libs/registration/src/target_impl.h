@@ -2,11 +2,11 @@
 // Private: search structures behind roadslam::registration::Target.
 
 #include "roadslam/registration/registration.h"
+#include "ndt_grid.h"
 
 #include <nanoflann.hpp>
 
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
 namespace roadslam::registration {
@@ -21,37 +21,6 @@ struct CloudAdaptor {
 };
 using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, CloudAdaptor>,
                                                    CloudAdaptor, 3, uint32_t>;
-
-/// Integer voxel coordinates packed into 63 bits (21 bits per axis, +-1M cells).
-inline uint64_t voxelKey(const Eigen::Vector3d& p, double inv_size) {
-  const auto c = [&](double v) {
-    return static_cast<uint64_t>(static_cast<int64_t>(std::floor(v * inv_size)) + (1 << 20)) & 0x1FFFFFu;
-  };
-  return (c(p.x()) << 42) | (c(p.y()) << 21) | c(p.z());
-}
-inline uint64_t voxelKey(int64_t x, int64_t y, int64_t z) {
-  const auto c = [](int64_t v) { return static_cast<uint64_t>(v + (1 << 20)) & 0x1FFFFFu; };
-  return (c(x) << 42) | (c(y) << 21) | c(z);
-}
-struct VoxelHash {
-  size_t operator()(uint64_t k) const noexcept {
-    // Teschner et al. 2003 spatial hash, applied to the packed key's three fields.
-    return static_cast<size_t>(((k >> 42) * 73856093u) ^ (((k >> 21) & 0x1FFFFFu) * 19349663u) ^
-                               ((k & 0x1FFFFFu) * 83492791u));
-  }
-};
-
-/// One NDT cell: a Gaussian of the target points inside it (Magnusson 2009, eq. 6.2-6.3).
-struct NdtCell {
-  Eigen::Vector3d mean;      ///< [m], target frame
-  Eigen::Matrix3d cov_inv;   ///< regularised inverse covariance [1/m^2]
-  Eigen::Vector3d normal;    ///< eigenvector of the smallest eigenvalue (for degeneracy analysis)
-};
-struct NdtGrid {
-  double resolution_m = 1;
-  std::unordered_map<uint64_t, int, VoxelHash> index;  ///< voxel key -> cells[i]
-  std::vector<NdtCell> cells;
-};
 
 struct Target::Impl {
   Method method = Method::IcpPointToPlane;
@@ -69,8 +38,8 @@ struct Target::Impl {
   void computeNormal(size_t i) const;
   size_t dropped = 0;
   CloudAdaptor adaptor;
-  std::unique_ptr<KdTree> tree;
-  std::vector<NdtGrid> ndt;  ///< coarse to fine
+  std::unique_ptr<KdTree> tree;  ///< ICP only: NDT finds nearest points through its finest grid's buckets
+  std::vector<NdtGrid> ndt;      ///< NDT only: coarse to fine
 };
 
 /// Nearest target point within max_dist2 [m^2]; returns index or -1.
