@@ -1,6 +1,7 @@
 // Keyframe insertion into an OctoMap at 0.2 m: ours (OctoMapBuilder::insert) vs octomap's
-// OcTree::insertPointCloud on the same cloud, with the agreement of the two maps, in one run:
-//   build-*/bench/bench_mapping_octomap
+// OcTree::insertPointCloud on the same cloud, with the agreement of the two maps, in one run on
+// one core (CPU time of the inserting thread, so other load on the machine does not count):
+//   taskset -c 1 build-*/bench/bench_mapping_octomap
 // Clouds: a simulated VLP-16 sweep (urban-loop, 3 s in, deskewed with the true motion) and the first
 // KITTI odometry sweep (HDL-64E, ~120k points) when ROADSLAM_SHARED_DATA holds it.
 #include <benchmark/benchmark.h>
@@ -8,6 +9,7 @@
 #include <octomap/OcTree.h>
 
 #include <chrono>
+#include <ctime>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -64,48 +66,93 @@ mapping::OctoMapParams sameAsOctomap() {
 
 const char* name(int which) { return which == 0 ? "sim VLP-16" : "KITTI HDL-64E"; }
 
-std::map<std::pair<int, bool>, double> g_ms;  // (cloud, ours) -> mean ms per insertion
+double threadCpuMs() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return 1e3 * static_cast<double>(ts.tv_sec) + 1e-6 * static_cast<double>(ts.tv_nsec);
+}
 
-void BM_Insert(benchmark::State& state, bool ours) {
+struct Figures {
+  double wall_ms = 0, cpu_ms = 0;  ///< mean per insertion [ms]
+  mapping::InsertStats last;
+};
+std::map<std::pair<int, int>, Figures> g_fig;  // (cloud, variant) -> figures
+enum Variant { kOurs = 0, kOctomap = 1, kOursShipped = 2 };
+
+// One keyframe into an empty map per iteration; the tree is not materialised (numVoxels()).
+void BM_Insert(benchmark::State& state, Variant v) {
   const int which = static_cast<int>(state.range(0));
   const Cloud& c = cloud(which);
   if (c.empty()) {
     state.SkipWithError("cloud missing (KITTI data not found)");
     return;
   }
-  double total_ms = 0;
+  Figures f;
   size_t n = 0;
   for (auto _ : state) {
     state.PauseTiming();
-    mapping::OctoMapBuilder b(sameAsOctomap());
+    mapping::OctoMapBuilder b(v == kOursShipped ? mapping::OctoMapParams{} : sameAsOctomap());
     state.ResumeTiming();
-    const auto st = ours ? b.insert(c, Eigen::Isometry3d::Identity()) : b.insertReference(c, Eigen::Isometry3d::Identity());
-    total_ms += st.ms;
+    const double cpu0 = threadCpuMs();
+    f.last = v == kOctomap ? b.insertReference(c, Eigen::Isometry3d::Identity()) : b.insert(c, Eigen::Isometry3d::Identity());
+    f.cpu_ms += threadCpuMs() - cpu0;
+    f.wall_ms += f.last.ms;
     ++n;
-    benchmark::DoNotOptimize(b.numLeafs());
+    benchmark::DoNotOptimize(b.numVoxels());
   }
+  f.cpu_ms /= static_cast<double>(std::max<size_t>(n, 1));
+  f.wall_ms /= static_cast<double>(std::max<size_t>(n, 1));
   state.counters["points"] = static_cast<double>(c.size());
-  g_ms[{which, ours}] = total_ms / std::max<size_t>(n, 1);
+  state.counters["cpu_ms"] = f.cpu_ms;
+  g_fig[{which, v}] = f;
 }
 
-void BM_Ours(benchmark::State& s) { BM_Insert(s, true); }
-void BM_Octomap(benchmark::State& s) { BM_Insert(s, false); }
+// Materialising the octomap tree from the grid: once per map read (writeBt/writeOt/tree()).
+void BM_TreeFromGrid(benchmark::State& state) {
+  const Cloud& c = cloud(static_cast<int>(state.range(0)));
+  if (c.empty()) {
+    state.SkipWithError("cloud missing (KITTI data not found)");
+    return;
+  }
+  for (auto _ : state) {
+    state.PauseTiming();
+    mapping::OctoMapBuilder b(sameAsOctomap());
+    b.insert(c, Eigen::Isometry3d::Identity());
+    state.ResumeTiming();
+    benchmark::DoNotOptimize(b.numLeafs());
+  }
+}
+
+void BM_Ours(benchmark::State& s) { BM_Insert(s, kOurs); }
+void BM_Octomap(benchmark::State& s) { BM_Insert(s, kOctomap); }
+void BM_OursShippedIni(benchmark::State& s) { BM_Insert(s, kOursShipped); }
 BENCHMARK(BM_Ours)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_Octomap)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_OursShippedIni)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_TreeFromGrid)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void report() {
   for (int which = 0; which < 2; ++which) {
     const Cloud& c = cloud(which);
-    if (c.empty()) continue;
+    if (c.empty() || !g_fig.count({which, kOurs}) || !g_fig.count({which, kOctomap})) continue;
     mapping::OctoMapBuilder ours(sameAsOctomap()), ref(sameAsOctomap());
     ours.insert(c, Eigen::Isometry3d::Identity());
     ref.insertReference(c, Eigen::Isometry3d::Identity());
     const auto a = mapping::compareOctoMaps(ref.tree(), ours.tree());
-    const double mo = g_ms[{which, true}], mr = g_ms[{which, false}];
-    std::printf("%s (%zu points, 0.2 m, max range 60 m): ours %.1f ms, octomap insertPointCloud %.1f ms, "
-                "speed-up %.1fx; agreement over octomap's leaves: occupied %.1f %% of %zu, free %.1f %% of %zu\n",
-                name(which), c.size(), mo, mr, mr / std::max(mo, 1e-9), a.occupied_percent, a.ref_occupied,
-                a.free_percent, a.ref_free);
+    const Figures &o = g_fig[{which, kOurs}], &r = g_fig[{which, kOctomap}];
+    std::printf("%s (%zu points, 0.2 m, max range 60 m, free space to 60 m as octomap), per keyframe:\n"
+                "  ours %.1f ms CPU (%.1f ms wall), octomap insertPointCloud %.1f ms CPU (%.1f ms wall): "
+                "ratio %.1fx CPU, %.1fx wall\n"
+                "  ours: %zu ray cells, %zu free + %zu occupied voxels; agreement over octomap's leaves: "
+                "occupied %.1f %% of %zu, free %.1f %% of %zu, ours not in octomap %zu\n",
+                name(which), c.size(), o.cpu_ms, o.wall_ms, r.cpu_ms, r.wall_ms, r.cpu_ms / std::max(o.cpu_ms, 1e-9),
+                r.wall_ms / std::max(o.wall_ms, 1e-9), o.last.ray_cells, o.last.free_keys, o.last.occupied_keys,
+                a.occupied_percent, a.ref_occupied, a.free_percent, a.ref_free, a.other_unknown);
+    if (g_fig.count({which, kOursShipped})) {
+      const Figures& s = g_fig[{which, kOursShipped}];
+      std::printf("  shipped [octomap] (free space to 10 m): ours %.1f ms CPU (%.1f ms wall), %zu ray cells\n",
+                  s.cpu_ms, s.wall_ms, s.last.ray_cells);
+    }
   }
 }
 

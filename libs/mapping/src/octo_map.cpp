@@ -10,6 +10,7 @@
 #include "roadslam/common/atomic_file.h"
 #include "roadslam/common/config.h"
 #include "ini_keys.h"
+#include "octo_grid.h"
 
 namespace roadslam::mapping {
 namespace {
@@ -17,15 +18,20 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
-uint64_t pack(const octomap::OcTreeKey& k) {
-  return static_cast<uint64_t>(k[0]) | (static_cast<uint64_t>(k[1]) << 16) | (static_cast<uint64_t>(k[2]) << 32);
+/// The scan's end points in the map frame, as octomap receives them (float point3d).
+std::vector<octomap::point3d> toMap(const std::vector<Eigen::Vector3f>& points_lidar, const Eigen::Isometry3d& T_map_lidar) {
+  std::vector<octomap::point3d> out;
+  out.reserve(points_lidar.size());
+  for (const auto& q : points_lidar) {
+    const Eigen::Vector3d p = T_map_lidar * q.cast<double>();
+    if (!p.allFinite()) continue;
+    out.emplace_back(static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z()));
+  }
+  return out;
 }
-octomap::OcTreeKey unpack(uint64_t v) {
-  return octomap::OcTreeKey(v & 0xffff, (v >> 16) & 0xffff, (v >> 32) & 0xffff);
-}
-void sortUnique(std::vector<uint64_t>& v) {
-  std::sort(v.begin(), v.end());
-  v.erase(std::unique(v.begin(), v.end()), v.end());
+
+octomap::point3d toPoint(const Eigen::Vector3d& v) {
+  return octomap::point3d(static_cast<float>(v.x()), static_cast<float>(v.y()), static_cast<float>(v.z()));
 }
 
 }  // namespace
@@ -67,61 +73,105 @@ OctoMapBuilder::~OctoMapBuilder() = default;
 OctoMapBuilder::OctoMapBuilder(OctoMapBuilder&&) noexcept = default;
 OctoMapBuilder& OctoMapBuilder::operator=(OctoMapBuilder&&) noexcept = default;
 
-void OctoMapBuilder::clear() {
-  tree_ = std::make_unique<octomap::OcTree>(p_.resolution_m);
-  tree_->setProbHit(p_.prob_hit);
-  tree_->setProbMiss(p_.prob_miss);
-  tree_->setClampingThresMin(p_.clamp_min);
-  tree_->setClampingThresMax(p_.clamp_max);
+std::unique_ptr<octomap::OcTree> OctoMapBuilder::newTree() const {
+  auto t = std::make_unique<octomap::OcTree>(p_.resolution_m);
+  t->setProbHit(p_.prob_hit);
+  t->setProbMiss(p_.prob_miss);
+  t->setClampingThresMin(p_.clamp_min);
+  t->setClampingThresMax(p_.clamp_max);
+  return t;
 }
 
-const octomap::OcTree& OctoMapBuilder::tree() const { return *tree_; }
-size_t OctoMapBuilder::numLeafs() const { return tree_->getNumLeafNodes(); }
+void OctoMapBuilder::clear() {
+  tree_ = newTree();
+  // the grid uses the tree's own float log-odds so that both give the same values
+  detail::LogOddsModel m;
+  m.hit = tree_->getProbHitLog();
+  m.miss = tree_->getProbMissLog();
+  m.min = tree_->getClampingThresMinLog();
+  m.max = tree_->getClampingThresMaxLog();
+  if (grid_) {
+    grid_->clear();
+  } else {
+    grid_ = std::make_unique<detail::VoxelGrid>(m);
+  }
+  tree_current_ = grid_current_ = true;
+}
+
+void OctoMapBuilder::materialiseTree() const {
+  if (tree_current_) return;
+  tree_ = newTree();
+  // setNodeValue per leaf without inner updates, then one bottom-up pass; pruning merges only
+  // children with equal log-odds (lossless), as octomap's non-lazy insertion does on the way
+  grid_->forEachKnown([&](const octomap::OcTreeKey& k, float lo) { tree_->setNodeValue(k, lo, true); });
+  tree_->updateInnerOccupancy();
+  tree_->prune();
+  tree_current_ = true;
+}
+
+void OctoMapBuilder::importTree() {
+  if (grid_current_) return;
+  grid_->clear();
+  const unsigned depth = tree_->getTreeDepth();
+  for (auto it = tree_->begin_leafs(), end = tree_->end_leafs(); it != end; ++it) {
+    const octomap::OcTreeKey k0 = it.getIndexKey();  // lowest corner of a pruned leaf
+    const unsigned n = 1u << (depth - it.getDepth());
+    const float lo = it->getLogOdds();
+    for (unsigned x = 0; x < n; ++x)
+      for (unsigned y = 0; y < n; ++y)
+        for (unsigned z = 0; z < n; ++z)
+          grid_->set(octomap::OcTreeKey(k0[0] + x, k0[1] + y, k0[2] + z), lo);
+  }
+  grid_current_ = true;
+}
+
+const octomap::OcTree& OctoMapBuilder::tree() const {
+  materialiseTree();
+  return *tree_;
+}
+size_t OctoMapBuilder::numLeafs() const { return tree().getNumLeafNodes(); }
+size_t OctoMapBuilder::numVoxels() const {
+  if (grid_current_) return grid_->numKnown();
+  size_t n = 0;  // after insertReference(): the tree's leaves, pruned ones counted per voxel
+  for (auto it = tree_->begin_leafs(), end = tree_->end_leafs(); it != end; ++it) {
+    n += size_t{1} << (3 * (tree_->getTreeDepth() - it.getDepth()));
+  }
+  return n;
+}
 
 InsertStats OctoMapBuilder::insert(const std::vector<Eigen::Vector3f>& points_lidar, const Eigen::Isometry3d& T_map_lidar) {
   const auto t0 = Clock::now();
+  importTree();
   InsertStats st;
-  const Eigen::Vector3d o = T_map_lidar.translation();
-  const octomap::point3d origin(o.x(), o.y(), o.z());
-  const double max_r2 = p_.max_range_m * p_.max_range_m;
-  std::vector<uint64_t> occ, far;  // end voxels within max range; beyond it: voxels at max range
-  occ.reserve(points_lidar.size());
+  const std::vector<octomap::point3d> pts = toMap(points_lidar, T_map_lidar);
+  const octomap::point3d origin = toPoint(T_map_lidar.translation());
+  const double factor = 1.0 / p_.resolution_m;
+  detail::VoxelGrid& g = *grid_;
+  g.beginScan();
+  // hits first: a voxel holding an end point is never freed by the same scan (computeUpdate)
   octomap::OcTreeKey key;
-  for (const auto& q : points_lidar) {
-    Eigen::Vector3d p = T_map_lidar * q.cast<double>();
-    if (!p.allFinite()) continue;
-    const bool beyond = (p - o).squaredNorm() > max_r2;
-    // beyond max range: free space up to max range, no hit (octomap's insertPointCloud with maxrange)
-    if (beyond) p = o + (p - o) * (p_.max_range_m / (p - o).norm());
-    if (!tree_->coordToKeyChecked(octomap::point3d(p.x(), p.y(), p.z()), key)) continue;
-    (beyond ? far : occ).push_back(pack(key));
+  for (const auto& p : pts) {
+    if ((p - origin).norm() > p_.max_range_m) continue;
     ++st.points;
+    if (detail::coordToKey(p, factor, key) && g.hit(key)) ++st.occupied_keys;
   }
-  sortUnique(occ);
-  sortUnique(far);
-  // one ray per distinct end voxel (to its centre), clipped to free_max_range_m
-  std::vector<uint64_t> free;
-  octomap::KeyRay ray;
-  std::vector<uint64_t> ends = occ;
-  ends.insert(ends.end(), far.begin(), far.end());
-  for (uint64_t k : ends) {
-    octomap::point3d end = tree_->keyToCoord(unpack(k));
-    const octomap::point3d dir = end - origin;
-    const double len = dir.norm();
-    if (len > p_.free_max_range_m) end = origin + dir * static_cast<float>(p_.free_max_range_m / len);
-    if (!tree_->computeRayKeys(origin, end, ray)) continue;
-    for (const auto& rk : ray) free.push_back(pack(rk));
+  // then one ray per end point (as OccupancyOcTreeBase::computeUpdate), ending at the point,
+  // or at free_max_range_m / max_range_m along it; the touched bit keeps one update per voxel
+  const auto visit = [&](const octomap::OcTreeKey& k) {
+    ++st.ray_cells;
+    if (g.miss(k)) ++st.free_keys;
+  };
+  for (const auto& p : pts) {
+    const double range = (p - origin).norm();
+    const double clip = range > p_.max_range_m ? p_.max_range_m : p_.free_max_range_m;
+    if (range <= clip) {
+      detail::castRay(origin, p, p_.resolution_m, visit);
+    } else {
+      const octomap::point3d end = origin + (p - origin).normalized() * static_cast<float>(std::min(clip, p_.free_max_range_m));
+      detail::castRay(origin, end, p_.resolution_m, visit);
+    }
   }
-  sortUnique(free);
-  // a voxel with an end point in this scan is not freed by it (octomap computeUpdate)
-  std::vector<uint64_t> free_only;
-  free_only.reserve(free.size());
-  std::set_difference(free.begin(), free.end(), occ.begin(), occ.end(), std::back_inserter(free_only));
-  for (uint64_t k : free_only) tree_->updateNode(unpack(k), false, true);
-  for (uint64_t k : occ) tree_->updateNode(unpack(k), true, true);
-  tree_->updateInnerOccupancy();
-  st.occupied_keys = occ.size();
-  st.free_keys = free_only.size();
+  tree_current_ = false;
   st.ms = msSince(t0);
   return st;
 }
@@ -129,16 +179,13 @@ InsertStats OctoMapBuilder::insert(const std::vector<Eigen::Vector3f>& points_li
 InsertStats OctoMapBuilder::insertReference(const std::vector<Eigen::Vector3f>& points_lidar,
                                             const Eigen::Isometry3d& T_map_lidar) {
   const auto t0 = Clock::now();
+  materialiseTree();
   InsertStats st;
   octomap::Pointcloud cloud;
-  for (const auto& q : points_lidar) {
-    const Eigen::Vector3d p = T_map_lidar * q.cast<double>();
-    if (!p.allFinite()) continue;
-    cloud.push_back(static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z()));
-  }
+  for (const auto& p : toMap(points_lidar, T_map_lidar)) cloud.push_back(p);
   st.points = cloud.size();
-  const Eigen::Vector3d o = T_map_lidar.translation();
-  tree_->insertPointCloud(cloud, octomap::point3d(o.x(), o.y(), o.z()), p_.max_range_m);
+  tree_->insertPointCloud(cloud, toPoint(T_map_lidar.translation()), p_.max_range_m);
+  grid_current_ = false;
   st.ms = msSince(t0);
   return st;
 }
@@ -147,7 +194,7 @@ void OctoMapBuilder::writeBt(const std::string& path) const {
   const std::string tmp = tempPathFor(path);
   {
     std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    if (!f || !tree_->writeBinaryConst(f) || !f.flush()) {
+    if (!f || !tree().writeBinaryConst(f) || !f.flush()) {
       throw std::runtime_error("cannot write octomap '" + path + "'");
     }
   }
@@ -158,7 +205,7 @@ void OctoMapBuilder::writeOt(const std::string& path) const {
   const std::string tmp = tempPathFor(path);
   {
     std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    if (!f || !tree_->write(f) || !f.flush()) throw std::runtime_error("cannot write octomap '" + path + "'");
+    if (!f || !tree().write(f) || !f.flush()) throw std::runtime_error("cannot write octomap '" + path + "'");
   }
   commitTempFile(tmp, path);
 }
@@ -171,6 +218,9 @@ Agreement compareOctoMaps(const octomap::OcTree& reference, const octomap::OcTre
     (occ ? a.ref_occupied : a.ref_free)++;
     const octomap::OcTreeNode* n = other.search(it.getCoordinate());
     if (n && other.isNodeOccupied(n) == occ) (occ ? occ_same : free_same)++;
+  }
+  for (auto it = other.begin_leafs(), end = other.end_leafs(); it != end; ++it) {
+    if (!reference.search(it.getCoordinate())) ++a.other_unknown;
   }
   a.occupied_percent = a.ref_occupied ? 100.0 * occ_same / a.ref_occupied : 0;
   a.free_percent = a.ref_free ? 100.0 * free_same / a.ref_free : 0;

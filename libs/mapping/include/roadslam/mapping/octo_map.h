@@ -1,14 +1,16 @@
 #pragma once
 /// \file octo_map.h
 /// OctoMap (Hornung et al. 2013) of the keyframes: occupied voxels at the scan end points, free
-/// voxels along the rays (map frame, metres). Our keyframe insertion gives the same log-odds update
-/// as octomap::OcTree::insertPointCloud (discretised: one ray per distinct end-point voxel, a voxel
-/// hit by any end point is never marked free in the same scan, as octomap's computeUpdate), but
-///  - casts the rays with a 3D DDA (Amanatides & Woo 1987) into a flat key vector sorted once
-///    (no per-cell hash insertion), and
-///  - updates the tree with lazy evaluation and one updateInnerOccupancy() per keyframe,
-/// which is where octomap's own insertion spends its time. Free space is cleared up to
-/// free_max_range_m along each ray (longer rays clear their first free_max_range_m only).
+/// voxels along the rays (map frame, metres). Our keyframe insertion gives octomap's own update
+/// (OcTree::insertPointCloud: one ray per end point, cast with octomap's DDA arithmetic, each voxel
+/// updated once per scan, a voxel hit by an end point never freed by the same scan, log-odds
+/// clamped), but keeps the occupancy in a flat hashed voxel grid (8x8x8 blocks of float log-odds,
+/// a per-scan "touched" bit per voxel) updated in O(1) per ray cell. The octomap::OcTree is
+/// materialised from the grid only when it is read (tree(), numLeafs(), writeBt(), writeOt()):
+/// cached, pruned, rebuilt after the next insert. Free space is cleared up to free_max_range_m
+/// along each ray (longer rays clear their first free_max_range_m only; with free_max_range_m =
+/// max_range_m the map equals octomap's).
+/// A builder is used by one thread at a time: even the const readers fill the tree cache.
 
 #include <Eigen/Geometry>
 #include <memory>
@@ -20,6 +22,9 @@ class CConfigFileBase;
 }
 namespace octomap {
 class OcTree;
+}
+namespace roadslam::mapping::detail {
+class VoxelGrid;
 }
 
 namespace roadslam::mapping {
@@ -45,14 +50,17 @@ struct InsertStats {
   size_t points = 0;         ///< end points used [-]
   size_t occupied_keys = 0;  ///< distinct voxels updated as occupied [-]
   size_t free_keys = 0;      ///< distinct voxels updated as free [-]
+  size_t ray_cells = 0;      ///< cells visited along the rays, repeats included [-]
   double ms = 0;             ///< wall time [ms]
 };
 
-/// Agreement of two maps over the voxels the reference knows (sampled at its leaf centres).
+/// Agreement of two maps over the voxels the reference knows (sampled at its leaf centres), and
+/// the other map's leaves the reference does not know.
 struct Agreement {
   size_t ref_occupied = 0, ref_free = 0;      ///< known leaves of the reference [-]
   double occupied_percent = 0;                ///< of those, also occupied in the other map [%]
   double free_percent = 0;                    ///< of those, also free in the other map [%]
+  size_t other_unknown = 0;                   ///< leaves of the other map unknown to the reference [-]
 };
 
 class OctoMapBuilder {
@@ -64,13 +72,17 @@ class OctoMapBuilder {
 
   /// Our insertion: \p points_lidar in the lidar frame [m], sensor pose \p T_map_lidar.
   InsertStats insert(const std::vector<Eigen::Vector3f>& points_lidar, const Eigen::Isometry3d& T_map_lidar);
-  /// octomap's own OcTree::insertPointCloud (same max range), for comparison and tests.
+  /// octomap's own OcTree::insertPointCloud (same max range; free space up to it, whatever
+  /// free_max_range_m says) on the tree, for comparison and tests. Mixing it with insert() works
+  /// (the grid is re-read from the tree) but is slow.
   InsertStats insertReference(const std::vector<Eigen::Vector3f>& points_lidar, const Eigen::Isometry3d& T_map_lidar);
   void clear();
 
+  /// The map as a pruned octomap tree (materialised on the first read after an insert()).
   const octomap::OcTree& tree() const;
   const OctoMapParams& params() const { return p_; }
-  size_t numLeafs() const;
+  size_t numLeafs() const;   ///< leaves of tree() (pruned) [-]
+  size_t numVoxels() const;  ///< known voxels at the leaf resolution [-]
   /// Writes the max-likelihood binary map (.bt) of a copy, leaving this tree untouched
   /// (OcTree::writeBinaryConst), to a temporary name renamed on success; throws naming the path.
   void writeBt(const std::string& path) const;
@@ -78,8 +90,15 @@ class OctoMapBuilder {
   void writeOt(const std::string& path) const;
 
  private:
+  void materialiseTree() const;
+  void importTree();
+  std::unique_ptr<octomap::OcTree> newTree() const;
+
   OctoMapParams p_;
-  std::unique_ptr<octomap::OcTree> tree_;
+  std::unique_ptr<detail::VoxelGrid> grid_;       ///< authoritative after insert()
+  mutable std::unique_ptr<octomap::OcTree> tree_;  ///< authoritative after insertReference()
+  mutable bool tree_current_ = true;  ///< tree_ holds the grid's content
+  bool grid_current_ = true;          ///< grid_ holds the tree's content
 };
 
 /// Compares \p other with \p reference (see Agreement).
