@@ -134,21 +134,32 @@ std::vector<NdtGrid> buildNdtGrids(const std::vector<Eigen::Vector3d>& points, d
 
 int nearestInGrid(const NdtGrid& g, const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& x,
                   double max_dist2, double& d2) {
-  const double inv = 1.0 / g.resolution_m;
-  const int64_t cx = static_cast<int64_t>(std::floor(x.x() * inv));
-  const int64_t cy = static_cast<int64_t>(std::floor(x.y() * inv));
-  const int64_t cz = static_cast<int64_t>(std::floor(x.z() * inv));
+  const Eigen::Vector3d u = x / g.resolution_m;
+  const Eigen::Vector3d cf(std::floor(u.x()), std::floor(u.y()), std::floor(u.z()));
+  // Squared distance from x to the slab of the neighbour at offset -1, 0, +1 along each axis [m^2]:
+  // a neighbour cell whose box is farther than the best point so far is not looked up.
+  double gap2[3][3];
+  for (int a = 0; a < 3; ++a) {
+    const double lo = (u(a) - cf(a)) * g.resolution_m, hi = g.resolution_m - lo;
+    gap2[a][0] = lo * lo, gap2[a][1] = 0, gap2[a][2] = hi * hi;
+  }
   int best = -1;
   double best_d2 = max_dist2;
-  for (int64_t i = -1; i <= 1; ++i) {
-    for (int64_t j = -1; j <= 1; ++j) {
-      for (int64_t k = -1; k <= 1; ++k) {
-        const int32_t c = g.index.find(voxelKey(cx + i, cy + j, cz + k));
-        if (c < 0) continue;
-        for (uint32_t b = g.bucket_begin[static_cast<size_t>(c)]; b < g.bucket_begin[static_cast<size_t>(c) + 1]; ++b) {
-          const double dd = (points[g.bucket_points[b]] - x).squaredNorm();
-          if (dd <= best_d2) best_d2 = dd, best = static_cast<int>(g.bucket_points[b]);
-        }
+  const auto scan = [&](int i, int j, int k) {
+    if (gap2[0][i + 1] + gap2[1][j + 1] + gap2[2][k + 1] > best_d2) return;
+    const int32_t c = g.index.find(voxelKey(static_cast<int64_t>(cf.x()) + i, static_cast<int64_t>(cf.y()) + j,
+                                            static_cast<int64_t>(cf.z()) + k));
+    if (c < 0) return;
+    for (uint32_t b = g.bucket_begin[static_cast<size_t>(c)]; b < g.bucket_begin[static_cast<size_t>(c) + 1]; ++b) {
+      const double dd = (points[g.bucket_points[b]] - x).squaredNorm();
+      if (dd <= best_d2) best_d2 = dd, best = static_cast<int>(g.bucket_points[b]);
+    }
+  };
+  scan(0, 0, 0);  // own cell first: its best point prunes most neighbours
+  for (int i = -1; i <= 1; ++i) {
+    for (int j = -1; j <= 1; ++j) {
+      for (int k = -1; k <= 1; ++k) {
+        if (i || j || k) scan(i, j, k);
       }
     }
   }

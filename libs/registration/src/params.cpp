@@ -78,7 +78,7 @@ void Params::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, const st
        "max_correction_m", "coarse_stride", "coarse_tolerance_m", "normal_neighbours", "ndt_resolution_m", "ndt_levels", "ndt_outlier_ratio",
        "ndt_neighbour_cells", "ndt_min_points_per_cell", "ndt_max_step_m", "degeneracy_threshold", "degeneracy_lever_m"});
   if (!unknown.empty()) throw std::runtime_error("[" + sec + "] unknown key '" + unknown.front() + "'");
-  if (ndt_resolution_m <= 0 || max_correspondence_distance_m <= 0 || kernel_scale_m <= 0 || ndt_levels < 1 || (ndt_neighbour_cells != 1 && ndt_neighbour_cells != 7) ||
+  if (ndt_resolution_m <= 0 || max_correspondence_distance_m <= 0 || kernel_scale_m <= 0 || ndt_levels < 1 || (ndt_neighbour_cells != 1 && ndt_neighbour_cells != 4 && ndt_neighbour_cells != 7) ||
       ndt_outlier_ratio <= 0 || ndt_outlier_ratio >= 1 || degeneracy_lever_m <= 0) {
     throw std::runtime_error("[" + sec + "] out-of-range value among ndt_resolution_m, ndt_levels, ndt_neighbour_cells, "
                              "ndt_outlier_ratio, max_correspondence_distance_m, kernel_scale_m");

@@ -41,8 +41,9 @@ struct Params {
   double ndt_resolution_m = 1.5;               ///< NDT finest cell size [m]; >= 3x the map voxel size
   int ndt_levels = 2;                          ///< NDT multi-resolution levels (coarsest = res*2^(n-1)) [-]
   double ndt_outlier_ratio = 0.55;             ///< NDT outlier mixture weight (Magnusson 2009 eq. 6.7) [-]
-  int ndt_neighbour_cells = 7;                 ///< NDT finest level: cells scored per point, 7 (own + faces) or 1
-                                               ///< (own: 25% faster, local minima seen in a corridor); coarse levels use 7 [-]
+  int ndt_neighbour_cells = 4;                 ///< NDT finest level: cells scored per point, 7 (own + 6 faces), 4 (own +
+                                               ///< the nearer face per axis: 20% faster, same error on KITTI) or 1 (own:
+                                               ///< local minima seen in a corridor); coarse levels use 7 [-]
   int ndt_min_points_per_cell = 5;             ///< NDT cells with fewer points are ignored [-]
   double ndt_max_step_m = 0.5;                 ///< NDT Newton step length limit [m, mixed se(3) norm]
   double degeneracy_threshold = 0.02;          ///< normalized Hessian eigenvalue below => weak direction [-]
