@@ -79,6 +79,19 @@ void fillGrid(const Params& p, const std::vector<double>& free_r, const Boundary
     for (const auto& v : o.hull) put(v.x, v.y, CostGrid::kObstacle);
 }
 
+/// The points of \p pts within \p gate (lateral) of the polyline \p line (vertices ascending in x).
+std::vector<Vec2> nearLine(const std::vector<Vec2>& pts, const std::vector<Vec2>& line, double gate) {
+  std::vector<Vec2> out;
+  for (const auto& q : pts) {
+    const auto it = std::lower_bound(line.begin(), line.end(), q.x, [](const Vec2& v, double x) { return v.x < x; });
+    if (it == line.begin() || it == line.end()) continue;
+    const Vec2 &a = *(it - 1), &b = *it;
+    const double y = b.x > a.x ? a.y + (b.y - a.y) * (q.x - a.x) / (b.x - a.x) : a.y;
+    if (std::abs(q.y - y) <= gate) out.push_back(q);
+  }
+  return out;
+}
+
 /// Vertices on the road surface, so a rolled or pitched sensor does not shift them in the map.
 void toMap(const Eigen::Isometry3d& T_map_lidar, double sensor_height, SideBoundary& s) {
   for (const auto& v : s.polyline_vehicle) {
@@ -89,9 +102,10 @@ void toMap(const Eigen::Isometry3d& T_map_lidar, double sensor_height, SideBound
 
 }  // namespace
 
-BoundaryDetector::BoundaryDetector(Params p) : p_(std::move(p)) {}
+BoundaryDetector::BoundaryDetector(Params p) : p_(std::move(p)), curb_map_(p_.curb_map_cell_m) {}
 
-SideBoundary BoundaryDetector::track(SideBoundary fresh, Track& tr, const Eigen::Isometry3d& T_map_lidar) const {
+SideBoundary BoundaryDetector::track(SideBoundary fresh, const std::vector<Vec2>& pts, int side, std::mt19937& rng,
+                                     Track& tr, const Eigen::Isometry3d& T_map_lidar) const {
   const Eigen::Isometry3d T_lidar_map = T_map_lidar.inverse();
   std::vector<Vec2> held;  // the track in the current vehicle frame
   if (tr.valid) {
@@ -106,6 +120,12 @@ SideBoundary BoundaryDetector::track(SideBoundary fresh, Track& tr, const Eigen:
     for (const auto& h : held) {
       if (h.x < p_.band_min_x_m || h.x > p_.band_max_x_m) continue;
       dev += std::abs(detail::polyEval(fresh.coeffs, h.x) - h.y), ++n;
+    }
+    // Continuity: while the curb map still supports the tracked line, a fit elsewhere (a sidewalk's
+    // far edge gathering more bins over many sweeps) does not replace it.
+    if (n > 0 && dev / n > p_.track_gate_m) {
+      SideBoundary alt = detail::fitSide(nearLine(pts, held, p_.track_gate_m), side, p_, rng);
+      if (alt.found) fresh = std::move(alt), dev = 0;
     }
     // Only a better-supported track may veto a fit: a weak track must not lock out the real curb.
     if (n > 0 && dev / n > p_.track_gate_m && tr.held < p_.max_hold_frames && fresh.confidence < tr.confidence) {
@@ -170,8 +190,8 @@ BoundaryFrame BoundaryDetector::process(const Scan& scan, const Eigen::Isometry3
     f.curb_points.push_back({q.x, q.y});
     curbs_map.push_back(T_map_lidar * Eigen::Vector3d(q.x, q.y, q.z));
   }
-  memory_map_.push_back(std::move(curbs_map));
-  while (static_cast<int>(memory_map_.size()) > p_.memory_frames) memory_map_.pop_front();
+  curb_map_.insert(curbs_map, f.index);
+  curb_map_.prune(T_map_lidar, -p_.fit_min_x_m, p_.curb_map_radius_m, f.index, static_cast<size_t>(p_.memory_frames));
 
   if (f.points == 0 || f.ground_points == 0) {
     f.status = f.points == 0 ? "no_points" : "no_ground";
@@ -184,15 +204,9 @@ BoundaryFrame BoundaryDetector::process(const Scan& scan, const Eigen::Isometry3
       f.left = detail::fitSideThesis(f.obstacles, +1, p_, rng);
       f.right = detail::fitSideThesis(f.obstacles, -1, p_, rng);
     } else {
-      const Eigen::Isometry3d T_lidar_map = T_map_lidar.inverse();
-      std::vector<Vec2> pts;
-      for (const auto& frame : memory_map_)
-        for (const auto& m : frame) {
-          const Eigen::Vector3d v = T_lidar_map * m;
-          pts.push_back({v.x(), v.y()});
-        }
-      f.left = track(detail::fitSide(pts, +1, p_, rng), tracks_[0], T_map_lidar);
-      f.right = track(detail::fitSide(pts, -1, p_, rng), tracks_[1], T_map_lidar);
+      const std::vector<Vec2> pts = curb_map_.inVehicle(T_map_lidar, p_.curb_min_sightings);
+      f.left = track(detail::fitSide(pts, +1, p_, rng), pts, +1, rng, tracks_[0], T_map_lidar);
+      f.right = track(detail::fitSide(pts, -1, p_, rng), pts, -1, rng, tracks_[1], T_map_lidar);
     }
     toMap(T_map_lidar, p_.ground.sensor_height_m, f.left);
     toMap(T_map_lidar, p_.ground.sensor_height_m, f.right);

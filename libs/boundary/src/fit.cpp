@@ -60,6 +60,31 @@ Score score(const std::vector<Vec2>& pts, const std::vector<double>& c, const Pa
   return s;
 }
 
+/// The polyline over the band along the stretch of evidence spanning most of it: gaps between inliers up
+/// to max_bridge_m are bridged (curb seen on both sides of a parked car), no farther than
+/// max_extrapolation_m beyond the last inlier. Bridged length lowers the confidence (half weight).
+void spanPolyline(std::vector<Vec2> inl, const std::vector<double>& c, const Params& p, SideBoundary& out) {
+  std::sort(inl.begin(), inl.end(), [](const Vec2& a, const Vec2& b) { return a.x < b.x; });
+  // Stretches of inliers separated by more than max_bridge_m; report the one spanning most of the band.
+  double x0 = 0, x1 = -1;
+  for (size_t b = 0, i = 1; i <= inl.size(); ++i) {
+    if (i < inl.size() && inl[i].x - inl[i - 1].x <= p.max_bridge_m) continue;
+    const double a0 = std::max(p.band_min_x_m, inl[b].x - p.max_extrapolation_m);
+    const double a1 = std::min(p.band_max_x_m, inl[i - 1].x + p.max_extrapolation_m);
+    if (a1 - a0 > x1 - x0) x0 = a0, x1 = a1;
+    b = i;
+  }
+  int bridged = 0, total = 0;
+  for (double x = x0; x <= x1 + 1e-9; x += p.polyline_step_m) {
+    out.polyline_vehicle.push_back({x, polyEval(c, x)});
+    const auto it = std::lower_bound(inl.begin(), inl.end(), x - p.bin_m, [](const Vec2& q, double v) { return q.x < v; });
+    const bool supported = it != inl.end() && it->x <= x + p.bin_m;
+    bridged += !supported, ++total;
+  }
+  out.bridged_m = bridged * p.polyline_step_m;
+  if (total > 0) out.confidence *= 1.0 - 0.5 * bridged / total;
+}
+
 /// RANSAC (Fischler & Bolles 1981) over minimal samples, scored by covered distance bins so a long
 /// thin curb wins over a dense short blob; refined by least squares on the inliers.
 SideBoundary ransac(const std::vector<Vec2>& pts, int side, int degree, int min_bins, const Params& p,
@@ -107,10 +132,8 @@ SideBoundary ransac(const std::vector<Vec2>& pts, int side, int degree, int min_
   out.reason = "ok";
   out.coeffs = best_c;
   out.inliers = static_cast<int>(inl.size());
-  double xmin = 1e9, xmax = -1e9;
   std::set<int> band_bins;
   for (const auto& q : inl) {
-    xmin = std::min(xmin, q.x), xmax = std::max(xmax, q.x);
     if (q.x >= p.band_min_x_m && q.x <= p.band_max_x_m) band_bins.insert(static_cast<int>(std::floor(q.x / p.bin_m)));
   }
   if (static_cast<int>(band_bins.size()) < p.min_band_bins) {
@@ -124,9 +147,7 @@ SideBoundary ransac(const std::vector<Vec2>& pts, int side, int degree, int min_
   }
   const double band_bins_total = std::ceil((p.band_max_x_m - p.band_min_x_m) / p.bin_m);
   out.confidence = std::min(1.0, band_bins.size() / band_bins_total) * out.inliers / std::max(1, out.candidates);
-  // Polyline over the band, no further than 5 m beyond the inliers (no long extrapolation).
-  const double x0 = std::max(p.band_min_x_m, xmin - 5.0), x1 = std::min(p.band_max_x_m, xmax + 5.0);
-  for (double x = x0; x <= x1 + 1e-9; x += p.polyline_step_m) out.polyline_vehicle.push_back({x, polyEval(best_c, x)});
+  spanPolyline(inl, best_c, p, out);
   if (out.polyline_vehicle.size() < 2) {
     out.found = false;
     out.reason = std::string("the ") + sideName(side) + " boundary lies outside the reported band";

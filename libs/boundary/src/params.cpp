@@ -25,7 +25,8 @@ auto doubleFields(P& p) {
       {"band_max_x_m", &p.band_max_x_m}, {"fit_min_x_m", &p.fit_min_x_m},
       {"fit_max_x_m", &p.fit_max_x_m}, {"min_lateral_m", &p.min_lateral_m},
       {"max_lateral_m", &p.max_lateral_m}, {"ransac_inlier_m", &p.ransac_inlier_m},
-      {"bin_m", &p.bin_m}, {"track_gate_m", &p.track_gate_m}, {"hold_decay", &p.hold_decay}, {"polyline_step_m", &p.polyline_step_m},
+      {"bin_m", &p.bin_m}, {"curb_map_cell_m", &p.curb_map_cell_m}, {"curb_map_radius_m", &p.curb_map_radius_m},
+      {"max_extrapolation_m", &p.max_extrapolation_m}, {"max_bridge_m", &p.max_bridge_m}, {"track_gate_m", &p.track_gate_m}, {"hold_decay", &p.hold_decay}, {"polyline_step_m", &p.polyline_step_m},
       {"grid_resolution_m", &p.grid_resolution_m}, {"grid_size_m", &p.grid_size_m}};
 }
 template <class P>
@@ -35,7 +36,7 @@ auto intFields(P& p) {
       {"curb_reach_cells", &p.curb_reach_cells}, {"freespace_sectors", &p.freespace_sectors},
       {"poly_degree", &p.poly_degree}, {"ransac_iterations", &p.ransac_iterations},
       {"ransac_seed", &p.ransac_seed}, {"min_bins", &p.min_bins}, {"min_band_bins", &p.min_band_bins},
-      {"memory_frames", &p.memory_frames}, {"max_hold_frames", &p.max_hold_frames}};
+      {"memory_frames", &p.memory_frames}, {"curb_min_sightings", &p.curb_min_sightings}, {"max_hold_frames", &p.max_hold_frames}};
 }
 
 void require(bool ok, const std::string& section, const std::string& key, const std::string& what) {
@@ -63,7 +64,7 @@ void Params::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const 
           "needs 0 < curb_min_jump_m < curb_max_jump_m");
   require(band_max_x_m > band_min_x_m, s, "band_max_x_m", "must exceed band_min_x_m");
   require(poly_degree == 1 || poly_degree == 2, s, "poly_degree", "must be 1 or 2");
-  require(bin_m > 0 && polyline_step_m > 0 && grid_resolution_m > 0 && cluster_cell_m > 0, s, "bin_m",
+  require(bin_m > 0 && polyline_step_m > 0 && grid_resolution_m > 0 && cluster_cell_m > 0 && curb_map_cell_m > 0, s, "bin_m",
           "cell sizes and steps must be > 0");
   require(memory_frames >= 1 && ransac_iterations >= 1 && freespace_sectors >= 8, s, "memory_frames",
           "memory_frames, ransac_iterations >= 1 and freespace_sectors >= 8");

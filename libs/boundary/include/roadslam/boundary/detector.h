@@ -5,15 +5,17 @@
 /// along each ring (a 0.05-0.30 m jump between two flat pieces, nothing tall in the same cell) ->
 /// obstacle points (0.3-3 m above ground) clustered on a grid, each with a convex hull and an oriented
 /// rectangle -> free space by polar ray casting up to the first curb or obstacle -> left/right
-/// boundary: RANSAC polynomial over the curb points of the last memory_frames sweeps (kept in the map
-/// frame, moved into the current vehicle frame), scored by the distance bins it covers; a side not
-/// seen (or jumping away from its track) is held from the previous sweeps, moved with the vehicle,
-/// for max_hold_frames, and says so in its reason.
+/// boundary: RANSAC polynomial over the curb evidence of many sweeps (a CurbMap in the map frame,
+/// aged out behind the vehicle, moved into the current vehicle frame), scored by the distance bins it
+/// covers, gaps between curb stretches bridged up to max_bridge_m; a side not seen (or jumping away
+/// from its track) is held from the previous sweeps, moved with the vehicle, for max_hold_frames,
+/// and says so in its reason.
 
 #include <array>
-#include <deque>
+#include <random>
 #include <vector>
 
+#include "roadslam/boundary/curb_map.h"
 #include "roadslam/boundary/params.h"
 #include "roadslam/boundary/types.h"
 #include "roadslam/common/scan.h"
@@ -41,13 +43,15 @@ class BoundaryDetector {
   BoundaryFrame process(const Scan& scan, const Eigen::Isometry3d& T_map_lidar, double stamp_s,
                         const std::vector<Eigen::Vector3f>* local_map_map = nullptr);
   const Params& params() const { return p_; }
+  /// The accumulated curb evidence (map frame).
+  const CurbMap& curbMap() const { return curb_map_; }
   /// The labelling of the last processed sweep (its points first, then any local-map points).
   const Labelling& lastLabelling() const { return last_; }
 
  private:
   Params p_;
   size_t frames_ = 0;
-  std::deque<std::vector<Eigen::Vector3d>> memory_map_;  ///< curb points per past sweep, map frame
+  CurbMap curb_map_;  ///< curb evidence of past sweeps, map frame
   Labelling last_;
   /// Per side (0 left, 1 right): the last accepted boundary, map frame, and sweeps held since.
   struct Track {
@@ -57,7 +61,8 @@ class BoundaryDetector {
     bool valid = false;
   };
   std::array<Track, 2> tracks_;
-  SideBoundary track(SideBoundary fresh, Track& tr, const Eigen::Isometry3d& T_map_lidar) const;
+  SideBoundary track(SideBoundary fresh, const std::vector<Vec2>& pts, int side, std::mt19937& rng, Track& tr,
+                     const Eigen::Isometry3d& T_map_lidar) const;
 };
 
 }  // namespace roadslam::boundary

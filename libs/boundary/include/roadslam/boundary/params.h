@@ -61,8 +61,14 @@ struct Params {
   int min_band_bins = 3;                ///< ... and at least this many of them in the band ahead [-]
   double polyline_step_m = 1.0;         ///< output polyline vertex spacing [m]
 
-  // Time: curb points of recent sweeps, kept in the map frame and moved with the vehicle.
-  int memory_frames = 10;               ///< sweeps of curb points fitted together [-]
+  // Time: curb evidence of many sweeps in a CurbMap (map frame), moved with the vehicle; cells
+  // behind fit_min_x_m are dropped.
+  int memory_frames = 300;              ///< a curb cell not seen again for this many sweeps is dropped [-]
+  double curb_map_cell_m = 0.2;         ///< cell of the curb map (map frame) [m]
+  double curb_map_radius_m = 60.0;      ///< cells farther from the vehicle are dropped [m]
+  int curb_min_sightings = 1;           ///< cells seen by fewer sweeps are not fitted [-]
+  double max_extrapolation_m = 5.0;     ///< the polyline ends this far beyond the last evidence [m]
+  double max_bridge_m = 12.0;           ///< longest gap between curb stretches the polyline spans [m]
   int max_hold_frames = 10;             ///< a side not seen is held (moved with the vehicle) this long [-]
   double track_gate_m = 0.5;            ///< a new fit farther than this from the held side is an outlier [m]
   double hold_decay = 0.85;             ///< confidence factor per held sweep [-]

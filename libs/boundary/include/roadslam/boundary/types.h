@@ -32,6 +32,7 @@ struct SideBoundary {
   std::vector<Vec3> polyline_map;       ///< the same vertices on the road (sensor_height below the lidar), map frame [m]
   int candidates = 0;                   ///< curb points on this side [-]
   int inliers = 0;                      ///< of which fitted [-]
+  double bridged_m = 0;                 ///< polyline length with no curb evidence within bin_m (gaps bridged, ends extrapolated) [m]
 };
 
 /// A cluster of obstacle points (parked or moving car, wall, pole, ...), vehicle frame.

@@ -1,0 +1,39 @@
+#include "roadslam/boundary/curb_map.h"
+
+#include "internal.h"
+
+namespace roadslam::boundary {
+
+void CurbMap::insert(const std::vector<Eigen::Vector3d>& pts_map, size_t frame) {
+  for (const auto& m : pts_map) {
+    Cell& c = cells_[detail::cellKey(m.x(), m.y(), cell_m_)];
+    c.sum += m, ++c.points;
+    if (c.sightings == 0 || c.last_frame != frame) ++c.sightings;
+    c.last_frame = frame;
+  }
+}
+
+void CurbMap::prune(const Eigen::Isometry3d& T_map_lidar, double keep_behind_m, double keep_radius_m, size_t frame,
+                    size_t max_age_frames) {
+  const Eigen::Isometry3d T_lidar_map = T_map_lidar.inverse();
+  for (auto it = cells_.begin(); it != cells_.end();) {
+    const Eigen::Vector3d v = T_lidar_map * (it->second.sum / it->second.points);
+    const bool drop = v.x() < -keep_behind_m || v.head<2>().norm() > keep_radius_m ||
+                      frame - it->second.last_frame > max_age_frames;
+    it = drop ? cells_.erase(it) : std::next(it);
+  }
+}
+
+std::vector<Vec2> CurbMap::inVehicle(const Eigen::Isometry3d& T_map_lidar, int min_sightings) const {
+  const Eigen::Isometry3d T_lidar_map = T_map_lidar.inverse();
+  std::vector<Vec2> out;
+  out.reserve(cells_.size());
+  for (const auto& [key, c] : cells_) {
+    if (c.sightings < min_sightings) continue;
+    const Eigen::Vector3d v = T_lidar_map * (c.sum / c.points);
+    out.push_back({v.x(), v.y()});
+  }
+  return out;
+}
+
+}  // namespace roadslam::boundary

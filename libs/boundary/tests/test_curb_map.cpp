@@ -1,0 +1,89 @@
+// CurbMap bookkeeping, and the detector driving past parked cars: the curb seen through the gaps
+// from many poses is found where one sweep alone cannot see enough of it.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "roadslam/boundary/curb_map.h"
+#include "roadslam/boundary/detector.h"
+#include "synthetic_road.h"
+
+using namespace roadslam::boundary;
+
+namespace {
+
+Eigen::Isometry3d at(double x, double y = 0, double yaw = 0) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  T.translation() = Eigen::Vector3d(x, y, 0);
+  return T;
+}
+
+}  // namespace
+
+TEST(CurbMap, CellsAreMeansSeenFromTheVehicle) {
+  CurbMap m(0.2);
+  m.insert({{12.05, 3.05, -1.8}, {12.15, 3.15, -1.8}}, 0);  // one cell, mean (12.1, 3.1)
+  m.insert({{20.1, -4.1, -1.8}}, 0);
+  ASSERT_EQ(m.size(), 2u);
+  const auto v = m.inVehicle(at(10, 1, M_PI / 2));  // vehicle at (10, 1) heading +y
+  ASSERT_EQ(v.size(), 2u);
+  bool first = false;
+  for (const auto& q : v) first = first || (std::abs(q.x - 2.1) < 1e-9 && std::abs(q.y + 2.1) < 1e-9);
+  EXPECT_TRUE(first) << "map (12.1, 3.1) seen from (10, 1) heading +y is (2.1, -2.1)";
+}
+
+TEST(CurbMap, SightingsCountSweepsNotPoints) {
+  CurbMap m(0.2);
+  m.insert({{5.01, 1.01, 0}, {5.02, 1.02, 0}, {5.03, 1.03, 0}}, 0);
+  EXPECT_EQ(m.inVehicle(at(0), 2).size(), 0u);
+  m.insert({{5.04, 1.04, 0}}, 1);
+  EXPECT_EQ(m.inVehicle(at(0), 2).size(), 1u);
+}
+
+TEST(CurbMap, PrunesBehindFarAndOld) {
+  CurbMap m(0.2);
+  m.insert({{-11, 3, 0}, {-9, 3, 0}, {70, 0, 0}, {20, 3, 0}}, 0);
+  m.prune(at(0), 10.0, 60.0, 0, 300);
+  EXPECT_EQ(m.size(), 2u);  // (-11, 3) is behind, (70, 0) too far
+  m.insert({{25, 3, 0}}, 5);
+  m.prune(at(0), 10.0, 60.0, 5, 4);  // unseen for 5 sweeps > 4
+  ASSERT_EQ(m.size(), 1u);
+  EXPECT_NEAR(m.inVehicle(at(0)).front().x, 25.0, 1e-9);
+}
+
+// Parked cars on the right (0.2 m off the curb, 6.5 m slots, 5 of 12 taken as on the shipped urban loop) along a straight road;
+// the vehicle drives 1 m per sweep. One sweep sees the curb only through the gaps.
+TEST(CurbMap, DrivingPastParkedCarsFindsTheHiddenCurb) {
+  const bool taken[] = {true, false, false, true, true, false, false, true, false, true, false, false};
+  auto sweepAt = [&](double X) {
+    test::Road r;
+    for (int k = 0; k < 12; ++k)
+      if (taken[k]) r.boxes.push_back({k * 6.5 + 1.0 - X, k * 6.5 + 5.5 - X, -3.3, -1.5, -1.9, -0.4});
+    return test::castSweep(r, static_cast<unsigned>(X + 1));
+  };
+  Params one, many;
+  one.ground.sensor_height_m = many.ground.sensor_height_m = 1.9;
+  one.memory_frames = 0;  // only this sweep's evidence (cells not seen now are dropped)
+  one.max_hold_frames = 0;
+  many.max_hold_frames = 0;  // no holding: what is found comes from evidence
+  BoundaryDetector d_one(one), d_many(many);
+  int found_one = 0, found_many = 0;
+  double err = 0;
+  for (double X = 0; X < 30; X += 1.0) {
+    const auto s = sweepAt(X);
+    const auto a = d_one.process(s, at(X), 0.1 * X);
+    const auto b = d_many.process(s, at(X), 0.1 * X);
+    found_one += a.right.found;
+    found_many += b.right.found;
+    if (b.right.found)
+      for (const auto& v : b.right.polyline_vehicle) err = std::max(err, std::abs(v.y + 3.5));
+  }
+  // Measured: one sweep 14 of 30, accumulated 20 of 30; the curb behind the cars at slots 3-4
+  // comes into view only within ~6 m of it, so some sweeps see nothing ahead either way.
+  EXPECT_LE(found_one, 16) << "the cars should hide the curb from many single sweeps";
+  EXPECT_GE(found_many, 19);
+  EXPECT_GE(found_many, found_one + 4);
+  EXPECT_LT(err, 0.10);
+  EXPECT_GT(d_many.curbMap().size(), 0u);
+}
