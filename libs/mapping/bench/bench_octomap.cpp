@@ -139,6 +139,8 @@ void report() {
     ours.insert(c, Eigen::Isometry3d::Identity());
     ref.insertReference(c, Eigen::Isometry3d::Identity());
     const auto a = mapping::compareOctoMaps(ref.tree(), ours.tree());
+    const double grid_mb = static_cast<double>(ours.gridBytes()) / 1e6;
+    const size_t voxels = ours.numVoxels(), leafs = ours.numLeafs();
     const Figures &o = g_fig[{which, kOurs}], &r = g_fig[{which, kOctomap}];
     std::printf("%s (%zu points, 0.2 m, max range 60 m, free space to 60 m as octomap), per keyframe:\n"
                 "  ours %.1f ms CPU (%.1f ms wall), octomap insertPointCloud %.1f ms CPU (%.1f ms wall): "
@@ -148,6 +150,8 @@ void report() {
                 name(which), c.size(), o.cpu_ms, o.wall_ms, r.cpu_ms, r.wall_ms, r.cpu_ms / std::max(o.cpu_ms, 1e-9),
                 r.wall_ms / std::max(o.wall_ms, 1e-9), o.last.ray_cells, o.last.free_keys, o.last.occupied_keys,
                 a.occupied_percent, a.ref_occupied, a.free_percent, a.ref_free, a.other_unknown);
+    std::printf("  ours: grid %.1f MB for %zu voxels; materialised octree %zu leaves (pruned)\n", grid_mb, voxels,
+                leafs);
     if (g_fig.count({which, kOursShipped})) {
       const Figures& s = g_fig[{which, kOursShipped}];
       std::printf("  shipped [octomap] (free space to 10 m): ours %.1f ms CPU (%.1f ms wall), %zu ray cells\n",

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <vector>
 
 // OcTreeKey.h uses uint16_t and size_t without including their headers
@@ -42,30 +43,8 @@ class VoxelGrid {
   explicit VoxelGrid(LogOddsModel model);
 
   void clear();
-  /// Starts a scan: every voxel may be updated once again.
-  void beginScan();
-
-  /// Adds \p delta to voxel \p k (then clamps, OccupancyOcTreeBase::updateNodeLogOdds) unless it
-  /// was already updated in this scan. Returns true when it was updated.
-  bool update(const octomap::OcTreeKey& k, float delta) {
-    VoxelBlock& b = block(k);
-    const unsigned i = voxelIndex(k), w = i >> 6;
-    const uint64_t bit = uint64_t{1} << (i & 63);
-    if (b.touched[w] & bit) return false;
-    b.touched[w] |= bit;
-    float& v = b.log_odds[i];
-    if (!(b.known[w] & bit)) {
-      b.known[w] |= bit;
-      v = 0;
-      ++known_;
-    }
-    v += delta;
-    if (v < model_.min) v = model_.min;
-    else if (v > model_.max) v = model_.max;
-    return true;
-  }
-  bool hit(const octomap::OcTreeKey& k) { return update(k, model_.hit); }
-  bool miss(const octomap::OcTreeKey& k) { return update(k, model_.miss); }
+  /// Starts a scan: every voxel may be updated once again (blockOf() clears the touched masks).
+  void beginScan() { ++scan_; }
 
   /// Sets voxel \p k to \p log_odds (known), outside any scan bookkeeping.
   void set(const octomap::OcTreeKey& k, float log_odds);
@@ -74,10 +53,10 @@ class VoxelGrid {
   void forEachKnown(const std::function<void(const octomap::OcTreeKey&, float)>& fn) const;
 
   size_t numKnown() const { return known_; }
-  size_t numBlocks() const { return blocks_.size(); }
+  size_t numBlocks() const { return block_keys_.size(); }
   size_t memoryBytes() const;  ///< blocks and hash table [bytes]
+  const LogOddsModel& model() const { return model_; }
 
- private:
   static uint64_t blockKey(const octomap::OcTreeKey& k) {
     constexpr unsigned s = VoxelBlock::kBits, w = 16 - VoxelBlock::kBits;
     return static_cast<uint64_t>(k[0] >> s) | (static_cast<uint64_t>(k[1] >> s) << w) |
@@ -87,27 +66,73 @@ class VoxelGrid {
     constexpr unsigned m = VoxelBlock::kSide - 1, s = VoxelBlock::kBits;
     return (k[0] & m) | ((k[1] & m) << s) | ((k[2] & m) << (2 * s));
   }
-  /// The block of \p k, created when new; consecutive ray cells mostly share it (cached).
-  VoxelBlock& block(const octomap::OcTreeKey& k) {
-    const uint64_t bk = blockKey(k);
-    if (bk != last_key_) {
-      last_ = &findOrCreate(bk);
-      last_key_ = bk;
-    }
-    return *last_;
-  }
-  VoxelBlock& findOrCreate(uint64_t bk);
+  /// The block with key \p bk, created when new; its touched mask belongs to the current scan.
+  /// The reference stays valid until the next blockOf().
+  VoxelBlock& blockOf(uint64_t bk);
+  void addKnown(size_t n) { known_ += n; }
+
+ private:
+  static constexpr unsigned kPageBits = 6;  ///< 64 blocks per page: blocks never move
+  struct Slot {
+    uint64_t key;    ///< block key, or ~0 when empty
+    uint32_t block;  ///< index of the block
+  };
+  VoxelBlock& block(size_t i) { return pages_[i >> kPageBits][i & ((1u << kPageBits) - 1)]; }
+  const VoxelBlock& block(size_t i) const { return pages_[i >> kPageBits][i & ((1u << kPageBits) - 1)]; }
   void grow();
 
   LogOddsModel model_;
-  std::vector<VoxelBlock> blocks_;
-  std::vector<uint64_t> block_keys_;  ///< key of blocks_[i] [-]
-  std::vector<uint64_t> slot_key_;    ///< hash slots: block key or kEmpty
-  std::vector<uint32_t> slot_block_;  ///< index into blocks_
+  std::vector<std::unique_ptr<VoxelBlock[]>> pages_;
+  std::vector<uint64_t> block_keys_;  ///< key of block i [-]
+  std::vector<Slot> slots_;           ///< open addressing, linear probing, load <= 1/2
   uint32_t scan_ = 0;
   size_t known_ = 0;
-  uint64_t last_key_;
-  VoxelBlock* last_ = nullptr;
+};
+
+/// One scan's updates. Lives on the caller's stack, so its block cache and sensor model stay in
+/// registers across the ray loop (the grid's members would be reloaded after every store).
+class ScanUpdate {
+ public:
+  explicit ScanUpdate(VoxelGrid& g) : grid_(g), model_(g.model()) { g.beginScan(); }
+  ~ScanUpdate() { grid_.addKnown(new_known_); }
+  ScanUpdate(const ScanUpdate&) = delete;
+  ScanUpdate& operator=(const ScanUpdate&) = delete;
+
+  bool hit(const octomap::OcTreeKey& k) { return update(k, model_.hit); }
+  bool miss(const octomap::OcTreeKey& k) { return update(k, model_.miss); }
+
+  /// Adds \p delta to voxel \p k, then clamps (OccupancyOcTreeBase::updateNodeLogOdds), unless
+  /// it was already updated in this scan. Returns true when it was updated.
+  bool update(const octomap::OcTreeKey& k, float delta) {
+    const uint64_t bk = VoxelGrid::blockKey(k);
+    if (bk != key_) {  // consecutive ray cells mostly share a block
+      block_ = &grid_.blockOf(bk);
+      key_ = bk;
+    }
+    VoxelBlock& b = *block_;
+    const unsigned i = VoxelGrid::voxelIndex(k), w = i >> 6;
+    const uint64_t bit = uint64_t{1} << (i & 63);
+    if (b.touched[w] & bit) return false;
+    b.touched[w] |= bit;
+    float v = b.log_odds[i];
+    if (!(b.known[w] & bit)) {  // a new octomap node starts at log-odds 0
+      b.known[w] |= bit;
+      v = 0;
+      ++new_known_;
+    }
+    v += delta;
+    if (v < model_.min) v = model_.min;
+    else if (v > model_.max) v = model_.max;
+    b.log_odds[i] = v;
+    return true;
+  }
+
+ private:
+  VoxelGrid& grid_;
+  const LogOddsModel model_;
+  uint64_t key_ = ~uint64_t{0};
+  VoxelBlock* block_ = nullptr;
+  size_t new_known_ = 0;
 };
 
 /// Calls \p visit(key) for every cell OcTreeBaseImpl::computeRayKeys(origin, end) returns, in
@@ -155,14 +180,31 @@ bool castRay(const octomap::point3d& origin, const octomap::point3d& end, double
       t_max[i] = t_delta[i] = std::numeric_limits<double>::max();
     }
   }
+  // the same steps as octomap's loop, with the state in scalars (no indexed stack arrays)
+  double tx = t_max[0], ty = t_max[1], tz = t_max[2];
+  uint16_t cx = current[0], cy = current[1], cz = current[2];
+  const auto sx = static_cast<uint16_t>(step[0]), sy = static_cast<uint16_t>(step[1]),
+             sz = static_cast<uint16_t>(step[2]);  // added modulo 2^16 as octomap's key_type
   for (;;) {
-    const unsigned dim = t_max[0] < t_max[1] ? (t_max[0] < t_max[2] ? 0 : 2) : (t_max[1] < t_max[2] ? 1 : 2);
-    current[dim] = static_cast<uint16_t>(current[dim] + step[dim]);
-    t_max[dim] += t_delta[dim];
-    if (current == key_end) break;
+    if (tx < ty) {
+      if (tx < tz) {
+        cx = static_cast<uint16_t>(cx + sx);
+        tx += t_delta[0];
+      } else {
+        cz = static_cast<uint16_t>(cz + sz);
+        tz += t_delta[2];
+      }
+    } else if (ty < tz) {
+      cy = static_cast<uint16_t>(cy + sy);
+      ty += t_delta[1];
+    } else {
+      cz = static_cast<uint16_t>(cz + sz);
+      tz += t_delta[2];
+    }
+    if (cx == key_end[0] && cy == key_end[1] && cz == key_end[2]) break;
     // past the end point: discretisation error missed key_end (octomap stops here too)
-    if (std::min(std::min(t_max[0], t_max[1]), t_max[2]) > length) break;
-    visit(current);
+    if (std::min(std::min(tx, ty), tz) > length) break;
+    visit(octomap::OcTreeKey(cx, cy, cz));
   }
   return true;
 }

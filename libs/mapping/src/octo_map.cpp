@@ -130,6 +130,7 @@ const octomap::OcTree& OctoMapBuilder::tree() const {
   return *tree_;
 }
 size_t OctoMapBuilder::numLeafs() const { return tree().getNumLeafNodes(); }
+size_t OctoMapBuilder::gridBytes() const { return grid_->memoryBytes(); }
 size_t OctoMapBuilder::numVoxels() const {
   if (grid_current_) return grid_->numKnown();
   size_t n = 0;  // after insertReference(): the tree's leaves, pruned ones counted per voxel
@@ -146,8 +147,7 @@ InsertStats OctoMapBuilder::insert(const std::vector<Eigen::Vector3f>& points_li
   const std::vector<octomap::point3d> pts = toMap(points_lidar, T_map_lidar);
   const octomap::point3d origin = toPoint(T_map_lidar.translation());
   const double factor = 1.0 / p_.resolution_m;
-  detail::VoxelGrid& g = *grid_;
-  g.beginScan();
+  detail::ScanUpdate g(*grid_);
   // hits first: a voxel holding an end point is never freed by the same scan (computeUpdate)
   octomap::OcTreeKey key;
   for (const auto& p : pts) {
@@ -157,9 +157,10 @@ InsertStats OctoMapBuilder::insert(const std::vector<Eigen::Vector3f>& points_li
   }
   // then one ray per end point (as OccupancyOcTreeBase::computeUpdate), ending at the point,
   // or at free_max_range_m / max_range_m along it; the touched bit keeps one update per voxel
+  size_t cells = 0, freed = 0;  // locals, not st's fields: kept in registers in the hot loop
   const auto visit = [&](const octomap::OcTreeKey& k) {
-    ++st.ray_cells;
-    if (g.miss(k)) ++st.free_keys;
+    ++cells;
+    freed += g.miss(k);
   };
   for (const auto& p : pts) {
     const double range = (p - origin).norm();
@@ -171,6 +172,8 @@ InsertStats OctoMapBuilder::insert(const std::vector<Eigen::Vector3f>& points_li
       detail::castRay(origin, end, p_.resolution_m, visit);
     }
   }
+  st.ray_cells = cells;
+  st.free_keys = freed;
   tree_current_ = false;
   st.ms = msSince(t0);
   return st;

@@ -83,6 +83,7 @@ class OctoMapBuilder {
   const OctoMapParams& params() const { return p_; }
   size_t numLeafs() const;   ///< leaves of tree() (pruned) [-]
   size_t numVoxels() const;  ///< known voxels at the leaf resolution [-]
+  size_t gridBytes() const;  ///< memory held by the voxel grid [bytes]
   /// Writes the max-likelihood binary map (.bt) of a copy, leaving this tree untouched
   /// (OcTree::writeBinaryConst), to a temporary name renamed on success; throws naming the path.
   void writeBt(const std::string& path) const;
