@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <memory>
 
 #include "roadslam/datasets/kitti_scans.h"
 #include "roadslam/mapping/octo_map.h"
@@ -29,21 +30,40 @@ namespace {
 
 using sim::toEigen;
 
-Cloud simCloud() {
+struct Keyframe {
+  Cloud points_lidar;  ///< deskewed with the true motion, lidar frame [m]
+  Eigen::Isometry3d T_map_lidar;
+};
+
+/// Every \p every-th sweep of a simulated urban-loop drive of \p duration_s, at its true pose.
+std::vector<Keyframe> simDrive(double duration_s, size_t every) {
   auto p = sim::ScenarioParams::fromFile(std::string(ROADSLAM_SOURCE_DIR) + "/ini/sim/urban-loop.ini");
   p.trajectory.start_standing_s = 0;
-  p.duration_s = 3.0;
+  p.duration_s = duration_s;
   sim::Simulator s(p);
   std::vector<Scan> sweeps;
   sim::SweepSink sink([&](Scan&& sc) { sweeps.push_back(std::move(sc)); });
   s.run(sink);
-  const Scan& sc = sweeps.at(sweeps.size() - 2);
-  const double t0 = sc.stamp_s - static_cast<double>(p.start_epoch_s);
-  const auto d = toEigen(s.lidar().lidarPose(t0)).inverse() * toEigen(s.lidar().lidarPose(t0 + 0.1));
-  Cloud out;
-  for (const auto& q : odometry::deskew(sc, d, 0.1)) out.push_back(q.cast<float>());
+  std::vector<Keyframe> out;
+  for (size_t i = sweeps.size() - 2;; i -= every) {  // the last full sweep first
+    const Scan& sc = sweeps[i];
+    const double t0 = sc.stamp_s - static_cast<double>(p.start_epoch_s);
+    const auto T_world_lidar = toEigen(s.lidar().lidarPose(t0));
+    const auto d = T_world_lidar.inverse() * toEigen(s.lidar().lidarPose(t0 + 0.1));
+    Keyframe kf{{}, T_world_lidar};
+    for (const auto& q : odometry::deskew(sc, d, 0.1)) kf.points_lidar.push_back(q.cast<float>());
+    out.push_back(std::move(kf));
+    if (i < 1 + every) break;
+  }
   return out;
 }
+
+const std::vector<Keyframe>& drive() {
+  static const std::vector<Keyframe> kfs = simDrive(6.0, 3);
+  return kfs;
+}
+
+Cloud simCloud() { return simDrive(3.0, 1000).front().points_lidar; }
 
 Cloud kittiCloud() {
   const std::string f = std::string(ROADSLAM_SHARED_DATA) + "/kitti/odometry-00-first16/velodyne/000000.bin";
@@ -123,6 +143,54 @@ void BM_TreeFromGrid(benchmark::State& state) {
   }
 }
 
+// The drive's keyframes one after the other into one growing map (the run's case): mean per keyframe.
+std::map<int, Figures> g_drive;                                 // variant -> figures
+std::map<int, std::unique_ptr<mapping::OctoMapBuilder>> g_drive_map;  // variant -> last map built
+void BM_Drive(benchmark::State& state) {
+  const auto v = static_cast<Variant>(state.range(0));
+  const auto& kfs = drive();
+  Figures f;
+  size_t n = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    auto b = std::make_unique<mapping::OctoMapBuilder>(v == kOursShipped ? mapping::OctoMapParams{} : sameAsOctomap());
+    state.ResumeTiming();
+    for (const auto& kf : kfs) {
+      const double cpu0 = threadCpuMs();
+      const auto st = v == kOctomap ? b->insertReference(kf.points_lidar, kf.T_map_lidar) : b->insert(kf.points_lidar, kf.T_map_lidar);
+      f.cpu_ms += threadCpuMs() - cpu0;
+      f.wall_ms += st.ms;
+      ++n;
+    }
+    benchmark::DoNotOptimize(b->numVoxels());
+    g_drive_map[v] = std::move(b);
+  }
+  f.cpu_ms /= static_cast<double>(std::max<size_t>(n, 1));
+  f.wall_ms /= static_cast<double>(std::max<size_t>(n, 1));
+  state.counters["keyframes"] = static_cast<double>(kfs.size());
+  state.counters["cpu_ms_per_kf"] = f.cpu_ms;
+  g_drive[v] = f;
+}
+BENCHMARK(BM_Drive)->Arg(kOurs)->Arg(kOursShipped)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_Drive)->Arg(kOctomap)->Iterations(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void reportDrive() {
+  if (!g_drive.count(kOurs) || !g_drive.count(kOctomap)) return;
+  const mapping::OctoMapBuilder &ours = *g_drive_map[kOurs], &ref = *g_drive_map[kOctomap];
+  const auto a = mapping::compareOctoMaps(ref.tree(), ours.tree());
+  const Figures &o = g_drive[kOurs], &r = g_drive[kOctomap];
+  std::printf("sim VLP-16 drive, %zu keyframes into one map (0.2 m, max range 60 m, free space to 60 m), per keyframe:\n"
+              "  ours %.1f ms CPU (%.1f ms wall), octomap insertPointCloud %.1f ms CPU (%.1f ms wall): ratio %.1fx CPU\n"
+              "  final maps: occupied %.1f %% of %zu, free %.1f %% of %zu, ours not in octomap %zu; grid %.1f MB for %zu voxels\n",
+              drive().size(), o.cpu_ms, o.wall_ms, r.cpu_ms, r.wall_ms, r.cpu_ms / std::max(o.cpu_ms, 1e-9),
+              a.occupied_percent, a.ref_occupied, a.free_percent, a.ref_free, a.other_unknown,
+              static_cast<double>(ours.gridBytes()) / 1e6, ours.numVoxels());
+  if (g_drive.count(kOursShipped)) {
+    std::printf("  shipped [octomap] (free space to 10 m): ours %.1f ms CPU (%.1f ms wall) per keyframe\n",
+                g_drive[kOursShipped].cpu_ms, g_drive[kOursShipped].wall_ms);
+  }
+}
+
 void BM_Ours(benchmark::State& s) { BM_Insert(s, kOurs); }
 void BM_Octomap(benchmark::State& s) { BM_Insert(s, kOctomap); }
 void BM_OursShippedIni(benchmark::State& s) { BM_Insert(s, kOursShipped); }
@@ -166,6 +234,7 @@ int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
   benchmark::RunSpecifiedBenchmarks();
   report();
+  reportDrive();
   benchmark::Shutdown();
   return 0;
 }
