@@ -49,7 +49,19 @@ size_t Mapper::acceptedLoops() const {
   return n;
 }
 
-bool Mapper::addFrame(const odometry::FrameResult& f, const std::vector<Eigen::Vector3d>& points_lidar) {
+void Mapper::chainWheel(const std::optional<WheelMotion>& wheel) {
+  if (!wheel) {
+    wheel_complete_ = false;
+    return;
+  }
+  T_kfbase_base_ = T_kfbase_base_ * wheel->T_baseprev_basecurr;
+  T_base_lidar_ = wheel->T_base_lidar;
+  wheel_path_m_ += wheel->T_baseprev_basecurr.translation().norm();
+}
+
+bool Mapper::addFrame(const odometry::FrameResult& f, const std::vector<Eigen::Vector3d>& points_lidar,
+                      const std::optional<WheelMotion>& wheel) {
+  if (p_.graph.can_edges) chainWheel(wheel);
   if (f.status == odometry::FrameStatus::Skipped) return false;
   if (have_last_) path_m_ += (f.T_world_lidar.translation() - T_odom_last_.translation()).norm();
   T_odom_last_ = f.T_world_lidar;
@@ -74,10 +86,22 @@ void Mapper::addKeyframe(const odometry::FrameResult& f, const std::vector<Eigen
     graph_.addNode(f.T_world_lidar);
   } else {
     const size_t prev = kfs_.size() - 1;
-    const Eigen::Isometry3d T_prev_cur = kfs_[prev].T_odom_lidar.inverse() * f.T_world_lidar;
+    Eigen::Isometry3d T_prev_cur = kfs_[prev].T_odom_lidar.inverse() * f.T_world_lidar;
+    Matrix6d info = graph_.odometryInformation(f.information);
+    if (p_.graph.can_edges && wheel_complete_) {
+      // T_lidarkf_lidar = T_base_lidar^-1 * T_basekf_base * T_base_lidar
+      const Eigen::Isometry3d T_can = T_base_lidar_.inverse() * T_kfbase_base_ * T_base_lidar_;
+      const Matrix6d info_can = graph_.canInformation(wheel_path_m_, T_base_lidar_);
+      T_prev_cur = fuseMeasurements(T_prev_cur, info, T_can, info_can);
+      info += info_can;
+      ++can_edges_;
+    }
     const size_t id = graph_.addNode(graph_.pose(prev) * T_prev_cur);
-    graph_.addEdge(prev, id, T_prev_cur, graph_.odometryInformation(f.information));
+    graph_.addEdge(prev, id, T_prev_cur, info);
   }
+  T_kfbase_base_ = Eigen::Isometry3d::Identity();
+  wheel_path_m_ = 0;
+  wheel_complete_ = true;
   kfs_.push_back(std::move(kf));
 }
 

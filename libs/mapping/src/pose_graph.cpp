@@ -40,18 +40,50 @@ Eigen::Matrix<double, 6, 1> residual(const Eigen::Isometry3d& T_meas, const Eige
   return e;
 }
 
+/// The mean eigenvalue of \p B times identity; with \p weak_ratio > 0, eigen-directions below
+/// weak_ratio * the largest eigenvalue keep their own value and stay out of the mean.
+Eigen::Matrix3d isotropicBlock(const Eigen::Matrix3d& B, double weak_ratio) {
+  if (weak_ratio <= 0) return Eigen::Matrix3d::Identity() * B.trace() / 3;
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(B);
+  const Eigen::Vector3d ev = es.eigenvalues();  // ascending
+  double sum = 0;
+  int strong = 0;
+  for (int i = 0; i < 3; ++i) {
+    if (ev(i) >= weak_ratio * ev(2)) {
+      sum += ev(i);
+      ++strong;
+    }
+  }
+  Eigen::Vector3d out;
+  for (int i = 0; i < 3; ++i) out(i) = ev(i) >= weak_ratio * ev(2) ? sum / strong : ev(i);
+  return es.eigenvectors() * out.asDiagonal() * es.eigenvectors().transpose();
+}
+
 }  // namespace
 
 void PoseGraphParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& s) {
   max_iterations = readInt(cfg, s, "max_iterations", max_iterations);
   use_registration_information = readBool(cfg, s, "use_registration_information", use_registration_information);
   isotropic_information = readBool(cfg, s, "isotropic_information", isotropic_information);
+  isotropic_weak_ratio = readDouble(cfg, s, "isotropic_weak_ratio", isotropic_weak_ratio);
   odometry_information_scale = readDouble(cfg, s, "odometry_information_scale", odometry_information_scale);
   odometry_sigma_t_m = readDouble(cfg, s, "odometry_sigma_t_m", odometry_sigma_t_m);
   odometry_sigma_r_rad = readDouble(cfg, s, "odometry_sigma_r_deg", odometry_sigma_r_rad * 180 / M_PI) * M_PI / 180;
-  rejectUnknownKeys(cfg, s, {"max_iterations", "use_registration_information", "isotropic_information", "odometry_information_scale", "odometry_sigma_t_m", "odometry_sigma_r_deg"});
+  can_edges = readBool(cfg, s, "can_edges", can_edges);
+  can_sigma_t_m = readDouble(cfg, s, "can_sigma_t_m", can_sigma_t_m);
+  can_sigma_t_per_m = readDouble(cfg, s, "can_sigma_t_per_m", can_sigma_t_per_m);
+  can_sigma_yaw_rad = readDouble(cfg, s, "can_sigma_yaw_deg", can_sigma_yaw_rad * 180 / M_PI) * M_PI / 180;
+  can_sigma_yaw_rad_per_m =
+      readDouble(cfg, s, "can_sigma_yaw_deg_per_m", can_sigma_yaw_rad_per_m * 180 / M_PI) * M_PI / 180;
+  can_weak_information = readDouble(cfg, s, "can_weak_information", can_weak_information);
+  rejectUnknownKeys(cfg, s, {"max_iterations", "use_registration_information", "isotropic_information", "isotropic_weak_ratio", "odometry_information_scale", "odometry_sigma_t_m", "odometry_sigma_r_deg",
+                             "can_edges", "can_sigma_t_m", "can_sigma_t_per_m", "can_sigma_yaw_deg", "can_sigma_yaw_deg_per_m", "can_weak_information"});
   if (max_iterations < 1 || odometry_sigma_t_m <= 0 || odometry_sigma_r_rad <= 0 || odometry_information_scale <= 0) {
     throw std::runtime_error("[" + s + "]: max_iterations, odometry_sigma_* and odometry_information_scale must be > 0");
+  }
+  if (can_sigma_t_m <= 0 || can_sigma_yaw_rad <= 0 || can_sigma_t_per_m < 0 || can_sigma_yaw_rad_per_m < 0 ||
+      can_weak_information < 0 || isotropic_weak_ratio < 0 || isotropic_weak_ratio >= 1) {
+    throw std::runtime_error("[" + s + "]: can_sigma_t_m and can_sigma_yaw_deg must be > 0, can_*_per_m and can_weak_information >= 0, isotropic_weak_ratio in [0, 1)");
   }
 }
 
@@ -59,9 +91,16 @@ void PoseGraphParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const
   cfg.write(s, "max_iterations", max_iterations);
   cfg.write(s, "use_registration_information", use_registration_information);
   cfg.write(s, "isotropic_information", isotropic_information);
+  cfg.write(s, "isotropic_weak_ratio", isotropic_weak_ratio);
   cfg.write(s, "odometry_information_scale", odometry_information_scale);
   cfg.write(s, "odometry_sigma_t_m", odometry_sigma_t_m);
   cfg.write(s, "odometry_sigma_r_deg", odometry_sigma_r_rad * 180 / M_PI);
+  cfg.write(s, "can_edges", can_edges);
+  cfg.write(s, "can_sigma_t_m", can_sigma_t_m);
+  cfg.write(s, "can_sigma_t_per_m", can_sigma_t_per_m);
+  cfg.write(s, "can_sigma_yaw_deg", can_sigma_yaw_rad * 180 / M_PI);
+  cfg.write(s, "can_sigma_yaw_deg_per_m", can_sigma_yaw_rad_per_m * 180 / M_PI);
+  cfg.write(s, "can_weak_information", can_weak_information);
 }
 
 struct PoseGraph::Impl {
@@ -165,11 +204,45 @@ Matrix6d PoseGraph::odometryInformation(const Matrix6d& reg_info) const {
   I = es.eigenvectors() * ev.asDiagonal() * es.eigenvectors().transpose();
   if (p.isotropic_information) {
     Matrix6d J = Matrix6d::Zero();
-    J.topLeftCorner<3, 3>() = Eigen::Matrix3d::Identity() * I.topLeftCorner<3, 3>().trace() / 3;
-    J.bottomRightCorner<3, 3>() = Eigen::Matrix3d::Identity() * I.bottomRightCorner<3, 3>().trace() / 3;
+    J.topLeftCorner<3, 3>() = isotropicBlock(I.topLeftCorner<3, 3>(), p.isotropic_weak_ratio);
+    J.bottomRightCorner<3, 3>() = isotropicBlock(I.bottomRightCorner<3, 3>(), p.isotropic_weak_ratio);
     I = J;
   }
   return I + floor * 1e-3;
+}
+
+Matrix6d PoseGraph::canInformation(double distance_m, const Eigen::Isometry3d& T_base_lidar) const {
+  const auto& p = impl_->p;
+  const double d = std::abs(distance_m);
+  const double var_t = p.can_sigma_t_m * p.can_sigma_t_m + std::pow(p.can_sigma_t_per_m * d, 2);
+  const double var_yaw = p.can_sigma_yaw_rad * p.can_sigma_yaw_rad + std::pow(p.can_sigma_yaw_rad_per_m * d, 2);
+  Matrix6d I_base = Matrix6d::Zero();
+  I_base.diagonal() << 1 / var_t, 1 / var_t, p.can_weak_information, p.can_weak_information, p.can_weak_information,
+      1 / var_yaw;
+  // SE(3) adjoint of T_base_lidar in [t, r] order: [[R, [t]x R], [0, R]].
+  const Eigen::Matrix3d R = T_base_lidar.rotation();
+  const Eigen::Vector3d t = T_base_lidar.translation();
+  Eigen::Matrix3d tx;
+  tx << 0, -t.z(), t.y(), t.z(), 0, -t.x(), -t.y(), t.x(), 0;
+  Matrix6d Ad = Matrix6d::Zero();
+  Ad.topLeftCorner<3, 3>() = R;
+  Ad.topRightCorner<3, 3>() = tx * R;
+  Ad.bottomRightCorner<3, 3>() = R;
+  return Ad.transpose() * I_base * Ad;
+}
+
+Eigen::Isometry3d fuseMeasurements(const Eigen::Isometry3d& T_a, const Matrix6d& I_a, const Eigen::Isometry3d& T_b,
+                                   const Matrix6d& I_b) {
+  const Eigen::Isometry3d E = T_a.inverse() * T_b;
+  const Eigen::AngleAxisd aa(E.rotation());
+  Eigen::Matrix<double, 6, 1> d;
+  d.head<3>() = E.translation();
+  d.tail<3>() = aa.angle() * aa.axis();
+  const Eigen::Matrix<double, 6, 1> s = (I_a + I_b).ldlt().solve(I_b * d);
+  Eigen::Isometry3d D = Eigen::Isometry3d::Identity();
+  D.translation() = s.head<3>();
+  if (s.tail<3>().norm() > 0) D.linear() = Eigen::AngleAxisd(s.tail<3>().norm(), s.tail<3>().normalized()).toRotationMatrix();
+  return T_a * D;
 }
 
 }  // namespace roadslam::mapping

@@ -1,6 +1,7 @@
 // PoseGraph: a ring of poses whose odometry has a heading bias is pulled back to the truth by one
-// loop edge; the text graph reads back with MRPT's own loader.
+// loop edge; the text graph reads back with MRPT's own loader; CAN-edge information and parameters.
 #include <gtest/gtest.h>
+#include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/graphs/CNetworkOfPoses.h>
 
 #include <cmath>
@@ -99,4 +100,86 @@ TEST(PoseGraph, TextFileReadsBackWithMrpt) {
     EXPECT_NEAR(p.y(), g.pose(i).translation().y(), 1e-4);
   }
   std::filesystem::remove(path);
+}
+
+// canInformation against an independent first-order computation: a small lidar-frame error E_l
+// seen from the base is E_b = T_base_lidar * E_l * T_base_lidar^-1 (matrix products, no adjoint);
+// its energy under the base-frame information must equal the lidar-frame quadratic form.
+TEST(PoseGraph, CanInformationIsTheBaseInformationMovedThroughTheMounting) {
+  PoseGraphParams p;
+  p.can_sigma_t_m = 0.02;
+  p.can_sigma_t_per_m = 0.01;
+  p.can_sigma_yaw_rad = 0.001;
+  p.can_sigma_yaw_rad_per_m = 0.0005;
+  p.can_weak_information = 1e-4;
+  const PoseGraph g(p);
+  const double d = 3.0;
+  const double it = 1 / (0.02 * 0.02 + 0.03 * 0.03), iyaw = 1 / (0.001 * 0.001 + 0.0015 * 0.0015);
+  // identity mounting: the base information itself
+  const Matrix6d I0 = g.canInformation(d, Eigen::Isometry3d::Identity());
+  Eigen::Matrix<double, 6, 1> diag;
+  diag << it, it, 1e-4, 1e-4, 1e-4, iyaw;
+  EXPECT_LT((I0.diagonal() - diag).norm(), 1e-9 * it);
+  EXPECT_LT((I0 - Matrix6d(diag.asDiagonal())).norm(), 1e-9 * it);
+  // a roof lidar 1.2 m ahead, 1.9 m up, turned 30 deg and tilted 2 deg
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.linear() = (Eigen::AngleAxisd(0.5236, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(0.035, Eigen::Vector3d::UnitY()))
+                   .toRotationMatrix();
+  X.translation() << 1.2, 0.1, 1.9;
+  const Matrix6d I = g.canInformation(d, X);
+  std::srand(3);
+  for (int k = 0; k < 20; ++k) {
+    const Eigen::Matrix<double, 6, 1> e_l = Eigen::Matrix<double, 6, 1>::Random() * 1e-5;
+    Eigen::Isometry3d E_l = Eigen::Isometry3d::Identity();
+    E_l.translation() = e_l.head<3>();
+    E_l.linear() = Eigen::AngleAxisd(e_l.tail<3>().norm(), e_l.tail<3>().normalized()).toRotationMatrix();
+    const Eigen::Isometry3d E_b = X * E_l * X.inverse();
+    Eigen::Matrix<double, 6, 1> e_b;
+    const Eigen::AngleAxisd aa(E_b.rotation());
+    e_b.head<3>() = E_b.translation();
+    e_b.tail<3>() = aa.angle() * aa.axis();
+    const double energy_base = e_b.dot(diag.asDiagonal() * e_b), energy_lidar = e_l.dot(I * e_l);
+    EXPECT_NEAR(energy_lidar, energy_base, 1e-3 * energy_base + 1e-12) << "sample " << k;
+  }
+}
+
+TEST(PoseGraph, CanParamsRoundTripAndRejectBadSigmas) {
+  PoseGraphParams p;
+  p.can_edges = true;
+  p.can_sigma_yaw_rad = 0.002;
+  p.can_sigma_t_per_m = 0.02;
+  mrpt::config::CConfigFileMemory cfg;
+  p.saveToConfigFile(cfg);
+  PoseGraphParams q;
+  q.loadFromConfigFile(cfg);
+  EXPECT_TRUE(q.can_edges);
+  EXPECT_NEAR(q.can_sigma_yaw_rad, 0.002, 1e-7);  // the ini holds degrees with 6 digits
+  EXPECT_NEAR(q.can_sigma_t_per_m, 0.02, 1e-12);
+  cfg.write("pose_graph", "can_sigma_t_m", std::string("0"));
+  EXPECT_THROW(q.loadFromConfigFile(cfg), std::runtime_error);
+}
+// fuseMeasurements against the scalar information-weighted mean (translation-only measurements with
+// diagonal information), and the rotation part against the weighted mean of two yaw angles.
+TEST(PoseGraph, FusedMeasurementIsTheInformationWeightedMean) {
+  Eigen::Isometry3d A = Eigen::Isometry3d::Identity(), B = Eigen::Isometry3d::Identity();
+  A.translation() << 1.0, 0.2, 0.0;
+  B.translation() << 1.3, 0.1, 0.5;
+  Matrix6d Ia = Matrix6d::Zero(), Ib = Matrix6d::Zero();
+  Ia.diagonal() << 0.4, 1e4, 1e4, 1e6, 1e6, 1e6;   // a: x barely measured (a tunnel's axis)
+  Ib.diagonal() << 1600, 1600, 1e-4, 1e-4, 1e-4, 1e5;  // b: planar wheel odometry
+  const Eigen::Isometry3d F = fuseMeasurements(A, Ia, B, Ib);
+  for (int k = 0; k < 3; ++k) {
+    const double w = Ib(k, k) / (Ia(k, k) + Ib(k, k));
+    EXPECT_NEAR(F.translation()(k), A.translation()(k) + w * (B.translation()(k) - A.translation()(k)), 1e-9) << k;
+  }
+  EXPECT_NEAR(F.translation().x(), 1.3, 1e-3);  // the wheels decide the unmeasured axis
+  EXPECT_NEAR(F.translation().z(), 0.0, 1e-6);  // the scans decide what the wheels cannot see
+  Eigen::Isometry3d Ra = Eigen::Isometry3d::Identity(), Rb = Eigen::Isometry3d::Identity();
+  Ra.linear() = Eigen::AngleAxisd(0.10, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  Rb.linear() = Eigen::AngleAxisd(0.16, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  Matrix6d Iy = Matrix6d::Identity() * 1e4;
+  Matrix6d Iy3 = Iy * 3;
+  const Eigen::Isometry3d G = fuseMeasurements(Ra, Iy, Rb, Iy3);
+  EXPECT_NEAR(Eigen::AngleAxisd(G.rotation()).angle(), 0.10 + 0.75 * 0.06, 1e-9);
+  EXPECT_LT(G.translation().norm(), 1e-12);
 }

@@ -6,6 +6,7 @@
 /// follows: T_map_lidar = T_map_kf * T_odom_kf^-1 * T_odom_lidar.
 
 #include <Eigen/Geometry>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,14 +26,27 @@ struct MapperParams {
   void saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& section = "mapping") const;
 };
 
+/// Wheel-odometry (CAN) motion over one frame interval: from the previous frame fed to the mapper
+/// to this one (the interval of the odometry's motion prior), for the graph's CAN edges.
+struct WheelMotion {
+  Eigen::Isometry3d T_baseprev_basecurr = Eigen::Isometry3d::Identity();  ///< vehicle base motion (planar)
+  Eigen::Isometry3d T_base_lidar = Eigen::Isometry3d::Identity();         ///< lidar mounting on the base
+};
+
 class Mapper {
  public:
   explicit Mapper(MapperParams params);
 
   /// Feeds one odometry result with the frame's deskewed points (lidar frame [m], from
-  /// Odometry::lastFramePoints()). Keyframes join the graph; a loop check may run.
+  /// Odometry::lastFramePoints()). Keyframes join the graph; a loop check may run. With
+  /// [pose_graph] can_edges, \p wheel (every frame's, skipped frames included) is chained from
+  /// keyframe to keyframe, moved into the lidar frame and fused with the odometry into the keyframe
+  /// edge (fuseMeasurements: where the scans left a direction unmeasured, the wheels decide it); a
+  /// frame without it leaves that keyframe pair on the odometry alone.
   /// Returns true when a loop was accepted (the graph was optimised and keyframe poses moved).
-  bool addFrame(const odometry::FrameResult& f, const std::vector<Eigen::Vector3d>& points_lidar);
+  bool addFrame(const odometry::FrameResult& f, const std::vector<Eigen::Vector3d>& points_lidar,
+                const std::optional<WheelMotion>& wheel = std::nullopt);
+  size_t canEdges() const { return can_edges_; }  ///< keyframe edges that carry the CAN motion [-]
 
   const std::vector<Keyframe>& keyframes() const { return kfs_; }
   PoseVector keyframePoses() const { return graph_.poses(); }  ///< optimised T_map_kf
@@ -46,6 +60,7 @@ class Mapper {
 
  private:
   void addKeyframe(const odometry::FrameResult& f, const std::vector<Eigen::Vector3d>& points_lidar);
+  void chainWheel(const std::optional<WheelMotion>& wheel);
   bool detectLoop();
   bool tryLoop(LoopResult r);
 
@@ -58,6 +73,12 @@ class Mapper {
   double last_query_path_m_ = -1e9, last_loop_path_m_ = -1e9;
   Eigen::Isometry3d T_odom_last_ = Eigen::Isometry3d::Identity();
   bool have_last_ = false;
+  // CAN motion chained since the last keyframe (base frame) and whether every frame had one.
+  Eigen::Isometry3d T_kfbase_base_ = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d T_base_lidar_ = Eigen::Isometry3d::Identity();
+  double wheel_path_m_ = 0;
+  bool wheel_complete_ = false;
+  size_t can_edges_ = 0;
 };
 
 }  // namespace roadslam::mapping

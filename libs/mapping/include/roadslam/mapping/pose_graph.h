@@ -32,8 +32,23 @@ struct PoseGraphParams {
   /// magnitudes (true: each 3x3 block replaced by its mean eigenvalue times identity), so a loop's
   /// correction is not pushed into the few edges whose ground constraint happened to be weakest.
   bool isotropic_information = true;
+  /// With isotropic_information: an eigen-direction of the translation or rotation block weaker than
+  /// this fraction of the block's strongest keeps its own (weak) information instead of the block's
+  /// mean, so a direction the scans could not measure (a tunnel's axis) stays unmeasured in the graph
+  /// and a CAN edge or a loop can correct it [-]. 0 = off (every direction gets the mean).
+  double isotropic_weak_ratio = 0.0;
   double odometry_sigma_t_m = 0.05;       ///< fallback / floor std of an odometry edge translation [m]
   double odometry_sigma_r_rad = 0.005;    ///< ... and rotation [rad]; ini odometry_sigma_r_deg
+  /// Wheel-odometry (CAN) constraints between consecutive keyframes (Mapper with a WheelMotion per
+  /// frame), fused into the keyframe edge (fuseMeasurements). Planar: strong in base x, y, yaw, weak
+  /// in z, roll, pitch; the std grows with the distance d between the keyframes:
+  /// sigma = sqrt(sigma_0^2 + (k d)^2).
+  bool can_edges = false;
+  double can_sigma_t_m = 0.02;            ///< sigma_0 of base x, y [m]
+  double can_sigma_t_per_m = 0.01;        ///< k of base x, y [m/m]
+  double can_sigma_yaw_rad = 0.001;       ///< sigma_0 of yaw [rad]; ini can_sigma_yaw_deg
+  double can_sigma_yaw_rad_per_m = 0.0005; ///< k of yaw [rad/m]; ini can_sigma_yaw_deg_per_m
+  double can_weak_information = 1e-4;     ///< information of base z, roll, pitch [1/m^2, 1/rad^2]
 
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section = "pose_graph");
   void saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& section = "pose_graph") const;
@@ -44,6 +59,16 @@ struct OptimizeStats {
   double final_error = 0;   ///< sum of squared Mahalanobis residuals at the end [-]
   double ms = 0;            ///< wall time [ms]
 };
+
+/// Information-weighted fusion of two measurements of one relative pose, in the tangent space of
+/// \p T_a (first order, the pseudo-logarithm MRPT's optimiser uses: translation as is, rotation
+/// vector): T = T_a * pexp((I_a + I_b)^-1 I_b log(T_a^-1 T_b)); the fused information is I_a + I_b.
+/// Used instead of two parallel edges: MRPT 2.5.8's optimize_graph_spa_levmarq accepts or rejects a
+/// step on the unweighted squared error (levmarq_impl.h computeJacobiansAndErrors), so edges that
+/// disagree with very different information stall it far from the weighted optimum (a 20-node chain
+/// with such parallel edges ended with every edge shorter than both of its measurements).
+Eigen::Isometry3d fuseMeasurements(const Eigen::Isometry3d& T_a, const Matrix6d& I_a, const Eigen::Isometry3d& T_b,
+                                   const Matrix6d& I_b);
 
 class PoseGraph {
  public:
@@ -74,6 +99,10 @@ class PoseGraph {
   void saveToTextFile(const std::string& path) const;
   /// Information of an odometry edge from the registration's information (see PoseGraphParams).
   Matrix6d odometryInformation(const Matrix6d& registration_information) const;
+  /// Information of a CAN edge over \p distance_m [m] in the lidar frame: the base-frame information
+  /// (PoseGraphParams can_*) moved through the mounting T_base_lidar, I_lidar = Ad^T I_base Ad with
+  /// Ad the SE(3) adjoint of T_base_lidar (a base error e_b = Ad e_lidar, order [t, r]).
+  Matrix6d canInformation(double distance_m, const Eigen::Isometry3d& T_base_lidar) const;
 
  private:
   struct Impl;
