@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <memory>
 #include <filesystem>
 #include <random>
 
@@ -148,6 +149,22 @@ TEST(OctoMap, BtRoundTripKeepsTheBuilderTree) {
   EXPECT_TRUE(occupied(back, 10.05, 0.1, 0.1));
   EXPECT_TRUE(freeCell(back, 5.0, 0.1, 0.1));
   std::filesystem::remove(path);
+}
+
+// .ot keeps the probabilities: octomap's generic reader gives back the builder's log-odds.
+TEST(OctoMap, OtRoundTripKeepsLogOdds) {
+  OctoMapBuilder b;
+  b.insert(scene(), at(0, 0, 0));
+  b.insert(scene(), at(0.7, 0.2, 0.05));
+  const std::string path = std::string(ROADSLAM_BINARY_DIR) + "/test-out-octomap.ot";
+  b.writeOt(path);
+  std::unique_ptr<octomap::AbstractOcTree> read(octomap::AbstractOcTree::read(path));
+  std::filesystem::remove(path);
+  const auto* back = dynamic_cast<const octomap::OcTree*>(read.get());
+  ASSERT_NE(back, nullptr) << path;
+  EXPECT_EQ(back->getNumLeafNodes(), b.numLeafs());
+  EXPECT_EQ(maxLogOddsDiff(b.tree(), *back), 0.0);
+  EXPECT_EQ(maxLogOddsDiff(*back, b.tree()), 0.0);
 }
 
 TEST(OctoMap, WorkerRebuildEqualsDirectInsertion) {
