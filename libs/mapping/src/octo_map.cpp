@@ -145,6 +145,7 @@ InsertStats OctoMapBuilder::insert(const std::vector<Eigen::Vector3f>& points_li
   importTree();
   InsertStats st;
   const std::vector<octomap::point3d> pts = toMap(points_lidar, T_map_lidar);
+  st.points = pts.size();  // as insertReference(): beyond max range they still clear free space
   const octomap::point3d origin = toPoint(T_map_lidar.translation());
   const double factor = 1.0 / p_.resolution_m;
   detail::ScanUpdate g(*grid_);
@@ -152,7 +153,6 @@ InsertStats OctoMapBuilder::insert(const std::vector<Eigen::Vector3f>& points_li
   octomap::OcTreeKey key;
   for (const auto& p : pts) {
     if ((p - origin).norm() > p_.max_range_m) continue;
-    ++st.points;
     if (detail::coordToKey(p, factor, key) && g.hit(key)) ++st.occupied_keys;
   }
   // then one ray per end point (as OccupancyOcTreeBase::computeUpdate), ending at the point,

@@ -47,7 +47,7 @@ struct OctoMapParams {
 };
 
 struct InsertStats {
-  size_t points = 0;         ///< end points used [-]
+  size_t points = 0;         ///< finite end points (beyond max range: free space only) [-]
   size_t occupied_keys = 0;  ///< distinct voxels updated as occupied [-]
   size_t free_keys = 0;      ///< distinct voxels updated as free [-]
   size_t ray_cells = 0;      ///< cells visited along the rays, repeats included [-]
