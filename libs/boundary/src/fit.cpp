@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <set>
 #include <sstream>
 
@@ -66,9 +67,11 @@ Score score(const std::vector<Vec2>& pts, const std::vector<double>& c, const Pa
 void spanPolyline(std::vector<Vec2> inl, const std::vector<double>& c, const Params& p, SideBoundary& out) {
   std::sort(inl.begin(), inl.end(), [](const Vec2& a, const Vec2& b) { return a.x < b.x; });
   // Stretches of inliers separated by more than max_bridge_m; report the one spanning most of the band.
+  // The thesis baseline's points are one corner per shape, metres apart: its line is not cut.
+  const double bridge = p.method == "thesis" ? std::numeric_limits<double>::infinity() : p.max_bridge_m;
   double x0 = 0, x1 = -1;
   for (size_t b = 0, i = 1; i <= inl.size(); ++i) {
-    if (i < inl.size() && inl[i].x - inl[i - 1].x <= p.max_bridge_m) continue;
+    if (i < inl.size() && inl[i].x - inl[i - 1].x <= bridge) continue;
     const double a0 = std::max(p.band_min_x_m, inl[b].x - p.max_extrapolation_m);
     const double a1 = std::min(p.band_max_x_m, inl[i - 1].x + p.max_extrapolation_m);
     if (a1 - a0 > x1 - x0) x0 = a0, x1 = a1;

@@ -61,7 +61,7 @@ nlohmann::json toJson(const BoundaryFrame& f, bool with_grid) {
 }
 
 void drawTopView(const std::string& png_path, const Scan& scan, const Labelling& lab, const BoundaryFrame& f,
-                 double s) {
+                 double s, const std::vector<Vec2>& curb_map) {
   using mrpt::img::TColor;
   const double x_min = -20, x_max = 45, y_half = 25;  // view [m], vehicle frame
   const int W = static_cast<int>(2 * y_half * s), H = static_cast<int>((x_max - x_min) * s);
@@ -87,6 +87,7 @@ void drawTopView(const std::string& png_path, const Scan& scan, const Labelling&
                        : c == PointClass::Curb ? TColor(240, 170, 0) : TColor(120, 120, 240);
     img.setPixel(u, v, col);
   }
+  for (const auto& c : curb_map) img.filledRectangle(px(c.y) - 1, py(c.x) - 1, px(c.y) + 1, py(c.x) + 1, TColor(140, 80, 20));
   for (const auto& c : f.curb_points) img.drawCircle(px(c.y), py(c.x), 1, TColor(240, 170, 0), 1);
   for (const auto& o : f.obstacles) {
     const double c = std::cos(o.yaw_rad), sn = std::sin(o.yaw_rad);

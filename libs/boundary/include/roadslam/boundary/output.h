@@ -15,11 +15,12 @@ namespace roadslam::boundary {
 
 nlohmann::json toJson(const BoundaryFrame& f, bool with_grid = false);
 
-/// Top view (vehicle frame, x up): ground grey, curbs yellow, obstacles red with their rectangles,
-/// free space green outline, left boundary blue, right boundary magenta, 10 m grid. Atomic write;
-/// throws std::runtime_error naming the path when it cannot be written.
+/// Top view (vehicle frame, x up): ground grey, curbs yellow, cells of the accumulated curb map
+/// \p curb_map (vehicle frame [m], e.g. BoundaryDetector::curbMap().inVehicle) brown, obstacles red
+/// with their rectangles, free space green outline, left boundary blue, right boundary magenta, 10 m
+/// grid. Atomic write; throws std::runtime_error naming the path when it cannot be written.
 void drawTopView(const std::string& png_path, const Scan& scan, const Labelling& lab, const BoundaryFrame& f,
-                 double px_per_m = 8.0);
+                 double px_per_m = 8.0, const std::vector<Vec2>& curb_map = {});
 
 /// The cost grid as an 8-bit grey PNG (pixel = cost, see CostGrid): column i = cell i along x,
 /// row 0 = the row of largest y (left up when x points right). Atomic write; throws naming the path.
