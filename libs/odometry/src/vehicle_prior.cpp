@@ -39,6 +39,7 @@ void VehiclePriorParams::loadFromConfigFile(const mrpt::config::CConfigFileBase&
   if (max_extrapolation_s < 0) throw std::runtime_error("[" + s + "] max_extrapolation_s must be >= 0");
   if (history_s <= 0) throw std::runtime_error("[" + s + "] history_s must be > 0");
   dead_reckoning.loadFromConfigFile(cfg, s);
+  calibration.loadFromConfigFile(cfg, s);
 }
 
 void VehiclePriorParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& s) const {
@@ -53,10 +54,11 @@ void VehiclePriorParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, co
   cfg.write(s, "max_extrapolation_s", max_extrapolation_s);
   cfg.write(s, "history_s", history_s);
   dead_reckoning.saveToConfigFile(cfg, s);
+  calibration.saveToConfigFile(cfg, s);
 }
 
 VehiclePrior::VehiclePrior(const VehiclePriorParams& params, const vehicle::VehicleParams& vehicle)
-    : p_(params), dr_(params.dead_reckoning, vehicle) {}
+    : p_(params), dr_(params.dead_reckoning, vehicle), cal_(params.calibration) {}
 
 void VehiclePrior::update(const vehicle::VehicleState& state, vehicle::UpdateMask mask) {
   if (!dr_.update(state, mask)) return;
@@ -75,6 +77,8 @@ std::optional<vehicle::Pose2D> VehiclePrior::poseAt(double t) const {
     p.x_m += last.v_mps * dt * std::cos(yaw_mid);
     p.y_m += last.v_mps * dt * std::sin(yaw_mid);
     p.yaw_rad += last.w_radps * dt;
+    p.raw_distance_m += std::abs(last.v_mps) / dr_.speedScale() * dt;
+    p.raw_yaw_rad += (last.w_radps + dr_.yawRateBias()) * dt;
     p.t_s = t;
     return p;
   }
@@ -89,6 +93,8 @@ std::optional<vehicle::Pose2D> VehiclePrior::poseAt(double t) const {
   p.y_m += u * (b.y_m - a.y_m);
   p.yaw_rad += u * wrapPi(b.yaw_rad - a.yaw_rad);
   p.v_mps += u * (b.v_mps - a.v_mps);
+  p.raw_yaw_rad += u * (b.raw_yaw_rad - a.raw_yaw_rad);
+  p.raw_distance_m += u * (b.raw_distance_m - a.raw_distance_m);
   return p;
 }
 
@@ -105,6 +111,24 @@ std::optional<MotionPrior> VehiclePrior::between(double t_prev_s, double t_curr_
   m.T_prev_curr = p_.T_base_lidar.inverse() * *T_baseprev_basecurr * p_.T_base_lidar;
   m.speed_mps = poseAt(t_curr_s)->v_mps;
   return m;
+}
+
+vehicle::CalibrationUse VehiclePrior::observeLidarMotion(double t_prev_s, double t_curr_s,
+                                                         const Eigen::Isometry3d& T_lidarprev_lidarcurr) {
+  const auto a = poseAt(t_prev_s), b = poseAt(t_curr_s);
+  if (!p_.calibration.enabled || !a || !b) return vehicle::CalibrationUse::Rejected;
+  // The lidar's motion seen from the base: T_baseprev_basecurr = T_base_lidar * T_lp_lc * T_base_lidar^-1.
+  const Eigen::Isometry3d T_b = p_.T_base_lidar * T_lidarprev_lidarcurr * p_.T_base_lidar.inverse();
+  vehicle::CalibrationInterval in;
+  in.dt_s = t_curr_s - t_prev_s;
+  in.ref_yaw_rad = std::atan2(T_b.linear()(1, 0), T_b.linear()(0, 0));
+  in.ref_distance_m = T_b.translation().norm();
+  in.raw_yaw_rad = b->raw_yaw_rad - a->raw_yaw_rad;
+  in.raw_distance_m = b->raw_distance_m - a->raw_distance_m;
+  const auto use = cal_.add(in);
+  if (const auto bias = cal_.yawRateBias()) dr_.setYawRateBias(*bias);
+  if (const auto scale = cal_.speedScale()) dr_.setSpeedScale(*scale);
+  return use;
 }
 
 }  // namespace roadslam::odometry

@@ -2,6 +2,8 @@
 
 #include <mrpt/config/CConfigFileBase.h>
 
+#include <cmath>
+
 #include "roadslam/can/candump.h"
 #include "roadslam/odometry/vehicle_prior.h"
 #include "roadslam/vehicle/params.h"
@@ -61,6 +63,36 @@ std::optional<odometry::MotionPrior> CanPriorStream::between(double t_prev_s, do
   auto p = impl_->prior.between(t_prev_s, t_curr_s);
   ++(p ? given_ : missing_);
   return p;
+}
+
+std::optional<Eigen::Isometry3d> CanPriorStream::baseMotion(double t_prev_s, double t_curr_s) {
+  impl_->advanceTo(t_curr_s);
+  return impl_->prior.baseMotion(t_prev_s, t_curr_s);
+}
+
+const Eigen::Isometry3d& CanPriorStream::baseToLidar() const { return impl_->prior.params().T_base_lidar; }
+
+bool CanPriorStream::observeLidarMotion(double t_prev_s, double t_curr_s, const Eigen::Isometry3d& T_lidarprev_lidarcurr) {
+  impl_->advanceTo(t_curr_s);
+  return impl_->prior.observeLidarMotion(t_prev_s, t_curr_s, T_lidarprev_lidarcurr) != vehicle::CalibrationUse::Rejected;
+}
+
+nlohmann::json CanPriorStream::calibrationJson() const {
+  constexpr double kDeg = M_PI / 180;
+  const auto& dr = impl_->prior.deadReckoning();
+  const auto& cal = impl_->prior.calibrator();
+  const auto bias = cal.yawRateBias();
+  const auto scale = cal.speedScale();
+  const auto& st = cal.stats();
+  return {{"online", impl_->prior.params().calibration.enabled},
+          {"yaw_rate_bias_deg_s", dr.yawRateBias() / kDeg},
+          {"speed_scale", dr.speedScale()},
+          {"standstill_bias_samples", dr.stats().bias_samples},
+          {"online_yaw_rate_bias_deg_s", bias ? nlohmann::json(*bias / kDeg) : nlohmann::json()},
+          {"online_speed_scale", scale ? nlohmann::json(*scale) : nlohmann::json()},
+          {"intervals", st.intervals}, {"bias_intervals", st.bias_used}, {"scale_intervals", st.scale_used},
+          {"rejected_intervals", st.rejected}, {"bias_window_s", st.bias_time_s},
+          {"scale_window_m", st.scale_distance_m}};
 }
 
 size_t CanPriorStream::framesRead() const { return impl_->frames; }

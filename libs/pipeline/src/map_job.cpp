@@ -80,6 +80,18 @@ void feedOctoMap(mapping::OctoMapWorker& octo, const mapping::Mapper& mapper, si
   }
 }
 
+bool converged(odometry::FrameStatus s) { return s == odometry::FrameStatus::Ok; }
+
+/// The wheel odometry learns its yaw-rate bias and speed scale from the LiDAR between two
+/// converged frames (a Degenerate frame's motion came partly from the wheels themselves).
+void calibrateCan(CanPriorStream& can, const std::vector<odometry::FrameResult>& frames) {
+  if (frames.size() < 2) return;
+  const auto& prev = frames[frames.size() - 2];
+  const auto& cur = frames.back();
+  if (!(converged(prev.status) || prev.status == odometry::FrameStatus::First) || !converged(cur.status)) return;
+  can.observeLidarMotion(prev.stamp_s, cur.stamp_s, prev.T_world_lidar.inverse() * cur.T_world_lidar);
+}
+
 }  // namespace
 
 MapOutcome runMapJob(const MapRequest& req) {
@@ -108,11 +120,17 @@ MapOutcome runMapJob(const MapRequest& req) {
     auto scan = stream->next();
     if (!scan) break;
     std::optional<odometry::MotionPrior> prior;
-    if (can && !out.frames.empty()) prior = can->between(out.frames.back().stamp_s, odo.poseTimeOf(*scan));
+    std::optional<mapping::WheelMotion> wheel;
+    if (can && !out.frames.empty()) {
+      const double t_prev = out.frames.back().stamp_s, t_curr = odo.poseTimeOf(*scan);
+      prior = can->between(t_prev, t_curr);
+      if (const auto T_b = can->baseMotion(t_prev, t_curr)) wheel = mapping::WheelMotion{*T_b, can->baseToLidar()};
+    }
     out.frames.push_back(odo.process(std::move(*scan), prior));
+    if (can) calibrateCan(*can, out.frames);
     const auto tm = std::chrono::steady_clock::now();
     const size_t keyframes_before = mapper.keyframes().size();
-    const bool loop = mapper.addFrame(out.frames.back(), odo.lastFramePoints());
+    const bool loop = mapper.addFrame(out.frames.back(), odo.lastFramePoints(), wheel);
     if (octo) feedOctoMap(*octo, mapper, keyframes_before, loop, params.maps.octomap.keyframe_spacing_m);
     ms_mapping += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - tm).count();
     if (req.progress) bar.update(out.frames.size());
@@ -130,12 +148,14 @@ MapOutcome runMapJob(const MapRequest& req) {
   out.summary["interrupted"] = out.interrupted;
   if (can) {
     out.summary["can"] = {{"input", can->describe()}, {"frames", can->framesRead()},
-                          {"priors_used", can->priorsGiven()}, {"priors_missing", can->priorsMissing()}};
+                          {"priors_used", can->priorsGiven()}, {"priors_missing", can->priorsMissing()},
+                          {"calibration", can->calibrationJson()}};
   }
   const auto loops = loopsJson(mapper);
   out.summary["loop_closures"] = loops["accepted"].size();
   out.summary["loop_candidates_rejected"] = loops["rejected"].size();
   out.summary["loops"] = loops;
+  out.summary["can_edges"] = mapper.canEdges();
   out.summary["ms_mapping_total"] = ms_mapping;
   const auto ms = mapping::writeMaps(req.out_dir, mapper, {out.T_map_lidar.begin(), out.T_map_lidar.end()},
                                      params.maps, octo.get());

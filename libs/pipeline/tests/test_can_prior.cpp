@@ -1,6 +1,12 @@
 // roadslam-map's wheel-odometry prior: the simulated tunnel (a corridor the scans cannot measure along
 // its axis) with the simulator's own CAN log of the same drive, against the exact ground truth.
 #include <gtest/gtest.h>
+#include <mrpt/config/CConfigFileMemory.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 
 #include "roadslam/datasets/trajectory_io.h"
 #include "roadslam/eval/trajectory_metrics.h"
@@ -16,9 +22,10 @@ double rtePercent(const std::string& gt, const std::string& est) {
   return eval::computeMetrics(m).rte_percent;
 }
 
-pipeline::MapOutcome runTunnel(const std::string& sim_dir, const std::string& name, bool with_can) {
+pipeline::MapOutcome runTunnel(const std::string& sim_dir, const std::string& name, bool with_can,
+                               const std::string& config = std::string(ROADSLAM_SOURCE_DIR) + "/ini/default.ini") {
   pipeline::MapRequest req;
-  req.config_path = std::string(ROADSLAM_SOURCE_DIR) + "/ini/default.ini";
+  req.config_path = config;
   req.input_path = sim_dir + "/velodyne.pcap";
   req.out_dir = std::string(ROADSLAM_BINARY_DIR) + "/test-out/" + name;
   req.progress = false;
@@ -29,7 +36,75 @@ pipeline::MapOutcome runTunnel(const std::string& sim_dir, const std::string& na
   return pipeline::runMapJob(req);
 }
 
+/// ini/default.ini with \p key = \p value in \p section, written into the build tree.
+std::string defaultIniWith(const std::string& name, const std::string& section, const std::string& key,
+                           const std::string& value) {
+  std::ifstream in(std::string(ROADSLAM_SOURCE_DIR) + "/ini/default.ini");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  mrpt::config::CConfigFileMemory cfg;
+  cfg.setContent(ss.str());
+  cfg.write(section, key, value);
+  const std::string path = std::string(ROADSLAM_BINARY_DIR) + "/test-out/" + name + ".ini";
+  std::filesystem::create_directories(std::string(ROADSLAM_BINARY_DIR) + "/test-out");
+  std::ofstream(path) << cfg.getContent();
+  return path;
+}
+
+/// The tunnel drive driving off at once (no standstill to measure the gyro bias on) with a RAV4-like
+/// CAN: yaw-rate bias -0.4 deg/s, wheel speeds 0.9 % short. 20 s to the portal, 20 s inside.
+std::string biasedTunnel() {
+  auto p = sim::ScenarioParams::fromFile(std::string(ROADSLAM_SOURCE_DIR) + "/ini/sim/tunnel.ini");
+  p.duration_s = 40;
+  p.trajectory.start_standing_s = 0;
+  p.can.yaw_rate_bias_radps = -0.4 * M_PI / 180;
+  p.can.wheel_speed_scale_error = -0.009;
+  return pipeline::test::simulateOnce(p, "tunnel-40s-biased-can-v1");
+}
+
+/// RTE [%] and ATE [m] of \p est over the frames stamped after \p t_from_s (the tunnel).
+eval::TrajectoryMetrics metricsFrom(const std::string& gt, const std::string& est, double t_from_s) {
+  auto m = eval::associate(datasets::readTum(gt), datasets::readTum(est), 0.02);
+  eval::MatchedTrajectories tail;
+  for (size_t i = 0; i < m.stamps_s.size(); ++i) {
+    if (m.stamps_s[i] < t_from_s) continue;
+    tail.gt.push_back(m.gt[i]);
+    tail.est.push_back(m.est[i]);
+    tail.stamps_s.push_back(m.stamps_s[i]);
+  }
+  return eval::computeMetrics(tail);
+}
+
 }  // namespace
+
+// Online calibration of the wheel odometry against the LiDAR (oracle: the simulator's configured CAN
+// errors), and the tunnel's odometry with the calibrated prior against the uncalibrated one.
+TEST(CanPrior, OnlineCalibrationRecoversBiasAndScaleAndHelpsInTheTunnel) {
+  const std::string dir = biasedTunnel();
+  const auto cal = runTunnel(dir, "tunnel-biased-cal", true);
+  const auto raw = runTunnel(dir, "tunnel-biased-raw", true,
+                             defaultIniWith("no-online-calibration", "vehicle_prior", "online_calibration", "false"));
+  const auto& c = cal.summary["can"]["calibration"];
+  std::cout << "calibration: " << c.dump() << "\n";
+  ASSERT_FALSE(c["online_yaw_rate_bias_deg_s"].is_null());
+  ASSERT_FALSE(c["online_speed_scale"].is_null());
+  EXPECT_NEAR(c["yaw_rate_bias_deg_s"].get<double>(), -0.4, 0.02);
+  const double true_scale = 1 / (1 - 0.009);
+  EXPECT_NEAR(c["speed_scale"].get<double>(), true_scale, 0.002 * true_scale);
+  EXPECT_EQ(raw.summary["can"]["calibration"]["speed_scale"].get<double>(), 1.0);  // the control ran uncalibrated
+  EXPECT_EQ(raw.summary["can"]["calibration"]["yaw_rate_bias_deg_s"].get<double>(), 0.0);
+  // the frames inside the tunnel (from 21 s on: 250 m after accelerating at 1.5 m/s^2 to 60 km/h)
+  const double t_portal = 1700000000.0 + 21.0;
+  const std::string gt = dir + "/gt_trajectory.tum", out = std::string(ROADSLAM_BINARY_DIR) + "/test-out/";
+  const auto m_cal = metricsFrom(gt, out + "tunnel-biased-cal/trajectory_odometry.tum", t_portal);
+  const auto m_raw = metricsFrom(gt, out + "tunnel-biased-raw/trajectory_odometry.tum", t_portal);
+  std::cout << "tunnel part: calibrated prior RTE " << m_cal.rte_percent << " % ATE " << m_cal.ate_rmse_m
+            << " m; uncalibrated RTE " << m_raw.rte_percent << " % ATE " << m_raw.ate_rmse_m << " m (path "
+            << m_cal.path_length_m << " m)\n";
+  EXPECT_GT(m_cal.path_length_m, 250.0);
+  EXPECT_LT(m_cal.rte_percent, m_raw.rte_percent);
+  EXPECT_LT(m_cal.ate_rmse_m, m_raw.ate_rmse_m);
+}
 
 TEST(CanPrior, TunnelHoldsWithTheWheelOdometryPrior) {
   auto p = sim::ScenarioParams::fromFile(std::string(ROADSLAM_SOURCE_DIR) + "/ini/sim/tunnel.ini");

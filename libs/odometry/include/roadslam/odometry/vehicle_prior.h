@@ -12,6 +12,10 @@
 ///     vehicle::VehicleDecoder dec(vehicle::loadVehicleIni(ini));  VehiclePrior prior(p, dec.params());
 ///     for each frame: prior.update(state, dec.process(frame, state));
 ///     odo.process(scan, prior.between(t_prev_frame_s, t_curr_frame_s));
+///     if both frames converged: prior.observeLidarMotion(t_prev, t_curr, T_prev^-1 * T_curr);
+/// The last call calibrates the wheel odometry online against the LiDAR (yaw-rate bias, wheel-speed
+/// scale: vehicle/online_calibration.h); the estimates apply to the CAN poses integrated after it,
+/// so a stretch where the registration is degenerate (tunnel) gets a calibrated prior.
 
 #include <Eigen/Geometry>
 #include <deque>
@@ -20,6 +24,7 @@
 
 #include "roadslam/odometry/odometry.h"
 #include "roadslam/vehicle/dead_reckoning.h"
+#include "roadslam/vehicle/online_calibration.h"
 
 namespace mrpt::config {
 class CConfigFileBase;
@@ -34,6 +39,7 @@ struct VehiclePriorParams {
   double max_extrapolation_s = 0.1;  ///< query past the last CAN pose by at most this (constant velocity) [s]
   double history_s = 5.0;            ///< CAN poses kept behind the newest one [s]
   vehicle::DeadReckoningParams dead_reckoning;  ///< same section: yaw_source, speed_scale, yaw_rate_bias_deg_s, ...
+  vehicle::OnlineCalibrationParams calibration; ///< same section: online_calibration, calibration_* keys
 
   /// Throws naming the section and key on a bad value.
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section);
@@ -53,6 +59,14 @@ class VehiclePrior {
   /// Base motion T_baseprev_basecurr over the same interval (planar: x, y, yaw).
   std::optional<Eigen::Isometry3d> baseMotion(double t_prev_s, double t_curr_s) const;
 
+  /// The LiDAR odometry's motion T_lidarprev_lidarcurr between the pose times \p t_prev_s and
+  /// \p t_curr_s [s] (give only intervals between two converged registrations: not Degenerate,
+  /// NotConverged, Standstill). Feeds the online calibration and, when it has estimates, sets them
+  /// in the dead reckoning. Rejected when the CAN poses do not cover the interval or calibration is off.
+  vehicle::CalibrationUse observeLidarMotion(double t_prev_s, double t_curr_s,
+                                             const Eigen::Isometry3d& T_lidarprev_lidarcurr);
+  const vehicle::OnlineCalibrator& calibrator() const { return cal_; }
+
   const vehicle::DeadReckoning& deadReckoning() const { return dr_; }
   const VehiclePriorParams& params() const { return p_; }
 
@@ -60,6 +74,7 @@ class VehiclePrior {
   std::optional<vehicle::Pose2D> poseAt(double t_s) const;
   VehiclePriorParams p_;
   vehicle::DeadReckoning dr_;
+  vehicle::OnlineCalibrator cal_;
   std::deque<vehicle::Pose2D> poses_;  ///< T_odom_base after each integration step, time order
 };
 

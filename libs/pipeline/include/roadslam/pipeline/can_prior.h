@@ -5,7 +5,9 @@
 /// and dead reckoned by odometry::VehiclePrior. The log and the LiDAR recording must share one clock
 /// (the grabber and the simulator write both on the host/capture clock).
 
+#include <Eigen/Geometry>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 
@@ -29,6 +31,16 @@ class CanPriorStream {
   /// Lidar motion between the poses at \p t_prev_s and \p t_curr_s [s], or nullopt where the log
   /// does not cover them (its start, a gap, its end).
   std::optional<odometry::MotionPrior> between(double t_prev_s, double t_curr_s);
+  /// Vehicle base motion T_baseprev_basecurr over the same kind of interval (pose-graph CAN edges).
+  std::optional<Eigen::Isometry3d> baseMotion(double t_prev_s, double t_curr_s);
+  /// Lidar mounting on the base ([vehicle_prior] lidar_* keys).
+  const Eigen::Isometry3d& baseToLidar() const;
+  /// The odometry's motion T_lidarprev_lidarcurr between two converged frames: calibrates the wheel
+  /// odometry online (odometry::VehiclePrior::observeLidarMotion). Returns true when it was used.
+  bool observeLidarMotion(double t_prev_s, double t_curr_s, const Eigen::Isometry3d& T_lidarprev_lidarcurr);
+  /// Calibration for summary.json: yaw_rate_bias_deg_s and speed_scale in use at the end, the online
+  /// estimates (null until enough data) and their interval counts.
+  nlohmann::json calibrationJson() const;
 
   size_t framesRead() const;
   size_t priorsGiven() const { return given_; }
