@@ -1,12 +1,15 @@
 // roadslam-map's wheel-odometry prior: the simulated tunnel (a corridor the scans cannot measure along
-// its axis) with the simulator's own CAN log of the same drive, against the exact ground truth.
+// its axis) with the simulator's own CAN log of the same drive, against the exact ground truth; the
+// prior's online calibration against the LiDAR and the CAN constraints in the pose graph.
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
 #include "roadslam/datasets/trajectory_io.h"
 #include "roadslam/eval/trajectory_metrics.h"
@@ -36,15 +39,14 @@ pipeline::MapOutcome runTunnel(const std::string& sim_dir, const std::string& na
   return pipeline::runMapJob(req);
 }
 
-/// ini/default.ini with \p key = \p value in \p section, written into the build tree.
-std::string defaultIniWith(const std::string& name, const std::string& section, const std::string& key,
-                           const std::string& value) {
+/// ini/default.ini with {section, key, value} overrides, written into the build tree.
+std::string defaultIniWith(const std::string& name, const std::vector<std::array<std::string, 3>>& overrides) {
   std::ifstream in(std::string(ROADSLAM_SOURCE_DIR) + "/ini/default.ini");
   std::stringstream ss;
   ss << in.rdbuf();
   mrpt::config::CConfigFileMemory cfg;
   cfg.setContent(ss.str());
-  cfg.write(section, key, value);
+  for (const auto& [section, key, value] : overrides) cfg.write(section, key, value);
   const std::string path = std::string(ROADSLAM_BINARY_DIR) + "/test-out/" + name + ".ini";
   std::filesystem::create_directories(std::string(ROADSLAM_BINARY_DIR) + "/test-out");
   std::ofstream(path) << cfg.getContent();
@@ -78,12 +80,13 @@ eval::TrajectoryMetrics metricsFrom(const std::string& gt, const std::string& es
 }  // namespace
 
 // Online calibration of the wheel odometry against the LiDAR (oracle: the simulator's configured CAN
-// errors), and the tunnel's odometry with the calibrated prior against the uncalibrated one.
-TEST(CanPrior, OnlineCalibrationRecoversBiasAndScaleAndHelpsInTheTunnel) {
+// errors), the tunnel's odometry with the calibrated prior against the uncalibrated one, and the
+// corrected trajectory with [pose_graph] can_edges against the one without.
+TEST(CanPrior, OnlineCalibrationAndCanEdgesOnTheBiasedTunnel) {
   const std::string dir = biasedTunnel();
   const auto cal = runTunnel(dir, "tunnel-biased-cal", true);
   const auto raw = runTunnel(dir, "tunnel-biased-raw", true,
-                             defaultIniWith("no-online-calibration", "vehicle_prior", "online_calibration", "false"));
+                             defaultIniWith("no-online-calibration", {{"vehicle_prior", "online_calibration", "false"}}));
   const auto& c = cal.summary["can"]["calibration"];
   std::cout << "calibration: " << c.dump() << "\n";
   ASSERT_FALSE(c["online_yaw_rate_bias_deg_s"].is_null());
@@ -104,6 +107,19 @@ TEST(CanPrior, OnlineCalibrationRecoversBiasAndScaleAndHelpsInTheTunnel) {
   EXPECT_GT(m_cal.path_length_m, 250.0);
   EXPECT_LT(m_cal.rte_percent, m_raw.rte_percent);
   EXPECT_LT(m_cal.ate_rmse_m, m_raw.ate_rmse_m);
+
+  // [pose_graph] can_edges on the same drive: the wheels join the keyframe edges, the corrected
+  // trajectory (trajectory.tum) follows them where the scans were degenerate
+  const auto edges = runTunnel(dir, "tunnel-biased-edges", true,
+                               defaultIniWith("can-edges", {{"pose_graph", "can_edges", "true"},
+                                                            {"pose_graph", "isotropic_weak_ratio", "0.01"}}));
+  EXPECT_GT(edges.summary["can_edges"].get<int>(), 200);
+  EXPECT_EQ(cal.summary["can_edges"].get<int>(), 0);
+  const auto e_cal = metricsFrom(gt, out + "tunnel-biased-cal/trajectory.tum", 0);
+  const auto e_edges = metricsFrom(gt, out + "tunnel-biased-edges/trajectory.tum", 0);
+  std::cout << "whole drive, corrected trajectory: ATE " << e_edges.ate_rmse_m << " m with CAN edges, "
+            << e_cal.ate_rmse_m << " m without\n";
+  EXPECT_LT(e_edges.ate_rmse_m, e_cal.ate_rmse_m);
 }
 
 TEST(CanPrior, TunnelHoldsWithTheWheelOdometryPrior) {
