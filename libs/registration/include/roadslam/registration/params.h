@@ -36,7 +36,8 @@ struct Params {
   int min_inliers = 20;                        ///< fewer correspondences: TooFewCorrespondences [-]
   double max_correction_m = 5.0;               ///< correction beyond the initial guess => Diverged [m]
   int coarse_stride = 8;                       ///< coarse phase (ICP) / coarse NDT levels use every n-th source point [-]
-  double coarse_tolerance_m = 0.02;            ///< ICP: coarse phase ends when the update is below this [m]
+  double coarse_tolerance_m = 0.02;            ///< ICP coarse phase / NDT coarse levels end when the update is below
+                                               ///< this [m] (rotation: this / 10 [rad], the same shift at 10 m)
   int normal_neighbours = 10;                  ///< point-to-plane: k of the covariance normal [-]
   double ndt_resolution_m = 1.5;               ///< NDT finest cell size [m]; >= 3x the map voxel size
   int ndt_levels = 2;                          ///< NDT multi-resolution levels (coarsest = res*2^(n-1)) [-]
