@@ -79,6 +79,8 @@ void fillGrid(const Params& p, const std::vector<double>& free_r, const Boundary
     for (const auto& v : o.hull) put(v.x, v.y, CostGrid::kObstacle);
 }
 
+double yawOf(const Eigen::Isometry3d& T) { return std::atan2(T.linear()(1, 0), T.linear()(0, 0)); }
+
 /// The points of \p pts within \p gate (lateral) of the polyline \p line (vertices ascending in x).
 std::vector<Vec2> nearLine(const std::vector<Vec2>& pts, const std::vector<Vec2>& line, double gate) {
   std::vector<Vec2> out;
@@ -139,10 +141,14 @@ SideBoundary BoundaryDetector::track(SideBoundary fresh, const std::vector<Vec2>
     for (double x = p_.fit_min_x_m; x <= x1 + 1e-9; x += p_.polyline_step_m) {
       tr.map_pts.push_back(T_map_lidar * Eigen::Vector3d(x, detail::polyEval(fresh.coeffs, x), -p_.ground.sensor_height_m));
     }
-    tr.confidence = fresh.confidence, tr.held = 0, tr.valid = true;
+    tr.confidence = fresh.confidence, tr.held = 0, tr.valid = true, tr.yaw_map = yawOf(T_map_lidar);
     return fresh;
   }
-  if (!tr.valid || tr.held >= p_.max_hold_frames) {
+  // A held line is a straight-ahead prediction: through a corner it would cut across the turn.
+  const double turned = tr.valid ? std::abs(std::remainder(yawOf(T_map_lidar) - tr.yaw_map, 2 * M_PI)) : 0.0;
+  if (!tr.valid || tr.held >= p_.max_hold_frames || turned > p_.hold_max_turn_rad) {
+    if (tr.valid && turned > p_.hold_max_turn_rad)
+      fresh.reason += " (track dropped: the vehicle turned " + std::to_string(static_cast<int>(turned * 180 / M_PI)) + " deg)";
     tr.valid = false;
     return fresh;
   }

@@ -2,6 +2,7 @@
 
 #include <mrpt/config/CConfigFileBase.h>
 
+#include <cmath>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -58,6 +59,8 @@ void Params::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const 
     *v = readInt(cfg, s, k, *v);
     known.emplace_back(k);
   }
+  hold_max_turn_rad = readDouble(cfg, s, "hold_max_turn_deg", hold_max_turn_rad * 180.0 / M_PI) * M_PI / 180.0;
+  known.emplace_back("hold_max_turn_deg");
   const auto unknown = unknownKeys(cfg, s, known);
   require(unknown.empty(), s, unknown.empty() ? "" : unknown.front(), "unknown key");
   require(curb_min_jump_m > 0 && curb_max_jump_m > curb_min_jump_m, s, "curb_max_jump_m",
@@ -77,6 +80,7 @@ void Params::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::str
   cfg.write(s, "method", method);
   for (auto& [k, v] : doubleFields(copy)) cfg.write(s, k, *v);
   for (auto& [k, v] : intFields(copy)) cfg.write(s, k, *v);
+  cfg.write(s, "hold_max_turn_deg", hold_max_turn_rad * 180.0 / M_PI);
   ground.saveToConfigFile(cfg, ground_section);
 }
 

@@ -87,3 +87,26 @@ TEST(CurbMap, DrivingPastParkedCarsFindsTheHiddenCurb) {
   EXPECT_LT(err, 0.10);
   EXPECT_GT(d_many.curbMap().size(), 0u);
 }
+
+// A side no longer seen is held (moved with the vehicle) for a few sweeps, but not through a turn:
+// the held line is a straight-ahead prediction.
+TEST(CurbMap, HeldSideIsDroppedWhenTheVehicleTurns) {
+  Params p;
+  p.ground.sensor_height_m = 1.9;
+  p.memory_frames = 0;  // this sweep's evidence only, so the next sweep sees no curb
+  test::Road open;
+  open.left_y.reset();
+  open.right_y.reset();
+  for (double yaw_deg : {0.0, 10.0}) {
+    BoundaryDetector det(p);
+    ASSERT_TRUE(det.process(test::castSweep(test::Road{}), at(0), 0.0).left.found);
+    const auto f = det.process(test::castSweep(open), at(1.0, 0, yaw_deg * M_PI / 180), 0.1);
+    if (yaw_deg == 0.0) {
+      EXPECT_TRUE(f.left.found) << f.left.reason;
+      EXPECT_NE(f.left.reason.find("held 1 sweeps"), std::string::npos) << f.left.reason;
+    } else {
+      EXPECT_FALSE(f.left.found);
+      EXPECT_NE(f.left.reason.find("turned 10 deg"), std::string::npos) << f.left.reason;
+    }
+  }
+}

@@ -57,6 +57,7 @@ class BoundaryDetector {
   struct Track {
     std::vector<Eigen::Vector3d> map_pts;
     double confidence = 0;
+    double yaw_map = 0;  ///< vehicle heading when the track was last fitted, map frame [rad]
     int held = 0;
     bool valid = false;
   };

@@ -69,9 +69,10 @@ struct Params {
   int curb_min_sightings = 1;           ///< cells seen by fewer sweeps are not fitted [-]
   double max_extrapolation_m = 5.0;     ///< the polyline ends this far beyond the last evidence [m]
   double max_bridge_m = 12.0;           ///< longest gap between curb stretches the polyline spans [m]
-  int max_hold_frames = 10;             ///< a side not seen is held (moved with the vehicle) this long [-]
+  int max_hold_frames = 3;              ///< a side not seen is held (moved with the vehicle) this long [-]
   double track_gate_m = 0.5;            ///< a new fit farther than this from the held side is an outlier [m]
   double hold_decay = 0.85;             ///< confidence factor per held sweep [-]
+  double hold_max_turn_rad = 0.035;     ///< a held side is dropped once the vehicle turned this much since its fit (ini: hold_max_turn_deg) [rad]
 
   // Cost grid for a planner (vehicle frame).
   double grid_resolution_m = 0.2;       ///< [m]
