@@ -10,92 +10,12 @@
 #include <nlohmann/json.hpp>
 
 #include "curb_visibility.h"
-#include "roadslam/boundary/job.h"
-#include "roadslam/eval/boundary_metrics.h"
-#include "roadslam/sim/outputs.h"
-#include "roadslam/sim/simulator.h"
+#include "sim_drive_harness.h"
 
 namespace fs = std::filesystem;
 using namespace roadslam;
 
-namespace {
-
-/// Simulates \p duration_s of \p ini (with \p tweak applied) into the build folder once.
-std::string cachedDrive(const std::string& tag, const std::string& ini, double duration_s,
-                        void (*tweak)(sim::ScenarioParams&)) {
-  const std::string dir = std::string(ROADSLAM_BINARY_DIR) + "/test_data/boundary_" + tag;
-  if (fs::exists(dir + "/summary.json") && fs::exists(dir + "/gt_boundaries.json")) return dir;
-  auto p = sim::ScenarioParams::fromFile(std::string(ROADSLAM_SOURCE_DIR) + "/ini/sim/" + ini);
-  p.duration_s = duration_s;
-  if (tweak) tweak(p);
-  sim::Simulator s(p);
-  sim::OutputOptions opt;
-  opt.dir = dir;
-  sim::runToDirectory(s, opt);
-  return dir;
-}
-
-struct Run {
-  nlohmann::json summary;
-  eval::BoundaryMetrics m;
-};
-
-Run runBounds(const std::string& drive, const std::string& ini, const std::string& tag) {
-  boundary::BoundsRequest req;
-  req.config_path = std::string(ROADSLAM_SOURCE_DIR) + "/ini/" + ini;
-  req.input_path = drive + "/velodyne.pcap";
-  req.trajectory_path = drive + "/gt_trajectory.tum";
-  req.out_dir = std::string(ROADSLAM_BINARY_DIR) + "/test_data/boundary_out_" + tag;
-  req.png_every = 25;
-  req.progress = false;
-  Run r;
-  r.summary = boundary::runBoundsJob(req);
-  r.m = eval::evaluateBoundaryFiles(drive + "/gt_boundaries.json", drive + "/gt_trajectory.tum",
-                                    req.out_dir + "/boundaries.jsonl");
-  std::cout << tag << ": " << eval::toJson(r.m).dump() << "\n";
-  return r;
-}
-
-/// Boundary vertices reported inside a moving car's footprint (+0.3 m), and the frames in which a
-/// moving car was within 30 m of the vehicle (so the check had something to reject).
-std::pair<int, int> verticesOnMovingCars(const std::string& drive, const std::string& out_dir) {
-  std::ifstream fo(drive + "/gt_objects.json");
-  const auto objects = nlohmann::json::parse(fo);
-  std::ifstream fj(out_dir + "/boundaries.jsonl");
-  std::string line;
-  int on_cars = 0, near_frames = 0;
-  while (std::getline(fj, line)) {
-    const auto f = nlohmann::json::parse(line);
-    if (!f.contains("left")) continue;
-    const double t = f["stamp_s"].get<double>();
-    const double vx = f["T_map_lidar"][3].get<double>(), vy = f["T_map_lidar"][7].get<double>();
-    bool near = false;
-    for (const auto& car : objects["moving_cars"]) {
-      const auto& tr = car["track"];
-      size_t k = 1;
-      while (k + 1 < tr.size() && tr[k][0].get<double>() < t) ++k;
-      const double t0 = tr[k - 1][0].get<double>(), t1 = tr[k][0].get<double>();
-      const double u = std::clamp((t - t0) / (t1 - t0), 0.0, 1.0);
-      const double cx = (1 - u) * tr[k - 1][1].get<double>() + u * tr[k][1].get<double>();
-      const double cy = (1 - u) * tr[k - 1][2].get<double>() + u * tr[k][2].get<double>();
-      const double yaw = tr[k][4].get<double>();
-      const double hl = 0.5 * car["length_m"].get<double>() + 0.3, hw = 0.5 * car["width_m"].get<double>() + 0.3;
-      near = near || std::hypot(cx - vx, cy - vy) < 30.0;
-      for (const char* side : {"left", "right"}) {
-        if (!f[side]["found"].get<bool>()) continue;
-        for (const auto& q : f[side]["polyline_map"]) {
-          const double dx = q[0].get<double>() - cx, dy = q[1].get<double>() - cy;
-          const double a = std::cos(yaw) * dx + std::sin(yaw) * dy, b = -std::sin(yaw) * dx + std::cos(yaw) * dy;
-          on_cars += std::abs(a) <= hl && std::abs(b) <= hw;
-        }
-      }
-    }
-    near_frames += near;
-  }
-  return {on_cars, near_frames};
-}
-
-}  // namespace
+using namespace roadslam::boundary::test;
 
 // Urban loop start (straight street, curbs both sides, trees, poles, oncoming cars), parking lanes
 // empty so both curbs are in view: the targets of the issue hold.

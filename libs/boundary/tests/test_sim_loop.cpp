@@ -1,0 +1,27 @@
+// The whole shipped urban loop (103 s, 990 m, 4 corners of radius 12 m, 35 % parked cars):
+// where the boundary stands against the targets (95 % both found, mean <= 0.10 m,
+// p95 <= 0.25 m). Not met: parked cars hide the right curb (see the visibility oracle in
+// test_sim_drive.cpp) and a quadratic cannot follow the corners; this guards what is reached
+// (measured: both 0.28, left 0.62, right 0.51, mean 0.16 m, p95 0.41 m) and the honesty rules.
+#include <gtest/gtest.h>
+
+#include "sim_drive_harness.h"
+
+using namespace roadslam;
+using namespace roadslam::boundary::test;
+
+TEST(SimLoop, WholeUrbanLoopAsReached) {
+  const auto drive = cachedDrive("urban_loop_full", "urban-loop.ini", 0.0, nullptr);
+  const auto r = runBounds(drive, "bounds.ini", "urban_loop_full");
+  EXPECT_GE(r.m.frames_scored, 1000);
+  EXPECT_GE(r.m.detection_rate, 0.25);
+  EXPECT_GE(r.m.left_detection_rate, 0.55);
+  EXPECT_GE(r.m.right_detection_rate, 0.45);
+  EXPECT_LE(r.m.lateral_error_mean_m, 0.20);
+  EXPECT_LE(r.m.lateral_error_p95_m, 0.50);
+  const auto [on_cars, near] =
+      verticesOnMovingCars(drive, std::string(ROADSLAM_BINARY_DIR) + "/test_data/boundary_out_urban_loop_full");
+  EXPECT_GT(near, 20) << "no moving car came near: the check below tests nothing";
+  EXPECT_EQ(on_cars, 0) << "boundary vertices on moving cars";
+  EXPECT_LT(r.summary["ms_per_frame_mean"].get<double>(), 1e3);  // ran and timed, not a speed check
+}
