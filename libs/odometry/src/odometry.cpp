@@ -1,5 +1,6 @@
 #include "roadslam/odometry/odometry.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <unordered_set>
@@ -119,6 +120,19 @@ void Odometry::applyPriorOnWeakDirections(const registration::RegistrationResult
   T_est = kept * T_pred;
 }
 
+void Odometry::updateUp(const FrameResult& res) {
+  // The world's up direction: every frame's structures rotated into the world frame and summed
+  // (robustly around the current estimate), so early errors average out; the prior pulls each new
+  // frame's tilt towards it. Once frames are many, a drifting pose moves it by 1/N only.
+  const double kernel = up_frames_ > 0 ? params_.gravity_kernel_rad : 0.0;
+  up_scatter_ += verticalScatter(vertical_, res.T_world_lidar.linear(), up_world_, kernel);
+  Eigen::Vector2d info;
+  const Eigen::Vector3d up = upFromScatter(up_scatter_, up_world_, &info);
+  if (info.minCoeff() < params_.gravity_min_information) return;
+  up_world_ = up;
+  ++up_frames_;
+}
+
 void Odometry::updateKeyframe(FrameResult& res) {
   const Eigen::Isometry3d d = T_world_keyframe_.inverse() * res.T_world_lidar;
   if (res.status == FrameStatus::First || d.translation().norm() >= params_.keyframe_distance_m ||
@@ -132,10 +146,15 @@ registration::RegistrationResult Odometry::match(const std::vector<Eigen::Vector
                                                  const Eigen::Isometry3d& T_pred, FrameResult& res) {
   registration::Params rp = params_.registration;
   if (params_.adaptive_threshold) {
-    // KISS-ICP: correspondences within 3 sigma, kernel scale sigma / 3 (Vizzo et al. 2023, Sec. III-C)
-    const double tau = std::min(threshold_.threshold(), params_.max_threshold_m);
-    rp.max_correspondence_distance_m = 3.0 * tau;
-    rp.kernel_scale_m = tau / 3.0;
+    // AdaptiveThreshold gives tau = 3 sigma (Vizzo et al. 2023, eq. 7); KISS-ICP pairs points
+    // within 3 sigma and scales its kernel at sigma / 3. Pairing within 3 tau lets passing traffic
+    // in on an open road.
+    const double sigma =
+        std::clamp(threshold_.threshold() / 3.0, params_.min_threshold_m, params_.max_threshold_m);
+    rp.max_correspondence_distance_m = 3.0 * sigma;
+    // The voxel-map matcher pairs a point with a voxel mean, up to a voxel away on a wall.
+    if (params_.matcher == "voxel_map") rp.max_correspondence_distance_m = std::max(3.0 * sigma, params_.map_voxel_m);
+    rp.kernel_scale_m = sigma / 3.0;
   }
   res.threshold_m = rp.max_correspondence_distance_m;
   if (params_.matcher == "voxel_map") {
@@ -148,7 +167,12 @@ registration::RegistrationResult Odometry::match(const std::vector<Eigen::Vector
     vp.min_inliers = rp.min_inliers;
     vp.max_correction_m = rp.max_correction_m;
     vp.degeneracy_threshold = params_.degeneracy_threshold;
-    return alignToVoxelMap(gmap_, source, T_pred, vp);
+    GravityPrior g;
+    g.constraints = &vertical_;
+    g.up_map = up_world_;
+    g.scale_m2 = params_.gravity_weight_m2;
+    g.kernel_rad = params_.gravity_kernel_rad;
+    return alignToVoxelMap(gmap_, source, T_pred, vp, params_.gravity_prior && up_frames_ > 0 ? &g : nullptr);
   }
   if (target_stale_ && !map_.empty()) {
     target_ = std::make_unique<registration::Target>(map_.points(), rp);
@@ -206,6 +230,13 @@ FrameResult Odometry::process(Scan scan, const std::optional<MotionPrior>& prior
   last_frame_points_ = deskew(scan, delta_sweep, sweep, ref);
   if (params_.ground_aware_map) last_ground_ = preprocess::segmentGround(scan.points, params_.preprocess.ground_seg);
 
+  if (params_.gravity_prior) {
+    const Eigen::Vector3d up_guess = have_pose_ ? Eigen::Vector3d(T_pred.linear().transpose() * up_world_)
+                                                : Eigen::Vector3d::UnitZ();
+    vertical_ = findVerticalStructures(last_frame_points_, last_ground_, up_guess, params_.vertical);
+    res.vertical_constraints = static_cast<int>(vertical_.size());
+  }
+
   const auto t_reg = Clock::now();
   const auto source = registration::voxelDownsample(last_frame_points_, params_.registration_voxel_m);
   res.points_registered = static_cast<int>(source.size());
@@ -243,6 +274,8 @@ FrameResult Odometry::process(Scan scan, const std::optional<MotionPrior>& prior
     res.T_world_lidar = T_est;
   }
   res.ms_register = msSince(t_reg);
+
+  if (params_.gravity_prior && (res.status == FrameStatus::Ok || res.status == FrameStatus::First)) updateUp(res);
 
   const auto t_map = Clock::now();
   const bool update_map = res.status == FrameStatus::Ok || res.status == FrameStatus::First ||

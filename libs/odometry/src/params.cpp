@@ -29,6 +29,7 @@ void Params::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, const st
   adaptive_threshold = readBool(c, s, "adaptive_threshold", adaptive_threshold);
   initial_threshold_m = readDouble(c, s, "initial_threshold_m", initial_threshold_m);
   max_threshold_m = readDouble(c, s, "max_threshold_m", max_threshold_m);
+  min_threshold_m = readDouble(c, s, "min_threshold_m", min_threshold_m);
   min_motion_m = readDouble(c, s, "min_motion_m", min_motion_m);
   max_range_m = readDouble(c, s, "max_range_m", max_range_m);
   deskew = readBool(c, s, "deskew", deskew);
@@ -45,6 +46,28 @@ void Params::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, const st
   min_inlier_fraction = readDouble(c, s, "min_inlier_fraction", min_inlier_fraction);
   ground_aware_map = readBool(c, s, "ground_aware_map", ground_aware_map);
   map_ground_max_range_m = readDouble(c, s, "map_ground_max_range_m", map_ground_max_range_m);
+  gravity_prior = readBool(c, s, "gravity_prior", gravity_prior);
+  gravity_weight_m2 = readDouble(c, s, "gravity_weight_m2", gravity_weight_m2);
+  gravity_kernel_rad = readDouble(c, s, "gravity_kernel_deg", gravity_kernel_rad / kDeg) * kDeg;
+  gravity_min_information = readDouble(c, s, "gravity_min_information", gravity_min_information);
+  vertical.voxel_m = readDouble(c, s, "vertical_voxel_m", vertical.voxel_m);
+  vertical.voxel_height_m = readDouble(c, s, "vertical_voxel_height_m", vertical.voxel_height_m);
+  vertical.min_points = readInt(c, s, "vertical_min_points", vertical.min_points);
+  vertical.max_tilt_rad = readDouble(c, s, "vertical_max_tilt_deg", vertical.max_tilt_rad / kDeg) * kDeg;
+  vertical.planarity = readDouble(c, s, "vertical_planarity", vertical.planarity);
+  vertical.min_plane_extent_m = readDouble(c, s, "vertical_min_plane_extent_m", vertical.min_plane_extent_m);
+  vertical.min_thickness_m = readDouble(c, s, "vertical_min_thickness_m", vertical.min_thickness_m);
+  vertical.face_margin_m = readDouble(c, s, "vertical_face_margin_m", vertical.face_margin_m);
+  vertical.linearity = readDouble(c, s, "vertical_linearity", vertical.linearity);
+  vertical.min_line_extent_m = readDouble(c, s, "vertical_min_line_extent_m", vertical.min_line_extent_m);
+  if (gravity_weight_m2 < 0 || gravity_kernel_rad <= 0 || gravity_min_information < 0 ||
+      vertical.voxel_m <= 0 || vertical.voxel_height_m <= 0 || vertical.min_points < 3) {
+    throw std::runtime_error("[" + s + "] gravity_weight_m2 >= 0, gravity_kernel_deg, vertical_voxel_m > 0, "
+                             "gravity_min_information >= 0 and vertical_min_points >= 3 are required");
+  }
+  if (min_threshold_m <= 0 || min_threshold_m > max_threshold_m) {
+    throw std::runtime_error("[" + s + "] min_threshold_m must be positive and at most max_threshold_m");
+  }
   if (registration_voxel_m <= 0 || map_voxel_m <= 0 || map_insert_voxel_m <= 0 || map_points_per_voxel < 1 || map_radius_m <= 0 ||
       sweep_duration_s <= 0) {
     throw std::runtime_error("[" + s + "] voxel sizes, map_points_per_voxel, map_radius_m and "
@@ -66,6 +89,7 @@ void Params::saveToConfigFile(mrpt::config::CConfigFileBase& c, const std::strin
   c.write(s, "adaptive_threshold", adaptive_threshold);
   c.write(s, "initial_threshold_m", initial_threshold_m);
   c.write(s, "max_threshold_m", max_threshold_m);
+  c.write(s, "min_threshold_m", min_threshold_m);
   c.write(s, "min_motion_m", min_motion_m);
   c.write(s, "max_range_m", max_range_m);
   c.write(s, "deskew", deskew);
@@ -82,6 +106,20 @@ void Params::saveToConfigFile(mrpt::config::CConfigFileBase& c, const std::strin
   c.write(s, "min_inlier_fraction", min_inlier_fraction);
   c.write(s, "ground_aware_map", ground_aware_map);
   c.write(s, "map_ground_max_range_m", map_ground_max_range_m);
+  c.write(s, "gravity_prior", gravity_prior);
+  c.write(s, "gravity_weight_m2", gravity_weight_m2);
+  c.write(s, "gravity_kernel_deg", gravity_kernel_rad / kDeg);
+  c.write(s, "gravity_min_information", gravity_min_information);
+  c.write(s, "vertical_voxel_m", vertical.voxel_m);
+  c.write(s, "vertical_voxel_height_m", vertical.voxel_height_m);
+  c.write(s, "vertical_min_points", vertical.min_points);
+  c.write(s, "vertical_max_tilt_deg", vertical.max_tilt_rad / kDeg);
+  c.write(s, "vertical_planarity", vertical.planarity);
+  c.write(s, "vertical_min_plane_extent_m", vertical.min_plane_extent_m);
+  c.write(s, "vertical_min_thickness_m", vertical.min_thickness_m);
+  c.write(s, "vertical_face_margin_m", vertical.face_margin_m);
+  c.write(s, "vertical_linearity", vertical.linearity);
+  c.write(s, "vertical_min_line_extent_m", vertical.min_line_extent_m);
   preprocess.saveToConfigFile(c, pre);
   registration.saveToConfigFile(c, reg);
 }

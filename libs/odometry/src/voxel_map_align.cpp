@@ -62,6 +62,21 @@ LinearSystem buildSystem(const GaussianVoxelMap& map, const std::vector<Eigen::V
   return ls;
 }
 
+// Tilt prior rows: r = (R n) . up, left perturbation w: d r / d w = R n x up (a rotation about
+// up leaves r unchanged, so yaw stays the scan's alone).
+void addGravity(const GravityPrior& g, const Eigen::Matrix3d& R, LinearSystem& ls) {
+  const double s2 = g.kernel_rad * g.kernel_rad;
+  for (const auto& c : *g.constraints) {
+    const Eigen::Vector3d n = R * c.normal_lidar;
+    const double r = n.dot(g.up_map);
+    const double den = s2 + r * r;
+    const double w = g.scale_m2 * c.weight * s2 * s2 / (den * den);
+    const Eigen::Vector3d J = n.cross(g.up_map);
+    ls.H.bottomRightCorner<3, 3>().noalias() += w * J * J.transpose();
+    ls.b.tail<3>().noalias() += w * J * r;
+  }
+}
+
 RegistrationResult failed(const Eigen::Isometry3d& T, Status s, std::string why) {
   RegistrationResult r;
   r.T_target_source = T;
@@ -74,7 +89,8 @@ RegistrationResult failed(const Eigen::Isometry3d& T, Status s, std::string why)
 }  // namespace
 
 RegistrationResult alignToVoxelMap(const GaussianVoxelMap& map, const std::vector<Eigen::Vector3d>& src,
-                                   const Eigen::Isometry3d& guess, const VoxelAlignParams& p) {
+                                   const Eigen::Isometry3d& guess, const VoxelAlignParams& p,
+                                   const GravityPrior* gravity) {
   if (!guess.matrix().allFinite()) return failed(guess, Status::NonFiniteInput, "initial guess is not finite");
   if (map.empty()) return failed(guess, Status::EmptyTarget, "local map is empty");
   if (static_cast<int>(src.size()) < p.min_inliers) {
@@ -84,7 +100,8 @@ RegistrationResult alignToVoxelMap(const GaussianVoxelMap& map, const std::vecto
   RegistrationResult r;
   r.status = Status::MaxIterations;
   for (int it = 0; it < p.max_iterations; ++it) {
-    const LinearSystem ls = buildSystem(map, src, T, p);
+    LinearSystem ls = buildSystem(map, src, T, p);
+    if (gravity && gravity->constraints) addGravity(*gravity, T.linear(), ls);
     r.iterations = it + 1;
     if (ls.inliers < p.min_inliers) {
       return failed(T, Status::TooFewCorrespondences,
@@ -103,7 +120,9 @@ RegistrationResult alignToVoxelMap(const GaussianVoxelMap& map, const std::vecto
       break;
     }
   }
-  const LinearSystem fin = buildSystem(map, src, T, p);
+  LinearSystem fin = buildSystem(map, src, T, p);
+  const Matrix6d H_scan = fin.H;  // degeneracy is the scan's: the tilt prior adds no translation
+  if (gravity && gravity->constraints) addGravity(*gravity, T.linear(), fin);
   r.T_target_source = T;
   r.converged = r.status == Status::Converged;
   r.inliers = fin.inliers;
@@ -111,7 +130,7 @@ RegistrationResult alignToVoxelMap(const GaussianVoxelMap& map, const std::vecto
   const double var = std::max(r.fitness * r.fitness, 1e-4);
   r.information = fin.H / var;
   const double lever = fin.inliers ? std::sqrt(fin.range_sq_sum / fin.inliers) : 1.0;
-  r.degeneracy = registration::analyseDegeneracy(fin.H, fin.inliers, std::max(lever, 1.0), p.degeneracy_threshold);
+  r.degeneracy = registration::analyseDegeneracy(H_scan, fin.inliers, std::max(lever, 1.0), p.degeneracy_threshold);
   if (!r.converged) r.reason = "no convergence in " + std::to_string(p.max_iterations) + " iterations";
   return r;
 }

@@ -1,5 +1,6 @@
 #include "sim_drive.h"
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
@@ -61,11 +62,19 @@ struct OdometryRun {
     ms_sum += f.ms_total;
     const double t = f.stamp_s - static_cast<double>(sim.params().start_epoch_s);
     if (std::getenv("SIMDRIVE_VERBOSE")) {
-      const Eigen::Vector3d g = toEigen(sim.lidar().lidarPose(t)).translation();
-      const Eigen::Vector3d e = f.T_world_lidar.translation();
-      std::printf("%zu %s it=%d inl=%d/%d fit=%.3f thr=%.2f weak=%d ev=%.4f est=(%.2f %.2f %.2f) gt=(%.2f %.2f %.2f) %s\n", f.index,
-                  toString(f.status), f.iterations, f.inliers, f.points_registered, f.fitness_m, f.threshold_m,
-                  f.weak_directions, f.min_eigenvalue, e.x(), e.y(), e.z(), g.x(), g.y(), g.z(), f.reason.c_str());
+      const Eigen::Isometry3d G = toEigen(sim.lidar().lidarPose(t));
+      const Eigen::Vector3d g = G.translation(), e = f.T_world_lidar.translation();
+      // Tilt of the lidar's z axis: [deg] about world x (roll-like) and y (pitch-like).
+      const auto tilt = [](const Eigen::Isometry3d& T) -> Eigen::Vector2d {
+        const Eigen::Vector3d z = T.linear().col(2);
+        return Eigen::Vector2d(std::atan2(-z.y(), z.z()), std::atan2(z.x(), z.z())) * 180.0 / M_PI;
+      };
+      const Eigen::Vector2d te = tilt(f.T_world_lidar), tg = tilt(G);
+      std::printf("%zu %s vc=%d it=%d inl=%d/%d fit=%.3f thr=%.2f weak=%d ev=%.4f est=(%.2f %.2f %.2f) gt=(%.2f %.2f %.2f) "
+                  "tilt_est=(%.3f %.3f) tilt_gt=(%.3f %.3f) %s\n", f.index,
+                  toString(f.status), f.vertical_constraints, f.iterations, f.inliers, f.points_registered, f.fitness_m, f.threshold_m,
+                  f.weak_directions, f.min_eigenvalue, e.x(), e.y(), e.z(), g.x(), g.y(), g.z(), te.x(), te.y(),
+                  tg.x(), tg.y(), f.reason.c_str());
     }
     m.gt.push_back(toEigen(sim.lidar().lidarPose(t)));
     m.est.push_back(f.T_world_lidar);

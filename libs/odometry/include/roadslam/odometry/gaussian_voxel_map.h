@@ -17,6 +17,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "roadslam/odometry/vertical_structures.h"
 #include "roadslam/registration/registration.h"
 
 namespace roadslam::odometry {
@@ -82,10 +83,25 @@ struct VoxelAlignParams {
   double degeneracy_threshold = 0.02;          ///< normalised Hessian eigenvalue [-]
 };
 
-/// Aligns \p points_source (lidar frame) to \p map from \p T_map_source_guess.
+/// Absolute tilt prior of the alignment: the sweep's vertical structures (lidar frame) must stand
+/// along \p up_map. Each constraint adds the residual (R n) . up [rad] with the weight
+/// scale_m2 * VerticalConstraint::weight, under a Geman-McClure kernel of scale kernel_rad so
+/// leaning trunks and tilted car sides fade out. scale_m2 turns the constraints' inverse variances
+/// [1/rad^2] into the units of the scan residuals [1/m^2]: it sets how hard the prior pulls
+/// against the registration's (over-confident, points-as-independent) information.
+struct GravityPrior {
+  const std::vector<VerticalConstraint>* constraints = nullptr;
+  Eigen::Vector3d up_map = Eigen::Vector3d::UnitZ();  ///< unit up direction in the map frame
+  double scale_m2 = 1.0;                              ///< [m^2]
+  double kernel_rad = 0.035;                          ///< [rad]
+};
+
+/// Aligns \p points_source (lidar frame) to \p map from \p T_map_source_guess, with an optional
+/// tilt prior.
 registration::RegistrationResult alignToVoxelMap(const GaussianVoxelMap& map,
                                                  const std::vector<Eigen::Vector3d>& points_source,
                                                  const Eigen::Isometry3d& T_map_source_guess,
-                                                 const VoxelAlignParams& params);
+                                                 const VoxelAlignParams& params,
+                                                 const GravityPrior* gravity = nullptr);
 
 }  // namespace roadslam::odometry

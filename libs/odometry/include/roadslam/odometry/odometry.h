@@ -18,6 +18,7 @@
 #include "roadslam/common/scan.h"
 #include "roadslam/odometry/gaussian_voxel_map.h"
 #include "roadslam/odometry/local_map.h"
+#include "roadslam/odometry/vertical_structures.h"
 #include "roadslam/preprocess/chain.h"
 #include "roadslam/registration/adaptive_threshold.h"
 #include "roadslam/registration/registration.h"
@@ -48,6 +49,9 @@ struct Params {
   /// Upper bound of the adaptive sigma [m]: a few bad frames at the start (an empty map, a car that
   /// is already moving) must not widen the kernel until nothing is an outlier any more.
   double max_threshold_m = 10.0;
+  /// Lower bound of the adaptive sigma [m]: with a good motion prior (wheel odometry) the model
+  /// deviation shrinks to millimetres, and pairs within 3 sigma would then be none at all.
+  double min_threshold_m = 0.1;
   double min_motion_m = 0.1;           ///< motions below this do not feed the adaptive threshold [m]
   double max_range_m = 100.0;          ///< sensor range for the adaptive threshold [m]
   bool deskew = true;                  ///< motion-compensate sweeps that carry point times
@@ -62,7 +66,7 @@ struct Params {
   /// Replace the weak directions by an external motion prior (wheel odometry). The constant-velocity
   /// prediction is not used there: it carries no information of its own and measured worse.
   bool use_prior_on_degeneracy = true;
-  double degeneracy_threshold = 0.001; ///< normalised Hessian eigenvalue below which a direction is weak [-]
+  double degeneracy_threshold = 0.01;  ///< normalised Hessian eigenvalue below which a direction is weak [-]
   /// A registration that used up its iterations is still taken when at least this fraction of the
   /// source points found a partner (IRLS often ends in a tiny limit cycle, not in a bad pose) [-]
   double min_inlier_fraction = 0.3;
@@ -70,6 +74,14 @@ struct Params {
   /// voxels crossed by a single ring of road still constrain height (16-beam sensors) [-]
   bool ground_aware_map = true;
   double map_ground_max_range_m = 0.0;   ///< road points farther than this stay out of the map (0 = all) [m]
+  /// Tilt prior from vertical structures (walls, poles, trunks: vertical_structures.h) in the voxel-map
+  /// matcher, against the up direction summed over all frames so far (robustly).
+  bool gravity_prior = true;
+  double gravity_weight_m2 = 1.0;       ///< GravityPrior::scale_m2 [m^2]
+  double gravity_kernel_rad = 0.035;    ///< [rad]; ini gravity_kernel_deg
+  /// The prior starts once the summed structures know both tilts this well [1/rad^2]
+  double gravity_min_information = 1e5;
+  VerticalStructureParams vertical;     ///< ini vertical_* keys
 
   preprocess::PreprocessParams preprocess;
   registration::Params registration;
@@ -115,6 +127,7 @@ struct FrameResult {
   double threshold_m = 0;       ///< correspondence threshold used [m]
   int weak_directions = 0;      ///< degenerate directions of the registration [-]
   double min_eigenvalue = 0;    ///< smallest normalised Hessian eigenvalue (degeneracy measure) [-]
+  int vertical_constraints = 0; ///< tilt constraints from vertical structures (gravity prior) [-]
   double ms_preprocess = 0, ms_register = 0, ms_map = 0, ms_total = 0;  ///< wall time [ms]
   Eigen::Matrix<double, 6, 6> information = Eigen::Matrix<double, 6, 6>::Zero();
 };
@@ -146,6 +159,7 @@ class Odometry {
                                   const Eigen::Isometry3d& T_pred, Eigen::Isometry3d& T_est) const;
   bool isStandstill(const Eigen::Isometry3d& delta, const std::optional<MotionPrior>& prior) const;
   void updateKeyframe(FrameResult& res);
+  void updateUp(const FrameResult& res);
   registration::RegistrationResult match(const std::vector<Eigen::Vector3d>& source,
                                          const Eigen::Isometry3d& T_pred, FrameResult& res);
   void updateMap(const Eigen::Isometry3d& T_world_lidar);
@@ -166,6 +180,10 @@ class Odometry {
   Eigen::Isometry3d T_world_keyframe_ = Eigen::Isometry3d::Identity();
   std::vector<Eigen::Vector3d> last_frame_points_;
   std::vector<uint8_t> last_ground_;  ///< ground labels of last_frame_points_ (when ground_aware_map)
+  std::vector<VerticalConstraint> vertical_;  ///< this frame's vertical structures (gravity prior)
+  Eigen::Vector3d up_world_ = Eigen::Vector3d::UnitZ();  ///< measured up direction, world frame
+  Eigen::Matrix3d up_scatter_ = Eigen::Matrix3d::Zero();  ///< verticalScatter summed over the frames
+  int up_frames_ = 0;                                    ///< frames since up_world_ is known
 };
 
 }  // namespace roadslam::odometry
