@@ -43,6 +43,7 @@ struct OdometryRun {
   eval::MatchedTrajectories m;
   SimDriveResult r;
   double ms_sum = 0;
+  std::function<void(const FrameResult&, const Odometry&)> on_frame;
 
   void process(Scan scan) {
     if (scan.partial) return;
@@ -79,6 +80,7 @@ struct OdometryRun {
     m.gt.push_back(toEigen(sim.lidar().lidarPose(t)));
     m.est.push_back(f.T_world_lidar);
     m.stamps_s.push_back(f.stamp_s);
+    if (on_frame) on_frame(f, odo);
   }
 };
 
@@ -92,8 +94,10 @@ SimDriveResult runSimDrive(const std::string& scenario_ini, double duration_s, c
                            const SimDriveOptions& options) {
   auto sp = sim::ScenarioParams::fromFile(scenario_ini);
   sp.duration_s = duration_s;
+  if (options.laps > 0) sp.trajectory.laps = options.laps;
   sim::Simulator s(sp);
   OdometryRun run(s, params);
+  run.on_frame = options.on_frame;
   if (options.can_prior) {
     VehiclePriorParams pp = options.prior;
     pp.T_base_lidar = toEigen(s.lidar().vehicleToLidar());

@@ -1,6 +1,7 @@
 #pragma once
 // Runs the odometry on a simulated drive as it is simulated (sweeps never stored), and scores it
 // against the simulator's exact lidar poses.
+#include <functional>
 #include <string>
 
 #include "roadslam/eval/trajectory_metrics.h"
@@ -21,6 +22,10 @@ struct SimDriveOptions {
   /// and give every frame the VehiclePrior motion; T_base_lidar is taken from the simulator's mount.
   bool can_prior = false;
   VehiclePriorParams prior;
+  /// Closed routes: laps to drive (0 = the scenario's own [trajectory] laps).
+  int laps = 0;
+  /// Called after every processed frame (e.g. to sample memory).
+  std::function<void(const FrameResult&, const Odometry&)> on_frame;
 };
 
 /// \p scenario_ini path; \p duration_s 0 = the whole drive.
