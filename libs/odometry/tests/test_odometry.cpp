@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
+#include <iostream>
 
 #include "roadslam/datasets/kitti_scans.h"
 #include "roadslam/datasets/trajectory_io.h"
@@ -28,12 +30,16 @@ eval::TrajectoryMetrics runOnFolder(const datasets::KittiScanFolder& folder, con
                                     odometry::Params params) {
   odometry::Odometry odo(params);
   eval::MatchedTrajectories m;
+  double ms = 0;
   for (size_t i = 0; i < folder.size(); ++i) {
     const auto r = odo.process(folder.read(i));
+    ms += r.ms_total;
     EXPECT_NE(r.status, odometry::FrameStatus::NotConverged) << "frame " << i << ": " << r.reason;
     m.gt.push_back(gt[i]);
     m.est.push_back(r.T_world_lidar);
   }
+  std::cout << "odometry " << ms / static_cast<double>(std::max<size_t>(folder.size(), 1))
+            << " ms per sweep (reading excluded; a figure, not a bound)\n";
   return eval::computeMetrics(m);
 }
 
