@@ -94,6 +94,15 @@ std::vector<Vec2> nearLine(const std::vector<Vec2>& pts, const std::vector<Vec2>
   return out;
 }
 
+/// y of the polyline \p line (vertices ascending in x) at \p x, NaN outside it.
+double yAt(const std::vector<Vec2>& line, double x) {
+  for (size_t i = 1; i < line.size(); ++i) {
+    const Vec2 &a = line[i - 1], &b = line[i];
+    if (x >= a.x && x <= b.x) return b.x > a.x ? a.y + (b.y - a.y) * (x - a.x) / (b.x - a.x) : a.y;
+  }
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
 /// Vertices on the road surface, so a rolled or pitched sensor does not shift them in the map.
 void toMap(const Eigen::Isometry3d& T_map_lidar, double sensor_height, SideBoundary& s) {
   for (const auto& v : s.polyline_vehicle) {
@@ -121,7 +130,8 @@ SideBoundary BoundaryDetector::track(SideBoundary fresh, const std::vector<Vec2>
     int n = 0;
     for (const auto& h : held) {
       if (h.x < p_.band_min_x_m || h.x > p_.band_max_x_m) continue;
-      dev += std::abs(detail::polyEval(fresh.coeffs, h.x) - h.y), ++n;
+      const double y = yAt(fresh.polyline_vehicle, h.x);
+      if (std::isfinite(y)) dev += std::abs(y - h.y), ++n;
     }
     // Continuity: while the curb map still supports the tracked line, a fit elsewhere (a sidewalk's
     // far edge gathering more bins over many sweeps) does not replace it.
@@ -137,10 +147,12 @@ SideBoundary BoundaryDetector::track(SideBoundary fresh, const std::vector<Vec2>
   }
   if (fresh.found) {
     tr.map_pts.clear();
-    const double x1 = fresh.polyline_vehicle.back().x;
-    for (double x = p_.fit_min_x_m; x <= x1 + 1e-9; x += p_.polyline_step_m) {
+    const double x0 = fresh.polyline_vehicle.front().x;
+    for (double x = p_.fit_min_x_m; x < x0 - 1e-9; x += p_.polyline_step_m) {  // the fit behind the band
       tr.map_pts.push_back(T_map_lidar * Eigen::Vector3d(x, detail::polyEval(fresh.coeffs, x), -p_.ground.sensor_height_m));
     }
+    for (const auto& v : fresh.polyline_vehicle)
+      tr.map_pts.push_back(T_map_lidar * Eigen::Vector3d(v.x, v.y, -p_.ground.sensor_height_m));
     tr.confidence = fresh.confidence, tr.held = 0, tr.valid = true, tr.yaw_map = yawOf(T_map_lidar);
     return fresh;
   }
@@ -211,8 +223,19 @@ BoundaryFrame BoundaryDetector::process(const Scan& scan, const Eigen::Isometry3
       f.right = detail::fitSideThesis(f.obstacles, -1, p_, rng);
     } else {
       const std::vector<Vec2> pts = curb_map_.inVehicle(T_map_lidar, p_.curb_min_sightings);
-      f.left = track(detail::fitSide(pts, +1, p_, rng), pts, +1, rng, tracks_[0], T_map_lidar);
-      f.right = track(detail::fitSide(pts, -1, p_, rng), pts, -1, rng, tracks_[1], T_map_lidar);
+      SideBoundary l = detail::fitSide(pts, +1, p_, rng), r = detail::fitSide(pts, -1, p_, rng);
+      // Each side from the other's own fit only: a continued side never continues the other one.
+      const SideBoundary l_own = l;
+      if (l.reason == "ok" && r.reason == "ok") {
+        const double w = detail::parallelOffset(r, l, pts, -1, p_);
+        if (std::isfinite(w)) road_width_m_ = road_width_m_ > 0 ? 0.8 * road_width_m_ + 0.2 * w : w, road_width_frame_ = f.index;
+      }
+      const bool width_known = road_width_m_ > 0 && f.index - road_width_frame_ <= static_cast<size_t>(p_.memory_frames);
+      const double width = width_known ? road_width_m_ : std::numeric_limits<double>::quiet_NaN();
+      if (r.reason == "ok") detail::completeParallel(l, r, pts, +1, p_, width);
+      if (l_own.reason == "ok") detail::completeParallel(r, l_own, pts, -1, p_, width);
+      f.left = track(std::move(l), pts, +1, rng, tracks_[0], T_map_lidar);
+      f.right = track(std::move(r), pts, -1, rng, tracks_[1], T_map_lidar);
     }
     toMap(T_map_lidar, p_.ground.sensor_height_m, f.left);
     toMap(T_map_lidar, p_.ground.sensor_height_m, f.right);

@@ -24,6 +24,19 @@ std::vector<std::vector<size_t>> gridClusters(const std::vector<Vec2>& pts, doub
 
 /// RANSAC polynomial fit of one side (side = +1 left, -1 right) over curb points, vehicle frame.
 SideBoundary fitSide(const std::vector<Vec2>& pts, int side, const Params& p, std::mt19937& rng);
+/// Curb points of one side within ransac_inlier_m of the polynomial \p c, ascending in x.
+std::vector<Vec2> sideInliers(const std::vector<Vec2>& pts, int side, const std::vector<double>& c, const Params& p);
+/// Median perpendicular offset [m] of the curb cells of side \p s (side = +1 left, -1 right; a fit,
+/// found or not) from the curve of the other side \p o; NaN when fewer than min_bins cells or when
+/// their offsets spread (median absolute deviation) more than parallel_max_spread_m. \p x_end gets
+/// the largest x of those cells [m].
+double parallelOffset(const SideBoundary& s, const SideBoundary& o, const std::vector<Vec2>& pts, int side,
+                      const Params& p, double* x_end = nullptr);
+/// Continues side \p s beyond (and before) its own curb cells parallel to the found side \p o, at
+/// their offset when it matches \p road_width_m (measured where both sides were seen) within
+/// parallel_width_gate_m. Returns whether \p s changed; a side found only this way says so.
+bool completeParallel(SideBoundary& s, const SideBoundary& o, const std::vector<Vec2>& pts, int side, const Params& p,
+                      double road_width_m);
 /// Thesis baseline: inner corners of the rectangles of non-ground clusters, RANSAC line.
 SideBoundary fitSideThesis(const std::vector<Obstacle>& rects, int side, const Params& p, std::mt19937& rng);
 

@@ -25,7 +25,7 @@ nlohmann::json pts3(const std::vector<Vec3>& v) {
 
 nlohmann::json side(const SideBoundary& s) {
   return {{"found", s.found}, {"reason", s.reason}, {"confidence", s.confidence}, {"coeffs", s.coeffs},
-          {"candidates", s.candidates}, {"inliers", s.inliers}, {"bridged_m", s.bridged_m}, {"polyline_vehicle", pts(s.polyline_vehicle)},
+          {"candidates", s.candidates}, {"inliers", s.inliers}, {"bridged_m", s.bridged_m}, {"parallel_m", s.parallel_m}, {"polyline_vehicle", pts(s.polyline_vehicle)},
           {"polyline_map", pts3(s.polyline_map)}};
 }
 

@@ -67,6 +67,7 @@ TEST(CurbMap, DrivingPastParkedCarsFindsTheHiddenCurb) {
   one.memory_frames = 0;  // only this sweep's evidence (cells not seen now are dropped)
   one.max_hold_frames = 0;
   many.max_hold_frames = 0;  // no holding: what is found comes from evidence
+  one.parallel_max_spread_m = many.parallel_max_spread_m = 0;  // own evidence only, not the left side's shape
   BoundaryDetector d_one(one), d_many(many);
   int found_one = 0, found_many = 0;
   double err = 0;

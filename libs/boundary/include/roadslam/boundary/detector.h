@@ -62,6 +62,8 @@ class BoundaryDetector {
     bool valid = false;
   };
   std::array<Track, 2> tracks_;
+  double road_width_m_ = 0;      ///< curb to curb where both sides had their own fit; 0 = not measured [m]
+  size_t road_width_frame_ = 0;  ///< sweep of the last measurement
   SideBoundary track(SideBoundary fresh, const std::vector<Vec2>& pts, int side, std::mt19937& rng, Track& tr,
                      const Eigen::Isometry3d& T_map_lidar) const;
 };

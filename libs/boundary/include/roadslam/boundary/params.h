@@ -73,6 +73,11 @@ struct Params {
   double track_gate_m = 0.5;            ///< a new fit farther than this from the held side is an outlier [m]
   double hold_decay = 0.85;             ///< confidence factor per held sweep [-]
   double hold_max_turn_rad = 0.035;     ///< a held side is dropped once the vehicle turned this much since its fit (ini: hold_max_turn_deg) [rad]
+  /// A side whose own curb cells end early (parked cars hide it ahead) continues parallel to the
+  /// other side at the offset measured on its own cells, when their offsets to the other side
+  /// spread (median absolute deviation) at most this much; 0 disables [m].
+  double parallel_max_spread_m = 0.15;
+  double parallel_width_gate_m = 0.3;   ///< ... and when that offset is within this of the road's width measured where both sides had their own fit [m]
 
   // Cost grid for a planner (vehicle frame).
   double grid_resolution_m = 0.2;       ///< [m]

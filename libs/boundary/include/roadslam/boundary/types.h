@@ -33,6 +33,7 @@ struct SideBoundary {
   int candidates = 0;                   ///< curb points on this side [-]
   int inliers = 0;                      ///< of which fitted [-]
   double bridged_m = 0;                 ///< polyline length with no curb evidence within bin_m (gaps bridged, ends extrapolated) [m]
+  double parallel_m = 0;                ///< of the polyline, length continued parallel to the other side beyond this side's own evidence [m]
 };
 
 /// A cluster of obstacle points (parked or moving car, wall, pole, ...), vehicle frame.
