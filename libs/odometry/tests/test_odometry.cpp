@@ -60,6 +60,7 @@ TEST(Odometry, KittiRawDriveAgainstOxtsGroundTruth) {
   const auto m = runOnFolder(folder, gt, kittiParams());
   std::cout << "KITTI raw 0001: ATE " << m.ate_rmse_m << " m, RTE " << m.rte_percent << " %, RRE "
             << m.rre_deg_per_100m << " deg/100m\n";
-  EXPECT_LT(m.rte_percent, 1.0);
-  EXPECT_LT(m.ate_rmse_m, 0.5);
+  // measured 0.46 % and 0.052 m; KISS-ICP: 0.45-1.03 %, 0.14-0.30 m (the odometry issue)
+  EXPECT_LT(m.rte_percent, 0.6);
+  EXPECT_LT(m.ate_rmse_m, 0.14);
 }
