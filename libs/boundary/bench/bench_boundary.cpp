@@ -22,9 +22,10 @@ const Scan& street() {
   return s;
 }
 
-void run(benchmark::State& st, const std::string& method) {
+void run(benchmark::State& st, const std::string& method, bool parallel = true) {
   boundary::Params p;
   p.method = method;
+  if (!parallel) p.parallel_max_spread_m = 0;  // before: no side continued parallel to the other
   boundary::BoundaryDetector det(p);
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   for (auto _ : st) {
@@ -35,6 +36,7 @@ void run(benchmark::State& st, const std::string& method) {
 }
 
 void BM_Detector_Ransac(benchmark::State& st) { run(st, "ransac"); }
+void BM_Detector_Ransac_NoParallel(benchmark::State& st) { run(st, "ransac", false); }
 void BM_Detector_Thesis(benchmark::State& st) { run(st, "thesis"); }
 void BM_GroundLabelsOnly(benchmark::State& st) {
   preprocess::GroundSegParams g;
@@ -48,6 +50,7 @@ void BM_LabelPoints(benchmark::State& st) {
 }  // namespace
 
 BENCHMARK(BM_Detector_Ransac)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Detector_Ransac_NoParallel)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Detector_Thesis)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_GroundLabelsOnly)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_LabelPoints)->Unit(benchmark::kMillisecond);

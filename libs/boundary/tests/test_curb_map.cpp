@@ -2,6 +2,8 @@
 // from many poses is found where one sweep alone cannot see enough of it.
 #include <gtest/gtest.h>
 
+#include <iostream>
+
 #include <cmath>
 
 #include "roadslam/boundary/curb_map.h"
@@ -68,15 +70,24 @@ TEST(CurbMap, DrivingPastParkedCarsFindsTheHiddenCurb) {
   one.max_hold_frames = 0;
   many.max_hold_frames = 0;  // no holding: what is found comes from evidence
   one.parallel_max_spread_m = many.parallel_max_spread_m = 0;  // own evidence only, not the left side's shape
-  BoundaryDetector d_one(one), d_many(many);
-  int found_one = 0, found_many = 0;
-  double err = 0;
+  Params par = many;  // the shipped default: beyond its own cells the right side follows the left
+  par.parallel_max_spread_m = Params().parallel_max_spread_m;
+  BoundaryDetector d_one(one), d_many(many), d_par(par);
+  int found_one = 0, found_many = 0, found_par = 0, par_only = 0;
+  double err = 0, err_par = 0;
   for (double X = 0; X < 30; X += 1.0) {
     const auto s = sweepAt(X);
     const auto a = d_one.process(s, at(X), 0.1 * X);
     const auto b = d_many.process(s, at(X), 0.1 * X);
     found_one += a.right.found;
     found_many += b.right.found;
+    const auto c = d_par.process(s, at(X), 0.1 * X);
+    found_par += c.right.found;
+    if (c.right.found && c.right.parallel_m > 0) {
+      ++par_only;
+      EXPECT_FALSE(b.right.found && c.right.reason != "ok") << "a side with its own fit keeps reason ok";
+      for (const auto& v : c.right.polyline_vehicle) err_par = std::max(err_par, std::abs(v.y + 3.5));
+    }
     if (b.right.found)
       for (const auto& v : b.right.polyline_vehicle) err = std::max(err, std::abs(v.y + 3.5));
   }
@@ -86,6 +97,11 @@ TEST(CurbMap, DrivingPastParkedCarsFindsTheHiddenCurb) {
   EXPECT_GE(found_many, 19);
   EXPECT_GE(found_many, found_one + 4);
   EXPECT_LT(err, 0.10);
+  std::cout << "right found: one sweep " << found_one << ", curb map " << found_many << ", + parallel " << found_par
+            << " (continued in " << par_only << ", max error " << err_par << " m)\n";
+  EXPECT_GE(found_par, found_many + 3);
+  EXPECT_GT(par_only, 0);
+  EXPECT_LT(err_par, 0.10);  // the continued part lies on the hidden curb, not on the cars' sills
   EXPECT_GT(d_many.curbMap().size(), 0u);
 }
 
