@@ -115,14 +115,30 @@ void toMap(const Eigen::Isometry3d& T_map_lidar, double sensor_height, SideBound
 
 BoundaryDetector::BoundaryDetector(Params p) : p_(std::move(p)), curb_map_(p_.curb_map_cell_m) {}
 
+double BoundaryDetector::pathCurvature(const Eigen::Isometry3d& T_map_lidar) {
+  path_.push_back(T_map_lidar);
+  while (path_.size() > static_cast<size_t>(std::max(0, p_.path_curvature_frames)) + 1) path_.pop_front();
+  if (path_.size() < 2) return 0;
+  double len = 0;
+  for (size_t i = 1; i < path_.size(); ++i) len += (path_[i].translation() - path_[i - 1].translation()).head<2>().norm();
+  if (len < p_.path_min_length_m) return 0;
+  return std::remainder(yawOf(path_.back()) - yawOf(path_.front()), 2 * M_PI) / len;
+}
+
 SideBoundary BoundaryDetector::track(SideBoundary fresh, const std::vector<Vec2>& pts, int side, std::mt19937& rng,
-                                     Track& tr, const Eigen::Isometry3d& T_map_lidar) const {
+                                     Track& tr, const Eigen::Isometry3d& T_map_lidar, double kappa) const {
   const Eigen::Isometry3d T_lidar_map = T_map_lidar.inverse();
-  std::vector<Vec2> held;  // the track in the current vehicle frame
+  const detail::ArcFrame arc{kappa};
+  auto toMapPt = [&](const Vec2& a) {
+    const Vec2 v = arc.toXY(a);
+    return T_map_lidar * Eigen::Vector3d(v.x, v.y, -p_.ground.sensor_height_m);
+  };
+  std::vector<Vec2> held;  // the track in the current arc frame
   if (tr.valid) {
     for (const auto& m : tr.map_pts) {
       const Eigen::Vector3d v = T_lidar_map * m;
-      held.push_back({v.x(), v.y()});
+      Vec2 a;
+      if (arc.toArc({v.x(), v.y()}, a)) held.push_back(a);
     }
   }
   if (fresh.found && !held.empty()) {
@@ -148,11 +164,9 @@ SideBoundary BoundaryDetector::track(SideBoundary fresh, const std::vector<Vec2>
   if (fresh.found) {
     tr.map_pts.clear();
     const double x0 = fresh.polyline_vehicle.front().x;
-    for (double x = p_.fit_min_x_m; x < x0 - 1e-9; x += p_.polyline_step_m) {  // the fit behind the band
-      tr.map_pts.push_back(T_map_lidar * Eigen::Vector3d(x, detail::polyEval(fresh.coeffs, x), -p_.ground.sensor_height_m));
-    }
-    for (const auto& v : fresh.polyline_vehicle)
-      tr.map_pts.push_back(T_map_lidar * Eigen::Vector3d(v.x, v.y, -p_.ground.sensor_height_m));
+    for (double x = p_.fit_min_x_m; x < x0 - 1e-9; x += p_.polyline_step_m)  // the fit behind the band
+      tr.map_pts.push_back(toMapPt({x, detail::polyEval(fresh.coeffs, x)}));
+    for (const auto& v : fresh.polyline_vehicle) tr.map_pts.push_back(toMapPt(v));
     tr.confidence = fresh.confidence, tr.held = 0, tr.valid = true, tr.yaw_map = yawOf(T_map_lidar);
     return fresh;
   }
@@ -222,7 +236,13 @@ BoundaryFrame BoundaryDetector::process(const Scan& scan, const Eigen::Isometry3
       f.left = detail::fitSideThesis(f.obstacles, +1, p_, rng);
       f.right = detail::fitSideThesis(f.obstacles, -1, p_, rng);
     } else {
-      const std::vector<Vec2> pts = curb_map_.inVehicle(T_map_lidar, p_.curb_min_sightings);
+      const double kappa = pathCurvature(T_map_lidar);
+      const detail::ArcFrame arc{kappa};
+      std::vector<Vec2> pts;  // the curb map's cells in the arc frame
+      for (const auto& q : curb_map_.inVehicle(T_map_lidar, p_.curb_min_sightings)) {
+        Vec2 a;
+        if (arc.toArc(q, a)) pts.push_back(a);
+      }
       SideBoundary l = detail::fitSide(pts, +1, p_, rng), r = detail::fitSide(pts, -1, p_, rng);
       // Each side from the other's own fit only: a continued side never continues the other one.
       const SideBoundary l_own = l;
@@ -234,8 +254,10 @@ BoundaryFrame BoundaryDetector::process(const Scan& scan, const Eigen::Isometry3
       const double width = width_known ? road_width_m_ : std::numeric_limits<double>::quiet_NaN();
       if (r.reason == "ok") detail::completeParallel(l, r, pts, +1, p_, width);
       if (l_own.reason == "ok") detail::completeParallel(r, l_own, pts, -1, p_, width);
-      f.left = track(std::move(l), pts, +1, rng, tracks_[0], T_map_lidar);
-      f.right = track(std::move(r), pts, -1, rng, tracks_[1], T_map_lidar);
+      f.left = track(std::move(l), pts, +1, rng, tracks_[0], T_map_lidar, kappa);
+      f.right = track(std::move(r), pts, -1, rng, tracks_[1], T_map_lidar, kappa);
+      for (SideBoundary* sb : {&f.left, &f.right})
+        for (auto& v : sb->polyline_vehicle) v = arc.toXY(v);
     }
     toMap(T_map_lidar, p_.ground.sensor_height_m, f.left);
     toMap(T_map_lidar, p_.ground.sensor_height_m, f.right);

@@ -15,6 +15,31 @@ inline int64_t cellKey(double x, double y, double cell) {
   return (ix << 32) ^ (iy & 0xffffffffLL);
 }
 
+/// Coordinates along the arc the vehicle is driving (curvature \p kappa [1/m], from the origin along
+/// +x): s = arc length [m], d = offset to the left of the arc [m]. A curb concentric with the
+/// vehicle's path through a corner is d = const, so the side fits (polynomials in s) follow corners
+/// while the vehicle turns; kappa = 0 is the vehicle frame itself.
+struct ArcFrame {
+  double kappa = 0;
+  static constexpr double kMaxAngle = 2.0;  ///< farther round the arc than this the map is ambiguous [rad]
+  bool straight() const { return std::abs(kappa) < 1e-4; }
+  /// (x, y) -> (s, d); false beyond kMaxAngle or across the centre of curvature.
+  bool toArc(const Vec2& q, Vec2& out) const {
+    if (straight()) return out = q, true;
+    const double R = 1.0 / kappa, sg = R > 0 ? 1.0 : -1.0;
+    const double rho = sg * std::hypot(q.x, R - q.y);  // R - d
+    const double th = std::atan2(q.x / rho, (R - q.y) / rho);
+    if (std::abs(th) > kMaxAngle) return false;
+    out = {th * R, R - rho};
+    return true;
+  }
+  Vec2 toXY(const Vec2& a) const {
+    if (straight()) return a;
+    const double R = 1.0 / kappa, th = a.x * kappa;
+    return {(R - a.y) * std::sin(th), R - (R - a.y) * std::cos(th)};
+  }
+};
+
 /// Convex hull, counter-clockwise (Andrew's monotone chain).
 std::vector<Vec2> convexHull(std::vector<Vec2> pts);
 /// Minimum-area rectangle of a convex hull (one side on a hull edge: Freeman & Shapira 1975).

@@ -1,9 +1,12 @@
 // The whole shipped urban loop (103 s, 990 m, 4 corners of radius 12 m, 35 % parked cars):
 // where the boundary stands against the targets (95 % both found, mean <= 0.10 m,
 // p95 <= 0.25 m). Not met: parked cars hide the right curb (see the visibility oracle in
-// test_sim_drive.cpp) and a quadratic cannot follow the corners; this guards what is reached
-// (measured: both 0.66, left 0.75, right 0.78, mean 0.16 m, p95 0.31 m; before a side continued
-// parallel to the other: 0.28, 0.62, 0.51, 0.16 m, 0.41 m) and the honesty rules.
+// test_sim_drive.cpp) and, in the corners, the eval takes each side as the nearest GT curb on that
+// side of the vehicle's x axis (entering a turn the outer curb crosses the axis and becomes the
+// "left" GT), so a side that follows its own curb round the corner covers few of those stations.
+// This guards what is reached (measured: both 0.646, left 0.705, right 0.812, mean 0.072 m, p95
+// 0.169 m; before the arc frame 0.661 / 0.749 / 0.778 / 0.156 m / 0.314 m; before the parallel
+// continuation 0.28 / 0.62 / 0.51 / 0.16 m / 0.41 m) and the honesty rules.
 #include <gtest/gtest.h>
 
 #include "sim_drive_harness.h"
@@ -15,11 +18,11 @@ TEST(SimLoop, WholeUrbanLoopAsReached) {
   const auto drive = cachedDrive("urban_loop_full", "urban-loop.ini", 0.0, nullptr);
   const auto r = runBounds(drive, "bounds.ini", "urban_loop_full");
   EXPECT_GE(r.m.frames_scored, 1000);
-  EXPECT_GE(r.m.detection_rate, 0.63);
-  EXPECT_GE(r.m.left_detection_rate, 0.72);
-  EXPECT_GE(r.m.right_detection_rate, 0.75);
-  EXPECT_LE(r.m.lateral_error_mean_m, 0.18);
-  EXPECT_LE(r.m.lateral_error_p95_m, 0.36);
+  EXPECT_GE(r.m.detection_rate, 0.62);
+  EXPECT_GE(r.m.left_detection_rate, 0.68);
+  EXPECT_GE(r.m.right_detection_rate, 0.78);
+  EXPECT_LE(r.m.lateral_error_mean_m, 0.09);
+  EXPECT_LE(r.m.lateral_error_p95_m, 0.20);  // the arc frame: 0.31 m with fits in the vehicle frame
   const auto [on_cars, near] =
       verticesOnMovingCars(drive, std::string(ROADSLAM_BINARY_DIR) + "/test_data/boundary_out_urban_loop_full");
   EXPECT_GT(near, 20) << "no moving car came near: the check below tests nothing";

@@ -12,6 +12,7 @@
 /// and says so in its reason.
 
 #include <array>
+#include <deque>
 #include <random>
 #include <vector>
 
@@ -62,10 +63,13 @@ class BoundaryDetector {
     bool valid = false;
   };
   std::array<Track, 2> tracks_;
+  std::deque<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>> path_;  ///< last poses T_map_lidar
+  double pathCurvature(const Eigen::Isometry3d& T_map_lidar);
   double road_width_m_ = 0;      ///< curb to curb where both sides had their own fit; 0 = not measured [m]
   size_t road_width_frame_ = 0;  ///< sweep of the last measurement
+  /// \p fresh and \p pts in the arc frame of curvature \p kappa (see ArcFrame in src/internal.h).
   SideBoundary track(SideBoundary fresh, const std::vector<Vec2>& pts, int side, std::mt19937& rng, Track& tr,
-                     const Eigen::Isometry3d& T_map_lidar) const;
+                     const Eigen::Isometry3d& T_map_lidar, double kappa) const;
 };
 
 }  // namespace roadslam::boundary

@@ -73,6 +73,10 @@ struct Params {
   double track_gate_m = 0.5;            ///< a new fit farther than this from the held side is an outlier [m]
   double hold_decay = 0.85;             ///< confidence factor per held sweep [-]
   double hold_max_turn_rad = 0.035;     ///< a held side is dropped once the vehicle turned this much since its fit (ini: hold_max_turn_deg) [rad]
+  /// Sides are fitted along the arc the vehicle drives (curvature = heading change / path length
+  /// over this many past sweeps) so they follow corners; 0 = in the vehicle frame [-].
+  int path_curvature_frames = 5;
+  double path_min_length_m = 2.0;       ///< shorter paths over those sweeps give curvature 0 [m]
   /// A side whose own curb cells end early (parked cars hide it ahead) continues parallel to the
   /// other side at the offset measured on its own cells, when their offsets to the other side
   /// spread (median absolute deviation) at most this much; 0 disables [m].
