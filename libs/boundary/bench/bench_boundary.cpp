@@ -22,14 +22,15 @@ const Scan& street() {
   return s;
 }
 
-void run(benchmark::State& st, const std::string& method, bool parallel = true) {
+void run(benchmark::State& st, const std::string& method, bool parallel = true, double yaw_per_sweep = 0.0) {
   boundary::Params p;
   p.method = method;
   if (!parallel) p.parallel_max_spread_m = 0;  // before: no side continued parallel to the other
   boundary::BoundaryDetector det(p);
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   for (auto _ : st) {
-    T.translation().x() += 1.0;  // memory and map-frame bookkeeping as while driving
+    T.translation() += T.linear().col(0);  // memory and map-frame bookkeeping as while driving (1 m per sweep)
+    T.rotate(Eigen::AngleAxisd(yaw_per_sweep, Eigen::Vector3d::UnitZ()));  // turning: fits in the arc frame
     benchmark::DoNotOptimize(det.process(street(), T, 0.0));
   }
   st.counters["points"] = static_cast<double>(street().points.size());
@@ -37,6 +38,7 @@ void run(benchmark::State& st, const std::string& method, bool parallel = true) 
 
 void BM_Detector_Ransac(benchmark::State& st) { run(st, "ransac"); }
 void BM_Detector_Ransac_NoParallel(benchmark::State& st) { run(st, "ransac", false); }
+void BM_Detector_Ransac_Turning(benchmark::State& st) { run(st, "ransac", true, 1.0 / 14.0); }  // R = 14 m
 void BM_Detector_Thesis(benchmark::State& st) { run(st, "thesis"); }
 void BM_GroundLabelsOnly(benchmark::State& st) {
   preprocess::GroundSegParams g;
@@ -51,6 +53,7 @@ void BM_LabelPoints(benchmark::State& st) {
 
 BENCHMARK(BM_Detector_Ransac)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Detector_Ransac_NoParallel)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Detector_Ransac_Turning)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Detector_Thesis)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_GroundLabelsOnly)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_LabelPoints)->Unit(benchmark::kMillisecond);
