@@ -6,10 +6,12 @@
 /// obstacle points (0.3-3 m above ground) clustered on a grid, each with a convex hull and an oriented
 /// rectangle -> free space by polar ray casting up to the first curb or obstacle -> left/right
 /// boundary: RANSAC polynomial over the curb evidence of many sweeps (a CurbMap in the map frame,
-/// aged out behind the vehicle, moved into the current vehicle frame), scored by the distance bins it
-/// covers, gaps between curb stretches bridged up to max_bridge_m; a side not seen (or jumping away
-/// from its track) is held from the previous sweeps, moved with the vehicle, for max_hold_frames,
-/// and says so in its reason.
+/// aged out behind the vehicle, moved into the current vehicle frame and then into the arc frame of
+/// the path driven over the last path_curvature_frames sweeps, so fits follow corners), scored by
+/// the distance bins it covers, gaps between curb stretches bridged up to max_bridge_m; a side whose
+/// own cells end early continues parallel to the other side at the road's width (measured where
+/// both were fitted); a side not seen (or jumping away from its track) is held from the previous
+/// sweeps, moved with the vehicle, for max_hold_frames, and says so in its reason.
 
 #include <array>
 #include <deque>

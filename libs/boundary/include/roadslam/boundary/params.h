@@ -43,7 +43,7 @@ struct Params {
   // Free space: polar grid from the sensor.
   int freespace_sectors = 180;          ///< azimuth sectors over 360 deg [-]
 
-  // Boundary fit (vehicle frame).
+  // Boundary fit (vehicle frame; the polynomial in the arc frame of the driven path, see below).
   double band_min_x_m = 5.0;            ///< reported band ahead, start [m]
   double band_max_x_m = 30.0;           ///< reported band ahead, end [m]
   double fit_min_x_m = -10.0;           ///< points used for the fit, from [m]
