@@ -238,6 +238,7 @@ BoundaryFrame BoundaryDetector::process(const Scan& scan, const Eigen::Isometry3
     } else {
       const double kappa = pathCurvature(T_map_lidar);
       const detail::ArcFrame arc{kappa};
+      f.path_curvature = kappa;
       std::vector<Vec2> pts;  // the curb map's cells in the arc frame
       for (const auto& q : curb_map_.inVehicle(T_map_lidar, p_.curb_min_sightings)) {
         Vec2 a;

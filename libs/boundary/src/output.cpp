@@ -36,6 +36,7 @@ nlohmann::json toJson(const BoundaryFrame& f, bool with_grid) {
   j["index"] = f.index;
   j["stamp_s"] = f.stamp_s;
   j["status"] = f.status;
+  j["path_curvature"] = f.path_curvature;
   auto T = nlohmann::json::array();
   const Eigen::Matrix4d M = f.T_map_lidar.matrix();
   for (int r = 0; r < 4; ++r)

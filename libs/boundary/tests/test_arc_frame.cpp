@@ -6,6 +6,8 @@
 #include <random>
 
 #include "../src/internal.h"
+#include "roadslam/boundary/detector.h"
+#include "synthetic_road.h"
 
 using roadslam::boundary::Vec2;
 using roadslam::boundary::detail::ArcFrame;
@@ -46,4 +48,28 @@ TEST(ArcFrame, RoundTripAndStraight) {
   EXPECT_GT(kept, 900);
   Vec2 a;
   EXPECT_FALSE(arc.toArc({0.0, 35.0}, a)) << "across the centre of curvature the map is ambiguous";
+}
+
+// The detector's arc frame is the driven path's: poses along a circle of radius 14 m (left turn),
+// 1 m apart, give kappa = 1/14 once 5 sweeps of path are known; a right turn the opposite sign.
+TEST(ArcFrame, DetectorTakesTheDrivenPathsCurvature) {
+  const auto sweep = roadslam::boundary::test::castSweep(roadslam::boundary::test::Road{});
+  for (double R : {14.0, -14.0}) {
+    roadslam::boundary::Params p;
+    p.ground.sensor_height_m = 1.9;
+    roadslam::boundary::BoundaryDetector det(p);
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    double kappa = 0;
+    for (int i = 0; i < 8; ++i) {
+      // Exact chord of 1 m along the circle, then the heading of the tangent there.
+      const double dth = 2 * std::asin(0.5 / std::abs(R)) * (R > 0 ? 1 : -1);
+      T.translation() += T.linear() * Eigen::Vector3d(std::cos(dth / 2), std::sin(dth / 2), 0);
+      T.rotate(Eigen::AngleAxisd(dth, Eigen::Vector3d::UnitZ()));
+      kappa = det.process(sweep, T, 0.1 * i).path_curvature;
+      if (i == 0) {
+        EXPECT_EQ(kappa, 0.0) << "one pose: no path yet";
+      }
+    }
+    EXPECT_NEAR(kappa, 1.0 / R, 0.002) << R;  // heading change over 5 chords / their length
+  }
 }
