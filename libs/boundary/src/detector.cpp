@@ -189,6 +189,32 @@ SideBoundary BoundaryDetector::track(SideBoundary fresh, const std::vector<Vec2>
   return out;
 }
 
+void BoundaryDetector::fitSides(const Eigen::Isometry3d& T_map_lidar, std::mt19937& rng, BoundaryFrame& f) {
+  const double kappa = pathCurvature(T_map_lidar);
+  const detail::ArcFrame arc{kappa};
+  f.path_curvature = kappa;
+  std::vector<Vec2> pts;  // the curb map's cells in the arc frame
+  for (const auto& q : curb_map_.inVehicle(T_map_lidar, p_.curb_min_sightings)) {
+    Vec2 a;
+    if (arc.toArc(q, a)) pts.push_back(a);
+  }
+  SideBoundary l = detail::fitSide(pts, +1, p_, rng), r = detail::fitSide(pts, -1, p_, rng);
+  // Each side from the other's own fit only: a continued side never continues the other one.
+  const SideBoundary l_own = l;
+  if (l.reason == "ok" && r.reason == "ok") {
+    const double w = detail::parallelOffset(r, l, pts, -1, p_);
+    if (std::isfinite(w)) road_width_m_ = road_width_m_ > 0 ? 0.8 * road_width_m_ + 0.2 * w : w, road_width_frame_ = f.index;
+  }
+  const bool width_known = road_width_m_ > 0 && f.index - road_width_frame_ <= static_cast<size_t>(p_.memory_frames);
+  const double width = width_known ? road_width_m_ : std::numeric_limits<double>::quiet_NaN();
+  if (r.reason == "ok") detail::completeParallel(l, r, pts, +1, p_, width);
+  if (l_own.reason == "ok") detail::completeParallel(r, l_own, pts, -1, p_, width);
+  f.left = track(std::move(l), pts, +1, rng, tracks_[0], T_map_lidar, kappa);
+  f.right = track(std::move(r), pts, -1, rng, tracks_[1], T_map_lidar, kappa);
+  for (SideBoundary* sb : {&f.left, &f.right})
+    for (auto& v : sb->polyline_vehicle) v = arc.toXY(v);
+}
+
 BoundaryFrame BoundaryDetector::process(const Scan& scan, const Eigen::Isometry3d& T_map_lidar, double stamp_s,
                                         const std::vector<Eigen::Vector3f>* local_map_map) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -236,29 +262,7 @@ BoundaryFrame BoundaryDetector::process(const Scan& scan, const Eigen::Isometry3
       f.left = detail::fitSideThesis(f.obstacles, +1, p_, rng);
       f.right = detail::fitSideThesis(f.obstacles, -1, p_, rng);
     } else {
-      const double kappa = pathCurvature(T_map_lidar);
-      const detail::ArcFrame arc{kappa};
-      f.path_curvature = kappa;
-      std::vector<Vec2> pts;  // the curb map's cells in the arc frame
-      for (const auto& q : curb_map_.inVehicle(T_map_lidar, p_.curb_min_sightings)) {
-        Vec2 a;
-        if (arc.toArc(q, a)) pts.push_back(a);
-      }
-      SideBoundary l = detail::fitSide(pts, +1, p_, rng), r = detail::fitSide(pts, -1, p_, rng);
-      // Each side from the other's own fit only: a continued side never continues the other one.
-      const SideBoundary l_own = l;
-      if (l.reason == "ok" && r.reason == "ok") {
-        const double w = detail::parallelOffset(r, l, pts, -1, p_);
-        if (std::isfinite(w)) road_width_m_ = road_width_m_ > 0 ? 0.8 * road_width_m_ + 0.2 * w : w, road_width_frame_ = f.index;
-      }
-      const bool width_known = road_width_m_ > 0 && f.index - road_width_frame_ <= static_cast<size_t>(p_.memory_frames);
-      const double width = width_known ? road_width_m_ : std::numeric_limits<double>::quiet_NaN();
-      if (r.reason == "ok") detail::completeParallel(l, r, pts, +1, p_, width);
-      if (l_own.reason == "ok") detail::completeParallel(r, l_own, pts, -1, p_, width);
-      f.left = track(std::move(l), pts, +1, rng, tracks_[0], T_map_lidar, kappa);
-      f.right = track(std::move(r), pts, -1, rng, tracks_[1], T_map_lidar, kappa);
-      for (SideBoundary* sb : {&f.left, &f.right})
-        for (auto& v : sb->polyline_vehicle) v = arc.toXY(v);
+      fitSides(T_map_lidar, rng, f);
     }
     toMap(T_map_lidar, p_.ground.sensor_height_m, f.left);
     toMap(T_map_lidar, p_.ground.sensor_height_m, f.right);

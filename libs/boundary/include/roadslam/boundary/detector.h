@@ -67,6 +67,8 @@ class BoundaryDetector {
   std::array<Track, 2> tracks_;
   std::deque<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>> path_;  ///< last poses T_map_lidar
   double pathCurvature(const Eigen::Isometry3d& T_map_lidar);
+  /// Left/right of \p f from the curb map (arc frame fits, parallel continuation, tracking).
+  void fitSides(const Eigen::Isometry3d& T_map_lidar, std::mt19937& rng, BoundaryFrame& f);
   double road_width_m_ = 0;      ///< curb to curb where both sides had their own fit; 0 = not measured [m]
   size_t road_width_frame_ = 0;  ///< sweep of the last measurement
   /// \p fresh and \p pts in the arc frame of curvature \p kappa (see ArcFrame in src/internal.h).
