@@ -29,6 +29,8 @@ int main(int argc, char** argv) {
   bounds->add_option("--est", b_est, "boundaries.jsonl (roadslam-bounds)")->required()->check(CLI::ExistingFile);
   bounds->add_option("--band-min", bp.band_min_x_m, "band ahead, start [m]");
   bounds->add_option("--band-max", bp.band_max_x_m, "band ahead, end [m]");
+  bounds->add_option("--stations", bp.stations, "axis: on the vehicle's x axis (default); path: along the GT path ahead")
+      ->check(CLI::IsMember({"path", "axis"}));
   bounds->add_flag("--json", json, "print JSON instead of text");
   CLI11_PARSE(app, argc, argv);
   try {

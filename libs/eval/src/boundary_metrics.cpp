@@ -101,8 +101,76 @@ double lateralAt(const Polylines& pl, double x, int side, double max_lateral) {
   return best;
 }
 
+double lateralAlong(const Polylines& pl, const Eigen::Vector2d& o, const Eigen::Vector2d& n, int side,
+                    double max_lateral) {
+  double best = kNaN;
+  for (const auto& l : pl) {
+    for (size_t i = 1; i < l.size(); ++i) {
+      // o + lambda n = a + mu (b - a), mu in [0, 1] (Cramer's rule)
+      const Eigen::Vector2d d = l[i] - l[i - 1], r = l[i - 1] - o;
+      const double det = d.x() * n.y() - d.y() * n.x();
+      if (std::abs(det) < 1e-12) continue;
+      const double lambda = (d.x() * r.y() - d.y() * r.x()) / det;
+      const double mu = (n.x() * r.y() - n.y() * r.x()) / det;
+      if (mu < 0 || mu > 1 || side * lambda <= 0 || std::abs(lambda) > max_lateral) continue;
+      if (std::isnan(best) || std::abs(lambda) < std::abs(best)) best = lambda;
+    }
+  }
+  return best;
+}
+
+namespace {
+
+struct Station {
+  Eigen::Vector2d origin, normal;  ///< vehicle frame
+};
+
+/// The GT path ahead of pose index \p k0 in the vehicle frame of \p T, as a polyline from the origin.
+std::vector<Eigen::Vector2d> pathAhead(const datasets::Trajectory& gt, const Eigen::Isometry3d& T, double t,
+                                       double length) {
+  const Eigen::Isometry3d T_inv = T.inverse();
+  std::vector<Eigen::Vector2d> path{Eigen::Vector2d::Zero()};
+  double s = 0;
+  const auto& st = gt.stamps_s;
+  for (size_t k = static_cast<size_t>(std::upper_bound(st.begin(), st.end(), t) - st.begin());
+       k < gt.poses.size() && s <= length; ++k) {
+    const Eigen::Vector2d p = (T_inv * gt.poses[k].translation()).head<2>();
+    const double ds = (p - path.back()).norm();
+    if (ds < 0.05) continue;  // standing: no direction
+    s += ds;
+    path.push_back(p);
+  }
+  return path;
+}
+
+std::vector<Station> stationsFor(const datasets::Trajectory& gt, const Eigen::Isometry3d& T, double t,
+                                 const BoundaryEvalParams& p) {
+  std::vector<Station> out;
+  std::vector<Eigen::Vector2d> path{Eigen::Vector2d::Zero(), Eigen::Vector2d::UnitX()};
+  if (p.stations == "path") {
+    path = pathAhead(gt, T, t, p.band_max_x_m);
+    if (path.size() < 2) path.push_back(Eigen::Vector2d::UnitX());  // standing to the end: straight on
+  }
+  size_t seg = 1;
+  double s0 = 0;  // arc length at path[seg - 1]
+  for (double s = p.band_min_x_m; s <= p.band_max_x_m + 1e-9; s += p.station_step_m) {
+    while (seg + 1 < path.size() && s0 + (path[seg] - path[seg - 1]).norm() < s) {
+      s0 += (path[seg] - path[seg - 1]).norm();
+      ++seg;
+    }
+    const Eigen::Vector2d u = (path[seg] - path[seg - 1]).normalized();
+    out.push_back({path[seg - 1] + (s - s0) * u, Eigen::Vector2d(-u.y(), u.x())});  // past the end: straight on
+  }
+  return out;
+}
+
+}  // namespace
+
 BoundaryMetrics evaluateBoundaries(const Polylines3& curbs, const datasets::Trajectory& gt,
                                    const std::vector<nlohmann::json>& est, const BoundaryEvalParams& p) {
+  if (p.stations != "path" && p.stations != "axis") {
+    throw std::invalid_argument("boundary eval: stations must be 'path' or 'axis', not '" + p.stations + "'");
+  }
   BoundaryMetrics m;
   std::vector<double> errors;
   const double reach = std::hypot(p.band_max_x_m, p.max_lateral_m) + 20.0;
@@ -112,6 +180,7 @@ BoundaryMetrics evaluateBoundaries(const Polylines3& curbs, const datasets::Traj
     Eigen::Isometry3d T;
     if (!poseAt(gt, f.at("stamp_s").get<double>(), p.max_dt_s, T)) continue;
     const Polylines gt_v = toVehicle(curbs, T, reach);
+    const auto stations = stationsFor(gt, T, f.at("stamp_s").get<double>(), p);
     bool both_gt = true, both_found = true;
     for (int side : {+1, -1}) {
       const auto& s = f.at(side > 0 ? "left" : "right");
@@ -119,11 +188,11 @@ BoundaryMetrics evaluateBoundaries(const Polylines3& curbs, const datasets::Traj
       if (s.at("found").get<bool>()) est_v = toVehicle({readPolyline(s.at("polyline_map"))}, T, reach);
       int gt_n = 0, both_n = 0;
       std::vector<double> e;
-      for (double x = p.band_min_x_m; x <= p.band_max_x_m + 1e-9; x += p.station_step_m) {
-        const double yg = lateralAt(gt_v, x, side, p.max_lateral_m);
+      for (const auto& st : stations) {
+        const double yg = lateralAlong(gt_v, st.origin, st.normal, side, p.max_lateral_m);
         if (std::isnan(yg)) continue;
         ++gt_n;
-        const double ye = lateralAt(est_v, x, side, p.max_lateral_m);
+        const double ye = lateralAlong(est_v, st.origin, st.normal, side, p.max_lateral_m);
         if (std::isnan(ye)) continue;
         ++both_n;
         e.push_back(std::abs(ye - yg));

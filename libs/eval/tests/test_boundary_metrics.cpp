@@ -83,3 +83,80 @@ TEST(BoundaryMetrics, ShortEstimateIsNotADetection) {
   EXPECT_DOUBLE_EQ(m.right_detection_rate, 1.0);
   EXPECT_NEAR(m.lateral_error_mean_m, 0.0, 1e-9);
 }
+
+// A 90 deg left corner of radius 12 m (lane centre), curbs at 12 - 4 = 8 m (inner, left) and
+// 12 + 3.5 = 15.5 m (outer, right): along the path both sides keep their offsets; on the vehicle's
+// axis, entering the corner, the axis leaves the road and the outer curb crosses it as "left".
+namespace {
+Eigen::Vector2d arc(double r, double a) { return {r * std::sin(a), 12.0 - r * std::cos(a)}; }
+
+std::vector<std::vector<Eigen::Vector3d>> cornerCurbs() {
+  std::vector<Eigen::Vector3d> l, r;
+  for (double x = -60; x < 0; x += 1) l.emplace_back(x, 4.0, 0.0), r.emplace_back(x, -3.5, 0.0);
+  for (double a = 0; a <= M_PI / 2 + 1e-9; a += M_PI / 90) {
+    const Eigen::Vector2d pl = arc(8.0, a), pr = arc(15.5, a);
+    l.emplace_back(pl.x(), pl.y(), 0.0), r.emplace_back(pr.x(), pr.y(), 0.0);
+  }
+  for (double y = 13; y < 80; y += 1) l.emplace_back(4.0, y, 0.0), r.emplace_back(15.5, y, 0.0);
+  return {l, r};
+}
+
+roadslam::datasets::Trajectory cornerDrive() {
+  roadslam::datasets::Trajectory t;
+  auto add = [&](const Eigen::Vector2d& p, double yaw) {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    T.translation() = Eigen::Vector3d(p.x(), p.y(), 1.9);
+    t.stamps_s.push_back(10.0 + 0.1 * static_cast<double>(t.poses.size()));
+    t.poses.push_back(T);
+  };
+  for (double x = -40; x < 0; x += 1) add({x, 0}, 0);
+  for (double a = 0; a < M_PI / 2; a += 1.0 / 12.0) add(arc(12, a), a);
+  for (double y = 12; y < 60; y += 1) add({12, y}, M_PI / 2);
+  return t;
+}
+
+nlohmann::json polyline(const std::vector<Eigen::Vector3d>& l, double offset_towards_centre) {
+  nlohmann::json pl = nlohmann::json::array();
+  for (size_t i = 0; i < l.size(); ++i) {
+    const Eigen::Vector3d& a = l[i == 0 ? 0 : i - 1];
+    const Eigen::Vector3d& b = l[i == 0 ? 1 : i];
+    const Eigen::Vector2d u = (b - a).head<2>().normalized(), n(-u.y(), u.x());
+    const Eigen::Vector2d q = l[i].head<2>() + offset_towards_centre * n;
+    pl.push_back({q.x(), q.y()});
+  }
+  return pl;
+}
+}  // namespace
+
+TEST(BoundaryMetrics, PathStationsFollowACornerAxisStationsDoNot) {
+  const auto curbs = cornerCurbs();
+  const auto gt = cornerDrive();
+  std::vector<nlohmann::json> est;
+  for (size_t i = 0; i < gt.poses.size(); ++i) {
+    nlohmann::json f;
+    f["stamp_s"] = gt.stamps_s[i];
+    f["left"] = {{"found", true}, {"polyline_map", polyline(curbs[0], -0.1)}};   // 0.1 m towards the road
+    f["right"] = {{"found", true}, {"polyline_map", polyline(curbs[1], +0.1)}};
+    est.push_back(f);
+  }
+  BoundaryEvalParams along;
+  along.stations = "path";
+  const auto path = evaluateBoundaries(curbs, gt, est, along);
+  EXPECT_EQ(path.frames_scored, static_cast<int>(gt.poses.size()));
+  EXPECT_DOUBLE_EQ(path.detection_rate, 1.0);
+  EXPECT_NEAR(path.lateral_error_mean_m, 0.1, 0.01);
+  EXPECT_LT(path.lateral_error_max_m, 0.15);
+  BoundaryEvalParams axis;
+  axis.stations = "axis";
+  const auto ax = evaluateBoundaries(curbs, gt, est, axis);
+  // the same (correct) estimate, read on the axis: the corner frames pair curbs of different sides
+  EXPECT_GT(ax.lateral_error_max_m, 1.0);
+  EXPECT_THROW(
+      [&] {
+        BoundaryEvalParams bad;
+        bad.stations = "diagonal";
+        evaluateBoundaries(curbs, gt, est, bad);
+      }(),
+      std::invalid_argument);
+}

@@ -6,11 +6,17 @@
 /// {found, polyline_map [[x, y, z]]}; without z a vertex is taken at the vehicle's height).
 ///
 /// Per frame, both the ground truth and the estimate are brought into the vehicle frame of the
-/// ground-truth pose at the frame's stamp (so pose errors count), and read at stations x = band_min,
-/// band_min + step, ..., band_max ahead: the GT side's lateral offset is the nearest curb crossing
-/// of the line x = station on that side (left y > 0, right y < 0). A side is detected when the
-/// estimate is reported found and covers at least min_coverage of the stations where the GT side
-/// exists; the lateral error is |y_est - y_gt| at the stations both cover.
+/// ground-truth pose at the frame's stamp (so pose errors count), and read at stations band_min,
+/// band_min + step, ..., band_max ahead. Stations "axis" (default) lie on the vehicle's x axis,
+/// read along y: the road's normal on straight roads, but through a 90 deg corner the outer curb
+/// crosses the axis and becomes "left". Stations "path" lie along the road the vehicle is about to
+/// drive (its ground-truth path ahead, continued straight past the end of the drive), each read
+/// along the path's normal: offsets stay perpendicular to the road in a corner, and a boundary
+/// that goes straight on where the road already bends (corner entries) is scored as wrong.
+/// The GT side's lateral offset is the nearest curb crossing of the station's normal on that side
+/// (left positive, right negative). A side is detected when the estimate is reported found and
+/// covers at least min_coverage of the stations where the GT side exists; the lateral error is
+/// |y_est - y_gt| at the stations both cover.
 
 #include <Eigen/Geometry>
 #include <nlohmann/json_fwd.hpp>
@@ -28,6 +34,7 @@ struct BoundaryEvalParams {
   double max_lateral_m = 15.0;   ///< GT crossings farther aside are not this road's [m]
   double min_coverage = 0.5;     ///< fraction of the GT stations an estimate must cover [-]
   double max_dt_s = 0.05;        ///< largest gap to the nearest GT pose [s]
+  std::string stations = "axis"; ///< "axis" (vehicle x axis) or "path" (along the GT path ahead)
 };
 
 struct BoundaryMetrics {
@@ -49,6 +56,11 @@ std::vector<std::vector<Eigen::Vector3d>> readGtCurbs(const std::string& path);
 /// among polylines in the vehicle frame; NaN when none within \p max_lateral.
 double lateralAt(const std::vector<std::vector<Eigen::Vector2d>>& polylines, double x, int side,
                  double max_lateral);
+
+/// Signed offset along \p normal from \p origin of the crossing nearest to \p origin on \p side
+/// (+1 along the normal, -1 against it) among polylines; NaN when none within \p max_lateral.
+double lateralAlong(const std::vector<std::vector<Eigen::Vector2d>>& polylines, const Eigen::Vector2d& origin,
+                    const Eigen::Vector2d& normal, int side, double max_lateral);
 
 /// Scores estimate frames (parsed boundaries.jsonl objects) against \p curbs and \p gt.
 BoundaryMetrics evaluateBoundaries(const std::vector<std::vector<Eigen::Vector3d>>& curbs,
