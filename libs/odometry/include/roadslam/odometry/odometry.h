@@ -50,8 +50,9 @@ struct Params {
   /// is already moving) must not widen the kernel until nothing is an outlier any more.
   double max_threshold_m = 10.0;
   /// Lower bound of the adaptive sigma [m]: with a good motion prior (wheel odometry) the model
-  /// deviation shrinks to millimetres, and pairs within 3 sigma would then be none at all.
-  double min_threshold_m = 0.1;
+  /// deviation shrinks to millimetres, and pairs within 3 sigma would then be none at all; at 0.1 m
+  /// (kernel 3 cm) the odometry without the gravity prior lost the urban loop's first corner.
+  double min_threshold_m = 0.2;
   double min_motion_m = 0.1;           ///< motions below this do not feed the adaptive threshold [m]
   double max_range_m = 100.0;          ///< sensor range for the adaptive threshold [m]
   bool deskew = true;                  ///< motion-compensate sweeps that carry point times
