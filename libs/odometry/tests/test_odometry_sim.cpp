@@ -22,6 +22,19 @@ TEST(OdometrySim, DefaultConfigOnTheUrbanLoopStart) {
   EXPECT_LT(r.metrics.ate_rmse_m, 0.08);   // measured 0.025 m (0.08 m before)
 }
 
+// Without the gravity prior the matcher must still take the loop's first corner (at ~30 s): with a
+// 3 cm kernel floor (min_threshold_m 0.1) it stuck there and reported standstill (RTE 19 %).
+TEST(OdometrySim, WithoutTheGravityPriorTheFirstCornerHolds) {
+  auto params = paramsFromIni(src("ini/default.ini"));
+  params.gravity_prior = false;
+  const auto r = runSimDrive(src("ini/sim/urban-loop.ini"), 40.0, params);
+  std::cout << "urban 40 s, no gravity prior: ATE " << r.metrics.ate_rmse_m << " m, RTE " << r.metrics.rte_percent
+            << " %\n";
+  EXPECT_EQ(r.failed, 0u);
+  EXPECT_GT(r.metrics.path_length_m, 350.0);
+  EXPECT_LT(r.metrics.rte_percent, 0.5);  // measured 0.17 % (with min_threshold_m 0.1: 18 %)
+}
+
 TEST(OdometrySim, HillsKeepTheirHeight) {
   const auto r = runSimDrive(src("ini/sim/hills.ini"), 30.0, paramsFromIni(src("ini/default.ini")));
   std::cout << "hills 30 s: ATE " << r.metrics.ate_rmse_m << " m, RTE " << r.metrics.rte_percent << " %\n";
