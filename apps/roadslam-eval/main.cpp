@@ -31,6 +31,8 @@ int main(int argc, char** argv) {
   bounds->add_option("--band-max", bp.band_max_x_m, "band ahead, end [m]");
   bounds->add_option("--stations", bp.stations, "axis: on the vehicle's x axis (default); path: along the GT path ahead")
       ->check(CLI::IsMember({"path", "axis"}));
+  bounds->add_flag("--est-in-gt-frame", bp.est_in_gt_frame,
+                   "read the estimate with the GT pose, not its own T_map_lidar (its map frame is the GT world)");
   bounds->add_flag("--json", json, "print JSON instead of text");
   CLI11_PARSE(app, argc, argv);
   try {

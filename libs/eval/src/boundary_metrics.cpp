@@ -63,6 +63,19 @@ std::vector<Eigen::Vector3d> readPolyline(const nlohmann::json& a) {
   return v;
 }
 
+/// The estimate's own pose of the frame (`T_map_lidar`, row-major 4x4): its polylines are in its map
+/// frame, which is the GT world only when the job ran on GT poses.
+bool estimatePose(const nlohmann::json& f, Eigen::Isometry3d& T) {
+  if (!f.contains("T_map_lidar")) return false;
+  const auto& a = f.at("T_map_lidar");
+  if (!a.is_array() || a.size() != 16) throw std::runtime_error("T_map_lidar must hold 16 numbers");
+  Eigen::Matrix4d M;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) M(r, c) = a.at(static_cast<size_t>(4 * r + c)).get<double>();
+  T.matrix() = M;
+  return M.allFinite();
+}
+
 double percentile(std::vector<double> v, double q) {
   if (v.empty()) return 0;
   std::sort(v.begin(), v.end());
@@ -180,12 +193,14 @@ BoundaryMetrics evaluateBoundaries(const Polylines3& curbs, const datasets::Traj
     Eigen::Isometry3d T;
     if (!poseAt(gt, f.at("stamp_s").get<double>(), p.max_dt_s, T)) continue;
     const Polylines gt_v = toVehicle(curbs, T, reach);
+    Eigen::Isometry3d T_est = T;
+    if (!p.est_in_gt_frame) estimatePose(f, T_est);
     const auto stations = stationsFor(gt, T, f.at("stamp_s").get<double>(), p);
     bool both_gt = true, both_found = true;
     for (int side : {+1, -1}) {
       const auto& s = f.at(side > 0 ? "left" : "right");
       Polylines est_v;
-      if (s.at("found").get<bool>()) est_v = toVehicle({readPolyline(s.at("polyline_map"))}, T, reach);
+      if (s.at("found").get<bool>()) est_v = toVehicle({readPolyline(s.at("polyline_map"))}, T_est, reach);
       int gt_n = 0, both_n = 0;
       std::vector<double> e;
       for (const auto& st : stations) {

@@ -160,3 +160,42 @@ TEST(BoundaryMetrics, PathStationsFollowACornerAxisStationsDoNot) {
       }(),
       std::invalid_argument);
 }
+
+// An estimate written in its own map frame (an odometry run: origin at the first sweep, rotated) and
+// carrying its T_map_lidar scores as the same estimate in the GT world; read with the GT pose it is
+// off the road.
+TEST(BoundaryMetrics, EstimateReadInItsOwnMapFrame) {
+  const auto gt = drive(20);
+  Eigen::Isometry3d T_odo_world = Eigen::Isometry3d::Identity();
+  T_odo_world.linear() = Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  T_odo_world.translation() = Eigen::Vector3d(-5, 2, -1.9);
+  std::vector<nlohmann::json> world, odo;
+  for (int i = 0; i < 20; ++i) {
+    nlohmann::json f;
+    f["stamp_s"] = gt.stamps_s[static_cast<size_t>(i)];
+    f["left"] = side(true, 4.05, 4, 31, i * 1.0);  // past the band: no station on a rounded end vertex
+    f["right"] = side(true, -3.6, 4, 31, i * 1.0);
+    world.push_back(f);
+    nlohmann::json g = f;
+    const Eigen::Isometry3d T = T_odo_world * gt.poses[static_cast<size_t>(i)];
+    g["T_map_lidar"] = nlohmann::json::array();
+    for (int r = 0; r < 4; ++r)
+      for (int c = 0; c < 4; ++c) g["T_map_lidar"].push_back(T.matrix()(r, c));
+    for (const char* s : {"left", "right"}) {
+      for (auto& q : g[s]["polyline_map"]) {
+        const Eigen::Vector3d p = T_odo_world * Eigen::Vector3d(q[0].get<double>(), q[1].get<double>(), 0.0);
+        q = {p.x(), p.y(), p.z()};
+      }
+    }
+    odo.push_back(g);
+  }
+  const auto a = evaluateBoundaries(curbs(), gt, world), b = evaluateBoundaries(curbs(), gt, odo);
+  EXPECT_DOUBLE_EQ(a.detection_rate, 1.0);
+  EXPECT_DOUBLE_EQ(b.detection_rate, 1.0);
+  EXPECT_EQ(b.stations, a.stations);
+  EXPECT_NEAR(b.lateral_error_mean_m, a.lateral_error_mean_m, 1e-9);
+  EXPECT_NEAR(a.lateral_error_mean_m, 0.075, 1e-9);
+  BoundaryEvalParams gt_frame;
+  gt_frame.est_in_gt_frame = true;
+  EXPECT_LT(evaluateBoundaries(curbs(), gt, odo, gt_frame).detection_rate, 0.5);
+}

@@ -5,8 +5,10 @@
 /// reads the estimate as written (boundaries.jsonl: per frame stamp_s and left/right
 /// {found, polyline_map [[x, y, z]]}; without z a vertex is taken at the vehicle's height).
 ///
-/// Per frame, both the ground truth and the estimate are brought into the vehicle frame of the
-/// ground-truth pose at the frame's stamp (so pose errors count), and read at stations band_min,
+/// Per frame, the ground truth is brought into the vehicle frame of the ground-truth pose at the
+/// frame's stamp, the estimate into the vehicle frame of its own pose (`T_map_lidar` of the frame:
+/// its map frame is the odometry's when the job ran without ground-truth poses; without the key, or
+/// with est_in_gt_frame, the ground-truth pose), and both are read at stations band_min,
 /// band_min + step, ..., band_max ahead. Stations "axis" (default) lie on the vehicle's x axis,
 /// read along y: the road's normal on straight roads, but through a 90 deg corner the outer curb
 /// crosses the axis and becomes "left". Stations "path" lie along the road the vehicle is about to
@@ -35,6 +37,9 @@ struct BoundaryEvalParams {
   double min_coverage = 0.5;     ///< fraction of the GT stations an estimate must cover [-]
   double max_dt_s = 0.05;        ///< largest gap to the nearest GT pose [s]
   std::string stations = "axis"; ///< "axis" (vehicle x axis) or "path" (along the GT path ahead)
+  /// Read the estimate's polylines with the GT pose (its map frame is the GT world, pose errors
+  /// count) instead of its own T_map_lidar.
+  bool est_in_gt_frame = false;
 };
 
 struct BoundaryMetrics {
