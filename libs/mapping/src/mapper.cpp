@@ -2,21 +2,15 @@
 
 #include <unordered_set>
 
+#include "roadslam/common/voxel_hash.h"
 #include "roadslam/common/config.h"
 #include "ini_keys.h"
 
 namespace roadslam::mapping {
 namespace {
 
-struct VoxelHash {
-  size_t operator()(const Eigen::Vector3i& v) const {
-    return (static_cast<size_t>(v.x()) * 73856093u) ^ (static_cast<size_t>(v.y()) * 19349669u) ^
-           (static_cast<size_t>(v.z()) * 83492791u);
-  }
-};
-
 std::vector<Eigen::Vector3f> downsample(const std::vector<Eigen::Vector3d>& pts, double voxel_m) {
-  std::unordered_set<Eigen::Vector3i, VoxelHash> seen;
+  std::unordered_set<Eigen::Vector3i, VoxelKeyHash> seen;
   std::vector<Eigen::Vector3f> out;
   for (const auto& p : pts) {
     if (!p.allFinite()) continue;

@@ -3,19 +3,13 @@
 #include <unordered_set>
 
 #include "roadslam/common/atomic_file.h"
+#include "roadslam/common/voxel_hash.h"
 #include "roadslam/common/config.h"
 #include "ini_keys.h"
 #include "roadslam/mapping/maps.h"
 
 namespace roadslam::mapping {
 namespace {
-
-struct KeyHash {
-  size_t operator()(const Eigen::Vector3i& v) const {
-    return (static_cast<size_t>(v.x()) * 73856093u) ^ (static_cast<size_t>(v.y()) * 19349669u) ^
-           (static_cast<size_t>(v.z()) * 83492791u);
-  }
-};
 
 void writeBinaryFile(const std::string& path, const std::string& header, const std::vector<Eigen::Vector3f>& pts) {
   AtomicFile f(path, std::ios::out | std::ios::trunc | std::ios::binary);
@@ -37,7 +31,7 @@ void PointMapParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const 
 }
 
 std::vector<Eigen::Vector3f> buildPointMap(const std::vector<Keyframe>& kfs, const PoseVector& T_map_kf, double voxel_m) {
-  std::unordered_set<Eigen::Vector3i, KeyHash> seen;
+  std::unordered_set<Eigen::Vector3i, VoxelKeyHash> seen;
   std::vector<Eigen::Vector3f> out;
   for (size_t k = 0; k < kfs.size() && k < T_map_kf.size(); ++k) {
     const Eigen::Isometry3f T = T_map_kf[k].cast<float>();

@@ -6,6 +6,7 @@
 #include <unordered_set>
 
 #include "roadslam/odometry/deskew.h"
+#include "roadslam/common/voxel_hash.h"
 
 namespace roadslam::odometry {
 namespace {
@@ -18,13 +19,7 @@ double msSince(Clock::time_point t0) {
 /// The first point in each cubic voxel of \p voxel_m, with its ground flag.
 void firstPerVoxel(const std::vector<Eigen::Vector3d>& pts, const std::vector<uint8_t>& ground,
                    double voxel_m, std::vector<Eigen::Vector3d>& out, std::vector<uint8_t>& out_ground) {
-  struct H {
-    size_t operator()(const Eigen::Vector3i& k) const noexcept {
-      return static_cast<size_t>(k.x()) * 73856093u ^ static_cast<size_t>(k.y()) * 19349669u ^
-             static_cast<size_t>(k.z()) * 83492791u;
-    }
-  };
-  std::unordered_set<Eigen::Vector3i, H> seen;
+  std::unordered_set<Eigen::Vector3i, VoxelKeyHash> seen;
   seen.reserve(pts.size());
   out.clear();
   out_ground.clear();

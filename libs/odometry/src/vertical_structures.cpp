@@ -4,15 +4,10 @@
 #include <cmath>
 #include <unordered_map>
 
+#include "roadslam/common/voxel_hash.h"
+
 namespace roadslam::odometry {
 namespace {
-
-struct KeyHash {
-  size_t operator()(const Eigen::Vector3i& k) const noexcept {
-    return static_cast<size_t>(k.x()) * 73856093u ^ static_cast<size_t>(k.y()) * 19349669u ^
-           static_cast<size_t>(k.z()) * 83492791u;
-  }
-};
 
 struct Moments {
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
@@ -45,7 +40,7 @@ bool cutByFace(const Eigen::Vector3d& mean, const Eigen::Vector3d& n, const Eige
 std::vector<VerticalConstraint> findVerticalStructures(const std::vector<Eigen::Vector3d>& pts,
                                                        const std::vector<uint8_t>& is_ground,
                                                        const Eigen::Vector3d& up, const VerticalStructureParams& p) {
-  std::unordered_map<Eigen::Vector3i, Moments, KeyHash> cells;
+  std::unordered_map<Eigen::Vector3i, Moments, VoxelKeyHash> cells;
   cells.reserve(pts.size() / 4 + 16);
   const Eigen::Array3d inv(1.0 / p.voxel_m, 1.0 / p.voxel_m, 1.0 / p.voxel_height_m);
   for (size_t i = 0; i < pts.size(); ++i) {

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "roadslam/odometry/vertical_structures.h"
+#include "roadslam/common/voxel_hash.h"
 #include "roadslam/registration/registration.h"
 
 namespace roadslam::odometry {
@@ -54,12 +55,6 @@ class GaussianVoxelMap {
   const Voxel* nearest(const Eigen::Vector3d& x, double max_dist_m) const;
 
  private:
-  struct KeyHash {
-    size_t operator()(const Eigen::Vector3i& k) const noexcept {
-      return static_cast<size_t>(k.x()) * 73856093u ^ static_cast<size_t>(k.y()) * 19349669u ^
-             static_cast<size_t>(k.z()) * 83492791u;
-    }
-  };
   Eigen::Vector3i keyOf(const Eigen::Vector3d& p) const {
     return (p * inv_voxel_).array().floor().cast<int>();
   }
@@ -69,7 +64,7 @@ class GaussianVoxelMap {
   int max_points_;
   int neighbours_;
   uint32_t batch_ = 0;
-  std::unordered_map<Eigen::Vector3i, Voxel, KeyHash> voxels_;
+  std::unordered_map<Eigen::Vector3i, Voxel, VoxelKeyHash> voxels_;
 };
 
 struct VoxelAlignParams {

@@ -9,6 +9,8 @@
 #include <unordered_map>
 #include <vector>
 
+#include "roadslam/common/voxel_hash.h"
+
 namespace roadslam::odometry {
 
 class LocalMap {
@@ -29,17 +31,10 @@ class LocalMap {
   void clear();
 
  private:
-  struct KeyHash {
-    size_t operator()(const Eigen::Vector3i& k) const noexcept {
-      // Teschner et al. 2003 spatial hash (the one KISS-ICP uses)
-      return static_cast<size_t>(k.x()) * 73856093u ^ static_cast<size_t>(k.y()) * 19349669u ^
-             static_cast<size_t>(k.z()) * 83492791u;
-    }
-  };
   double voxel_m_, radius_m_;
   int max_per_voxel_;
   size_t num_points_ = 0;
-  std::unordered_map<Eigen::Vector3i, std::vector<Eigen::Vector3d>, KeyHash> voxels_;
+  std::unordered_map<Eigen::Vector3i, std::vector<Eigen::Vector3d>, VoxelKeyHash> voxels_;
 };
 
 }  // namespace roadslam::odometry
