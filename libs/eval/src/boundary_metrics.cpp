@@ -101,17 +101,7 @@ Polylines3 readGtCurbs(const std::string& path) {
 }
 
 double lateralAt(const Polylines& pl, double x, int side, double max_lateral) {
-  double best = kNaN;
-  for (const auto& l : pl) {
-    for (size_t i = 1; i < l.size(); ++i) {
-      const auto &a = l[i - 1], &b = l[i];
-      if ((x < std::min(a.x(), b.x())) || (x > std::max(a.x(), b.x())) || a.x() == b.x()) continue;
-      const double y = a.y() + (b.y() - a.y()) * (x - a.x()) / (b.x() - a.x());
-      if (side * y <= 0 || std::abs(y) > max_lateral) continue;
-      if (std::isnan(best) || std::abs(y) < std::abs(best)) best = y;
-    }
-  }
-  return best;
+  return lateralAlong(pl, Eigen::Vector2d(x, 0.0), Eigen::Vector2d::UnitY(), side, max_lateral);
 }
 
 double lateralAlong(const Polylines& pl, const Eigen::Vector2d& o, const Eigen::Vector2d& n, int side,
@@ -138,7 +128,7 @@ struct Station {
   Eigen::Vector2d origin, normal;  ///< vehicle frame
 };
 
-/// The GT path ahead of pose index \p k0 in the vehicle frame of \p T, as a polyline from the origin.
+/// The GT path after time \p t, up to \p length, in the vehicle frame of \p T: a polyline from the origin.
 std::vector<Eigen::Vector2d> pathAhead(const datasets::Trajectory& gt, const Eigen::Isometry3d& T, double t,
                                        double length) {
   const Eigen::Isometry3d T_inv = T.inverse();

@@ -45,6 +45,9 @@ void dropFarGround(std::vector<Eigen::Vector3d>& pts, std::vector<uint8_t>& grou
   ground.resize(k);
 }
 
+/// The tilt prior lives in the voxel-map matcher; the registration library's methods do not take it.
+bool usesGravityPrior(const Params& p) { return p.gravity_prior && p.matcher == "voxel_map"; }
+
 double angleOf(const Eigen::Isometry3d& T) {
   return Eigen::AngleAxisd(T.rotation()).angle();
 }
@@ -146,9 +149,8 @@ registration::RegistrationResult Odometry::match(const std::vector<Eigen::Vector
     // in on an open road.
     const double sigma =
         std::clamp(threshold_.threshold() / 3.0, params_.min_threshold_m, params_.max_threshold_m);
-    rp.max_correspondence_distance_m = 3.0 * sigma;
     // The voxel-map matcher pairs a point with a voxel mean, up to a voxel away on a wall.
-    if (params_.matcher == "voxel_map") rp.max_correspondence_distance_m = std::max(3.0 * sigma, params_.map_voxel_m);
+    rp.max_correspondence_distance_m = params_.matcher == "voxel_map" ? std::max(3.0 * sigma, params_.map_voxel_m) : 3.0 * sigma;
     rp.kernel_scale_m = sigma / 3.0;
   }
   res.threshold_m = rp.max_correspondence_distance_m;
@@ -167,7 +169,7 @@ registration::RegistrationResult Odometry::match(const std::vector<Eigen::Vector
     g.up_map = up_world_;
     g.scale_m2 = params_.gravity_weight_m2;
     g.kernel_rad = params_.gravity_kernel_rad;
-    return alignToVoxelMap(gmap_, source, T_pred, vp, params_.gravity_prior && up_frames_ > 0 ? &g : nullptr);
+    return alignToVoxelMap(gmap_, source, T_pred, vp, usesGravityPrior(params_) && up_frames_ > 0 ? &g : nullptr);
   }
   if (target_stale_ && !map_.empty()) {
     target_ = std::make_unique<registration::Target>(map_.points(), rp);
@@ -225,7 +227,7 @@ FrameResult Odometry::process(Scan scan, const std::optional<MotionPrior>& prior
   last_frame_points_ = deskew(scan, delta_sweep, sweep, ref);
   if (params_.ground_aware_map) last_ground_ = preprocess::segmentGround(scan.points, params_.preprocess.ground_seg);
 
-  if (params_.gravity_prior) {
+  if (usesGravityPrior(params_)) {
     const Eigen::Vector3d up_guess = have_pose_ ? Eigen::Vector3d(T_pred.linear().transpose() * up_world_)
                                                 : Eigen::Vector3d::UnitZ();
     vertical_ = findVerticalStructures(last_frame_points_, last_ground_, up_guess, params_.vertical);
@@ -270,7 +272,7 @@ FrameResult Odometry::process(Scan scan, const std::optional<MotionPrior>& prior
   }
   res.ms_register = msSince(t_reg);
 
-  if (params_.gravity_prior && (res.status == FrameStatus::Ok || res.status == FrameStatus::First)) updateUp(res);
+  if (usesGravityPrior(params_) && (res.status == FrameStatus::Ok || res.status == FrameStatus::First)) updateUp(res);
 
   const auto t_map = Clock::now();
   const bool update_map = res.status == FrameStatus::Ok || res.status == FrameStatus::First ||

@@ -5,6 +5,7 @@
 #include <unordered_map>
 
 #include "roadslam/common/voxel_hash.h"
+#include "roadslam/registration/robust_kernel.h"
 
 namespace roadslam::odometry {
 namespace {
@@ -92,11 +93,8 @@ Eigen::Matrix3d verticalScatter(const std::vector<VerticalConstraint>& cs, const
   const double s2 = kernel_rad * kernel_rad;
   for (const auto& c : cs) {
     const Eigen::Vector3d n = R * c.normal_lidar;
-    double k = 1.0;
-    if (kernel_rad > 0) {
-      const double r = n.dot(up), den = s2 + r * r;
-      k = s2 * s2 / (den * den);
-    }
+    const double r = n.dot(up);
+    const double k = kernel_rad > 0 ? registration::gemanMcClureWeight(r * r, s2) : 1.0;
     M.noalias() += k * c.weight * n * n.transpose();
   }
   return M;

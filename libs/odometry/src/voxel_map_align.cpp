@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "roadslam/odometry/gaussian_voxel_map.h"
+#include "roadslam/registration/robust_kernel.h"
 
 namespace roadslam::odometry {
 namespace {
@@ -49,8 +50,7 @@ LinearSystem buildSystem(const GaussianVoxelMap& map, const std::vector<Eigen::V
     if (!v) continue;
     const Eigen::Vector3d d = x - v->mean;
     const double r2 = d.dot(v->info * d);
-    const double den = s2 + r2;
-    const double w = s2 * s2 / (den * den);
+    const double w = registration::gemanMcClureWeight(r2, s2);
     J.rightCols<3>() = -skew(x);
     const Eigen::Matrix<double, 6, 3> JtO = J.transpose() * v->info;
     ls.H.noalias() += w * JtO * J;
@@ -69,8 +69,7 @@ void addGravity(const GravityPrior& g, const Eigen::Matrix3d& R, LinearSystem& l
   for (const auto& c : *g.constraints) {
     const Eigen::Vector3d n = R * c.normal_lidar;
     const double r = n.dot(g.up_map);
-    const double den = s2 + r * r;
-    const double w = g.scale_m2 * c.weight * s2 * s2 / (den * den);
+    const double w = g.scale_m2 * c.weight * registration::gemanMcClureWeight(r * r, s2);
     const Eigen::Vector3d J = n.cross(g.up_map);
     ls.H.bottomRightCorner<3, 3>().noalias() += w * J * J.transpose();
     ls.b.tail<3>().noalias() += w * J * r;

@@ -1,6 +1,7 @@
 #pragma once
 // Private: the per-method solvers behind align().
 
+#include "roadslam/registration/robust_kernel.h"
 #include "target_impl.h"
 
 namespace roadslam::registration {
@@ -41,24 +42,6 @@ inline PointCloud strided(const PointCloud& src, int stride) {
   out.reserve(src.size() / static_cast<size_t>(stride) + 1);
   for (size_t i = 0; i < src.size(); i += static_cast<size_t>(stride)) out.push_back(src[i]);
   return out;
-}
-
-/// Robust kernel weight w(r) for IRLS, w(0) = 1.
-inline double kernelWeight(Kernel k, double r, double s) {
-  switch (k) {
-    case Kernel::None: return 1.0;
-    case Kernel::Huber: return std::abs(r) <= s ? 1.0 : s / std::abs(r);
-    case Kernel::Tukey: {
-      if (std::abs(r) > s) return 0.0;
-      const double u = 1.0 - (r * r) / (s * s);
-      return u * u;
-    }
-    case Kernel::GemanMcClure: {
-      const double s2 = s * s, d = s2 + r * r;
-      return s2 * s2 / (d * d);
-    }
-  }
-  return 1.0;
 }
 
 }  // namespace roadslam::registration
