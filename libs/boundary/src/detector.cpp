@@ -126,9 +126,9 @@ double BoundaryDetector::pathCurvature(const Eigen::Isometry3d& T_map_lidar) {
 }
 
 SideBoundary BoundaryDetector::track(SideBoundary fresh, const std::vector<Vec2>& pts, int side, std::mt19937& rng,
-                                     Track& tr, const Eigen::Isometry3d& T_map_lidar, double kappa) const {
+                                     Track& tr, const Eigen::Isometry3d& T_map_lidar,
+                                     const detail::BendFrame& arc) const {
   const Eigen::Isometry3d T_lidar_map = T_map_lidar.inverse();
-  const detail::ArcFrame arc{kappa};
   auto toMapPt = [&](const Vec2& a) {
     const Vec2 v = arc.toXY(a);
     return T_map_lidar * Eigen::Vector3d(v.x, v.y, -p_.ground.sensor_height_m);
@@ -191,10 +191,13 @@ SideBoundary BoundaryDetector::track(SideBoundary fresh, const std::vector<Vec2>
 
 void BoundaryDetector::fitSides(const Eigen::Isometry3d& T_map_lidar, std::mt19937& rng, BoundaryFrame& f) {
   const double kappa = pathCurvature(T_map_lidar);
-  const detail::ArcFrame arc{kappa};
+  const auto cells = curb_map_.inVehicle(T_map_lidar, p_.curb_min_sightings);
+  const detail::BendFrame arc = detail::chooseFrame(cells, kappa, p_);
   f.path_curvature = kappa;
-  std::vector<Vec2> pts;  // the curb map's cells in the arc frame
-  for (const auto& q : curb_map_.inVehicle(T_map_lidar, p_.curb_min_sightings)) {
+  f.bend_s = arc.bent() ? arc.s_bend : -1.0;
+  f.bend_curvature = arc.bent() ? arc.b.kappa : kappa;
+  std::vector<Vec2> pts;  // the curb map's cells in the fit frame
+  for (const auto& q : cells) {
     Vec2 a;
     if (arc.toArc(q, a)) pts.push_back(a);
   }
@@ -209,8 +212,8 @@ void BoundaryDetector::fitSides(const Eigen::Isometry3d& T_map_lidar, std::mt199
   const double width = width_known ? road_width_m_ : std::numeric_limits<double>::quiet_NaN();
   if (r.reason == "ok") detail::completeParallel(l, r, pts, +1, p_, width);
   if (l_own.reason == "ok") detail::completeParallel(r, l_own, pts, -1, p_, width);
-  f.left = track(std::move(l), pts, +1, rng, tracks_[0], T_map_lidar, kappa);
-  f.right = track(std::move(r), pts, -1, rng, tracks_[1], T_map_lidar, kappa);
+  f.left = track(std::move(l), pts, +1, rng, tracks_[0], T_map_lidar, arc);
+  f.right = track(std::move(r), pts, -1, rng, tracks_[1], T_map_lidar, arc);
   for (SideBoundary* sb : {&f.left, &f.right})
     for (auto& v : sb->polyline_vehicle) v = arc.toXY(v);
 }

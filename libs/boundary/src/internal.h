@@ -2,6 +2,7 @@
 // Private helpers of libs/boundary.
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -39,6 +40,43 @@ struct ArcFrame {
     return {(R - a.y) * std::sin(th), R - (R - a.y) * std::cos(th)};
   }
 };
+
+/// The driven path's arc (curvature a.kappa from the origin along +x) up to arc length s_bend, then an
+/// arc of curvature b.kappa tangent to it: the road ahead of a corner entry (straight, then the bend)
+/// or exit (the bend, then straight). Curbs concentric with both pieces are d = const: circles about
+/// the second piece's centre touch their tangent lines at s = s_bend. s_bend = inf is ArcFrame a.
+struct BendFrame {
+  ArcFrame a;                                              ///< from the vehicle [1/m]
+  double s_bend = std::numeric_limits<double>::infinity(); ///< arc length where b takes over [m]
+  ArcFrame b;                                              ///< beyond s_bend [1/m]
+  bool bent() const { return std::isfinite(s_bend); }
+  /// Pose (position, heading) of the path at s_bend, vehicle frame.
+  Vec2 bendPoint() const { return a.toXY({s_bend, 0.0}); }
+  double bendHeading() const { return a.kappa * s_bend; }
+  bool toArc(const Vec2& q, Vec2& out) const {
+    Vec2 o;
+    if (a.toArc(q, o) && o.x <= s_bend) return out = o, true;
+    if (!bent()) return false;
+    const Vec2 P = bendPoint();
+    const double c = std::cos(bendHeading()), s = std::sin(bendHeading());
+    const double dx = q.x - P.x, dy = q.y - P.y;
+    if (!b.toArc({c * dx + s * dy, -s * dx + c * dy}, o) || o.x < 0) return false;
+    out = {s_bend + o.x, o.y};
+    return true;
+  }
+  Vec2 toXY(const Vec2& q) const {
+    if (q.x <= s_bend) return a.toXY(q);
+    const Vec2 P = bendPoint(), l = b.toXY({q.x - s_bend, q.y});
+    const double c = std::cos(bendHeading()), s = std::sin(bendHeading());
+    return {P.x + c * l.x - s * l.y, P.y + s * l.x + c * l.y};
+  }
+};
+
+/// The frame to fit the sides in: the driven path's arc (\p kappa_path), unless a frame bent ahead
+/// (BendFrame over a grid of s_bend and curvatures) lines up bend_margin_bins more 1 m bins of the
+/// curb cells \p cells (vehicle frame) at constant offsets on the two sides (a Hough vote: the bend is
+/// in the curb map before the vehicle turns). \p votes gets the chosen and the path frame's votes.
+BendFrame chooseFrame(const std::vector<Vec2>& cells, double kappa_path, const Params& p, int votes[2] = nullptr);
 
 /// Convex hull, counter-clockwise (Andrew's monotone chain).
 std::vector<Vec2> convexHull(std::vector<Vec2> pts);

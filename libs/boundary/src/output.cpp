@@ -37,6 +37,8 @@ nlohmann::json toJson(const BoundaryFrame& f, bool with_grid) {
   j["stamp_s"] = f.stamp_s;
   j["status"] = f.status;
   j["path_curvature"] = f.path_curvature;
+  j["bend_s_m"] = f.bend_s;
+  j["bend_curvature"] = f.bend_curvature;
   auto T = nlohmann::json::array();
   const Eigen::Matrix4d M = f.T_map_lidar.matrix();
   for (int r = 0; r < 4; ++r)

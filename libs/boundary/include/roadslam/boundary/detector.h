@@ -24,6 +24,9 @@
 #include "roadslam/common/scan.h"
 
 namespace roadslam::boundary {
+namespace detail {
+struct BendFrame;
+}
 
 /// Class of every point of \p scan (lidar frame, sensor at the origin), same order, plus the curb
 /// points' positions. Exposed for tests and drawing.
@@ -71,9 +74,9 @@ class BoundaryDetector {
   void fitSides(const Eigen::Isometry3d& T_map_lidar, std::mt19937& rng, BoundaryFrame& f);
   double road_width_m_ = 0;      ///< curb to curb where both sides had their own fit; 0 = not measured [m]
   size_t road_width_frame_ = 0;  ///< sweep of the last measurement
-  /// \p fresh and \p pts in the arc frame of curvature \p kappa (see ArcFrame in src/internal.h).
+  /// \p fresh and \p pts in the fit frame \p frame (see BendFrame in src/internal.h).
   SideBoundary track(SideBoundary fresh, const std::vector<Vec2>& pts, int side, std::mt19937& rng, Track& tr,
-                     const Eigen::Isometry3d& T_map_lidar, double kappa) const;
+                     const Eigen::Isometry3d& T_map_lidar, const detail::BendFrame& frame) const;
 };
 
 }  // namespace roadslam::boundary

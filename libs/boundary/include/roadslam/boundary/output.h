@@ -1,7 +1,8 @@
 #pragma once
 /// \file output.h
 /// Outputs of the boundary detector: one JSON object per sweep (a line of boundaries.jsonl) and a
-/// top-view PNG. JSON fields (metres, radians): index, stamp_s, status, path_curvature [1/m], T_map_lidar (row-major 4x4),
+/// top-view PNG. JSON fields (metres, radians): index, stamp_s, status, path_curvature [1/m], bend_s_m (< 0: none), bend_curvature [1/m]
+/// (the fit frame of coeffs: the driven path's arc bent ahead, see BendFrame in src/internal.h), T_map_lidar (row-major 4x4),
 /// left/right {found, reason, confidence, coeffs, candidates, inliers, bridged_m, parallel_m, polyline_vehicle [[x,y]],
 /// polyline_map [[x,y,z]] on the road}, obstacles [{center, length_m, width_m, yaw_rad, max_height_m, points,
 /// hull}], free_space [[x,y]] (vehicle frame), counts {points, ground, curb, obstacle}, ms.

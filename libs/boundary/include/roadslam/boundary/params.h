@@ -77,6 +77,13 @@ struct Params {
   /// over this many past sweeps) so they follow corners; 0 = in the vehicle frame [-].
   int path_curvature_frames = 5;
   double path_min_length_m = 2.0;       ///< shorter paths over those sweeps give curvature 0 [m]
+  /// Corner entries and exits: the frame may bend ahead of the vehicle (the driven path's arc up to
+  /// s_bend, then another curvature) where that lines up the curb map's cells at constant offsets on
+  /// both sides by bend_margin_bins more 1 m bins than the path's arc alone (src/bend_frame.cpp).
+  double bend_max_curvature = 0.12;     ///< largest curvature tried after the bend (radius 8.3 m); 0 disables [1/m]
+  int bend_curvature_steps = 6;         ///< curvatures tried on each side of 0: max * k / steps [-]
+  double bend_step_m = 3.0;             ///< s_bend tried at 0, step, ... below band_max_x_m [m]
+  int bend_margin_bins = 4;             ///< votes a bend must add to replace the path's arc [-]
   /// A side whose own curb cells end early (parked cars hide it ahead) continues parallel to the
   /// other side at the offset measured on its own cells, when their offsets to the other side
   /// spread (median absolute deviation) at most this much; 0 disables [m].

@@ -27,7 +27,7 @@ struct SideBoundary {
   bool found = false;
   std::string reason;                   ///< why not found (or "ok")
   double confidence = 0;                ///< covered band fraction x inlier fraction [0..1]
-  std::vector<double> coeffs;           ///< d = sum c_i s^i in the arc frame of BoundaryFrame::path_curvature (0: y = sum c_i x^i, vehicle frame) [m, -, 1/m]
+  std::vector<double> coeffs;           ///< d = sum c_i s^i in the fit frame of BoundaryFrame (path_curvature, bend_s, bend_curvature; all 0 / no bend: y = sum c_i x^i, vehicle frame) [m, -, 1/m]
   std::vector<Vec2> polyline_vehicle;   ///< vertices in the vehicle frame [m]
   std::vector<Vec3> polyline_map;       ///< the same vertices on the road (sensor_height below the lidar), map frame [m]
   int candidates = 0;                   ///< curb points on this side [-]
@@ -62,7 +62,9 @@ struct BoundaryFrame {
   double stamp_s = 0;                   ///< time of T_map_lidar [s]
   Eigen::Isometry3d T_map_lidar = Eigen::Isometry3d::Identity();
   std::string status = "ok";            ///< "ok", "no_points", "no_ground"
-  double path_curvature = 0;            ///< curvature of the arc frame the sides were fitted in (left turn > 0) [1/m]
+  double path_curvature = 0;            ///< curvature of the driven path's arc, the fit frame up to bend_s (left turn > 0) [1/m]
+  double bend_s = -1;                   ///< arc length where the fit frame bends to bend_curvature; < 0: no bend [m]
+  double bend_curvature = 0;            ///< curvature of the fit frame beyond bend_s [1/m]
   SideBoundary left, right;
   std::vector<Obstacle> obstacles;
   std::vector<Vec2> free_space;         ///< polygon, one vertex per sector, vehicle frame [m]
