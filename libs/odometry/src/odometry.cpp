@@ -80,7 +80,7 @@ Odometry::Odometry(Params params)
     : params_(std::move(params)),
       chain_(params_.preprocess),
       map_(params_.map_voxel_m, params_.map_points_per_voxel, params_.map_radius_m),
-      gmap_(params_.map_voxel_m, params_.map_points_per_voxel, params_.map_radius_m),
+      gmap_(params_.map_voxel_m, params_.map_points_per_voxel, params_.map_radius_m, 7, params_.map_ring_lines_on_walls),
       threshold_(params_.initial_threshold_m, params_.min_motion_m, params_.max_range_m) {}
 
 Odometry::~Odometry() = default;

@@ -24,6 +24,7 @@ void Params::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, const st
   registration_voxel_m = readDouble(c, s, "registration_voxel_m", registration_voxel_m);
   map_voxel_m = readDouble(c, s, "map_voxel_m", map_voxel_m);
   map_points_per_voxel = readInt(c, s, "map_points_per_voxel", map_points_per_voxel);
+  map_ring_lines_on_walls = readBool(c, s, "map_ring_lines_on_walls", map_ring_lines_on_walls);
   map_radius_m = readDouble(c, s, "map_radius_m", map_radius_m);
   map_insert_voxel_m = readDouble(c, s, "map_insert_voxel_m", map_insert_voxel_m);
   adaptive_threshold = readBool(c, s, "adaptive_threshold", adaptive_threshold);
@@ -84,6 +85,7 @@ void Params::saveToConfigFile(mrpt::config::CConfigFileBase& c, const std::strin
   c.write(s, "registration_voxel_m", registration_voxel_m);
   c.write(s, "map_voxel_m", map_voxel_m);
   c.write(s, "map_points_per_voxel", map_points_per_voxel);
+  c.write(s, "map_ring_lines_on_walls", map_ring_lines_on_walls);
   c.write(s, "map_radius_m", map_radius_m);
   c.write(s, "map_insert_voxel_m", map_insert_voxel_m);
   c.write(s, "adaptive_threshold", adaptive_threshold);

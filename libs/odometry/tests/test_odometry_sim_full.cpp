@@ -1,5 +1,5 @@
 // The odometry issue's targets on whole simulated drives (odometry only, ini/default.ini, no CAN):
-// relative translation error at most 0.5 % on the urban loop and the hilly road. Heavy: each drive
+// relative translation error at most 0.5 % on the urban loop, the highway and the hilly road. Heavy: each drive
 // is simulated and matched in full (1,000-1,300 sweeps).
 #include <gtest/gtest.h>
 
@@ -28,20 +28,21 @@ TEST(OdometrySimFull, UrbanLoopWithinTheTarget) {
   EXPECT_EQ(r.failed, 0u);
   EXPECT_GT(r.metrics.path_length_m, 950.0);
   EXPECT_LT(r.metrics.rte_percent, 0.5);  // measured 0.076 %
-  EXPECT_LT(r.metrics.ate_rmse_m, 0.5);   // measured 0.12 m
+  EXPECT_LT(r.metrics.ate_rmse_m, 0.5);   // measured 0.11 m
 }
 
 TEST(OdometrySimFull, HillsWithinTheTarget) {
   const auto r = drive("hills");
   EXPECT_EQ(r.failed, 0u);
-  EXPECT_LT(r.metrics.rte_percent, 0.5);  // measured 0.071 %
+  EXPECT_LT(r.metrics.rte_percent, 0.5);  // measured 0.077 %
 }
 
-// Target NOT met on the highway (measured 0.65 %): the pitch error of the first 5 s (accelerating from
-// standstill on an open road, few vertical structures) is held by the gravity prior, not undone. This
-// bound guards what is reached.
-TEST(OdometrySimFull, HighwayBoundedDrift) {
+// The hardest start: from standstill on an open road, where single scan rings on the few walls,
+// trunks and car sides are most of what observes the forward motion (gaussian_voxel_map.cpp).
+// Measured 0.163 %; 0.65 % while single rings off the road waited for a second one.
+TEST(OdometrySimFull, HighwayWithinTheTarget) {
   const auto r = drive("highway");
   EXPECT_EQ(r.failed, 0u);
-  EXPECT_LT(r.metrics.rte_percent, 0.9);
+  EXPECT_GT(r.metrics.path_length_m, 2900.0);
+  EXPECT_LT(r.metrics.rte_percent, 0.5);
 }

@@ -28,11 +28,15 @@ class GaussianVoxelMap {
   /// \param voxel_m voxel edge [m]; \param max_points_per_voxel a voxel stops growing there [-];
   /// \param radius_m voxels farther than this from the vehicle are dropped [m]
   /// \param neighbours voxels searched for a pair: 1 (the one holding the point) or 7 (and its faces)
-  GaussianVoxelMap(double voxel_m, int max_points_per_voxel, double radius_m, int neighbours = 7);
+  /// \param ring_lines_on_walls a voxel off the road crossed by one horizontal scan ring constrains
+  /// the map across the vertical surface through that ring (else it waits for a second ring)
+  GaussianVoxelMap(double voxel_m, int max_points_per_voxel, double radius_m, int neighbours = 7,
+                   bool ring_lines_on_walls = true);
 
   /// Adds points in the map frame [m] and refreshes the statistics of the voxels they touched.
   /// \p is_ground (empty, or one flag per point) marks road-surface points: a voxel crossed by a
-  /// single scan ring of road then constrains height (a plane through the ring, level across it).
+  /// single scan ring of road then constrains height (a plane through the ring, level across it);
+  /// off the road such a voxel constrains the horizontal direction across the ring (a wall).
   void insert(const std::vector<Eigen::Vector3d>& points_map, const std::vector<uint8_t>& is_ground = {});
   /// Drops voxels whose mean is farther than radius_m from \p origin_map [m].
   void removeFar(const Eigen::Vector3d& origin_map);
@@ -63,6 +67,7 @@ class GaussianVoxelMap {
   double voxel_m_, inv_voxel_, radius_m_;
   int max_points_;
   int neighbours_;
+  bool ring_lines_on_walls_;
   uint32_t batch_ = 0;
   std::unordered_map<Eigen::Vector3i, Voxel, VoxelKeyHash> voxels_;
 };

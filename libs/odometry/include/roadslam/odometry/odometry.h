@@ -42,6 +42,9 @@ struct Params {
   double registration_voxel_m = 1.0;   ///< voxel of the source points registered [m]
   double map_voxel_m = 1.0;            ///< voxel of the local map [m]
   int map_points_per_voxel = 20;       ///< points kept per map voxel [-]
+  /// voxel_map: a map voxel off the road crossed by one scan ring constrains across the vertical
+  /// surface through it (gaussian_voxel_map.cpp); false = it waits for a second ring [-]
+  bool map_ring_lines_on_walls = true;
   double map_insert_voxel_m = 0.25;    ///< each frame adds one point per voxel of this size to the map [m]
   double map_radius_m = 60.0;          ///< local map radius around the vehicle [m]
   bool adaptive_threshold = true;      ///< KISS-ICP adaptive max correspondence distance
