@@ -65,8 +65,8 @@ BendFrame chooseFrame(const std::vector<Vec2>& cells, double kappa_path, const P
   // Refine round the coarse winner on a grid 3x finer (the coarse grid is ~1 m off a real bend).
   const BendFrame coarse = best;
   const double dk = p.bend_max_curvature / p.bend_curvature_steps / 3, ds = p.bend_step_m / 3;
-  for (int i = -2; coarse.bent() && i <= 2; ++i) {
-    for (int k = -2; k <= 2; ++k) {
+  for (int i = -3; coarse.bent() && i <= 3; ++i) {
+    for (int k = -3; k <= 3; ++k) {
       BendFrame f = coarse;
       f.s_bend = std::max(0.0, coarse.s_bend + i * ds);
       f.b.kappa = coarse.b.kappa + k * dk;

@@ -2,6 +2,8 @@
 // path is d = const, s = radius-scaled angle) and round trips.
 #include <gtest/gtest.h>
 
+#include <Eigen/Dense>
+
 #include <cmath>
 #include <random>
 
@@ -72,4 +74,86 @@ TEST(ArcFrame, DetectorTakesTheDrivenPathsCurvature) {
     }
     EXPECT_NEAR(kappa, 1.0 / R, 0.002) << R;  // heading change over 5 chords / their length
   }
+}
+
+namespace {
+
+using roadslam::boundary::detail::BendFrame;
+
+/// Curb cells every 0.2 m of a road whose reference path has curvature k0 up to arc length sb, then
+/// k1 (closed form: the frame's own toXY is not used), at offsets \p d (left +); vehicle frame.
+std::vector<Vec2> bentCurbs(double k0, double sb, double k1, std::vector<double> d, double s_max = 45) {
+  std::vector<Vec2> out;
+  for (double off : d) {
+    for (double s = -8; s <= s_max; s += 0.2) {
+      auto arcXY = [](double k, double s, double dd) {
+        if (std::abs(k) < 1e-9) return Vec2{s, dd};
+        return Vec2{(1 / k - dd) * std::sin(k * s), 1 / k - (1 / k - dd) * std::cos(k * s)};
+      };
+      if (s <= sb) {
+        out.push_back(arcXY(k0, s, off));
+        continue;
+      }
+      const Vec2 P = arcXY(k0, sb, 0), l = arcXY(k1, s - sb, off);
+      const double h = k0 * sb;
+      out.push_back({P.x + std::cos(h) * l.x - std::sin(h) * l.y, P.y + std::sin(h) * l.x + std::cos(h) * l.y});
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST(BendFrame, CurbsOfAStraightThenABendAreConstantOffsets) {
+  const BendFrame f{ArcFrame{0.0}, 8.0, ArcFrame{1.0 / 14}};
+  std::mt19937 rng(5);
+  for (double d : {4.0, -3.5}) {
+    const auto cells = bentCurbs(0.0, 8.0, 1.0 / 14, {d}, 30);
+    for (const auto& q : cells) {
+      Vec2 a;
+      ASSERT_TRUE(f.toArc(q, a)) << q.x << " " << q.y;
+      EXPECT_NEAR(a.y, d, 1e-9);
+      const Vec2 b = f.toXY(a);  // and back
+      EXPECT_NEAR(b.x, q.x, 1e-9);
+      EXPECT_NEAR(b.y, q.y, 1e-9);
+    }
+  }
+}
+
+// The bend is chosen from the curb cells ahead alone: a left corner entry 8 m ahead (radius 14 m),
+// a right one, and a corner exit (the vehicle turning at 1/14, straight from 10 m on) are found
+// near their true s_bend and curvature; on a straight road the path's frame stays.
+TEST(BendFrame, ChosenFromTheCurbsAhead) {
+  roadslam::boundary::Params p;
+  struct Case {
+    double k0, sb, k1;
+  };
+  for (const Case c : {Case{0.0, 8.0, 1.0 / 14}, Case{0.0, 12.0, -1.0 / 14}, Case{1.0 / 14, 10.0, 0.0}}) {
+    const auto cells = bentCurbs(c.k0, c.sb, c.k1, {4.0, -3.5});
+    int votes[2];
+    const BendFrame f = roadslam::boundary::detail::chooseFrame(cells, c.k0, p, votes);
+    ASSERT_TRUE(f.bent()) << c.sb << " " << c.k1;
+    EXPECT_NEAR(f.s_bend, c.sb, 1.01) << c.k1;
+    EXPECT_NEAR(f.b.kappa, c.k1, 0.011) << c.sb;
+    EXPECT_GE(votes[0], votes[1] + p.bend_margin_bins);
+    // In the chosen frame each curb is what the side fit models (d quadratic in s) within centimetres
+    // over the band, though the grid leaves the curvature up to 0.0033 1/m off.
+    for (double d : {4.0, -3.5}) {
+      std::vector<Vec2> sd;
+      for (const auto& q : bentCurbs(c.k0, c.sb, c.k1, {d})) {
+        Vec2 a;
+        if (q.x >= 0 && f.toArc(q, a) && a.x <= p.band_max_x_m) sd.push_back(a);
+      }
+      ASSERT_GT(sd.size(), 100u);
+      Eigen::MatrixXd A(sd.size(), 3);
+      Eigen::VectorXd b(sd.size());
+      for (size_t i = 0; i < sd.size(); ++i) A.row(i) << 1, sd[i].x, sd[i].x * sd[i].x, b(i) = sd[i].y;
+      const Eigen::VectorXd r = A * A.colPivHouseholderQr().solve(b) - b;
+      EXPECT_LT(r.cwiseAbs().maxCoeff(), 0.10) << c.sb << " " << c.k1 << " d " << d << ": chose " << f.s_bend << " " << f.b.kappa;
+    }
+  }
+  const auto straight = bentCurbs(0.0, 1e9, 0.0, {4.0, -3.5});
+  EXPECT_FALSE(roadslam::boundary::detail::chooseFrame(straight, 0.0, p).bent());
+  p.bend_max_curvature = 0;  // off: always the path's frame
+  EXPECT_FALSE(roadslam::boundary::detail::chooseFrame(bentCurbs(0.0, 8.0, 1.0 / 14, {4.0, -3.5}), 0.0, p).bent());
 }
