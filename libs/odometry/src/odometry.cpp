@@ -198,9 +198,13 @@ void Odometry::updateMap(const Eigen::Isometry3d& T_world_lidar) {
   }
 }
 
-FrameResult Odometry::process(Scan scan, const std::optional<MotionPrior>& prior) {
+FrameResult Odometry::process(Scan scan, const std::optional<MotionPrior>& given_prior) {
   const auto t0 = Clock::now();
   FrameResult res;
+  // A non-finite prior (a decoding fault upstream) would become the pose and stay in every later one.
+  const bool prior_bad = given_prior && !(given_prior->T_prev_curr.matrix().allFinite() &&
+                                          std::isfinite(given_prior->speed_mps));
+  const std::optional<MotionPrior> prior = prior_bad ? std::nullopt : given_prior;
   res.index = frames_++;
   res.stamp_s = scan.stamp_s;
   res.points_in = static_cast<int>(scan.points.size());
@@ -289,6 +293,7 @@ FrameResult Odometry::process(Scan scan, const std::optional<MotionPrior>& prior
   last_stamp_s_ = scan.stamp_s;
   have_pose_ = true;
   updateKeyframe(res);
+  if (prior_bad) res.reason = "motion prior not finite, ignored" + (res.reason.empty() ? "" : "; " + res.reason);
   res.ms_total = msSince(t0);
   return res;
 }

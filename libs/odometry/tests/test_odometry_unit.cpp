@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <random>
 
 #include "roadslam/odometry/odometry.h"
@@ -77,6 +78,24 @@ TEST(OdometryUnit, FollowsAConstantSpeedDriveThroughTheCanyon) {
     ASSERT_NE(r.status, FrameStatus::NotConverged) << r.reason;
     EXPECT_NEAR(r.T_world_lidar.translation().x(), 0.8 * i, 0.05) << "frame " << i;
     EXPECT_NEAR(r.T_world_lidar.translation().y(), 0.0, 0.05) << "frame " << i;
+  }
+}
+
+TEST(OdometryUnit, ANonFinitePriorIsIgnoredAndSaid) {
+  odometry::Odometry odo(testParams());
+  for (int i = 0; i < 12; ++i) {
+    Scan s = canyonSweep(0.8 * i, 300 + i);  // 8 m/s
+    s.stamp_s = 0.1 * i;
+    std::optional<odometry::MotionPrior> prior;
+    if (i >= 5 && i <= 7) {
+      prior = odometry::MotionPrior{};
+      prior->T_prev_curr.translation().x() = i == 6 ? std::numeric_limits<double>::infinity() : std::nan("");
+      prior->speed_mps = 8.0;
+    }
+    const auto r = odo.process(s, prior);
+    ASSERT_TRUE(r.T_world_lidar.matrix().allFinite()) << "frame " << i;
+    EXPECT_NEAR(r.T_world_lidar.translation().x(), 0.8 * i, 0.05) << "frame " << i;
+    EXPECT_EQ(r.reason.find("prior not finite") != std::string::npos, prior.has_value()) << "frame " << i << ": " << r.reason;
   }
 }
 

@@ -123,7 +123,7 @@ struct FrameResult {
   double stamp_s = 0;           ///< time of T_world_lidar [s] (see the file comment)
   Eigen::Isometry3d T_world_lidar = Eigen::Isometry3d::Identity();
   FrameStatus status = FrameStatus::Ok;
-  std::string reason;           ///< registration status text when not Ok
+  std::string reason;           ///< registration status text when not Ok; an ignored prior
   bool keyframe = false;
   int points_in = 0, points_registered = 0;  ///< raw and registered source points [-]
   int iterations = 0, inliers = 0;
@@ -142,6 +142,7 @@ class Odometry {
   ~Odometry();
 
   /// Processes one sweep (lidar frame). Never throws on data problems: they come back as a status.
+  /// A prior that is not finite is ignored (constant velocity instead), and FrameResult::reason says so.
   FrameResult process(Scan scan, const std::optional<MotionPrior>& prior = std::nullopt);
 
   const Params& params() const { return params_; }
