@@ -58,6 +58,12 @@ odometry::Params fromIni(const std::string& rel) {
 }
 
 void BM_Default(benchmark::State& s) { runOdometry(s, fromIni("ini/default.ini")); }
+// The map before single rings off the road constrained (gaussian_voxel_map.cpp): their cost.
+void BM_DefaultWithoutRingLines(benchmark::State& s) {
+  auto p = fromIni("ini/default.ini");
+  p.map_ring_lines_on_walls = false;
+  runOdometry(s, p);
+}
 void BM_RegistrationIcpPointToPlane(benchmark::State& s) {
   auto p = fromIni("ini/default.ini");
   p.matcher = "registration";
@@ -74,6 +80,7 @@ void BM_RegistrationNdt(benchmark::State& s) {
 }  // namespace
 
 BENCHMARK(BM_Default)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->Iterations(2);
+BENCHMARK(BM_DefaultWithoutRingLines)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->Iterations(2);
 BENCHMARK(BM_RegistrationIcpPointToPlane)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->Iterations(1);
 BENCHMARK(BM_RegistrationNdt)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->Iterations(1);
 BENCHMARK_MAIN();
