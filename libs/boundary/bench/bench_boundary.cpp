@@ -22,10 +22,12 @@ const Scan& street() {
   return s;
 }
 
-void run(benchmark::State& st, const std::string& method, bool parallel = true, double yaw_per_sweep = 0.0) {
+void run(benchmark::State& st, const std::string& method, bool parallel = true, double yaw_per_sweep = 0.0,
+         bool bend = true) {
   boundary::Params p;
   p.method = method;
   if (!parallel) p.parallel_max_spread_m = 0;  // before: no side continued parallel to the other
+  if (!bend) p.bend_max_curvature = 0;         // before: fits in the driven path's arc only, no bend searched
   boundary::BoundaryDetector det(p);
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   for (auto _ : st) {
@@ -38,7 +40,9 @@ void run(benchmark::State& st, const std::string& method, bool parallel = true, 
 
 void BM_Detector_Ransac(benchmark::State& st) { run(st, "ransac"); }
 void BM_Detector_Ransac_NoParallel(benchmark::State& st) { run(st, "ransac", false); }
+void BM_Detector_Ransac_NoBend(benchmark::State& st) { run(st, "ransac", true, 0.0, false); }
 void BM_Detector_Ransac_Turning(benchmark::State& st) { run(st, "ransac", true, 1.0 / 14.0); }  // R = 14 m
+void BM_Detector_Ransac_Turning_NoBend(benchmark::State& st) { run(st, "ransac", true, 1.0 / 14.0, false); }
 void BM_Detector_Thesis(benchmark::State& st) { run(st, "thesis"); }
 void BM_GroundLabelsOnly(benchmark::State& st) {
   preprocess::GroundSegParams g;
@@ -53,7 +57,9 @@ void BM_LabelPoints(benchmark::State& st) {
 
 BENCHMARK(BM_Detector_Ransac)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Detector_Ransac_NoParallel)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Detector_Ransac_NoBend)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Detector_Ransac_Turning)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Detector_Ransac_Turning_NoBend)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Detector_Thesis)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_GroundLabelsOnly)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_LabelPoints)->Unit(benchmark::kMillisecond);

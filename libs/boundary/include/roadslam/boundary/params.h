@@ -83,7 +83,7 @@ struct Params {
   double bend_max_curvature = 0.12;     ///< largest curvature tried after the bend (radius 8.3 m); 0 disables [1/m]
   int bend_curvature_steps = 6;         ///< curvatures tried on each side of 0: max * k / steps [-]
   double bend_step_m = 3.0;             ///< s_bend tried at 0, step, ... below band_max_x_m [m]
-  int bend_margin_bins = 4;             ///< votes a bend must add to replace the path's arc [-]
+  int bend_margin_bins = 8;             ///< votes (1 m bins, both sides) a bend must add to replace the path's arc [-]
   /// A side whose own curb cells end early (parked cars hide it ahead) continues parallel to the
   /// other side at the offset measured on its own cells, when their offsets to the other side
   /// spread (median absolute deviation) at most this much; 0 disables [m].
