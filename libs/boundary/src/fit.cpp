@@ -61,6 +61,48 @@ Score score(const std::vector<Vec2>& pts, const std::vector<double>& c, const Pa
   return s;
 }
 
+/// The best of ransac_iterations minimal-sample hypotheses (Fischler & Bolles 1981) by Score; empty
+/// when none is plausible.
+std::vector<double> bestHypothesis(const std::vector<Vec2>& pts, int side, int degree, const Params& p,
+                                   std::mt19937& rng, Score& best) {
+  const size_t m = static_cast<size_t>(degree) + 1;
+  std::uniform_int_distribution<size_t> pick(0, pts.size() - 1);
+  std::vector<double> best_c;
+  for (int it = 0; it < p.ransac_iterations; ++it) {
+    std::vector<Vec2> sample;
+    for (size_t k = 0; k < m; ++k) sample.push_back(pts[pick(rng)]);
+    bool spread = true;  // distinct x so the minimal system is well conditioned
+    for (size_t a = 0; a < m; ++a)
+      for (size_t b = a + 1; b < m; ++b) spread = spread && std::abs(sample[a].x - sample[b].x) > p.bin_m;
+    if (!spread) continue;
+    auto c = lsq(sample, degree);
+    if (!plausible(c, side, p)) continue;
+    const Score s = score(pts, c, p);
+    if (best_c.empty() || s.better(best)) best = s, best_c = c;
+  }
+  return best_c;
+}
+
+/// The road ends at the first curb from the vehicle: a line of cells at least kInnerGap nearer the
+/// vehicle, nearly parallel, covering inner_curb_share of the best line's bins is the curb and the
+/// best line a sidewalk's far edge (over many sweeps that edge can gather more bins: hills.ini).
+void preferInnerLine(const std::vector<Vec2>& pts, int side, int degree, int min_bins, const Params& p,
+                     std::mt19937& rng, Score& best, std::vector<double>& best_c) {
+  constexpr double kInnerGap = 2.5;      // [m] a sidewalk (3 m) in, not a parked car's sill (within 2.2 m of the curb)
+  constexpr double kMaxHeadingDiff = 0.1;  // |c1 - c1'| of "parallel" [-]
+  if (p.inner_curb_share <= 0 || p.method == "thesis") return;
+  std::vector<Vec2> inner;
+  for (const auto& q : pts)
+    if (side * (q.y - polyEval(best_c, q.x)) < -kInnerGap) inner.push_back(q);
+  if (inner.size() < std::max<size_t>(static_cast<size_t>(degree) + 1, static_cast<size_t>(min_bins))) return;
+  Score si;
+  const auto ci = bestHypothesis(inner, side, degree, p, rng, si);
+  if (ci.empty() || si.bins < min_bins || si.bins < p.inner_curb_share * best.bins ||
+      std::abs(ci[1] - best_c[1]) > kMaxHeadingDiff)
+    return;
+  best = score(pts, ci, p), best_c = ci;
+}
+
 /// The polyline over the band along the stretch of evidence spanning most of it: gaps between inliers up
 /// to max_bridge_m are bridged (curb seen on both sides of a parked car), no farther than
 /// max_extrapolation_m beyond the last inlier. Bridged length lowers the confidence (half weight).
@@ -102,27 +144,15 @@ SideBoundary ransac(const std::vector<Vec2>& pts, int side, int degree, int min_
     out.reason = why.str();
     return out;
   }
-  std::uniform_int_distribution<size_t> pick(0, pts.size() - 1);
   Score best;
-  std::vector<double> best_c;
-  for (int it = 0; it < p.ransac_iterations; ++it) {
-    std::vector<Vec2> sample;
-    for (size_t k = 0; k < m; ++k) sample.push_back(pts[pick(rng)]);
-    bool spread = true;  // distinct x so the minimal system is well conditioned
-    for (size_t a = 0; a < m; ++a)
-      for (size_t b = a + 1; b < m; ++b) spread = spread && std::abs(sample[a].x - sample[b].x) > p.bin_m;
-    if (!spread) continue;
-    auto c = lsq(sample, degree);
-    if (!plausible(c, side, p)) continue;
-    const Score s = score(pts, c, p);
-    if (best_c.empty() || s.better(best)) best = s, best_c = c;
-  }
+  std::vector<double> best_c = bestHypothesis(pts, side, degree, p, rng, best);
   if (best_c.empty() || best.bins < min_bins) {
     why << "no consistent " << sideName(side) << " boundary: best fit covers " << best.bins << " of "
         << min_bins << " needed " << p.bin_m << " m bins";
     out.reason = why.str();
     return out;
   }
+  preferInnerLine(pts, side, degree, min_bins, p, rng, best, best_c);
   std::vector<Vec2> inl;
   for (int r = 0; r < 2; ++r) {
     inl.clear();

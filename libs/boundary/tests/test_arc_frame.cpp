@@ -157,3 +157,34 @@ TEST(BendFrame, ChosenFromTheCurbsAhead) {
   p.bend_max_curvature = 0;  // off: always the path's frame
   EXPECT_FALSE(roadslam::boundary::detail::chooseFrame(bentCurbs(0.0, 8.0, 1.0 / 14, {4.0, -3.5}), 0.0, p).bent());
 }
+
+// The road ends at the first curb: cells of a curb at y = 4 m seen over 15 m and of a sidewalk's far
+// edge 3 m beyond it seen over 30 m (more bins) give the curb; cells of a parked car's sill 1 m inside
+// the curb (nearer than a sidewalk's width) do not replace it.
+TEST(SideFit, TheFirstCurbFromTheVehicleBeatsASidewalksFarEdge) {
+  roadslam::boundary::Params p;
+  std::mt19937 noise(11);
+  std::normal_distribution<double> n(0.0, 0.03);
+  auto line = [&](double y, double x0, double x1) {
+    std::vector<Vec2> v;
+    for (double x = x0; x <= x1; x += 0.2) v.push_back({x, y + n(noise)});
+    return v;
+  };
+  auto fit = [&](std::vector<Vec2> a, const std::vector<Vec2>& b) {
+    a.insert(a.end(), b.begin(), b.end());
+    std::mt19937 rng(7);
+    return roadslam::boundary::detail::fitSide(a, +1, p, rng);
+  };
+  const auto curb = line(4.0, -5, 20), far_edge = line(7.0, -10, 38);
+  auto s = fit(curb, far_edge);
+  ASSERT_TRUE(s.found) << s.reason;
+  EXPECT_NEAR(s.coeffs[0], 4.0, 0.1);
+  p.inner_curb_share = 0;  // off: the far edge's bins win, as before
+  s = fit(curb, far_edge);
+  ASSERT_TRUE(s.found) << s.reason;
+  EXPECT_NEAR(s.coeffs[0], 7.0, 0.1);
+  p.inner_curb_share = 0.5;
+  s = fit(line(3.0, 0, 12), line(4.0, -10, 38));  // a sill 1 m inside the curb
+  ASSERT_TRUE(s.found) << s.reason;
+  EXPECT_NEAR(s.coeffs[0], 4.0, 0.1);
+}
