@@ -109,25 +109,38 @@ std::vector<Eigen::Vector3d> GaussianVoxelMap::means() const {
   return out;
 }
 
-const GaussianVoxelMap::Voxel* GaussianVoxelMap::nearest(const Eigen::Vector3d& x, double max_dist_m) const {
+void GaussianVoxelMap::candidatesOf(const Eigen::Vector3i& key, Candidates& out) const {
   // The voxel holding x and its face neighbours (DIRECT7 of fast_gicp's VGICP, Koide et al. 2021):
   // a quarter of the hash look-ups of the full 27-neighbourhood for the same pairs in practice.
   static const int kOffsets[7][3] = {{0, 0, 0}, {1, 0, 0}, {-1, 0, 0}, {0, 1, 0},
                                      {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-  const Eigen::Vector3i k = keyOf(x);
+  out.key = key;
+  out.n = 0;
+  for (int n = 0; n < neighbours_; ++n) {
+    const auto it = voxels_.find(Eigen::Vector3i(key.x() + kOffsets[n][0], key.y() + kOffsets[n][1],
+                                                 key.z() + kOffsets[n][2]));
+    if (it != voxels_.end() && it->second.valid) out.voxels[out.n++] = &it->second;
+  }
+}
+
+const GaussianVoxelMap::Voxel* GaussianVoxelMap::nearestOf(const Candidates& c, const Eigen::Vector3d& x,
+                                                           double max_dist_m) {
   const Voxel* best = nullptr;
   double best_d2 = max_dist_m * max_dist_m;
-  for (int n = 0; n < neighbours_; ++n) {
-    const auto it = voxels_.find(Eigen::Vector3i(k.x() + kOffsets[n][0], k.y() + kOffsets[n][1],
-                                                 k.z() + kOffsets[n][2]));
-    if (it == voxels_.end() || !it->second.valid) continue;
-    const double d2 = (it->second.mean - x).squaredNorm();
+  for (int n = 0; n < c.n; ++n) {
+    const double d2 = (c.voxels[n]->mean - x).squaredNorm();
     if (d2 < best_d2) {
       best_d2 = d2;
-      best = &it->second;
+      best = c.voxels[n];
     }
   }
   return best;
+}
+
+const GaussianVoxelMap::Voxel* GaussianVoxelMap::nearest(const Eigen::Vector3d& x, double max_dist_m) const {
+  Candidates c;
+  candidatesOf(keyOf(x), c);
+  return nearestOf(c, x, max_dist_m);
 }
 
 }  // namespace roadslam::odometry

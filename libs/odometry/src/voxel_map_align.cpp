@@ -38,15 +38,22 @@ struct LinearSystem {
 
 // Gauss-Newton normal equations of sum_i rho(d_i^T Omega_i d_i), d_i = T p_i - mu_i, with IRLS
 // Geman-McClure weights w = s^4 / (s^2 + r^2)^2 (Black & Rangarajan 1996).
+// \p cache holds each source point's candidate voxels from the previous iteration: after the first
+// iterations most points stay in their voxel and need no hash look-up (same pairs as nearest()).
 LinearSystem buildSystem(const GaussianVoxelMap& map, const std::vector<Eigen::Vector3d>& src,
-                         const Eigen::Isometry3d& T, const VoxelAlignParams& p) {
+                         const Eigen::Isometry3d& T, const VoxelAlignParams& p,
+                         std::vector<GaussianVoxelMap::Candidates>& cache) {
   LinearSystem ls;
   const double s2 = p.kernel_scale_m * p.kernel_scale_m;
   Eigen::Matrix<double, 3, 6> J;
   J.leftCols<3>().setIdentity();
-  for (const auto& ps : src) {
+  cache.resize(src.size());
+  for (size_t i = 0; i < src.size(); ++i) {
+    const Eigen::Vector3d& ps = src[i];
     const Eigen::Vector3d x = T * ps;
-    const auto* v = map.nearest(x, p.max_correspondence_distance_m);
+    const Eigen::Vector3i key = map.keyOf(x);
+    if (key != cache[i].key) map.candidatesOf(key, cache[i]);
+    const auto* v = GaussianVoxelMap::nearestOf(cache[i], x, p.max_correspondence_distance_m);
     if (!v) continue;
     const Eigen::Vector3d d = x - v->mean;
     const double r2 = d.dot(v->info * d);
@@ -96,10 +103,11 @@ RegistrationResult alignToVoxelMap(const GaussianVoxelMap& map, const std::vecto
     return failed(guess, Status::TooFewPoints, std::to_string(src.size()) + " source points");
   }
   Eigen::Isometry3d T = guess;
+  std::vector<GaussianVoxelMap::Candidates> cache;
   RegistrationResult r;
   r.status = Status::MaxIterations;
   for (int it = 0; it < p.max_iterations; ++it) {
-    LinearSystem ls = buildSystem(map, src, T, p);
+    LinearSystem ls = buildSystem(map, src, T, p, cache);
     if (gravity && gravity->constraints) addGravity(*gravity, T.linear(), ls);
     r.iterations = it + 1;
     if (ls.inliers < p.min_inliers) {
@@ -119,7 +127,7 @@ RegistrationResult alignToVoxelMap(const GaussianVoxelMap& map, const std::vecto
       break;
     }
   }
-  LinearSystem fin = buildSystem(map, src, T, p);
+  LinearSystem fin = buildSystem(map, src, T, p, cache);
   const Matrix6d H_scan = fin.H;  // degeneracy is the scan's: the tilt prior adds no translation
   if (gravity && gravity->constraints) addGravity(*gravity, T.linear(), fin);
   r.T_target_source = T;

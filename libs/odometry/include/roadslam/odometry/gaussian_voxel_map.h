@@ -14,6 +14,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <limits>
 #include <unordered_map>
 #include <vector>
 
@@ -58,10 +59,22 @@ class GaussianVoxelMap {
   /// Nearest valid voxel mean to \p x within \p max_dist_m among the searched voxels; nullptr if none.
   const Voxel* nearest(const Eigen::Vector3d& x, double max_dist_m) const;
 
- private:
+  /// The valid voxels nearest() searches for a point in the voxel \p key: a point that stays in its
+  /// voxel between iterations of an alignment keeps them (no hash look-up). Pointers stay valid
+  /// until the next insert() or removeFar().
+  struct Candidates {
+    Eigen::Vector3i key = Eigen::Vector3i::Constant(std::numeric_limits<int>::min());
+    int n = 0;
+    const Voxel* voxels[7] = {};
+  };
+  void candidatesOf(const Eigen::Vector3i& key, Candidates& out) const;
+  /// nearest() among \p c.
+  static const Voxel* nearestOf(const Candidates& c, const Eigen::Vector3d& x, double max_dist_m);
   Eigen::Vector3i keyOf(const Eigen::Vector3d& p) const {
     return (p * inv_voxel_).array().floor().cast<int>();
   }
+
+ private:
   void refresh(Voxel& v) const;
 
   double voxel_m_, inv_voxel_, radius_m_;
