@@ -158,8 +158,8 @@ TEST(BendFrame, ChosenFromTheCurbsAhead) {
   EXPECT_FALSE(roadslam::boundary::detail::chooseFrame(bentCurbs(0.0, 8.0, 1.0 / 14, {4.0, -3.5}), 0.0, p).bent());
 }
 
-// The road ends at the first curb: cells of a curb at y = 4 m seen over 15 m and of a sidewalk's far
-// edge 3 m beyond it seen over 30 m (more bins) give the curb; cells of a parked car's sill 1 m inside
+// The road ends at the first curb: cells of a curb at y = 4 m seen over 25 m and of a sidewalk's far
+// edge 3 m beyond it seen over 48 m (more bins) give the curb; cells of a parked car's sill 1 m inside
 // the curb (nearer than a sidewalk's width) do not replace it.
 TEST(SideFit, TheFirstCurbFromTheVehicleBeatsASidewalksFarEdge) {
   roadslam::boundary::Params p;
