@@ -87,7 +87,7 @@ std::vector<double> bestHypothesis(const std::vector<Vec2>& pts, int side, int d
 /// vehicle, nearly parallel, covering inner_curb_share of the best line's bins is the curb and the
 /// best line a sidewalk's far edge (over many sweeps that edge can gather more bins: hills.ini).
 void preferInnerLine(const std::vector<Vec2>& pts, int side, int degree, int min_bins, const Params& p,
-                     std::mt19937& rng, Score& best, std::vector<double>& best_c) {
+                     Score& best, std::vector<double>& best_c) {
   constexpr double kInnerGap = 2.5;      // [m] a sidewalk (3 m) in, not a parked car's sill (within 2.2 m of the curb)
   constexpr double kMaxHeadingDiff = 0.1;  // |c1 - c1'| of "parallel" [-]
   if (p.inner_curb_share <= 0 || p.method == "thesis") return;
@@ -96,6 +96,7 @@ void preferInnerLine(const std::vector<Vec2>& pts, int side, int degree, int min
     if (side * (q.y - polyEval(best_c, q.x)) < -kInnerGap) inner.push_back(q);
   if (inner.size() < std::max<size_t>(static_cast<size_t>(degree) + 1, static_cast<size_t>(min_bins))) return;
   Score si;
+  std::mt19937 rng(static_cast<unsigned>(p.ransac_seed) + 1);  // its own draws: the other fits stay as they were
   const auto ci = bestHypothesis(inner, side, degree, p, rng, si);
   if (ci.empty() || si.bins < min_bins || si.bins < p.inner_curb_share * best.bins ||
       std::abs(ci[1] - best_c[1]) > kMaxHeadingDiff)
@@ -152,7 +153,7 @@ SideBoundary ransac(const std::vector<Vec2>& pts, int side, int degree, int min_
     out.reason = why.str();
     return out;
   }
-  preferInnerLine(pts, side, degree, min_bins, p, rng, best, best_c);
+  preferInnerLine(pts, side, degree, min_bins, p, best, best_c);
   std::vector<Vec2> inl;
   for (int r = 0; r < 2; ++r) {
     inl.clear();
