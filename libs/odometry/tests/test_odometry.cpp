@@ -4,9 +4,9 @@
 #include <cmath>
 #include <filesystem>
 #include <iostream>
-#include <map>
-#include <tuple>
+#include <unordered_map>
 
+#include "roadslam/common/voxel_hash.h"
 #include "roadslam/datasets/kitti_scans.h"
 #include "roadslam/datasets/trajectory_io.h"
 #include "roadslam/eval/trajectory_metrics.h"
@@ -75,9 +75,7 @@ namespace {
 // structures (off the road, 5-40 m) to the first's, by exhaustive search on a 1 cm grid.
 double forwardShiftByExhaustiveSearch(const Scan& a, const Scan& b) {
   const double cell = 0.5;
-  const auto key = [&](const Eigen::Vector3d& p) {
-    return std::tuple<int, int, int>(std::floor(p.x() / cell), std::floor(p.y() / cell), std::floor(p.z() / cell));
-  };
+  const auto key = [&](const Eigen::Vector3d& p) -> Eigen::Vector3i { return (p / cell).array().floor().cast<int>(); };
   const auto structures = [](const Scan& s, size_t step) {
     std::vector<Eigen::Vector3d> out;
     for (size_t i = 0; i < s.points.size(); i += step) {
@@ -87,7 +85,7 @@ double forwardShiftByExhaustiveSearch(const Scan& a, const Scan& b) {
     }
     return out;
   };
-  std::map<std::tuple<int, int, int>, std::vector<Eigen::Vector3d>> grid;
+  std::unordered_map<Eigen::Vector3i, std::vector<Eigen::Vector3d>, VoxelKeyHash> grid;
   for (const auto& p : structures(a, 1)) grid[key(p)].push_back(p);
   const auto query = structures(b, 5);
   double best_shift = 0, best_median = 1e9;
@@ -95,12 +93,12 @@ double forwardShiftByExhaustiveSearch(const Scan& a, const Scan& b) {
     std::vector<double> d;
     for (const auto& q0 : query) {
       const Eigen::Vector3d q = q0 + Eigen::Vector3d(tx, 0, 0);
-      const auto [kx, ky, kz] = key(q);
+      const Eigen::Vector3i k = key(q);
       double best = 9;
       for (int dx = -1; dx <= 1; ++dx)
         for (int dy = -1; dy <= 1; ++dy)
           for (int dz = -1; dz <= 1; ++dz) {
-            const auto it = grid.find({kx + dx, ky + dy, kz + dz});
+            const auto it = grid.find(k + Eigen::Vector3i(dx, dy, dz));
             if (it == grid.end()) continue;
             for (const auto& p : it->second) best = std::min(best, (p - q).squaredNorm());
           }
