@@ -13,6 +13,16 @@ void CurbMap::insert(const std::vector<Eigen::Vector3d>& pts_map, size_t frame) 
   }
 }
 
+size_t CurbMap::erase(const std::vector<Eigen::Vector3d>& tall_map, int radius_cells) {
+  if (radius_cells < 0 || cells_.empty()) return 0;
+  size_t n = 0;
+  for (const auto& m : tall_map)
+    for (int dx = -radius_cells; dx <= radius_cells; ++dx)
+      for (int dy = -radius_cells; dy <= radius_cells; ++dy)
+        n += cells_.erase(detail::cellKey(m.x() + dx * cell_m_, m.y() + dy * cell_m_, cell_m_));
+  return n;
+}
+
 void CurbMap::prune(const Eigen::Isometry3d& T_map_lidar, double keep_behind_m, double keep_radius_m, size_t frame,
                     size_t max_age_frames) {
   const Eigen::Isometry3d T_lidar_map = T_map_lidar.inverse();

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <unordered_set>
 
 #include "internal.h"
 
@@ -77,6 +78,26 @@ void fillGrid(const Params& p, const std::vector<double>& free_r, const Boundary
     for (const auto& v : sb->polyline_vehicle) put(v.x, v.y, CostGrid::kCurb);
   for (const auto& o : f.obstacles)
     for (const auto& v : o.hull) put(v.x, v.y, CostGrid::kObstacle);
+}
+
+/// Map-frame points (one per curb-map cell) within curb_veto_range_m that stand tall_height_m to
+/// tall_max_height_m above the local ground: the labelling's "tall" points, which no curb may
+/// neighbour.
+std::vector<Eigen::Vector3d> tallPointsInMap(const Scan& scan, const Labelling& lab, const Eigen::Isometry3d& T_map_lidar,
+                                             const Params& p) {
+  std::vector<Eigen::Vector3d> out;
+  std::unordered_set<int64_t> seen;
+  const double r2max = p.curb_veto_range_m * p.curb_veto_range_m;
+  for (size_t i = 0; i < scan.points.size(); ++i) {
+    const auto& q = scan.points[i];
+    const float h = lab.height_m[i];
+    if (lab.cls[i] == PointClass::Ground || !(h >= p.tall_height_m && h <= p.tall_max_height_m) ||
+        !(q.x * q.x + q.y * q.y <= r2max))
+      continue;
+    const Eigen::Vector3d m = T_map_lidar * Eigen::Vector3d(q.x, q.y, q.z);
+    if (seen.insert(detail::cellKey(m.x(), m.y(), p.curb_map_cell_m)).second) out.push_back(m);
+  }
+  return out;
 }
 
 double yawOf(const Eigen::Isometry3d& T) { return std::atan2(T.linear()(1, 0), T.linear()(0, 0)); }
@@ -252,6 +273,7 @@ BoundaryFrame BoundaryDetector::process(const Scan& scan, const Eigen::Isometry3
     curbs_map.push_back(T_map_lidar * Eigen::Vector3d(q.x, q.y, q.z));
   }
   curb_map_.insert(curbs_map, f.index);
+  if (p_.curb_veto_cells >= 0) curb_map_.erase(tallPointsInMap(scan, last_, T_map_lidar, p_), p_.curb_veto_cells);
   curb_map_.prune(T_map_lidar, -p_.fit_min_x_m, p_.curb_map_radius_m, f.index, static_cast<size_t>(p_.memory_frames));
 
   if (f.points == 0 || f.ground_points == 0) {

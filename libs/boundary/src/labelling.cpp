@@ -42,6 +42,22 @@ Grid curbGrid(const Scan& s, const preprocess::GroundLabels& gl, const Params& p
   return g;
 }
 
+/// The step's bottom \p zmin is the road: no low return lies more than a curb below it within
+/// curb_level_cells. Otherwise the "ground" under the step is what stands on the road: a ring
+/// grazing a parked car's end face descends along it at the beam's elevation slope, the ground line
+/// of its sector follows it (0.3-0.7 m above the road), and face points read as a low step.
+bool standsOnRoad(const Grid& g, double x, double y, float zmin, const Params& p) {
+  const double c = p.curb_cell_m;
+  const int k = p.curb_level_cells;
+  for (int dx = -k; dx <= k; ++dx) {
+    for (int dy = -k; dy <= k; ++dy) {
+      auto it = g.find(detail::cellKey(x + dx * c, y + dy * c, c));
+      if (it != g.end() && zmin - it->second.zmin > p.curb_max_jump_m) return false;
+    }
+  }
+  return true;
+}
+
 /// A low point is on a curb face when its neighbourhood holds ground, spans a curb height, holds
 /// nothing tall, and the point lies between the road and the top of the step.
 bool onCurb(const Grid& g, double x, double y, double z, const Params& p) {
@@ -64,7 +80,7 @@ bool onCurb(const Grid& g, double x, double y, double z, const Params& p) {
   // a wide neighbourhood would otherwise smear it by its radius on both sides.
   const double margin = p.curb_face_margin * jump;
   return ground && jump >= p.curb_min_jump_m && jump <= p.curb_max_jump_m && z >= zmin + margin &&
-         z <= zmax - margin;
+         z <= zmax - margin && standsOnRoad(g, x, y, zmin, p);
 }
 
 }  // namespace
@@ -77,11 +93,12 @@ Labelling labelPoints(const Scan& scan, const Params& p) {
   auto gl = preprocess::segmentGroundWithHeights(scan.points, p.ground);
   const Grid grid = curbGrid(scan, gl, p);
   const double roi2 = p.roi_range_m * p.roi_range_m, curb2 = p.curb_max_range_m * p.curb_max_range_m;
+  const double near2 = p.curb_min_range_m * p.curb_min_range_m;
   for (size_t i = 0; i < n; ++i) {
     const auto& q = scan.points[i];
     const float h = gl.height_above_ground_m[i];
     const double r2 = q.x * q.x + q.y * q.y;
-    if (r2 <= curb2 && isLow(gl, i, p) && onCurb(grid, q.x, q.y, q.z, p)) {
+    if (r2 <= curb2 && r2 >= near2 && isLow(gl, i, p) && onCurb(grid, q.x, q.y, q.z, p)) {
       out.cls[i] = PointClass::Curb;
       ++out.curb;
     } else if (gl.ground[i]) {

@@ -18,7 +18,7 @@ auto doubleFields(P& p) {
   return std::vector<std::pair<const char*, decltype(&p.curb_min_jump_m)>>{
       {"curb_min_jump_m", &p.curb_min_jump_m}, {"curb_max_jump_m", &p.curb_max_jump_m},
       {"curb_cell_m", &p.curb_cell_m}, {"curb_face_margin", &p.curb_face_margin}, {"max_heading", &p.max_heading}, {"max_curvature", &p.max_curvature},
-      {"curb_max_range_m", &p.curb_max_range_m}, {"tall_cell_m", &p.tall_cell_m},
+      {"curb_max_range_m", &p.curb_max_range_m}, {"curb_min_range_m", &p.curb_min_range_m}, {"curb_veto_range_m", &p.curb_veto_range_m}, {"tall_cell_m", &p.tall_cell_m},
       {"tall_height_m", &p.tall_height_m},
       {"tall_max_height_m", &p.tall_max_height_m}, {"obstacle_min_height_m", &p.obstacle_min_height_m},
       {"obstacle_max_height_m", &p.obstacle_max_height_m}, {"cluster_cell_m", &p.cluster_cell_m},
@@ -33,7 +33,7 @@ auto doubleFields(P& p) {
 template <class P>
 auto intFields(P& p) {
   return std::vector<std::pair<const char*, decltype(&p.min_bins)>>{
-      {"cluster_min_points", &p.cluster_min_points}, {"curb_clearance_cells", &p.curb_clearance_cells},
+      {"cluster_min_points", &p.cluster_min_points}, {"curb_clearance_cells", &p.curb_clearance_cells}, {"curb_level_cells", &p.curb_level_cells}, {"curb_veto_cells", &p.curb_veto_cells},
       {"curb_reach_cells", &p.curb_reach_cells}, {"freespace_sectors", &p.freespace_sectors},
       {"poly_degree", &p.poly_degree}, {"ransac_iterations", &p.ransac_iterations},
       {"ransac_seed", &p.ransac_seed}, {"min_bins", &p.min_bins}, {"min_band_bins", &p.min_band_bins},

@@ -7,7 +7,7 @@
 using roadslam::boundary::Params;
 
 TEST(Params, ShippedInisLoad) {
-  for (const char* name : {"bounds.ini", "bounds-thesis.ini"}) {
+  for (const char* name : {"bounds.ini", "bounds-thesis.ini", "bounds-parking.ini"}) {
     const auto cfg = roadslam::loadIniFile(std::string(ROADSLAM_SOURCE_DIR) + "/ini/" + name);
     Params p;
     ASSERT_NO_THROW(p.loadFromConfigFile(*cfg)) << name;
@@ -17,6 +17,18 @@ TEST(Params, ShippedInisLoad) {
   Params p;
   p.loadFromConfigFile(*thesis);
   EXPECT_EQ(p.method, "thesis");
+  // The rules against parked cars read as curbs (issue #8): off in bounds.ini, on in bounds-parking.ini.
+  Params off, on;
+  off.loadFromConfigFile(*roadslam::loadIniFile(std::string(ROADSLAM_SOURCE_DIR) + "/ini/bounds.ini"));
+  on.loadFromConfigFile(*roadslam::loadIniFile(std::string(ROADSLAM_SOURCE_DIR) + "/ini/bounds-parking.ini"));
+  EXPECT_EQ(off.curb_min_range_m, 0.0);
+  EXPECT_EQ(off.curb_level_cells, 0);
+  EXPECT_EQ(off.curb_veto_cells, -1);
+  EXPECT_EQ(on.curb_min_range_m, 5.0);
+  EXPECT_EQ(on.curb_level_cells, 5);
+  EXPECT_EQ(on.curb_veto_cells, 2);
+  EXPECT_EQ(on.method, off.method);
+  EXPECT_EQ(on.ransac_seed, off.ransac_seed);
 }
 
 TEST(Params, SaveLoadRoundTrip) {

@@ -25,6 +25,12 @@ class CurbMap {
   /// Adds the curb points of sweep \p frame (map frame [m]); a cell counts one sighting per sweep.
   void insert(const std::vector<Eigen::Vector3d>& pts_map, size_t frame);
 
+  /// Drops the cells within \p radius_cells cells of any of \p tall_map (points standing 0.4-1.5 m
+  /// above the ground in some sweep, map frame [m]): a curb cell that another sweep saw as part of
+  /// something standing was not a curb (a parked car's end face read as a step from afar). Returns
+  /// the count dropped.
+  size_t erase(const std::vector<Eigen::Vector3d>& tall_map, int radius_cells);
+
   /// Drops cells behind, far, or old as seen from the vehicle at \p T_map_lidar (see file comment).
   void prune(const Eigen::Isometry3d& T_map_lidar, double keep_behind_m, double keep_radius_m, size_t frame,
              size_t max_age_frames);

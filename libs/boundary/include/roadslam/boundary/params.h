@@ -28,7 +28,21 @@ struct Params {
   int curb_reach_cells = 2;           ///< the step is read over (2k+1)^2 cells: far rings meet curbs at grazing angles and climb them over a metre or more [-]
   double curb_face_margin = 0.2;      ///< a face point lies above road + m * jump and below top - m * jump [-]
   int curb_clearance_cells = 2;       ///< no tall cell within this many cells of a curb point [-]
+  /// No low return more than curb_max_jump_m below a step's bottom within this many cells [-]; 0 = off:
+  /// the step then stands on something (a car's end face that the ground line followed), not on the road.
+  int curb_level_cells = 0;
+  /// Curb-map cells within this many cells of a point some sweep saw standing (tall_height_m to
+  /// tall_max_height_m above the ground) are dropped: from afar a grazing ring reads a car's end face
+  /// as a low step, from nearer the same face stands [-]; -1 = off.
+  int curb_veto_cells = -1;
+  double curb_veto_range_m = 40.0;  ///< only points this near the sensor veto [m]
   double curb_max_range_m = 40.0;     ///< rings farther than this are too sparse to read [m]
+  /// Nearer points are never curb [m]; 0 = off: inside the lowest beam's blind circle on the road
+  /// (VLP-16, -15 deg at 1.9 m: road from 7.1 m, a 0.30 m curb's face from 6.0 m) a return is not on
+  /// the road the vehicle stands on but on what stands on it (the ends of perpendicular-parked cars,
+  /// parked cars' sills: the ground lines of their sectors start on the body, which reads as a low step).
+  /// Off by default, on in ini/bounds-parking.ini (docs/apps/roadslam-bounds.md, issue #8).
+  double curb_min_range_m = 0.0;
   double tall_cell_m = 0.5;           ///< xy cell of the "something taller here" test [m]
   double tall_height_m = 0.40;        ///< a cell with a point between this ... [m]
   double tall_max_height_m = 1.5;     ///< ... and this high above ground is no curb (tree crowns above pass) [m]

@@ -1,0 +1,131 @@
+// Perpendicular parking bays (issue #8): the cars' ends facing the aisle are no curb. Oracle: the
+// analytic sweep's own geometry (car boxes and curb lines), independent of the detector.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "roadslam/boundary/curb_map.h"
+#include "roadslam/boundary/detector.h"
+#include "roadslam/common/config.h"
+#include "synthetic_road.h"
+
+using namespace roadslam::boundary;
+using roadslam::Scan;
+using roadslam::ScanPoint;
+using roadslam::boundary::test::Box;
+using roadslam::boundary::test::Road;
+using roadslam::boundary::test::castSweep;
+
+namespace {
+
+constexpr double kH = 1.9;  // lidar above the road [m]
+
+/// An aisle of ini/sim/parking-lot.ini seen from its right lane: curbs 9.5 m left and 6.5 m right,
+/// 5 m perpendicular bays on both sides, cars as in libs/sim (body 0.25-1.0 m above the road, 4.4 m
+/// long, 1.8 m wide, 0.3 m off the curb; cabin 1.0-1.5 m, 1 m back from the ends) in 2.7 m slots,
+/// every fifth slot empty (80 % taken). Returns the boxes of the car bodies.
+std::vector<Box> parkingAisle(Road& road) {
+  road.left_y = 9.5;
+  road.right_y = -6.5;
+  road.curb_h = 0.12;
+  road.sensor_height = kH;
+  std::vector<Box> bodies;
+  int slot = 0;
+  for (double x = -30; x < 45; x += 2.7, ++slot) {
+    if (slot % 5 == 2) continue;
+    for (int side : {+1, -1}) {
+      const double curb = side > 0 ? 9.5 : -6.5, front = curb - side * 0.3, end = front - side * 4.4;
+      const double x0 = x + (side > 0 ? 0.4 : 0.0);
+      bodies.push_back({x0, x0 + 1.8, std::min(front, end), std::max(front, end), -kH + 0.25, -kH + 1.0});
+      road.boxes.push_back(bodies.back());
+      const double c0 = end + side * 1.0, c1 = front - side * 1.0;
+      road.boxes.push_back({x0 + 0.1, x0 + 1.7, std::min(c0, c1), std::max(c0, c1), -kH + 1.0, -kH + 1.5});
+    }
+  }
+  return bodies;
+}
+
+Params shipped(const std::string& name) {
+  Params p;
+  p.loadFromConfigFile(*roadslam::loadIniFile(std::string(ROADSLAM_SOURCE_DIR) + "/ini/" + name));
+  return p;
+}
+
+bool onACar(const ScanPoint& q, const std::vector<Box>& bodies, double margin) {
+  for (const auto& b : bodies)
+    if (q.x > b.x0 - margin && q.x < b.x1 + margin && q.y > b.y0 - margin && q.y < b.y1 + margin) return true;
+  return false;
+}
+
+struct Counts {
+  int on_cars = 0, on_curbs = 0, elsewhere = 0;
+};
+
+Counts curbPoints(const Scan& s, const Params& p, const std::vector<Box>& bodies) {
+  const Labelling lab = labelPoints(s, p);
+  Counts c;
+  for (size_t i = 0; i < s.points.size(); ++i) {
+    if (lab.cls[i] != PointClass::Curb) continue;
+    const auto& q = s.points[i];
+    if (std::abs(q.y - 9.5) < 0.15 || std::abs(q.y + 6.5) < 0.15)
+      ++c.on_curbs;
+    else if (onACar(q, bodies, 0.3))
+      ++c.on_cars;
+    else
+      ++c.elsewhere;
+  }
+  return c;
+}
+
+}  // namespace
+
+TEST(ParkingBays, CarEndsAreNoCurbOverADrive) {
+  Road road;
+  const auto bodies = parkingAisle(road);
+  const Params p = shipped("bounds-parking.ini"), before = shipped("bounds.ini");  // rules on / off
+  ASSERT_DOUBLE_EQ(p.ground.sensor_height_m, kH);
+  Counts now, old;
+  // The vehicle drives along the aisle: the rows shift past it by 0.9 m per sweep.
+  for (int k = 0; k < 6; ++k) {
+    Road r = road;
+    for (auto& b : r.boxes) b.x0 -= 0.9 * k, b.x1 -= 0.9 * k;
+    auto shifted = bodies;
+    for (auto& b : shifted) b.x0 -= 0.9 * k, b.x1 -= 0.9 * k;
+    const Scan s = castSweep(r, 11 + k);
+    const Counts c = curbPoints(s, p, shifted), o = curbPoints(s, before, shifted);
+    now.on_cars += c.on_cars, now.on_curbs += c.on_curbs, now.elsewhere += c.elsewhere;
+    old.on_cars += o.on_cars, old.on_curbs += o.on_curbs, old.elsewhere += o.elsewhere;
+  }
+  std::cout << "curb points on cars / on curbs / elsewhere: before " << old.on_cars << " / " << old.on_curbs << " / "
+            << old.elsewhere << ", now " << now.on_cars << " / " << now.on_curbs << " / " << now.elsewhere << "\n";
+  // Before the fix the cars' ends beside the vehicle read as curb (the defect this test guards).
+  EXPECT_GT(old.on_cars, 50);
+  EXPECT_EQ(now.on_cars, 0);
+  EXPECT_EQ(now.elsewhere, 0);
+  // The curbs seen through the empty bays stay curbs.
+  EXPECT_GT(now.on_curbs, 0);
+  EXPECT_GE(now.on_curbs, old.on_curbs * 9 / 10);
+}
+
+TEST(ParkingBays, CurbCellsWhereASweepSawSomethingStandingAreDropped) {
+  // A curb seen from afar along a car's end face (x = 20 m, y = 4.8 m) and the real curb (y = 9.5 m);
+  // a later, nearer sweep sees the end face standing 0.6 m above the road.
+  CurbMap m(0.2);
+  std::vector<Eigen::Vector3d> curb, face;
+  for (int k = 0; k < 50; ++k) {
+    const double x = 15.1 + 0.2 * k;  // cell centres
+    curb.emplace_back(x, 4.81, -1.3), curb.emplace_back(x, 9.51, -1.8);
+    face.emplace_back(x, 4.79, -1.3);
+  }
+  m.insert(curb, 0);
+  ASSERT_EQ(m.size(), 100u);
+  EXPECT_EQ(m.erase(face, 2), 50u);
+  const auto left = m.inVehicle(Eigen::Isometry3d::Identity());
+  ASSERT_EQ(left.size(), 50u);
+  for (const auto& c : left) EXPECT_NEAR(c.y, 9.51, 1e-9);
+  EXPECT_EQ(m.erase({{20.1, 8.9, -1.3}}, 2), 0u);  // its cell 3 cells from the curb's
+  EXPECT_EQ(m.erase({{20.1, 9.3, -1.3}}, 2), 5u);  // 1 cell off: the curb cells x = 19.6-20.6 m
+}
