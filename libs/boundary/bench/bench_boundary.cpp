@@ -22,10 +22,16 @@ const Scan& street() {
   return s;
 }
 
+/// The rules of ini/bounds-parking.ini against parked cars read as curbs (issue #8).
+void parkingRules(boundary::Params& p) {
+  p.curb_min_range_m = 5, p.curb_level_cells = 5, p.curb_veto_cells = 2;
+}
+
 void run(benchmark::State& st, const std::string& method, bool parallel = true, double yaw_per_sweep = 0.0,
-         bool bend = true) {
+         bool bend = true, bool parking = false) {
   boundary::Params p;
   p.method = method;
+  if (parking) parkingRules(p);
   if (!parallel) p.parallel_max_spread_m = 0;  // before: no side continued parallel to the other
   if (!bend) p.bend_max_curvature = 0;         // before: fits in the driven path's arc only, no bend searched
   boundary::BoundaryDetector det(p);
@@ -43,6 +49,7 @@ void BM_Detector_Ransac_NoParallel(benchmark::State& st) { run(st, "ransac", fal
 void BM_Detector_Ransac_NoBend(benchmark::State& st) { run(st, "ransac", true, 0.0, false); }
 void BM_Detector_Ransac_Turning(benchmark::State& st) { run(st, "ransac", true, 1.0 / 14.0); }  // R = 14 m
 void BM_Detector_Ransac_Turning_NoBend(benchmark::State& st) { run(st, "ransac", true, 1.0 / 14.0, false); }
+void BM_Detector_Ransac_ParkingRules(benchmark::State& st) { run(st, "ransac", true, 0.0, true, true); }
 void BM_Detector_Thesis(benchmark::State& st) { run(st, "thesis"); }
 void BM_GroundLabelsOnly(benchmark::State& st) {
   preprocess::GroundSegParams g;
@@ -50,6 +57,11 @@ void BM_GroundLabelsOnly(benchmark::State& st) {
 }
 void BM_LabelPoints(benchmark::State& st) {
   boundary::Params p;
+  for (auto _ : st) benchmark::DoNotOptimize(boundary::labelPoints(street(), p));
+}
+void BM_LabelPoints_ParkingRules(benchmark::State& st) {
+  boundary::Params p;
+  parkingRules(p);
   for (auto _ : st) benchmark::DoNotOptimize(boundary::labelPoints(street(), p));
 }
 
@@ -60,7 +72,9 @@ BENCHMARK(BM_Detector_Ransac_NoParallel)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Detector_Ransac_NoBend)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Detector_Ransac_Turning)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Detector_Ransac_Turning_NoBend)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Detector_Ransac_ParkingRules)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Detector_Thesis)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_GroundLabelsOnly)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_LabelPoints)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_LabelPoints_ParkingRules)->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();
