@@ -91,8 +91,7 @@ std::vector<Eigen::Vector3d> tallPointsInMap(const Scan& scan, const Labelling& 
   for (size_t i = 0; i < scan.points.size(); ++i) {
     const auto& q = scan.points[i];
     const float h = lab.height_m[i];
-    if (lab.cls[i] == PointClass::Ground || !(h >= p.tall_height_m && h <= p.tall_max_height_m) ||
-        !(q.x * q.x + q.y * q.y <= r2max))
+    if (!detail::standsTall(lab.cls[i] == PointClass::Ground, h, p) || !(q.x * q.x + q.y * q.y <= r2max))
       continue;
     const Eigen::Vector3d m = T_map_lidar * Eigen::Vector3d(q.x, q.y, q.z);
     if (seen.insert(detail::cellKey(m.x(), m.y(), p.curb_map_cell_m)).second) out.push_back(m);

@@ -16,6 +16,12 @@ inline int64_t cellKey(double x, double y, double cell) {
   return (ix << 32) ^ (iy & 0xffffffffLL);
 }
 
+/// Something standing (a car side, wall or trunk) rather than road or curb: off the ground, between
+/// tall_height_m and tall_max_height_m above it (tree crowns above pass). No curb may neighbour it.
+inline bool standsTall(bool ground, float height_m, const Params& p) {
+  return !ground && height_m >= p.tall_height_m && height_m <= p.tall_max_height_m;
+}
+
 /// Coordinates along the arc the vehicle is driving (curvature \p kappa [1/m], from the origin along
 /// +x): s = arc length [m], d = offset to the left of the arc [m]. A curb concentric with the
 /// vehicle's path through a corner is d = const, so the side fits (polynomials in s) follow corners

@@ -35,8 +35,8 @@ Grid curbGrid(const Scan& s, const preprocess::GroundLabels& gl, const Params& p
     if (isLow(gl, i, p)) {
       c.zmin = std::min(c.zmin, q.z), c.zmax = std::max(c.zmax, q.z);
       c.ground = c.ground || gl.ground[i];
-    } else if (std::isfinite(h) && h <= p.tall_max_height_m) {
-      c.tall = true;  // a car side, wall or trunk: its lowest ring looks like a step too
+    } else if (detail::standsTall(gl.ground[i], h, p)) {
+      c.tall = true;  // its lowest ring looks like a step too
     }
   }
   return g;
@@ -47,8 +47,9 @@ Grid curbGrid(const Scan& s, const preprocess::GroundLabels& gl, const Params& p
 /// grazing a parked car's end face descends along it at the beam's elevation slope, the ground line
 /// of its sector follows it (0.3-0.7 m above the road), and face points read as a low step.
 bool standsOnRoad(const Grid& g, double x, double y, float zmin, const Params& p) {
-  const double c = p.curb_cell_m;
   const int k = p.curb_level_cells;
+  if (k <= 0) return true;  // off; k = 0 would only compare the cell with itself
+  const double c = p.curb_cell_m;
   for (int dx = -k; dx <= k; ++dx) {
     for (int dy = -k; dy <= k; ++dy) {
       auto it = g.find(detail::cellKey(x + dx * c, y + dy * c, c));

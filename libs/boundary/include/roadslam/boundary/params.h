@@ -73,7 +73,7 @@ struct Params {
   double bin_m = 1.0;                   ///< distance bins along x for coverage [m]
   int min_bins = 5;                     ///< fewer covered bins: side unknown [-]
   int min_band_bins = 3;                ///< ... and at least this many of them in the band ahead [-]
-  double inner_curb_share = 0.5;        ///< a parallel line >= 1 m nearer the vehicle with this share of the best line's bins is the curb (the best a sidewalk's far edge); 0 = off [-]
+  double inner_curb_share = 0.5;        ///< a parallel line >= 2.5 m nearer the vehicle (fit.cpp kInnerGap) with this share of the best line's bins is the curb (the best a sidewalk's far edge); 0 = off [-]
   double polyline_step_m = 1.0;         ///< output polyline vertex spacing [m]
 
   // Time: curb evidence of many sweeps in a CurbMap (map frame), moved with the vehicle; cells
