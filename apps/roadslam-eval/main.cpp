@@ -1,6 +1,7 @@
 // roadslam-eval: scores an estimated trajectory against ground truth (ATE, RPE, KITTI errors), or,
 // with the `bounds` subcommand, estimated road boundaries against ground-truth curbs.
 #include <CLI/CLI.hpp>
+#include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
@@ -34,11 +35,17 @@ int main(int argc, char** argv) {
   bounds->add_flag("--est-in-gt-frame", bp.est_in_gt_frame,
                    "read the estimate with the GT pose, not its own T_map_lidar (its map frame is the GT world)");
   bounds->add_flag("--json", json, "print JSON instead of text");
+  std::string b_csv;
+  bounds->add_option("--frames-csv", b_csv, "also write each frame's score (found, stations, errors per side) as CSV");
   CLI11_PARSE(app, argc, argv);
   try {
     if (*bounds) {
       const auto m = roadslam::eval::evaluateBoundaryFiles(b_gt, b_traj, b_est, bp);
       std::cout << (json ? roadslam::eval::toJson(m).dump(2) + "\n" : roadslam::eval::toText(m));
+      if (!b_csv.empty()) {
+        std::ofstream out(b_csv);
+        if (!(out << roadslam::eval::perFrameCsv(m))) throw std::runtime_error("cannot write '" + b_csv + "'");
+      }
       return 0;
     }
     if (req.gt_path.empty() || req.est_path.empty()) {

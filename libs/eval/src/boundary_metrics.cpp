@@ -179,6 +179,9 @@ BoundaryMetrics evaluateBoundaries(const Polylines3& curbs, const datasets::Traj
   const double reach = std::hypot(p.band_max_x_m, p.max_lateral_m) + 20.0;
   for (const auto& f : est) {
     ++m.frames;
+    m.per_frame.emplace_back();
+    BoundaryFrameScore& fs = m.per_frame.back();
+    if (f.contains("stamp_s")) fs.stamp_s = f.at("stamp_s").get<double>();
     if (!f.contains("left") || !f.contains("right")) continue;  // e.g. frames without a pose
     Eigen::Isometry3d T;
     if (!poseAt(gt, f.at("stamp_s").get<double>(), p.max_dt_s, T)) continue;
@@ -208,8 +211,13 @@ BoundaryMetrics evaluateBoundaries(const Polylines3& curbs, const datasets::Traj
       both_found = both_found && found;
       if (gt_side && found) (side > 0 ? m.left_detected : m.right_detected) += 1;
       if (gt_side) errors.insert(errors.end(), e.begin(), e.end());
+      const int k = side > 0 ? 0 : 1;
+      fs.found[k] = found;
+      fs.gt_stations[k] = gt_n;
+      for (double x : e) fs.error_mean_m[k] += x / e.size(), fs.error_max_m[k] = std::max(fs.error_max_m[k], x);
     }
     if (!both_gt) continue;
+    fs.scored = true;
     ++m.frames_scored;
     m.both_detected += both_found;
   }
@@ -251,6 +259,19 @@ nlohmann::json toJson(const BoundaryMetrics& m) {
           {"left_detection_rate", m.left_detection_rate}, {"right_detection_rate", m.right_detection_rate},
           {"stations", m.stations}, {"lateral_error_mean_m", m.lateral_error_mean_m},
           {"lateral_error_p95_m", m.lateral_error_p95_m}, {"lateral_error_max_m", m.lateral_error_max_m}};
+}
+
+std::string perFrameCsv(const BoundaryMetrics& m) {
+  std::ostringstream s;
+  s << "stamp_s,scored,left_found,left_gt_stations,left_error_mean_m,left_error_max_m,"
+       "right_found,right_gt_stations,right_error_mean_m,right_error_max_m\n";
+  s.precision(10);
+  for (const auto& f : m.per_frame) {
+    s << f.stamp_s << ',' << f.scored;
+    for (int k : {0, 1}) s << ',' << f.found[k] << ',' << f.gt_stations[k] << ',' << f.error_mean_m[k] << ',' << f.error_max_m[k];
+    s << '\n';
+  }
+  return s.str();
 }
 
 std::string toText(const BoundaryMetrics& m) {

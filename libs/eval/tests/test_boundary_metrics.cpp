@@ -1,7 +1,9 @@
 // Boundary metrics on hand-made ground truth: straight curbs, known offsets, a missing side.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <string>
 #include <nlohmann/json.hpp>
 
 #include "roadslam/eval/boundary_metrics.h"
@@ -63,6 +65,19 @@ TEST(BoundaryMetrics, OffsetEstimateGivesThatError) {
   // 26 stations per side: left 20 frames x 0.05, right 15 frames x 0.2
   EXPECT_NEAR(m.lateral_error_mean_m, (20 * 0.05 + 15 * 0.2) / 35.0, 1e-9);
   EXPECT_NEAR(m.lateral_error_p95_m, 0.2, 1e-9);
+  // Per frame (roadslam-eval bounds --frames-csv): the same offsets, frame by frame.
+  ASSERT_EQ(m.per_frame.size(), 20u);
+  for (int i = 0; i < 20; ++i) {
+    const auto& f = m.per_frame[static_cast<size_t>(i)];
+    EXPECT_TRUE(f.scored);
+    EXPECT_TRUE(f.found[0]);
+    EXPECT_EQ(f.found[1], i % 4 != 0) << i;
+    EXPECT_EQ(f.gt_stations[0], 26);
+    EXPECT_NEAR(f.error_mean_m[0], 0.05, 1e-9);
+    EXPECT_NEAR(f.error_max_m[1], i % 4 != 0 ? 0.2 : 0.0, 1e-9);
+  }
+  const std::string csv = perFrameCsv(m);
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 21);
 }
 
 TEST(BoundaryMetrics, ShortEstimateIsNotADetection) {

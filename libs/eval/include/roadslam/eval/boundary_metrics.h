@@ -42,6 +42,16 @@ struct BoundaryEvalParams {
   bool est_in_gt_frame = false;
 };
 
+/// One frame's score, for finding where a drive's misses and large errors are.
+struct BoundaryFrameScore {
+  double stamp_s = 0;
+  bool scored = false;              ///< GT pose found and both GT sides in the band
+  bool found[2] = {false, false};   ///< [0] left, [1] right: detected as the metric counts it
+  int gt_stations[2] = {0, 0};      ///< stations where the GT side exists
+  double error_mean_m[2] = {0, 0};  ///< mean |y_est - y_gt| over the stations both cover (0: none) [m]
+  double error_max_m[2] = {0, 0};   ///< [m]
+};
+
 struct BoundaryMetrics {
   int frames = 0;                ///< estimate frames read
   int frames_scored = 0;         ///< frames with a GT pose and both GT sides in the band
@@ -50,6 +60,7 @@ struct BoundaryMetrics {
   double left_detection_rate = 0, right_detection_rate = 0;  ///< [-]
   int stations = 0;              ///< station errors measured
   double lateral_error_mean_m = 0, lateral_error_p95_m = 0, lateral_error_max_m = 0;  ///< [m]
+  std::vector<BoundaryFrameScore> per_frame;  ///< one per estimate frame, in order
 };
 
 /// Curb polylines (x, y, z in the world frame) of every road, left and right, from
@@ -77,6 +88,8 @@ BoundaryMetrics evaluateBoundaryFiles(const std::string& gt_boundaries, const st
                                       const std::string& est_jsonl, const BoundaryEvalParams& p = {});
 
 nlohmann::json toJson(const BoundaryMetrics& m);
+/// per_frame as CSV: stamp_s, scored, then per side (left, right) found, gt_stations, error mean, max.
+std::string perFrameCsv(const BoundaryMetrics& m);
 std::string toText(const BoundaryMetrics& m);
 
 }  // namespace roadslam::eval
