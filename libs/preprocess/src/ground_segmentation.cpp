@@ -66,7 +66,9 @@ struct LineAccumulator {
 /// between the two is admissible, so crests and dips are followed even between sparse rings.
 class SectorFitter {
  public:
-  explicit SectorFitter(const GroundSegParams& p) : p_(p) {}
+  /// \p blind_r: range [m] inside which no return can lie on a flat road under the car (the
+  /// lowest beam meets the road there), see restart().
+  SectorFitter(const GroundSegParams& p, double blind_r) : p_(p), blind_r_(blind_r) {}
 
   std::vector<Segment> run(const Cell* cells, int bins) {
     for (int i = 0; i < bins; ++i) {
@@ -74,9 +76,14 @@ class SectorFitter {
       if (c.min_z == kInf) continue;
       // The lowest return under a vertical structure (wall, car side) only extends the ground
       // profile when it lies on it: the foot of a wall a few cm up would otherwise bend the line.
-      if (c.top_z - c.min_z > p_.tall_cell_height_m && !onProfile(c.r, c.min_z)) continue;
+      if (c.top_z - c.min_z > p_.tall_cell_height_m && !onProfile(c.r, c.min_z)) {
+        occluded_ = have_last_, stood_ = true;
+        continue;
+      }
       if (extend(c.r, c.min_z) || restart(c.r, c.min_z)) {
-        have_last_ = true, last_r_ = c.r, last_z_ = c.min_z;
+        have_last_ = true, last_r_ = c.r, last_z_ = c.min_z, occluded_ = false;
+      } else {
+        occluded_ = have_last_;
       }
     }
     finish();
@@ -118,8 +125,14 @@ class SectorFitter {
     cur_ = LineAccumulator{};
     // A bridge may bend the profile by at most max_slope_change (crests, dips), which keeps it
     // from climbing the foot of a wall whose lowest return is a few bins further on.
-    const bool bends_ok = segs_.empty() || std::abs(z - segs_.back().at(r)) <=
-                                               p_.max_step_m + p_.max_slope_change * (r - last_r_);
+    // Over a gap where something stood (a prototype was rejected) the target may be seen over it:
+    // from the road before a parked car, the next car's bonnet 7 m on is as gentle a climb as a
+    // crest between two sparse rings (issue #8). There it may rise no more than a line starting
+    // after a gap (max_start_height_m): a curb's sidewalk still, a bonnet not.
+    const double ref_z = segs_.empty() ? last_z_ : segs_.back().at(r);
+    double tol = p_.max_step_m + p_.max_slope_change * (r - last_r_);
+    if (occluded_) tol = std::min(tol, p_.max_start_height_m);
+    const bool bends_ok = (segs_.empty() && !occluded_) || std::abs(z - ref_z) <= tol;
     if (have_last_ && slopeOk(last_r_, last_z_, r, z) && bends_ok && r - last_r_ <= p_.max_bridge_m) {
       cur_.add(last_r_, last_z_);
       cur_.add(r, z);
@@ -127,7 +140,14 @@ class SectorFitter {
     }
     bool ok;
     if (segs_.empty()) {
-      ok = std::abs(z + p_.sensor_height_m) <= p_.max_start_height_m + p_.max_slope * r;
+      // linefit lets a first line start up to max_slope * r above the road under the car. That
+      // holds only where the road itself can be hit and seen: not inside the lowest beam's blind
+      // circle (a return there needs the road to rise towards it, while a parked car's end face or
+      // bonnet 0.8-1 m up passes, and a line through face and bonnet extrapolates to within
+      // max_start_height_m of the road under the car), and not behind a vertical structure (a
+      // bonnet seen over the car's end). There the line must start at the road's height (issue #8).
+      const double slack = (r < blind_r_ || stood_) ? 0.0 : p_.max_slope * r;
+      ok = std::abs(z + p_.sensor_height_m) <= p_.max_start_height_m + slack;
     } else {
       const Segment& last = segs_.back();
       const double tol = (r - last.r1 <= p_.max_gap_m) ? p_.max_step_m : p_.max_start_height_m;
@@ -149,9 +169,12 @@ class SectorFitter {
   }
 
   const GroundSegParams& p_;
+  double blind_r_;
   std::vector<Segment> segs_;
   LineAccumulator cur_;
   bool have_last_ = false;  // a prototype was accepted as ground
+  bool occluded_ = false;   // a prototype was rejected since the last ground prototype
+  bool stood_ = false;      // a vertical structure was seen in the sector (tall cell)
   double last_r_ = 0, last_z_ = 0;
 };
 
@@ -174,6 +197,7 @@ void assignBins(const std::vector<Segment>& segs, int bins, const GroundSegParam
 /// Cell index of every point (-1 beyond max range) and the prototype of every cell.
 struct Grid {
   int sectors = 0, bins = 0;
+  float tan_lowest = 0;  ///< tan of the lowest elevation of any return: the lowest beam's [-]
   std::vector<Cell> cells;
   std::vector<int32_t> cell_of;
 };
@@ -183,6 +207,7 @@ void binPoints(const std::vector<ScanPoint>& pts, const GroundSegParams& p, Grid
   g.bins = static_cast<int>(std::ceil(p.max_range_m / p.bin_length_m));
   g.cells.assign(static_cast<size_t>(g.sectors) * static_cast<size_t>(g.bins), Cell{});
   g.cell_of.assign(pts.size(), -1);
+  g.tan_lowest = 0;
   const float inv_bin = static_cast<float>(1.0 / p.bin_length_m);
   const auto max_r = static_cast<float>(p.max_range_m);
   const float sec_scale = static_cast<float>(g.sectors / (2 * M_PI));
@@ -198,6 +223,7 @@ void binPoints(const std::vector<ScanPoint>& pts, const GroundSegParams& p, Grid
     Cell& cell = g.cells[static_cast<size_t>(c)];
     if (q.z < cell.min_z) cell.min_z = q.z, cell.r = r;
     cell.top_z = std::max(cell.top_z, q.z);
+    if (r > 0) g.tan_lowest = std::min(g.tan_lowest, q.z / r);
   }
 }
 
@@ -218,9 +244,13 @@ std::vector<uint8_t> label(const std::vector<ScanPoint>& pts, const GroundSegPar
   thread_local std::vector<CellLine> lines;
   binPoints(pts, p, g);
   lines.assign(g.cells.size(), CellLine{});
+  // The lowest beam meets a flat road under the car at h / tan(-elevation) (VLP-16: 1.9 m / tan 15
+  // deg = 7.1 m); taken from the returns themselves, it holds for any sensor and crop (nearer low
+  // returns, e.g. merged map points, only shrink it).
+  const double blind_r = g.tan_lowest < 0 ? p.sensor_height_m / -g.tan_lowest : 0.0;
   for (int s = 0; s < g.sectors; ++s) {
     const size_t off = static_cast<size_t>(s) * static_cast<size_t>(g.bins);
-    const auto segs = SectorFitter(p).run(&g.cells[off], g.bins);
+    const auto segs = SectorFitter(p, blind_r).run(&g.cells[off], g.bins);
     st.segments += segs.size();
     assignBins(segs, g.bins, p, &lines[off]);
   }
