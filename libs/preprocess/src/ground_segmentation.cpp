@@ -144,9 +144,11 @@ class SectorFitter {
       // holds only where the road itself can be hit and seen: not inside the lowest beam's blind
       // circle (a return there needs the road to rise towards it, while a parked car's end face or
       // bonnet 0.8-1 m up passes, and a line through face and bonnet extrapolates to within
-      // max_start_height_m of the road under the car), and not behind a vertical structure (a
-      // bonnet seen over the car's end). There the line must start at the road's height (issue #8).
-      const double slack = (r < blind_r_ || stood_) ? 0.0 : p_.max_slope * r;
+      // max_start_height_m of the road under the car), nor, optionally, behind a vertical
+      // structure (a bonnet seen over the car's end). There the line must start at the road's
+      // height (issue #8).
+      const bool level = r < blind_r_ || (stood_ && p_.level_start_behind_structure);
+      const double slack = level ? 0.0 : p_.max_slope * r;
       ok = std::abs(z + p_.sensor_height_m) <= p_.max_start_height_m + slack;
     } else {
       const Segment& last = segs_.back();
@@ -319,6 +321,8 @@ void GroundSegParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cf
   max_slope_change = readDouble(cfg, s, "seg_max_slope_change", max_slope_change);
   max_dist_to_line_tall_m = readDouble(cfg, s, "seg_max_dist_to_line_tall_m", max_dist_to_line_tall_m);
   tall_cell_height_m = readDouble(cfg, s, "seg_tall_cell_height_m", tall_cell_height_m);
+  level_start_behind_structure =
+      readBool(cfg, s, "seg_level_start_behind_structure", level_start_behind_structure);
   detail::require(num_sectors >= 1 && num_sectors <= 3600, s, "seg_sectors", "must be in [1, 3600]");
   detail::require(bin_length_m > 0 && max_range_m > bin_length_m, s, "seg_bin_length_m/seg_max_range_m",
                   "need 0 < bin length < max range");
@@ -342,6 +346,7 @@ void GroundSegParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const
   cfg.write(s, "seg_max_slope_change", max_slope_change);
   cfg.write(s, "seg_max_dist_to_line_tall_m", max_dist_to_line_tall_m);
   cfg.write(s, "seg_tall_cell_height_m", tall_cell_height_m);
+  cfg.write(s, "seg_level_start_behind_structure", level_start_behind_structure);
 }
 
 }  // namespace roadslam::preprocess
