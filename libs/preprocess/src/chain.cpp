@@ -32,7 +32,8 @@ const std::vector<std::string>& knownKeys() {
       "ransac_eval_points", "ransac_seed", "ransac_up", "seg_sectors", "seg_bin_length_m",
       "seg_max_range_m", "seg_sensor_height_m", "seg_max_start_height_m", "seg_max_slope",
       "seg_max_fit_error_m", "seg_max_step_m", "seg_max_dist_to_line_m", "seg_max_gap_m", "seg_max_bridge_m", "seg_max_slope_change",
-      "seg_max_dist_to_line_tall_m", "seg_tall_cell_height_m", "seg_level_start_behind_structure",
+      "seg_max_dist_to_line_tall_m", "seg_tall_cell_height_m", "seg_parked_car_rules",
+      "seg_level_start_behind_structure",
       "random_keep_fraction", "downS", "random_seed", "voxel_size_m", "voxel_mode", "sor_k",
       "sor_std_mul"};
   return keys;

@@ -125,14 +125,15 @@ class SectorFitter {
     cur_ = LineAccumulator{};
     // A bridge may bend the profile by at most max_slope_change (crests, dips), which keeps it
     // from climbing the foot of a wall whose lowest return is a few bins further on.
-    // Over a gap where something stood (a prototype was rejected) the target may be seen over it:
-    // from the road before a parked car, the next car's bonnet 7 m on is as gentle a climb as a
-    // crest between two sparse rings (issue #8). There it may rise no more than a line starting
-    // after a gap (max_start_height_m): a curb's sidewalk still, a bonnet not.
+    // parked_car_rules: over a gap where something stood (a prototype was rejected) the target may
+    // be seen over it: from the road before a parked car, the next car's bonnet 7 m on is as gentle
+    // a climb as a crest between two sparse rings (issue #8). There it may rise no more than a line
+    // starting after a gap (max_start_height_m): a curb's sidewalk still, a bonnet not.
+    const bool capped = occluded_ && p_.parked_car_rules;
     const double ref_z = segs_.empty() ? last_z_ : segs_.back().at(r);
     double tol = p_.max_step_m + p_.max_slope_change * (r - last_r_);
-    if (occluded_) tol = std::min(tol, p_.max_start_height_m);
-    const bool bends_ok = (segs_.empty() && !occluded_) || std::abs(z - ref_z) <= tol;
+    if (capped) tol = std::min(tol, p_.max_start_height_m);
+    const bool bends_ok = (segs_.empty() && !capped) || std::abs(z - ref_z) <= tol;
     if (have_last_ && slopeOk(last_r_, last_z_, r, z) && bends_ok && r - last_r_ <= p_.max_bridge_m) {
       cur_.add(last_r_, last_z_);
       cur_.add(r, z);
@@ -140,14 +141,14 @@ class SectorFitter {
     }
     bool ok;
     if (segs_.empty()) {
-      // linefit lets a first line start up to max_slope * r above the road under the car. That
+      // parked_car_rules: linefit lets a first line start up to max_slope * r above the road. That
       // holds only where the road itself can be hit and seen: not inside the lowest beam's blind
       // circle (a return there needs the road to rise towards it, while a parked car's end face or
       // bonnet 0.8-1 m up passes, and a line through face and bonnet extrapolates to within
       // max_start_height_m of the road under the car), nor, optionally, behind a vertical
       // structure (a bonnet seen over the car's end). There the line must start at the road's
       // height (issue #8).
-      const bool level = r < blind_r_ || (stood_ && p_.level_start_behind_structure);
+      const bool level = (r < blind_r_ && p_.parked_car_rules) || (stood_ && p_.level_start_behind_structure);
       const double slack = level ? 0.0 : p_.max_slope * r;
       ok = std::abs(z + p_.sensor_height_m) <= p_.max_start_height_m + slack;
     } else {
@@ -321,6 +322,7 @@ void GroundSegParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cf
   max_slope_change = readDouble(cfg, s, "seg_max_slope_change", max_slope_change);
   max_dist_to_line_tall_m = readDouble(cfg, s, "seg_max_dist_to_line_tall_m", max_dist_to_line_tall_m);
   tall_cell_height_m = readDouble(cfg, s, "seg_tall_cell_height_m", tall_cell_height_m);
+  parked_car_rules = readBool(cfg, s, "seg_parked_car_rules", parked_car_rules);
   level_start_behind_structure =
       readBool(cfg, s, "seg_level_start_behind_structure", level_start_behind_structure);
   detail::require(num_sectors >= 1 && num_sectors <= 3600, s, "seg_sectors", "must be in [1, 3600]");
@@ -346,6 +348,7 @@ void GroundSegParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const
   cfg.write(s, "seg_max_slope_change", max_slope_change);
   cfg.write(s, "seg_max_dist_to_line_tall_m", max_dist_to_line_tall_m);
   cfg.write(s, "seg_tall_cell_height_m", tall_cell_height_m);
+  cfg.write(s, "seg_parked_car_rules", parked_car_rules);
   cfg.write(s, "seg_level_start_behind_structure", level_start_behind_structure);
 }
 
