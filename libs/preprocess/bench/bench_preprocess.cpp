@@ -65,6 +65,12 @@ static void BM_GroundLinefit(benchmark::State& st) {
   g.sensor_height_m = st.range(0) == 0 ? 1.8 : 1.73;
   run(st, [&](auto& p) { removeGroundLinefit(p, g); });
 }
+static void BM_GroundLinefitParkedCarRules(benchmark::State& st) {
+  GroundSegParams g;
+  g.sensor_height_m = st.range(0) == 0 ? 1.8 : 1.73;
+  g.parked_car_rules = g.level_start_behind_structure = true;
+  run(st, [&](auto& p) { removeGroundLinefit(p, g); });
+}
 static void BM_RandomHalf(benchmark::State& st) { run(st, [](auto& p) { randomDownsample(p, RandomDownsampleParams{}); }); }
 static void BM_VoxelCentroid(benchmark::State& st) {
   VoxelParams v;
@@ -97,6 +103,7 @@ BENCHMARK(BM_Range)->BOTH_SWEEPS;
 BENCHMARK(BM_Roi)->BOTH_SWEEPS;
 BENCHMARK(BM_GroundRansac)->BOTH_SWEEPS;
 BENCHMARK(BM_GroundLinefit)->BOTH_SWEEPS;
+BENCHMARK(BM_GroundLinefitParkedCarRules)->BOTH_SWEEPS;
 BENCHMARK(BM_RandomHalf)->BOTH_SWEEPS;
 BENCHMARK(BM_VoxelCentroid)->ArgsProduct({{0, 1}, {20, 50}})->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_VoxelFirst)->ArgsProduct({{0, 1}, {20, 50}})->Unit(benchmark::kMicrosecond);
