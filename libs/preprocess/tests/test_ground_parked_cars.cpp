@@ -4,6 +4,7 @@
 #include "roadslam/preprocess/ground_segmentation.h"
 
 #include <gtest/gtest.h>
+#include <mrpt/config/CConfigFileMemory.h>
 
 #include <cmath>
 #include <iostream>
@@ -210,4 +211,24 @@ TEST(GroundSegmentationParkedCars, CarEndAheadInsideTheBlindCircleIsNoGround) {
   EXPECT_GE(t.car_height_ok, t.car_measured * 97 / 100);  // 126 of 126 (rules off: 126 of 486)
   EXPECT_GE(t.road_ground, t.road_measured * 97 / 100);
   EXPECT_GE(t.walk_height_ok, t.walk_measured * 95 / 100);
+}
+
+// The switches are ini keys (off by default) and survive a save/load round trip.
+TEST(GroundSegmentationParkedCars, SwitchesLoadAndRoundTrip) {
+  GroundSegParams def;
+  EXPECT_FALSE(def.parked_car_rules);
+  EXPECT_FALSE(def.level_start_behind_structure);
+  mrpt::config::CConfigFileMemory cfg;
+  cfg.write("ground", "seg_parked_car_rules", std::string("true"));
+  cfg.write("ground", "seg_level_start_behind_structure", std::string("true"));
+  GroundSegParams p;
+  p.loadFromConfigFile(cfg, "ground");
+  EXPECT_TRUE(p.parked_car_rules);
+  EXPECT_TRUE(p.level_start_behind_structure);
+  mrpt::config::CConfigFileMemory out;
+  p.saveToConfigFile(out, "ground");
+  GroundSegParams q;
+  q.loadFromConfigFile(out, "ground");
+  EXPECT_TRUE(q.parked_car_rules);
+  EXPECT_TRUE(q.level_start_behind_structure);
 }
