@@ -25,7 +25,10 @@ TEST(SimLoop, WholeUrbanLoopAsReached) {
   EXPECT_GE(r.m.left_detection_rate, 0.75);
   EXPECT_GE(r.m.right_detection_rate, 0.84);
   EXPECT_LE(r.m.lateral_error_mean_m, 0.09);
-  EXPECT_LE(r.m.lateral_error_p95_m, 0.18);  // bend frame: 0.172 m (path's arc alone 0.223 m, vehicle frame 0.31 m)
+  // 0.198 m (session 5: 800 RANSAC draws and the width rule; seeds 8 / 9 give 0.197 / 0.169 m, and
+  // 200 draws gave 0.164 / 0.169 / 0.213 m for seeds 7 / 8 / 9: the corners' fits vary with the draws).
+  // Bend frame before: 0.172 m (path's arc alone 0.223 m, vehicle frame 0.31 m).
+  EXPECT_LE(r.m.lateral_error_p95_m, 0.21);
   // Read along the road ahead (stations on the GT path): corner entries count. Path's arc alone:
   // 0.638, p95 0.695 m; with the bend ahead 0.693, 0.508 m.
   eval::BoundaryEvalParams path;
@@ -124,12 +127,15 @@ TEST(SimLoop, CeilingOfTheWholeLoop) {
 // The whole shipped hills drive (108 s, 985 m, slopes to ~12 %, parked cars): over long straights
 // the sidewalk's far edge, 3.9 m beyond the left curb, gathered more bins than the curb and was
 // reported as the left side (p95 4.05 m); the first curb from the vehicle is preferred now
-// (inner_curb_share; measured 0.696, mean 0.216 m, p95 0.303 m).
+// (inner_curb_share; measured 0.696, mean 0.216 m, p95 0.303 m). Where parked cars hide the right
+// curb, lines 5-11 m beyond it (a slope's edge) were taken for it; the road's width rejects them
+// now (width_jump_m) and 800 draws make the lines the same for every seed: 0.730, mean 0.091 m,
+// p95 0.232 m (seeds 8 / 9: 0.718 / 0.092 / 0.223 and 0.725 / 0.095 / 0.241): the error targets.
 TEST(SimLoop, WholeHillsDriveTakesTheCurbNotTheSidewalksFarEdge) {
   const auto drive = cachedDrive("hills_full", "hills.ini", 0.0, nullptr);
   const auto r = runBounds(drive, "bounds.ini", "hills_full");
   EXPECT_GE(r.m.frames_scored, 1000);
-  EXPECT_GE(r.m.detection_rate, 0.69);
-  EXPECT_LE(r.m.lateral_error_mean_m, 0.23);
-  EXPECT_LE(r.m.lateral_error_p95_m, 0.33);
+  EXPECT_GE(r.m.detection_rate, 0.72);
+  EXPECT_LE(r.m.lateral_error_mean_m, 0.10);
+  EXPECT_LE(r.m.lateral_error_p95_m, 0.25);
 }
