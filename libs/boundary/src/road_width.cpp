@@ -95,26 +95,27 @@ void BoundaryDetector::checkWidth(SideBoundary& l, SideBoundary& r, const std::v
   if (k < 0) return;
   const int side = k == 0 ? +1 : -1;
   SideBoundary& s = k == 0 ? l : r;
+  // Numbers last, in parentheses: the app's summary counts reasons up to " (".
   std::ostringstream why;
   why << std::fixed;
   why.precision(1);
-  why << "fit " << w << " m from the " << (k == 0 ? "right" : "left") << " side, the road is " << road_width_m_
-      << " m wide: ";
+  why << " (fit " << w << " m from the " << (k == 0 ? "right" : "left") << " side, the road is " << road_width_m_
+      << " m wide)";
   SideBoundary alt = detail::fitSide(near[k], side, p_, rng);
   const SideBoundary& o = k == 0 ? r : l;
   // The refit must keep the width too: a quadratic through the corridor's cells may curve out of it.
   if (alt.found && std::abs(worstWidth(k == 0 ? alt : o, k == 0 ? o : alt, road_width_m_, p_.bin_m) - road_width_m_) > p_.width_jump_m) {
     alt.coeffs.clear();
-    alt.reason = "the refit near that offset leaves it too";
+    alt.reason = "its refit near the road's width leaves the width too";
   }
   if (alt.coeffs.empty()) {
     s.found = false;
     s.coeffs.clear();
     s.polyline_vehicle.clear();
-    s.reason = why.str() + alt.reason;
+    s.reason = "off the road's width: " + alt.reason + why.str();
     return;
   }
-  if (!alt.found) alt.reason = why.str() + alt.reason;
+  if (!alt.found) alt.reason = "off the road's width: " + alt.reason + why.str();
   s = std::move(alt);
 }
 

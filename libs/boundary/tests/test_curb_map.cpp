@@ -150,7 +150,7 @@ TEST(CurbMap, HiddenCurbIsNotReplacedByALineBeyondTheRoadsWidth) {
       const auto f = d.process(sweepAt(X), at(X), 0.1 * X);
       if (X < 25 || X >= 40) continue;  // the row hides the curb ahead from 25 on
       if (!f.right.found) {
-        unknown_said += f.right.reason.find("wide") != std::string::npos || f.right.reason.find("not seen") != std::string::npos;
+        unknown_said += f.right.reason.find("road's width") != std::string::npos || f.right.reason.find("not seen") != std::string::npos;
         continue;
       }
       const double y = f.right.polyline_vehicle.front().y;
