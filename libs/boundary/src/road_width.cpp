@@ -43,16 +43,13 @@ double widthAt(const SideBoundary& l, const SideBoundary& r, double x) {
   return (detail::polyEval(l.coeffs, x) - detail::polyEval(r.coeffs, x)) / std::sqrt(1 + m * m);
 }
 
-/// Curb to curb farthest from \p width where both lines are reported: a line running away
-/// diagonally (a slope's edge) can start at the right offset [m].
-double worstWidth(const SideBoundary& l, const SideBoundary& r, double width, double step) {
+/// The widest curb to curb where both lines are reported: a line running away diagonally (a
+/// slope's edge) can start at the right offset [m].
+double widestWidth(const SideBoundary& l, const SideBoundary& r, double step) {
   const double x0 = std::max(l.polyline_vehicle.front().x, r.polyline_vehicle.front().x);
   const double x1 = std::min(l.polyline_vehicle.back().x, r.polyline_vehicle.back().x);
   double w = widthAt(l, r, x0);
-  for (double x = x0 + step; x <= x1 + 1e-9; x += step) {
-    const double wx = widthAt(l, r, x);
-    if (std::abs(wx - width) > std::abs(w - width)) w = wx;
-  }
+  for (double x = x0 + step; x <= x1 + 1e-9; x += step) w = std::max(w, widthAt(l, r, x));
   return w;
 }
 
@@ -63,8 +60,10 @@ void BoundaryDetector::checkWidth(SideBoundary& l, SideBoundary& r, const std::v
   // A curb 1 m either side of the other side's line moved by the road's width is this side's curb:
   // wider than a parking lane's step is not (2.2 m, within width_jump_m).
   constexpr double kWidthGate = 1.0;  // [m]
-  const double w = worstWidth(l, r, road_width_m_, p_.bin_m);
-  if (!(std::abs(w - road_width_m_) > p_.width_jump_m)) return;
+  // Only wider: the road ends at the first curb, so a pair narrower than the width is taken as it is
+  // (updateWidth adopts it), which also undoes a width taken from a line beyond the curb.
+  const double w = widestWidth(l, r, p_.bin_m);
+  if (!(w - road_width_m_ > p_.width_jump_m)) return;
   // The side that left its last accepted line (held or not) jumped; without one to tell, the side
   // whose expected line (the other side moved by the width) has curb cells near it.
   std::vector<Vec2> near[2];
@@ -104,7 +103,7 @@ void BoundaryDetector::checkWidth(SideBoundary& l, SideBoundary& r, const std::v
   SideBoundary alt = detail::fitSide(near[k], side, p_, rng);
   const SideBoundary& o = k == 0 ? r : l;
   // The refit must keep the width too: a quadratic through the corridor's cells may curve out of it.
-  if (alt.found && std::abs(worstWidth(k == 0 ? alt : o, k == 0 ? o : alt, road_width_m_, p_.bin_m) - road_width_m_) > p_.width_jump_m) {
+  if (alt.found && widestWidth(k == 0 ? alt : o, k == 0 ? o : alt, p_.bin_m) - road_width_m_ > p_.width_jump_m) {
     alt.coeffs.clear();
     alt.reason = "its refit near the road's width leaves the width too";
   }
@@ -121,11 +120,14 @@ void BoundaryDetector::checkWidth(SideBoundary& l, SideBoundary& r, const std::v
 
 void BoundaryDetector::updateWidth(double w, bool known, size_t frame) {
   if (!std::isfinite(w)) return;
-  // A width off the known one by more than width_jump_m is taken only once it persists
-  // (kNewWidthFrames sweeps within kNewWidthTol): one pair of wrong lines must not move it.
+  // A width wider than the known one by more than width_jump_m is taken only once it persists
+  // (kNewWidthFrames sweeps within kNewWidthTol): one pair of wrong lines must not move it. A much
+  // narrower one at once: the first curb from the vehicle is the road's end.
   constexpr int kNewWidthFrames = 20;
   constexpr double kNewWidthTol = 0.5;  // [m]
-  if (known && p_.width_jump_m > 0 && std::abs(w - road_width_m_) > p_.width_jump_m) {
+  if (known && p_.width_jump_m > 0 && road_width_m_ - w > p_.width_jump_m) {
+    road_width_m_ = w;
+  } else if (known && p_.width_jump_m > 0 && w - road_width_m_ > p_.width_jump_m) {
     if (new_width_count_ > 0 && std::abs(w - new_width_m_) <= kNewWidthTol) {
       ++new_width_count_;
     } else {
