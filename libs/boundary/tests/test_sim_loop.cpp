@@ -139,3 +139,36 @@ TEST(SimLoop, WholeHillsDriveTakesTheCurbNotTheSidewalksFarEdge) {
   EXPECT_LE(r.m.lateral_error_mean_m, 0.10);
   EXPECT_LE(r.m.lateral_error_p95_m, 0.25);
 }
+
+// Where the curbs can be seen, the targets hold over whole drives: the shipped urban loop and hills
+// with their parking lanes empty (every other object as shipped, moving cars included), read along
+// the road ahead (path stations: on the axis stations the outer curb crosses the axis mid-corner
+// and reads as "left"). Measured (session 5): loop 0.963 / 0.044 m / p95 0.145 m, hills 0.976 /
+// 0.059 m / 0.214 m; axis stations 0.861 / 0.108 m / 0.064 m and 0.863 / 0.131 m / 0.177 m.
+// The shipped drives' misses are the parked cars' (CeilingOfTheWholeLoop).
+TEST(SimLoop, WholeDrivesWithVisibleCurbsMeetTheTargets) {
+  for (const auto& [ini, tag] : {std::pair<std::string, std::string>{"urban-loop.ini", "urban_loop_empty_lanes"},
+                                 {"hills.ini", "hills_empty_lanes"}}) {
+    const auto drive = cachedDrive(tag, ini, 0.0, [](sim::ScenarioParams& p) { p.world.parked_car_prob = 0.0; });
+    runBounds(drive, "bounds.ini", tag);
+    eval::BoundaryEvalParams path;
+    path.stations = "path";
+    const auto m = eval::evaluateBoundaryFiles(drive + "/gt_boundaries.json", drive + "/gt_trajectory.tum",
+                                               std::string(ROADSLAM_BINARY_DIR) + "/test_data/boundary_out_" + tag + "/boundaries.jsonl", path);
+    std::cout << tag << ", path stations: " << eval::toJson(m).dump() << "\n";
+    EXPECT_GE(m.frames_scored, 1000) << tag;
+    EXPECT_GE(m.detection_rate, 0.95) << tag;
+    EXPECT_LE(m.lateral_error_mean_m, 0.10) << tag;
+    EXPECT_LE(m.lateral_error_p95_m, 0.25) << tag;
+    const auto [on_cars, near] = verticesOnMovingCars(drive, std::string(ROADSLAM_BINARY_DIR) + "/test_data/boundary_out_" + tag);
+    EXPECT_GT(near, 20) << tag << ": no moving car came near: the check below tests nothing";
+    std::cout << tag << ": boundary vertices within 0.3 m of a moving car " << on_cars << "\n";
+    // Hills: 6 vertices in sweeps 971-973, the left line extrapolated 6 m straight past the start of
+    // a left corner where an oncoming car turns in (not a car taken for a curb; capping the
+    // extrapolation where cells bend away removed 4 of them but cost 0.02 of detection).
+    if (tag == "urban_loop_empty_lanes") {
+      EXPECT_EQ(on_cars, 0) << tag << ": boundary vertices on moving cars";
+    }
+    EXPECT_LE(on_cars, 6) << tag;
+  }
+}
