@@ -28,9 +28,10 @@ void parkingRules(boundary::Params& p) {
 }
 
 void run(benchmark::State& st, const std::string& method, bool parallel = true, double yaw_per_sweep = 0.0,
-         bool bend = true, bool parking = false) {
+         bool bend = true, bool parking = false, int draws = 0) {
   boundary::Params p;
   p.method = method;
+  if (draws > 0) p.ransac_iterations = draws;  // before session 5: 200
   if (parking) parkingRules(p);
   if (!parallel) p.parallel_max_spread_m = 0;  // before: no side continued parallel to the other
   if (!bend) p.bend_max_curvature = 0;         // before: fits in the driven path's arc only, no bend searched
@@ -45,6 +46,7 @@ void run(benchmark::State& st, const std::string& method, bool parallel = true, 
 }
 
 void BM_Detector_Ransac(benchmark::State& st) { run(st, "ransac"); }
+void BM_Detector_Ransac_200Draws(benchmark::State& st) { run(st, "ransac", true, 0.0, true, false, 200); }
 void BM_Detector_Ransac_NoParallel(benchmark::State& st) { run(st, "ransac", false); }
 void BM_Detector_Ransac_NoBend(benchmark::State& st) { run(st, "ransac", true, 0.0, false); }
 void BM_Detector_Ransac_Turning(benchmark::State& st) { run(st, "ransac", true, 1.0 / 14.0); }  // R = 14 m
@@ -68,6 +70,7 @@ void BM_LabelPoints_ParkingRules(benchmark::State& st) {
 }  // namespace
 
 BENCHMARK(BM_Detector_Ransac)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Detector_Ransac_200Draws)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Detector_Ransac_NoParallel)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Detector_Ransac_NoBend)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Detector_Ransac_Turning)->Unit(benchmark::kMillisecond);

@@ -5,6 +5,8 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <set>
+#include <sstream>
 #include <unordered_set>
 
 #include "internal.h"
@@ -114,15 +116,6 @@ std::vector<Vec2> nearLine(const std::vector<Vec2>& pts, const std::vector<Vec2>
   return out;
 }
 
-/// y of the polyline \p line (vertices ascending in x) at \p x, NaN outside it.
-double yAt(const std::vector<Vec2>& line, double x) {
-  for (size_t i = 1; i < line.size(); ++i) {
-    const Vec2 &a = line[i - 1], &b = line[i];
-    if (x >= a.x && x <= b.x) return b.x > a.x ? a.y + (b.y - a.y) * (x - a.x) / (b.x - a.x) : a.y;
-  }
-  return std::numeric_limits<double>::quiet_NaN();
-}
-
 /// Vertices on the road surface, so a rolled or pitched sensor does not shift them in the map.
 void toMap(const Eigen::Isometry3d& T_map_lidar, double sensor_height, SideBoundary& s) {
   for (const auto& v : s.polyline_vehicle) {
@@ -148,37 +141,24 @@ double BoundaryDetector::pathCurvature(const Eigen::Isometry3d& T_map_lidar) {
 SideBoundary BoundaryDetector::track(SideBoundary fresh, const std::vector<Vec2>& pts, int side, std::mt19937& rng,
                                      Track& tr, const Eigen::Isometry3d& T_map_lidar,
                                      const detail::BendFrame& arc) const {
-  const Eigen::Isometry3d T_lidar_map = T_map_lidar.inverse();
   auto toMapPt = [&](const Vec2& a) {
     const Vec2 v = arc.toXY(a);
     return T_map_lidar * Eigen::Vector3d(v.x, v.y, -p_.ground.sensor_height_m);
   };
-  std::vector<Vec2> held;  // the track in the current arc frame
-  if (tr.valid) {
-    for (const auto& m : tr.map_pts) {
-      const Eigen::Vector3d v = T_lidar_map * m;
-      Vec2 a;
-      if (arc.toArc({v.x(), v.y()}, a)) held.push_back(a);
-    }
-  }
+  const std::vector<Vec2> held = heldPoints(tr, T_map_lidar, arc);  // the track in the current arc frame
   if (fresh.found && !held.empty()) {
-    double dev = 0;
     int n = 0;
-    for (const auto& h : held) {
-      if (h.x < p_.band_min_x_m || h.x > p_.band_max_x_m) continue;
-      const double y = yAt(fresh.polyline_vehicle, h.x);
-      if (std::isfinite(y)) dev += std::abs(y - h.y), ++n;
-    }
+    double dev = detail::deviationInBand(fresh.polyline_vehicle, held, p_, &n);
     // Continuity: while the curb map still supports the tracked line, a fit elsewhere (a sidewalk's
     // far edge gathering more bins over many sweeps) does not replace it.
-    if (n > 0 && dev / n > p_.track_gate_m) {
+    if (n > 0 && dev > p_.track_gate_m) {
       SideBoundary alt = detail::fitSide(nearLine(pts, held, p_.track_gate_m), side, p_, rng);
       if (alt.found) fresh = std::move(alt), dev = 0;
     }
     // Only a better-supported track may veto a fit: a weak track must not lock out the real curb.
-    if (n > 0 && dev / n > p_.track_gate_m && tr.held < p_.max_hold_frames && fresh.confidence < tr.confidence) {
+    if (n > 0 && dev > p_.track_gate_m && tr.held < p_.max_hold_frames && fresh.confidence < tr.confidence) {
       fresh.found = false;
-      fresh.reason = "fit jumped " + std::to_string(dev / n).substr(0, 4) + " m from the tracked boundary";
+      fresh.reason = "fit jumped " + std::to_string(dev).substr(0, 4) + " m from the tracked boundary";
     }
   }
   if (fresh.found) {
@@ -209,6 +189,19 @@ SideBoundary BoundaryDetector::track(SideBoundary fresh, const std::vector<Vec2>
   return out;
 }
 
+std::vector<Vec2> BoundaryDetector::heldPoints(const Track& tr, const Eigen::Isometry3d& T_map_lidar,
+                                               const detail::BendFrame& arc, bool stale) const {
+  std::vector<Vec2> held;
+  if (!tr.valid && !stale) return held;
+  const Eigen::Isometry3d T_lidar_map = T_map_lidar.inverse();
+  for (const auto& m : tr.map_pts) {
+    const Eigen::Vector3d v = T_lidar_map * m;
+    Vec2 a;
+    if (arc.toArc({v.x(), v.y()}, a)) held.push_back(a);
+  }
+  return held;
+}
+
 void BoundaryDetector::fitSides(const Eigen::Isometry3d& T_map_lidar, std::mt19937& rng, BoundaryFrame& f) {
   const double kappa = pathCurvature(T_map_lidar);
   const auto cells = curb_map_.inVehicle(T_map_lidar, p_.curb_min_sightings);
@@ -222,13 +215,15 @@ void BoundaryDetector::fitSides(const Eigen::Isometry3d& T_map_lidar, std::mt199
     if (arc.toArc(q, a)) pts.push_back(a);
   }
   SideBoundary l = detail::fitSide(pts, +1, p_, rng), r = detail::fitSide(pts, -1, p_, rng);
+  const bool width_known = road_width_m_ > 0 && f.index - road_width_frame_ <= static_cast<size_t>(p_.memory_frames);
+  // The width of the pair as fitted: a new width is adopted once it persists (updateWidth), even
+  // while checkWidth rejects one side of it.
+  const double w_fit = l.reason == "ok" && r.reason == "ok" ? detail::parallelOffset(r, l, pts, -1, p_)
+                                                             : std::numeric_limits<double>::quiet_NaN();
+  if (width_known && p_.width_jump_m > 0 && l.reason == "ok" && r.reason == "ok") checkWidth(l, r, pts, rng, T_map_lidar, arc);
+  updateWidth(w_fit, width_known, f.index);
   // Each side from the other's own fit only: a continued side never continues the other one.
   const SideBoundary l_own = l;
-  if (l.reason == "ok" && r.reason == "ok") {
-    const double w = detail::parallelOffset(r, l, pts, -1, p_);
-    if (std::isfinite(w)) road_width_m_ = road_width_m_ > 0 ? 0.8 * road_width_m_ + 0.2 * w : w, road_width_frame_ = f.index;
-  }
-  const bool width_known = road_width_m_ > 0 && f.index - road_width_frame_ <= static_cast<size_t>(p_.memory_frames);
   const double width = width_known ? road_width_m_ : std::numeric_limits<double>::quiet_NaN();
   if (r.reason == "ok") detail::completeParallel(l, r, pts, +1, p_, width);
   if (l_own.reason == "ok") detail::completeParallel(r, l_own, pts, -1, p_, width);

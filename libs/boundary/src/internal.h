@@ -93,6 +93,11 @@ std::vector<std::vector<size_t>> gridClusters(const std::vector<Vec2>& pts, doub
 
 /// RANSAC polynomial fit of one side (side = +1 left, -1 right) over curb points, vehicle frame.
 SideBoundary fitSide(const std::vector<Vec2>& pts, int side, const Params& p, std::mt19937& rng);
+
+/// y of the polyline \p line (vertices ascending in x) at \p x, NaN outside it.
+double yAt(const std::vector<Vec2>& line, double x);
+/// Mean |y_line - y_held| over the held points in the band ahead (\p n of them); 0 when none.
+double deviationInBand(const std::vector<Vec2>& line, const std::vector<Vec2>& held, const Params& p, int* n);
 /// Curb points of one side within ransac_inlier_m of the polynomial \p c, ascending in x.
 std::vector<Vec2> sideInliers(const std::vector<Vec2>& pts, int side, const std::vector<double>& c, const Params& p);
 /// Median perpendicular offset [m] of the curb cells of side \p s (side = +1 left, -1 right; a fit,

@@ -27,7 +27,7 @@ auto doubleFields(P& p) {
       {"fit_max_x_m", &p.fit_max_x_m}, {"min_lateral_m", &p.min_lateral_m},
       {"max_lateral_m", &p.max_lateral_m}, {"ransac_inlier_m", &p.ransac_inlier_m},
       {"bin_m", &p.bin_m}, {"curb_map_cell_m", &p.curb_map_cell_m}, {"curb_map_radius_m", &p.curb_map_radius_m},
-      {"max_extrapolation_m", &p.max_extrapolation_m}, {"max_bridge_m", &p.max_bridge_m}, {"track_gate_m", &p.track_gate_m}, {"hold_decay", &p.hold_decay}, {"parallel_max_spread_m", &p.parallel_max_spread_m}, {"path_min_length_m", &p.path_min_length_m}, {"bend_max_curvature", &p.bend_max_curvature}, {"bend_step_m", &p.bend_step_m}, {"inner_curb_share", &p.inner_curb_share}, {"parallel_width_gate_m", &p.parallel_width_gate_m}, {"polyline_step_m", &p.polyline_step_m},
+      {"max_extrapolation_m", &p.max_extrapolation_m}, {"max_bridge_m", &p.max_bridge_m}, {"track_gate_m", &p.track_gate_m}, {"hold_decay", &p.hold_decay}, {"parallel_max_spread_m", &p.parallel_max_spread_m}, {"path_min_length_m", &p.path_min_length_m}, {"bend_max_curvature", &p.bend_max_curvature}, {"bend_step_m", &p.bend_step_m}, {"inner_curb_share", &p.inner_curb_share}, {"parallel_width_gate_m", &p.parallel_width_gate_m}, {"width_jump_m", &p.width_jump_m}, {"polyline_step_m", &p.polyline_step_m},
       {"grid_resolution_m", &p.grid_resolution_m}, {"grid_size_m", &p.grid_size_m}};
 }
 template <class P>

@@ -127,3 +127,43 @@ TEST(CurbMap, HeldSideIsDroppedWhenTheVehicleTurns) {
     }
   }
 }
+
+// A row of low parked cars hides the right curb (y = -3.5 m) for 60 m while a step 12 m out (a
+// terrace's edge over the cars' roofs) stays in view: the right side must not jump to it. The road's
+// width (7.5 m) is measured before the row; the width rule (width_jump_m) keeps the right side at
+// the curb or says it is unknown and why, until the new width has persisted for 20 sweeps (a road
+// that really widened; Detector::updateWidth), i.e. over the first 15 sweeps that cannot see the curb.
+TEST(CurbMap, HiddenCurbIsNotReplacedByALineBeyondTheRoadsWidth) {
+  auto sweepAt = [](double X) {
+    test::Road r;
+    r.boxes.push_back({20.0 - X, 80.0 - X, -3.4, -1.6, -1.65, -0.8});   // cars 1.1 m tall, 0.1 m off the curb
+    r.boxes.push_back({-50.0 - X, 150.0 - X, -20.0, -12.0, -1.75, -1.55});  // 0.2 m step on the sidewalk
+    return test::castSweep(r, static_cast<unsigned>(X + 1));
+  };
+  auto run = [&](double width_jump_m, int& far, int& near, int& unknown_said) {
+    Params p;
+    p.ground.sensor_height_m = 1.9;
+    p.width_jump_m = width_jump_m;
+    BoundaryDetector d(p);
+    far = near = unknown_said = 0;
+    for (double X = 0; X < 60; X += 1.0) {
+      const auto f = d.process(sweepAt(X), at(X), 0.1 * X);
+      if (X < 25 || X >= 40) continue;  // the row hides the curb ahead from 25 on
+      if (!f.right.found) {
+        unknown_said += f.right.reason.find("road's width") != std::string::npos || f.right.reason.find("not seen") != std::string::npos;
+        continue;
+      }
+      const double y = f.right.polyline_vehicle.front().y;
+      far += y < -9.0;
+      near += std::abs(y + 3.5) < 0.3;
+    }
+  };
+  int far = 0, near = 0, unknown = 0;
+  run(0.0, far, near, unknown);
+  std::cout << "without the width rule: right at the step " << far << ", at the curb " << near << ", unknown " << unknown << "\n";
+  EXPECT_GT(far, 10) << "the scene must tempt the fit to the step, or it tests nothing";
+  run(Params().width_jump_m, far, near, unknown);
+  std::cout << "with the width rule: right at the step " << far << ", at the curb " << near << ", unknown " << unknown << "\n";
+  EXPECT_EQ(far, 0);
+  EXPECT_EQ(near + unknown, 15);  // the rest is the curb (from cells beside the vehicle) or unknown with a reason
+}

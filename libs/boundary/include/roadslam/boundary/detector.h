@@ -74,6 +74,18 @@ class BoundaryDetector {
   void fitSides(const Eigen::Isometry3d& T_map_lidar, std::mt19937& rng, BoundaryFrame& f);
   double road_width_m_ = 0;      ///< curb to curb where both sides had their own fit; 0 = not measured [m]
   size_t road_width_frame_ = 0;  ///< sweep of the last measurement
+  double new_width_m_ = 0;       ///< a width off road_width_m_ by more than width_jump_m, measured ...
+  int new_width_count_ = 0;      ///< ... this many times in a row [-]
+  /// Road width from a measured curb-to-curb \p w (NaN: none); \p known: road_width_m_ is current.
+  void updateWidth(double w, bool known, size_t frame);
+  /// Points of track \p tr in the fit frame \p arc; \p stale: also of a track no longer held (its last line).
+  std::vector<Vec2> heldPoints(const Track& tr, const Eigen::Isometry3d& T_map_lidar, const detail::BendFrame& arc,
+                               bool stale = false) const;
+  /// Both sides fitted but curb to curb differs from the road's width by more than width_jump_m: the
+  /// side that left its track (a line beyond the sidewalk while parked cars hide the curb ahead) is
+  /// refitted on the cells near the other side moved by the road's width, or becomes unknown.
+  void checkWidth(SideBoundary& l, SideBoundary& r, const std::vector<Vec2>& pts, std::mt19937& rng,
+                  const Eigen::Isometry3d& T_map_lidar, const detail::BendFrame& arc) const;
   /// \p fresh and \p pts in the fit frame \p frame (see BendFrame in src/internal.h).
   SideBoundary track(SideBoundary fresh, const std::vector<Vec2>& pts, int side, std::mt19937& rng, Track& tr,
                      const Eigen::Isometry3d& T_map_lidar, const detail::BendFrame& frame) const;
