@@ -85,9 +85,14 @@ Counts curbPoints(const Scan& s, const Params& p, const std::vector<Box>& bodies
 TEST(ParkingBays, CarEndsAreNoCurbOverADrive) {
   Road road;
   const auto bodies = parkingAisle(road);
-  const Params p = shipped("bounds-parking.ini"), before = shipped("bounds.ini");  // rules on / off
+  // bounds-parking.ini: ground rules and curb guards; bounds.ini: the ground segmentation's
+  // parked-car rules only; before: neither (the defect this test guards).
+  const Params p = shipped("bounds-parking.ini"), ground_only = shipped("bounds.ini");
+  Params before = ground_only;
+  before.ground.parked_car_rules = false;
   ASSERT_DOUBLE_EQ(p.ground.sensor_height_m, kH);
-  Counts now, old;
+  ASSERT_TRUE(ground_only.ground.parked_car_rules);
+  Counts now, mid, old;
   // The vehicle drives along the aisle: the rows shift past it by 0.9 m per sweep.
   for (int k = 0; k < 6; ++k) {
     Road r = road;
@@ -95,19 +100,22 @@ TEST(ParkingBays, CarEndsAreNoCurbOverADrive) {
     auto shifted = bodies;
     for (auto& b : shifted) b.x0 -= 0.9 * k, b.x1 -= 0.9 * k;
     const Scan s = castSweep(r, 11 + k);
-    const Counts c = curbPoints(s, p, shifted), o = curbPoints(s, before, shifted);
+    const Counts c = curbPoints(s, p, shifted), m = curbPoints(s, ground_only, shifted), o = curbPoints(s, before, shifted);
     now.on_cars += c.on_cars, now.on_curbs += c.on_curbs, now.elsewhere += c.elsewhere;
+    mid.on_cars += m.on_cars, mid.on_curbs += m.on_curbs, mid.elsewhere += m.elsewhere;
     old.on_cars += o.on_cars, old.on_curbs += o.on_curbs, old.elsewhere += o.elsewhere;
   }
   std::cout << "curb points on cars / on curbs / elsewhere: before " << old.on_cars << " / " << old.on_curbs << " / "
-            << old.elsewhere << ", now " << now.on_cars << " / " << now.on_curbs << " / " << now.elsewhere << "\n";
-  // Before the fix the cars' ends beside the vehicle read as curb (the defect this test guards).
+            << old.elsewhere << ", ground rules " << mid.on_cars << " / " << mid.on_curbs << " / " << mid.elsewhere
+            << ", ground rules and curb guards " << now.on_cars << " / " << now.on_curbs << " / " << now.elsewhere << "\n";
   EXPECT_GT(old.on_cars, 50);
+  EXPECT_EQ(mid.on_cars, 0);  // measured 178 -> 0: the ground no longer starts on the cars' ends
   EXPECT_EQ(now.on_cars, 0);
   EXPECT_EQ(now.elsewhere, 0);
   // The curbs seen through the empty bays stay curbs.
   EXPECT_GT(now.on_curbs, 0);
   EXPECT_GE(now.on_curbs, old.on_curbs * 9 / 10);
+  EXPECT_GE(mid.on_curbs, old.on_curbs * 9 / 10);
 }
 
 TEST(ParkingBays, CurbCellsWhereASweepSawSomethingStandingAreDropped) {
