@@ -49,7 +49,7 @@ double parallelOffset(const SideBoundary& s, const SideBoundary& o, const std::v
   // Perpendicular offsets of this side's own cells to the other side's curve (d / sqrt(1 + y'^2)).
   std::vector<double> w;
   for (const auto& q : inl) {
-    const double slope = o.coeffs.size() > 1 ? o.coeffs[1] + (o.coeffs.size() > 2 ? 2 * o.coeffs[2] * q.x : 0) : 0;
+    const double slope = polySlope(o.coeffs, q.x);
     w.push_back(side * (q.y - polyEval(o.coeffs, q.x)) / std::sqrt(1 + slope * slope));
   }
   const double wm = median(w);

@@ -124,4 +124,9 @@ inline double polyEval(const std::vector<double>& c, double x) {
   return y;
 }
 
+/// dy/dx of the polynomial \p c (degree <= 2, as fitted) at \p x.
+inline double polySlope(const std::vector<double>& c, double x) {
+  return c.size() > 1 ? c[1] + (c.size() > 2 ? 2 * c[2] * x : 0.0) : 0.0;
+}
+
 }  // namespace roadslam::boundary::detail

@@ -38,8 +38,7 @@ namespace {
 
 /// Curb to curb at x (vertical gap times the mean heading's cosine) of two side fits [m].
 double widthAt(const SideBoundary& l, const SideBoundary& r, double x) {
-  auto slope = [x](const std::vector<double>& c) { return c.size() > 1 ? c[1] + (c.size() > 2 ? 2 * c[2] * x : 0) : 0; };
-  const double m = 0.5 * (slope(l.coeffs) + slope(r.coeffs));
+  const double m = 0.5 * (detail::polySlope(l.coeffs, x) + detail::polySlope(r.coeffs, x));
   return (detail::polyEval(l.coeffs, x) - detail::polyEval(r.coeffs, x)) / std::sqrt(1 + m * m);
 }
 
@@ -73,7 +72,7 @@ void BoundaryDetector::checkWidth(SideBoundary& l, SideBoundary& r, const std::v
     const auto& o = (k == 0 ? r : l).coeffs;
     std::set<int> b;
     for (const auto& q : pts) {
-      const double m = o.size() > 1 ? o[1] + (o.size() > 2 ? 2 * o[2] * q.x : 0) : 0;
+      const double m = detail::polySlope(o, q.x);
       if (side * q.y < p_.min_lateral_m ||
           std::abs(q.y - detail::polyEval(o, q.x) - side * road_width_m_ * std::sqrt(1 + m * m)) > kWidthGate)
         continue;
