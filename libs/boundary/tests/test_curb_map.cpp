@@ -167,3 +167,34 @@ TEST(CurbMap, HiddenCurbIsNotReplacedByALineBeyondTheRoadsWidth) {
   EXPECT_EQ(far, 0);
   EXPECT_EQ(near + unknown, 15);  // the rest is the curb (from cells beside the vehicle) or unknown with a reason
 }
+
+// The road narrows: from x = 25 m on, the sidewalk is widened by 4 m, so the right curb steps from
+// y = -7.5 m to -3.5 m (a width of 11.5 m, then 7.5 m). The narrower pair is the first curb and is
+// taken at once: the width rule (which only rejects a pair wider than the road) must not hold the
+// right side at the old width or call the new curb "off the road's width".
+TEST(CurbMap, ARoadThatNarrowsIsFollowedAtOnce) {
+  auto sweepAt = [](double X) {
+    test::Road r;
+    r.right_y = -7.5;
+    r.boxes.push_back({25.0 - X, 300.0 - X, -7.5, -3.5, -1.9, -1.9 + r.curb_h});
+    return test::castSweep(r, static_cast<unsigned>(X + 1));
+  };
+  Params p;
+  p.ground.sensor_height_m = 1.9;
+  BoundaryDetector d(p);
+  int wide = 0, narrow = 0, other = 0;
+  for (double X = 0; X < 60; X += 1.0) {
+    const auto f = d.process(sweepAt(X), at(X), 0.1 * X);
+    if (X < 10) {  // before: the old width is measured
+      wide += f.right.found && std::abs(f.right.polyline_vehicle.front().y + 7.5) < 0.3;
+      continue;
+    }
+    if (X < 25) continue;  // the step is in view ahead: the fit may take either curb
+    EXPECT_EQ(f.right.reason.find("road's width"), std::string::npos) << X << ": " << f.right.reason;
+    if (f.right.found && std::abs(f.right.polyline_vehicle.front().y + 3.5) < 0.3) ++narrow;
+    else ++other;
+  }
+  EXPECT_GE(wide, 8) << "the old width must be measured first, or this tests nothing";
+  EXPECT_EQ(narrow, 35);
+  EXPECT_EQ(other, 0);
+}
