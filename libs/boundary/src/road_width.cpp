@@ -12,7 +12,6 @@
 namespace roadslam::boundary {
 namespace detail {
 
-/// y of the polyline \p line (vertices ascending in x) at \p x, NaN outside it.
 double yAt(const std::vector<Vec2>& line, double x) {
   for (size_t i = 1; i < line.size(); ++i) {
     const Vec2 &a = line[i - 1], &b = line[i];
@@ -21,7 +20,6 @@ double yAt(const std::vector<Vec2>& line, double x) {
   return std::numeric_limits<double>::quiet_NaN();
 }
 
-/// Mean |y_line - y_held| over the held points in the band ahead (\p n of them); 0 when none.
 double deviationInBand(const std::vector<Vec2>& line, const std::vector<Vec2>& held, const Params& p, int* n) {
   double dev = 0;
   *n = 0;

@@ -36,6 +36,7 @@ inline std::string cachedDrive(const std::string& tag, const std::string& ini, d
 }
 
 struct Run {
+  std::string out_dir;  ///< the job's output folder (boundaries.jsonl, frames/, summary.json)
   nlohmann::json summary;
   eval::BoundaryMetrics m;
 };
@@ -49,11 +50,22 @@ inline Run runBounds(const std::string& drive, const std::string& ini, const std
   req.png_every = 25;
   req.progress = false;
   Run r;
+  r.out_dir = req.out_dir;
   r.summary = boundary::runBoundsJob(req);
   r.m = eval::evaluateBoundaryFiles(drive + "/gt_boundaries.json", drive + "/gt_trajectory.tum",
                                     req.out_dir + "/boundaries.jsonl");
   std::cout << tag << ": " << eval::toJson(r.m).dump() << "\n";
   return r;
+}
+
+/// The run \p r scored with stations along the GT path ahead (corners read across the road).
+inline eval::BoundaryMetrics alongPath(const std::string& drive, const Run& r) {
+  eval::BoundaryEvalParams path;
+  path.stations = "path";
+  const auto m = eval::evaluateBoundaryFiles(drive + "/gt_boundaries.json", drive + "/gt_trajectory.tum",
+                                             r.out_dir + "/boundaries.jsonl", path);
+  std::cout << r.out_dir << ", path stations: " << eval::toJson(m).dump() << "\n";
+  return m;
 }
 
 /// Boundary vertices reported inside a moving car's footprint (+0.3 m), and the frames in which a

@@ -27,7 +27,7 @@ TEST(SimDrive, VisibleCurbsMeetTheTargets) {
   EXPECT_GE(r.m.detection_rate, 0.95);
   EXPECT_LE(r.m.lateral_error_mean_m, 0.10);
   EXPECT_LE(r.m.lateral_error_p95_m, 0.25);
-  EXPECT_TRUE(fs::exists(std::string(ROADSLAM_BINARY_DIR) + "/test_data/boundary_out_urban_noparking/top_view.png"));
+  EXPECT_TRUE(fs::exists(r.out_dir + "/top_view.png"));
 }
 
 // Slopes up to ~12 % with pitch and roll (hills.ini), parking lanes empty: the ground follows the
@@ -36,7 +36,7 @@ TEST(SimDrive, HillsMeetTheTargets) {
   const auto drive = cachedDrive("hills_noparking", "hills.ini", 12.0,
                                  [](sim::ScenarioParams& p) { p.world.parked_car_prob = 0.0; });
   const auto r = runBounds(drive, "bounds.ini", "hills_noparking");
-  const auto [on_cars, near] = verticesOnMovingCars(drive, std::string(ROADSLAM_BINARY_DIR) + "/test_data/boundary_out_hills_noparking");
+  const auto [on_cars, near] = verticesOnMovingCars(drive, r.out_dir);
   EXPECT_GT(near, 5) << "no moving car came near: the check below tests nothing";
   EXPECT_EQ(on_cars, 0) << "boundary vertices on moving cars";
   EXPECT_GE(r.m.frames_scored, 110);
@@ -56,7 +56,7 @@ TEST(SimDrive, ParkedCarsHideTheRightCurbAndSaySo) {
   const auto r = runBounds(drive, "bounds.ini", "urban");
   EXPECT_GE(r.m.left_detection_rate, 0.95);
   EXPECT_GE(r.m.right_detection_rate, 0.42);  // measured 0.43 (0.44 with the 10-sweep memory)
-  const auto [on_cars, near] = verticesOnMovingCars(drive, std::string(ROADSLAM_BINARY_DIR) + "/test_data/boundary_out_urban");
+  const auto [on_cars, near] = verticesOnMovingCars(drive, r.out_dir);
   EXPECT_GT(near, 5) << "no moving car came near: the check below tests nothing";
   EXPECT_EQ(on_cars, 0) << "boundary vertices on moving cars";
   EXPECT_LE(r.m.lateral_error_mean_m, 0.10);
@@ -64,7 +64,7 @@ TEST(SimDrive, ParkedCarsHideTheRightCurbAndSaySo) {
 
   const auto view = boundary::test::curbVisibility(drive, std::string(ROADSLAM_SOURCE_DIR) + "/ini/bounds.ini", -1);
   size_t unexplained = 0, seen = 0, seen_found = 0, unseen = 0, unseen_ok = 0;
-  std::ifstream f(std::string(ROADSLAM_BINARY_DIR) + "/test_data/boundary_out_urban/boundaries.jsonl");
+  std::ifstream f(r.out_dir + "/boundaries.jsonl");
   std::string line;
   while (std::getline(f, line)) {
     const auto j = nlohmann::json::parse(line);

@@ -32,15 +32,11 @@ TEST(SimLoop, WholeUrbanLoopAsReached) {
   // Read along the road ahead (stations on the GT path): corner entries count. Path's arc alone:
   // 0.638, p95 0.695 m; with the bend ahead 0.693, 0.508 m; session 5 (width rule, ground rules)
   // 0.714, 0.320 m.
-  eval::BoundaryEvalParams path;
-  path.stations = "path";
-  const auto mp = eval::evaluateBoundaryFiles(drive + "/gt_boundaries.json", drive + "/gt_trajectory.tum",
-                                              std::string(ROADSLAM_BINARY_DIR) + "/test_data/boundary_out_urban_loop_full/boundaries.jsonl", path);
-  std::cout << "path stations: " << eval::toJson(mp).dump() << "\n";
+  const auto mp = alongPath(drive, r);
   EXPECT_GE(mp.detection_rate, 0.70);
   EXPECT_LE(mp.lateral_error_p95_m, 0.40);
   const auto [on_cars, near] =
-      verticesOnMovingCars(drive, std::string(ROADSLAM_BINARY_DIR) + "/test_data/boundary_out_urban_loop_full");
+      verticesOnMovingCars(drive, r.out_dir);
   EXPECT_GT(near, 20) << "no moving car came near: the check below tests nothing";
   EXPECT_EQ(on_cars, 0) << "boundary vertices on moving cars";
   EXPECT_LT(r.summary["ms_per_frame_mean"].get<double>(), 1e3);  // ran and timed, not a speed check
@@ -88,9 +84,9 @@ std::vector<SweepScore> scorePerSweep(const std::string& drive, const std::strin
 // found beyond what was seen (continued parallel, bridged, extrapolated) / never seen.
 TEST(SimLoop, CeilingOfTheWholeLoop) {
   const auto drive = cachedDrive("urban_loop_full", "urban-loop.ini", 0.0, nullptr);
-  runBounds(drive, "bounds.ini", "urban_loop_ceiling");
+  const auto r = runBounds(drive, "bounds.ini", "urban_loop_ceiling");
   const auto views = curbVisibilityBoth(drive, std::string(ROADSLAM_SOURCE_DIR) + "/ini/bounds.ini");
-  const auto sweeps = scorePerSweep(drive, std::string(ROADSLAM_BINARY_DIR) + "/test_data/boundary_out_urban_loop_ceiling");
+  const auto sweeps = scorePerSweep(drive, r.out_dir);
   int scored = 0, obs = 0, obs_found = 0, obs_missed_corner = 0, unobs = 0, unobs_found = 0;
   int side_obs[2] = {0, 0}, side_obs_found[2] = {0, 0};
   std::ofstream log(std::string(ROADSLAM_BINARY_DIR) + "/test_data/boundary_loop_ceiling.txt");
@@ -152,17 +148,13 @@ TEST(SimLoop, WholeDrivesWithVisibleCurbsMeetTheTargets) {
   for (const auto& [ini, tag] : {std::pair<std::string, std::string>{"urban-loop.ini", "urban_loop_empty_lanes"},
                                  {"hills.ini", "hills_empty_lanes"}}) {
     const auto drive = cachedDrive(tag, ini, 0.0, [](sim::ScenarioParams& p) { p.world.parked_car_prob = 0.0; });
-    runBounds(drive, "bounds.ini", tag);
-    eval::BoundaryEvalParams path;
-    path.stations = "path";
-    const auto m = eval::evaluateBoundaryFiles(drive + "/gt_boundaries.json", drive + "/gt_trajectory.tum",
-                                               std::string(ROADSLAM_BINARY_DIR) + "/test_data/boundary_out_" + tag + "/boundaries.jsonl", path);
-    std::cout << tag << ", path stations: " << eval::toJson(m).dump() << "\n";
+    const auto r = runBounds(drive, "bounds.ini", tag);
+    const auto m = alongPath(drive, r);
     EXPECT_GE(m.frames_scored, 1000) << tag;
     EXPECT_GE(m.detection_rate, 0.95) << tag;
     EXPECT_LE(m.lateral_error_mean_m, 0.10) << tag;
     EXPECT_LE(m.lateral_error_p95_m, 0.25) << tag;
-    const auto [on_cars, near] = verticesOnMovingCars(drive, std::string(ROADSLAM_BINARY_DIR) + "/test_data/boundary_out_" + tag);
+    const auto [on_cars, near] = verticesOnMovingCars(drive, r.out_dir);
     EXPECT_GT(near, 20) << tag << ": no moving car came near: the check below tests nothing";
     std::cout << tag << ": boundary vertices within 0.3 m of a moving car " << on_cars << "\n";
     // Hills: 2 vertices (6 without the ground's parked-car rules) in sweeps 971-973, the left line

@@ -39,9 +39,9 @@ struct GroundSegParams {
   /// Parked cars' ends are no ground lines (issue #8): inside the lowest beam's blind circle a
   /// sector's first line starts within max_start_height_m of the road under the car (no
   /// max_slope * r allowance), and a bridge over a gap where a prototype was rejected rises at
-  /// most max_start_height_m. Off by default: on, the lot's boundary error halves (1.86 -> 0.91 m)
-  /// and the urban loop's p95 drops (0.172 -> 0.122 m), but the hills drive's seed-7 figures, which
-  /// its heavy test guards, rise (0.216 -> 0.268 m) [-]; ini `seg_parked_car_rules`
+  /// most max_start_height_m. Off by default (the odometry's RTE moves within 10 % either way); on
+  /// in ini/bounds*.ini, where the parking lot's boundary error falls 2.09 -> 0.82 m and the urban
+  /// loop's p95 0.198 -> 0.127 m [-]; ini `seg_parked_car_rules`
   bool parked_car_rules = false;
   /// Also level the first line's start behind a vertical structure (a tall cell nearer in the
   /// sector): a bonnet seen over a parked car's end is no road. Off: with it and parked_car_rules
