@@ -16,6 +16,9 @@ int main(int argc, char** argv) {
       ->check(CLI::ExistingFile);
   app.add_option("--png-every", req.png_every, "draw every N-th sweep into OUT/frames (0 = none)");
   app.add_option("--max-frames", req.max_frames, "stop after this many sweeps (0 = all)");
+  app.add_flag("--whole-drive", req.whole_drive,
+               "two passes: fit every sweep from the curbs of the whole drive, along its own path "
+               "(a finished drive; default: live, each sweep from the sweeps before it)");
   app.add_flag("--quiet", quiet, "no progress bar and no summary on stdout");
   CLI11_PARSE(app, argc, argv);
   req.progress = !quiet;

@@ -1,5 +1,7 @@
 #include "roadslam/boundary/curb_map.h"
 
+#include <algorithm>
+
 #include "internal.h"
 
 namespace roadslam::boundary {
@@ -34,13 +36,17 @@ void CurbMap::prune(const Eigen::Isometry3d& T_map_lidar, double keep_behind_m, 
   }
 }
 
-std::vector<Vec2> CurbMap::inVehicle(const Eigen::Isometry3d& T_map_lidar, int min_sightings) const {
+std::vector<Vec2> CurbMap::inVehicle(const Eigen::Isometry3d& T_map_lidar, int min_sightings, double max_range_m) const {
   const Eigen::Isometry3d T_lidar_map = T_map_lidar.inverse();
+  const Eigen::Vector2d at = T_map_lidar.translation().head<2>();
+  const double r2 = max_range_m * max_range_m;
   std::vector<Vec2> out;
-  out.reserve(cells_.size());
+  out.reserve(std::min<size_t>(cells_.size(), 100000));
   for (const auto& [key, c] : cells_) {
     if (c.sightings < min_sightings) continue;
-    const Eigen::Vector3d v = T_lidar_map * (c.sum / c.points);
+    const Eigen::Vector3d m = c.sum / c.points;
+    if ((m.head<2>() - at).squaredNorm() > r2) continue;
+    const Eigen::Vector3d v = T_lidar_map * m;
     out.push_back({v.x(), v.y()});
   }
   return out;

@@ -7,6 +7,7 @@
 #include <limits>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 #include <unordered_set>
 
 #include "internal.h"
@@ -204,8 +205,20 @@ std::vector<Vec2> BoundaryDetector::heldPoints(const Track& tr, const Eigen::Iso
 
 void BoundaryDetector::fitSides(const Eigen::Isometry3d& T_map_lidar, std::mt19937& rng, BoundaryFrame& f) {
   const double kappa = pathCurvature(T_map_lidar);
-  const auto cells = curb_map_.inVehicle(T_map_lidar, p_.curb_min_sightings);
-  const detail::BendFrame arc = detail::chooseFrame(cells, kappa, p_);
+  detail::BendFrame arc;
+  detail::PathFrame drive_path;
+  std::vector<Vec2> cells;
+  if (whole_drive_) {
+    cells = curb_map_.inVehicle(T_map_lidar, p_.whole_drive_min_sightings, std::hypot(p_.fit_max_x_m, p_.max_lateral_m));
+    const auto it = std::lower_bound(drive_stamps_s_.begin(), drive_stamps_s_.end(), f.stamp_s);
+    size_t k = std::min<size_t>(it - drive_stamps_s_.begin(), drive_stamps_s_.size() - 1);
+    if (k > 0 && f.stamp_s - drive_stamps_s_[k - 1] < drive_stamps_s_[k] - f.stamp_s) --k;
+    drive_path = detail::pathAround(drive_pos_, k, T_map_lidar, -p_.fit_min_x_m, p_.fit_max_x_m, p_.path_step_m);
+    arc.path = &drive_path;
+  } else {
+    cells = curb_map_.inVehicle(T_map_lidar, p_.curb_min_sightings);
+    arc = detail::chooseFrame(cells, kappa, p_);
+  }
   f.path_curvature = kappa;
   f.bend_s = arc.bent() ? arc.s_bend : -1.0;
   f.bend_curvature = arc.bent() ? arc.b.kappa : kappa;
@@ -231,6 +244,33 @@ void BoundaryDetector::fitSides(const Eigen::Isometry3d& T_map_lidar, std::mt199
   f.right = track(std::move(r), pts, -1, rng, tracks_[1], T_map_lidar, arc);
   for (SideBoundary* sb : {&f.left, &f.right})
     for (auto& v : sb->polyline_vehicle) v = arc.toXY(v);
+}
+
+void BoundaryDetector::accumulate(const Scan& scan, const Eigen::Isometry3d& T_map_lidar, double stamp_s) {
+  if (whole_drive_) throw std::logic_error("BoundaryDetector::accumulate after finishAccumulation");
+  if (!drive_stamps_s_.empty() && stamp_s < drive_stamps_s_.back())
+    throw std::invalid_argument("BoundaryDetector::accumulate: sweeps out of time order");
+  const Labelling lab = labelPoints(scan, p_);
+  std::vector<Eigen::Vector3d> curbs_map;
+  for (size_t i = 0; i < scan.points.size(); ++i) {
+    if (lab.cls[i] != PointClass::Curb) continue;
+    const auto& q = scan.points[i];
+    curbs_map.push_back(T_map_lidar * Eigen::Vector3d(q.x, q.y, q.z));
+  }
+  curb_map_.insert(curbs_map, drive_stamps_s_.size());
+  if (p_.curb_veto_cells >= 0) {
+    const auto tall = tallPointsInMap(scan, lab, T_map_lidar, p_);
+    drive_tall_.insert(drive_tall_.end(), tall.begin(), tall.end());
+  }
+  drive_stamps_s_.push_back(stamp_s);
+  drive_pos_.push_back(T_map_lidar.translation());
+}
+
+void BoundaryDetector::finishAccumulation() {
+  // After all sweeps: a cell any sweep saw standing is dropped, whichever came first.
+  curb_map_.erase(drive_tall_, p_.curb_veto_cells);
+  drive_tall_ = {};
+  whole_drive_ = !drive_stamps_s_.empty();
 }
 
 BoundaryFrame BoundaryDetector::process(const Scan& scan, const Eigen::Isometry3d& T_map_lidar, double stamp_s,
@@ -266,9 +306,11 @@ BoundaryFrame BoundaryDetector::process(const Scan& scan, const Eigen::Isometry3
     f.curb_points.push_back({q.x, q.y});
     curbs_map.push_back(T_map_lidar * Eigen::Vector3d(q.x, q.y, q.z));
   }
-  curb_map_.insert(curbs_map, f.index);
-  if (p_.curb_veto_cells >= 0) curb_map_.erase(tallPointsInMap(scan, last_, T_map_lidar, p_), p_.curb_veto_cells);
-  curb_map_.prune(T_map_lidar, -p_.fit_min_x_m, p_.curb_map_radius_m, f.index, static_cast<size_t>(p_.memory_frames));
+  if (!whole_drive_) {
+    curb_map_.insert(curbs_map, f.index);
+    if (p_.curb_veto_cells >= 0) curb_map_.erase(tallPointsInMap(scan, last_, T_map_lidar, p_), p_.curb_veto_cells);
+    curb_map_.prune(T_map_lidar, -p_.fit_min_x_m, p_.curb_map_radius_m, f.index, static_cast<size_t>(p_.memory_frames));
+  }
 
   if (f.points == 0 || f.ground_points == 0) {
     f.status = f.points == 0 ? "no_points" : "no_ground";

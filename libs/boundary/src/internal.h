@@ -6,6 +6,8 @@
 #include <random>
 #include <vector>
 
+#include <Eigen/Geometry>
+
 #include "roadslam/boundary/params.h"
 #include "roadslam/boundary/types.h"
 
@@ -47,6 +49,31 @@ struct ArcFrame {
   }
 };
 
+/// Coordinates along the drive's own path (whole-drive mode, where the whole trajectory is known):
+/// s = arc length of the nearest point of the path [m] (0 at the vehicle), d = offset to the left of
+/// it [m]. The path is a polyline of the vehicle's positions, vehicle frame; past its first and last
+/// vertex it goes on straight. A curb along the road the vehicle drives is d = const through any
+/// corner, where one arc (ArcFrame, BendFrame) only holds for one piece of it.
+///
+/// Offsets are taken along normals interpolated between the vertices' (each vertex's is the bisector
+/// of its segments'), not to the nearest point: on the inner side of a turn the nearest point of a
+/// polyline jumps ahead by d tan(a/2) at each vertex turning by a (0.2 m for a curb 4 m inside a
+/// 14 m radius sampled every 1.5 m), on the outer side it stalls.
+struct PathFrame {
+  std::vector<Vec2> v;    ///< vertices, vehicle frame [m]
+  std::vector<double> s;  ///< arc length at each vertex [m]
+  std::vector<Vec2> n;    ///< unit normal (left) at each vertex [-]
+  /// (x, y) -> (s, d) at the nearest point of the path; false for a path of fewer than 2 vertices.
+  bool toArc(const Vec2& q, Vec2& out) const;
+  Vec2 toXY(const Vec2& a) const;
+};
+
+/// The path of the drive \p positions_map (vehicle positions in the map frame, in driving order)
+/// around its vertex \p k, in the vehicle frame at \p T_map_lidar: from \p behind_m behind to
+/// \p ahead_m ahead (arc length), one vertex per \p step_m, s = 0 at the vehicle.
+PathFrame pathAround(const std::vector<Eigen::Vector3d>& positions_map, size_t k, const Eigen::Isometry3d& T_map_lidar,
+                     double behind_m, double ahead_m, double step_m);
+
 /// The driven path's arc (curvature a.kappa from the origin along +x) up to arc length s_bend, then an
 /// arc of curvature b.kappa tangent to it: the road ahead of a corner entry (straight, then the bend)
 /// or exit (the bend, then straight). Curbs concentric with both pieces are d = const: circles about
@@ -55,11 +82,13 @@ struct BendFrame {
   ArcFrame a;                                              ///< from the vehicle [1/m]
   double s_bend = std::numeric_limits<double>::infinity(); ///< arc length where b takes over [m]
   ArcFrame b;                                              ///< beyond s_bend [1/m]
+  const PathFrame* path = nullptr;  ///< set: the frame is this path's (whole-drive mode), a and b unused
   bool bent() const { return std::isfinite(s_bend); }
   /// Pose (position, heading) of the path at s_bend, vehicle frame.
   Vec2 bendPoint() const { return a.toXY({s_bend, 0.0}); }
   double bendHeading() const { return a.kappa * s_bend; }
   bool toArc(const Vec2& q, Vec2& out) const {
+    if (path) return path->toArc(q, out);
     Vec2 o;
     if (a.toArc(q, o) && o.x <= s_bend) return out = o, true;
     if (!bent()) return false;
@@ -71,6 +100,7 @@ struct BendFrame {
     return true;
   }
   Vec2 toXY(const Vec2& q) const {
+    if (path) return path->toXY(q);
     if (q.x <= s_bend) return a.toXY(q);
     const Vec2 P = bendPoint(), l = b.toXY({q.x - s_bend, q.y});
     const double c = std::cos(bendHeading()), s = std::sin(bendHeading());

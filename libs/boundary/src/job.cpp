@@ -2,6 +2,7 @@
 
 #include <mrpt/config/CConfigFileMemory.h>
 
+#include <chrono>
 #include <filesystem>
 #include <map>
 #include <sstream>
@@ -28,6 +29,22 @@ double sweepDuration(const Scan& s) {
   return d;
 }
 
+/// A sweep's pose: the lidar at the sweep's start and end (the deskew's ends) and at its reference
+/// time t_ref (the frame the sweep is deskewed into, T_map_lidar), or why there is none.
+struct SweepPose {
+  double stamp_s = 0;  ///< the sweep's stamp (its first point) [s]
+  bool ok = false;
+  std::string why;
+  Eigen::Isometry3d start = Eigen::Isometry3d::Identity(), end = Eigen::Isometry3d::Identity(),
+                    ref = Eigen::Isometry3d::Identity();
+  double t_ref = 0, dur = 0;  ///< [s]
+  bool deskew = false;
+};
+
+void deskew(Scan& scan, const SweepPose& sp) {
+  if (sp.deskew) deskewBetween(scan, sp.start, sp.end, sp.dur, sp.ref);
+}
+
 /// Pose source: a given trajectory, or the odometry (constant velocity within a sweep).
 class PoseSource {
  public:
@@ -40,33 +57,33 @@ class PoseSource {
     op.loadFromConfigFile(cfg);
     odo_ = std::make_unique<odometry::Odometry>(op);
   }
-  /// Deskews \p scan into the lidar frame at T_map_ref; false (and \p why) without a pose.
-  bool apply(Scan& scan, Eigen::Isometry3d& T_map_ref, double& t_ref, std::string& why) {
-    const double dur = sweepDuration(scan);
-    t_ref = scan.stamp_s + 0.5 * dur;
+  SweepPose pose(const Scan& scan) {
+    SweepPose sp;
+    sp.stamp_s = scan.stamp_s;
+    sp.dur = sweepDuration(scan);
+    sp.t_ref = scan.stamp_s + 0.5 * sp.dur;
     if (!odo_) {
       const auto a = interpolatePose(traj_.stamps_s, traj_.poses, scan.stamp_s);
-      const auto b = interpolatePose(traj_.stamps_s, traj_.poses, scan.stamp_s + dur);
-      const auto r = interpolatePose(traj_.stamps_s, traj_.poses, t_ref);
+      const auto b = interpolatePose(traj_.stamps_s, traj_.poses, scan.stamp_s + sp.dur);
+      const auto r = interpolatePose(traj_.stamps_s, traj_.poses, sp.t_ref);
       if (!a || !b || !r) {
-        why = "no pose in the trajectory at this sweep";
-        return false;
+        sp.why = "no pose in the trajectory at this sweep";
+        return sp;
       }
-      T_map_ref = *r;
-      deskewBetween(scan, *a, *b, dur, T_map_ref);
-      return true;
+      sp.ok = sp.deskew = true, sp.start = *a, sp.end = *b, sp.ref = *r;
+      return sp;
     }
     const auto res = odo_->process(scan);
     if (res.status == odometry::FrameStatus::Skipped) {
-      why = "odometry skipped the sweep";
-      return false;
+      sp.why = "odometry skipped the sweep";
+      return sp;
     }
-    T_map_ref = res.T_world_lidar;
-    t_ref = res.stamp_s;
-    const Eigen::Isometry3d half = interpolate(Eigen::Isometry3d::Identity(), T_prev_.inverse() * T_map_ref, 0.5);
-    if (have_prev_ && dur > 0) deskewBetween(scan, T_map_ref * half.inverse(), T_map_ref * half, dur, T_map_ref);
-    T_prev_ = T_map_ref, have_prev_ = true;
-    return true;
+    sp.ok = true, sp.ref = res.T_world_lidar, sp.t_ref = res.stamp_s;
+    const Eigen::Isometry3d half = interpolate(Eigen::Isometry3d::Identity(), T_prev_.inverse() * sp.ref, 0.5);
+    sp.deskew = have_prev_ && sp.dur > 0;
+    sp.start = sp.ref * half.inverse(), sp.end = sp.ref * half;
+    T_prev_ = sp.ref, have_prev_ = true;
+    return sp;
   }
 
  private:
@@ -75,6 +92,38 @@ class PoseSource {
   Eigen::Isometry3d T_prev_ = Eigen::Isometry3d::Identity();
   bool have_prev_ = false;
 };
+
+bool enough(const BoundsRequest& req, size_t sweeps) { return stopRequested() || (req.max_frames && sweeps >= req.max_frames); }
+
+struct Drive {
+  std::vector<SweepPose> poses;  ///< one per sweep, in order
+  double ms_mean = 0;            ///< detector time per sweep (labelling, curb map) [ms]
+};
+
+/// Whole-drive mode, first pass: every sweep's pose (the odometry runs here only) and its curb
+/// points into \p det's curb map.
+Drive accumulateDrive(const BoundsRequest& req, const mrpt::config::CConfigFileBase& cfg, BoundaryDetector& det) {
+  Drive d;
+  std::vector<SweepPose>& out = d.poses;
+  auto stream = pipeline::openScanStream(req.input_path, cfg);
+  PoseSource poses(req.trajectory_path, cfg);
+  ProgressBar bar("roadslam-bounds: whole drive, pass 1", stream->sizeHint());
+  size_t n = 0;
+  while (auto scan = stream->next()) {
+    if (enough(req, out.size())) break;
+    out.push_back(poses.pose(*scan));
+    if (out.back().ok) {
+      deskew(*scan, out.back());
+      const auto t0 = std::chrono::steady_clock::now();
+      det.accumulate(*scan, out.back().ref, out.back().t_ref);
+      d.ms_mean += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count(), ++n;
+    }
+    if (req.progress) bar.update(out.size());
+  }
+  det.finishAccumulation();
+  d.ms_mean /= static_cast<double>(std::max<size_t>(n, 1));
+  return d;
+}
 
 struct Totals {
   size_t frames = 0, no_pose = 0, left = 0, right = 0, both = 0;
@@ -101,24 +150,31 @@ nlohmann::json runBoundsJob(const BoundsRequest& req) {
   mrpt::config::CConfigFileMemory used;
   params.saveToConfigFile(used);
   writeFileAtomically(req.out_dir + "/config_used.ini", used.getContent());
-  auto stream = pipeline::openScanStream(req.input_path, *cfg);
-  PoseSource poses(req.trajectory_path, *cfg);
   BoundaryDetector det(params);
+  Drive drive;  // whole-drive mode: pass 1's poses, replayed in pass 2
+  if (req.whole_drive) drive = accumulateDrive(req, *cfg, det);
+  const std::vector<SweepPose>& recorded = drive.poses;
+  auto stream = pipeline::openScanStream(req.input_path, *cfg);
+  std::unique_ptr<PoseSource> poses;
+  if (!req.whole_drive) poses = std::make_unique<PoseSource>(req.trajectory_path, *cfg);
   AtomicFile jsonl(req.out_dir + "/boundaries.jsonl");
   Totals tot;
   ProgressBar bar("roadslam-bounds", stream->sizeHint());
   std::string last_png;
   while (auto scan = stream->next()) {
-    if (stopRequested() || (req.max_frames && tot.frames + tot.no_pose >= req.max_frames)) break;
-    Eigen::Isometry3d T;
-    double t_ref = 0;
-    std::string why;
-    if (!poses.apply(*scan, T, t_ref, why)) {
+    const size_t i = tot.frames + tot.no_pose;
+    if (enough(req, i) || (req.whole_drive && i >= recorded.size())) break;
+    if (req.whole_drive && recorded[i].stamp_s != scan->stamp_s)
+      throw std::runtime_error("'" + req.input_path + "' gave other sweeps on its second reading (sweep " + std::to_string(i) + ")");
+    const SweepPose sp = req.whole_drive ? recorded[i] : poses->pose(*scan);
+    if (!sp.ok) {
       ++tot.no_pose;
-      jsonl.stream() << nlohmann::json{{"stamp_s", scan->stamp_s}, {"status", "no_pose"}, {"reason", why}}.dump() << "\n";
+      jsonl.stream() << nlohmann::json{{"stamp_s", scan->stamp_s}, {"status", "no_pose"}, {"reason", sp.why}}.dump() << "\n";
       continue;
     }
-    const BoundaryFrame f = det.process(*scan, T, t_ref);
+    deskew(*scan, sp);
+    const Eigen::Isometry3d& T = sp.ref;
+    const BoundaryFrame f = det.process(*scan, T, sp.t_ref);
     tot.add(f);
     jsonl.stream() << toJson(f).dump() << "\n";
     if (req.png_every > 0 && f.index % static_cast<size_t>(req.png_every) == 0) {
@@ -139,7 +195,9 @@ nlohmann::json runBoundsJob(const BoundsRequest& req) {
                       {"ms_per_frame_max", tot.ms_max}, {"left_found_rate", tot.left / n},
                       {"right_found_rate", tot.right / n}, {"both_found_rate", tot.both / n},
                       {"status", tot.status}, {"not_found_reasons", tot.reasons},
-                      {"poses", req.trajectory_path.empty() ? "odometry" : req.trajectory_path}};
+                      {"poses", req.trajectory_path.empty() ? "odometry" : req.trajectory_path},
+                      {"mode", req.whole_drive ? "whole_drive" : "live"}, {"curb_map_cells", det.curbMap().size()}};
+  if (req.whole_drive) s["ms_per_frame_first_pass_mean"] = drive.ms_mean;
   writeFileAtomically(req.out_dir + "/summary.json", s.dump(2) + "\n");
   return s;
 }

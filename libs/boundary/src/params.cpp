@@ -27,7 +27,7 @@ auto doubleFields(P& p) {
       {"fit_max_x_m", &p.fit_max_x_m}, {"min_lateral_m", &p.min_lateral_m},
       {"max_lateral_m", &p.max_lateral_m}, {"ransac_inlier_m", &p.ransac_inlier_m},
       {"bin_m", &p.bin_m}, {"curb_map_cell_m", &p.curb_map_cell_m}, {"curb_map_radius_m", &p.curb_map_radius_m},
-      {"max_extrapolation_m", &p.max_extrapolation_m}, {"max_bridge_m", &p.max_bridge_m}, {"track_gate_m", &p.track_gate_m}, {"hold_decay", &p.hold_decay}, {"parallel_max_spread_m", &p.parallel_max_spread_m}, {"path_min_length_m", &p.path_min_length_m}, {"bend_max_curvature", &p.bend_max_curvature}, {"bend_step_m", &p.bend_step_m}, {"inner_curb_share", &p.inner_curb_share}, {"parallel_width_gate_m", &p.parallel_width_gate_m}, {"width_jump_m", &p.width_jump_m}, {"polyline_step_m", &p.polyline_step_m},
+      {"max_extrapolation_m", &p.max_extrapolation_m}, {"max_bridge_m", &p.max_bridge_m}, {"track_gate_m", &p.track_gate_m}, {"hold_decay", &p.hold_decay}, {"parallel_max_spread_m", &p.parallel_max_spread_m}, {"path_min_length_m", &p.path_min_length_m}, {"bend_max_curvature", &p.bend_max_curvature}, {"bend_step_m", &p.bend_step_m}, {"inner_curb_share", &p.inner_curb_share}, {"parallel_width_gate_m", &p.parallel_width_gate_m}, {"width_jump_m", &p.width_jump_m}, {"polyline_step_m", &p.polyline_step_m}, {"path_step_m", &p.path_step_m},
       {"grid_resolution_m", &p.grid_resolution_m}, {"grid_size_m", &p.grid_size_m}};
 }
 template <class P>
@@ -37,7 +37,7 @@ auto intFields(P& p) {
       {"curb_reach_cells", &p.curb_reach_cells}, {"freespace_sectors", &p.freespace_sectors},
       {"poly_degree", &p.poly_degree}, {"ransac_iterations", &p.ransac_iterations},
       {"ransac_seed", &p.ransac_seed}, {"min_bins", &p.min_bins}, {"min_band_bins", &p.min_band_bins},
-      {"memory_frames", &p.memory_frames}, {"curb_min_sightings", &p.curb_min_sightings}, {"max_hold_frames", &p.max_hold_frames}, {"path_curvature_frames", &p.path_curvature_frames},
+      {"memory_frames", &p.memory_frames}, {"curb_min_sightings", &p.curb_min_sightings}, {"whole_drive_min_sightings", &p.whole_drive_min_sightings}, {"max_hold_frames", &p.max_hold_frames}, {"path_curvature_frames", &p.path_curvature_frames},
       {"bend_curvature_steps", &p.bend_curvature_steps}, {"bend_margin_bins", &p.bend_margin_bins}};
 }
 
@@ -68,7 +68,7 @@ void Params::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const 
           "needs 0 < curb_min_jump_m < curb_max_jump_m");
   require(band_max_x_m > band_min_x_m, s, "band_max_x_m", "must exceed band_min_x_m");
   require(poly_degree == 1 || poly_degree == 2, s, "poly_degree", "must be 1 or 2");
-  require(bin_m > 0 && polyline_step_m > 0 && grid_resolution_m > 0 && cluster_cell_m > 0 && curb_map_cell_m > 0, s, "bin_m",
+  require(bin_m > 0 && polyline_step_m > 0 && path_step_m > 0 && grid_resolution_m > 0 && cluster_cell_m > 0 && curb_map_cell_m > 0, s, "bin_m",
           "cell sizes and steps must be > 0");
   require(memory_frames >= 1 && ransac_iterations >= 1 && freespace_sectors >= 8, s, "memory_frames",
           "memory_frames, ransac_iterations >= 1 and freespace_sectors >= 8");

@@ -188,3 +188,50 @@ TEST(SideFit, TheFirstCurbFromTheVehicleBeatsASidewalksFarEdge) {
   ASSERT_TRUE(s.found) << s.reason;
   EXPECT_NEAR(s.coeffs[0], 4.0, 0.1);
 }
+
+// The whole-drive mode's frame along the drive's own path: a drive straight along +x, then a left
+// quarter circle of radius R round (20, R), then straight along +y, sampled at 10 Hz at 5 m/s (map
+// frame). A curb at offset d from the path is the closed-form oracle: s = arc length, d = offset.
+TEST(PathFrame, CurbAlongAnLShapedDriveIsConstantOffset) {
+  using roadslam::boundary::detail::pathAround;
+  const double R = 14.0, L = R * M_PI / 2;
+  auto pathPoint = [&](double u, double d) {  // point at arc length u of the path, d to its left
+    if (u < 20) return Eigen::Vector3d(u, d, 0.0);
+    if (u < 20 + L) {
+      const double th = (u - 20) / R;
+      return Eigen::Vector3d(20 + (R - d) * std::sin(th), R - (R - d) * std::cos(th), 0.0);
+    }
+    return Eigen::Vector3d(20 + R - d, R + (u - 20 - L), 0.0);
+  };
+  std::vector<Eigen::Vector3d> drive;
+  for (double u = 0; u < 80; u += 0.5) drive.push_back(pathPoint(u, 0));
+  const size_t k = 20;  // the vehicle at u = 10 m, heading +x, lifted 1.9 m above the path
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.translation() = pathPoint(10, 0) + Eigen::Vector3d(0, 0, 1.9);
+  const auto f = pathAround(drive, k, T, 10.0, 40.0, 1.0);
+  ASSERT_GE(f.v.size(), 40u);
+  EXPECT_NEAR(f.s.front(), -10.0, 1.0);
+  EXPECT_GE(f.s.back(), 40.0);
+  for (double d : {3.95, -3.95, 7.45, -7.45}) {
+    for (double u = 2; u <= 48; u += 1.5) {
+      const Eigen::Vector3d m = pathPoint(u, d);
+      const Eigen::Vector3d v = T.inverse() * m;
+      Vec2 a;
+      ASSERT_TRUE(f.toArc({v.x(), v.y()}, a));
+      // The polyline's 1.5 m chords stand off the arc by 1.5^2 / (8 R) = 2 cm; arc lengths shrink by
+      // the chords' R (1 - sinc) < 0.1 %. Where the curvature jumps (u = 20 m, 20 m + L) the vertex
+      // normal is half turned, so s there is off by up to |d| a / 4 (a = 0.11 rad per chord).
+      const bool jump = std::abs(u - 20) < 1.6 || std::abs(u - 20 - L) < 1.6;
+      EXPECT_NEAR(a.y, d, 0.02) << "u = " << u << ", d = " << d;
+      EXPECT_NEAR(a.x, u - 10, jump ? 0.05 * std::abs(d) : 0.05) << "u = " << u << ", d = " << d;
+      const Vec2 back = f.toXY(a);
+      EXPECT_NEAR(back.x, v.x(), 1e-6);
+      EXPECT_NEAR(back.y, v.y(), 1e-6);
+    }
+  }
+  // Past the first and last vertices the path goes on straight.
+  Vec2 a;
+  ASSERT_TRUE(f.toArc({-30.0, -3.0}, a));
+  EXPECT_NEAR(a.x, -30.0, 1e-6);
+  EXPECT_NEAR(a.y, -3.0, 1e-6);
+}

@@ -10,6 +10,7 @@
 #include <Eigen/Geometry>
 
 #include <cstdint>
+#include <limits>
 #include <unordered_map>
 #include <vector>
 
@@ -36,8 +37,9 @@ class CurbMap {
              size_t max_age_frames);
 
   /// Cell means in the vehicle frame at \p T_map_lidar (x forward, y left [m]), cells seen by at
-  /// least \p min_sightings sweeps.
-  std::vector<Vec2> inVehicle(const Eigen::Isometry3d& T_map_lidar, int min_sightings = 1) const;
+  /// least \p min_sightings sweeps and within \p max_range_m of the vehicle (map xy).
+  std::vector<Vec2> inVehicle(const Eigen::Isometry3d& T_map_lidar, int min_sightings = 1,
+                              double max_range_m = std::numeric_limits<double>::infinity()) const;
 
   size_t size() const { return cells_.size(); }
   void clear() { cells_.clear(); }

@@ -51,6 +51,17 @@ class BoundaryDetector {
   const Params& params() const { return p_; }
   /// The accumulated curb evidence (map frame).
   const CurbMap& curbMap() const { return curb_map_; }
+  /// Whole-drive mode, first pass (the drive's sweeps in order, each with its pose and stamp): adds
+  /// the curb points of \p scan to the curb map, which this mode never prunes, and the pose to the
+  /// drive's path.
+  void accumulate(const Scan& scan, const Eigen::Isometry3d& T_map_lidar, double stamp_s);
+  /// Ends the first pass. From then on process() leaves the curb map as it is and fits each sweep
+  /// from the cells of the whole drive near it (seen by whole_drive_min_sightings sweeps), in the
+  /// frame of the drive's own path (PathFrame: s along the path, d to its left). Curbs that parked
+  /// cars hide from the vehicle ahead were seen from elsewhere on the drive: through gaps, when
+  /// passing, from behind. Needs poses consistent over the drive (a trajectory, or a pose graph's).
+  void finishAccumulation();
+  bool wholeDrive() const { return whole_drive_; }
   /// The labelling of the last processed sweep (its points first, then any local-map points).
   const Labelling& lastLabelling() const { return last_; }
 
@@ -58,6 +69,10 @@ class BoundaryDetector {
   Params p_;
   size_t frames_ = 0;
   CurbMap curb_map_;  ///< curb evidence of past sweeps, map frame
+  bool whole_drive_ = false;               ///< see finishAccumulation()
+  std::vector<double> drive_stamps_s_;     ///< whole-drive mode: the accumulated sweeps' stamps [s] ...
+  std::vector<Eigen::Vector3d> drive_pos_; ///< ... and positions, map frame [m]
+  std::vector<Eigen::Vector3d> drive_tall_;///< ... and tall points (curb_veto_cells), map frame [m]
   Labelling last_;
   /// Per side (0 left, 1 right): the last accepted boundary, map frame, and sweeps held since.
   struct Track {

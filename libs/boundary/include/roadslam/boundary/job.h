@@ -4,7 +4,7 @@
 /// per sweep (a given TUM trajectory T_map_lidar, or the odometry), deskew, the boundary detector,
 /// and the outputs in DIR: boundaries.jsonl (one object per sweep, see output.h), frames/NNNNNN.png
 /// (top view) and frames/NNNNNN_cost.png (cost grid, see writeCostGridPng) every png_every sweeps, top_view.png (last picture), summary.json, config_used.ini.
-/// All files are written atomically.
+/// All files are written atomically. summary.json says the mode ("live" or "whole_drive").
 
 #include <nlohmann/json.hpp>
 #include <string>
@@ -18,6 +18,11 @@ struct BoundsRequest {
   std::string trajectory_path;  ///< TUM T_map_lidar; empty = run the odometry
   int png_every = 10;           ///< draw every N-th sweep (0 = none) [-]
   size_t max_frames = 0;        ///< 0 = all
+  /// Whole-drive mode (a finished drive, e.g. for a map): two passes over the recording. The first
+  /// takes every sweep's pose and its curb points into one curb map of the whole drive; the second
+  /// fits each sweep from that map along the drive's own path (BoundaryDetector::finishAccumulation).
+  /// Off = live mode: each sweep sees only the curbs of the sweeps before it.
+  bool whole_drive = false;
   bool progress = true;
 };
 

@@ -82,6 +82,12 @@ struct Params {
   double curb_map_cell_m = 0.2;         ///< cell of the curb map (map frame) [m]
   double curb_map_radius_m = 60.0;      ///< cells farther from the vehicle are dropped [m]
   int curb_min_sightings = 1;           ///< cells seen by fewer sweeps are not fitted [-]
+  /// Whole-drive mode (BoundaryDetector::finishAccumulation): cells seen by fewer sweeps are not
+  /// fitted [-]. A curb cell is seen by tens of sweeps over a drive; a stray curb label (a ring
+  /// grazing the curb from alongside, 0.1-0.5 m off it) by one or two, and over a whole drive the
+  /// strays of one stretch fill as many bins beside the curb as the curb itself.
+  int whole_drive_min_sightings = 3;
+  double path_step_m = 1.0;             ///< whole-drive mode: vertex spacing of the drive's path frame [m]
   double max_extrapolation_m = 5.0;     ///< the polyline ends this far beyond the last evidence [m]
   double max_bridge_m = 12.0;           ///< longest gap between curb stretches the polyline spans [m]
   int max_hold_frames = 3;              ///< a side not seen is held (moved with the vehicle) this long [-]
