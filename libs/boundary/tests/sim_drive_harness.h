@@ -41,11 +41,18 @@ struct Run {
   eval::BoundaryMetrics m;
 };
 
-inline Run runBounds(const std::string& drive, const std::string& ini, const std::string& tag) {
+/// How runBounds runs the job: live or whole-drive mode, GT poses or the odometry's.
+struct Mode {
+  bool whole_drive = false;
+  bool gt_poses = true;
+};
+
+inline Run runBounds(const std::string& drive, const std::string& ini, const std::string& tag, Mode mode = {}) {
   boundary::BoundsRequest req;
   req.config_path = std::string(ROADSLAM_SOURCE_DIR) + "/ini/" + ini;
   req.input_path = drive + "/velodyne.pcap";
-  req.trajectory_path = drive + "/gt_trajectory.tum";
+  if (mode.gt_poses) req.trajectory_path = drive + "/gt_trajectory.tum";
+  req.whole_drive = mode.whole_drive;
   req.out_dir = std::string(ROADSLAM_BINARY_DIR) + "/test_data/boundary_out_" + tag;
   req.png_every = 25;
   req.progress = false;
