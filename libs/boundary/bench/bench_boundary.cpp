@@ -53,6 +53,29 @@ void BM_Detector_Ransac_Turning(benchmark::State& st) { run(st, "ransac", true, 
 void BM_Detector_Ransac_Turning_NoBend(benchmark::State& st) { run(st, "ransac", true, 1.0 / 14.0, false); }
 void BM_Detector_Ransac_ParkingRules(benchmark::State& st) { run(st, "ransac", true, 0.0, true, true); }
 void BM_Detector_Thesis(benchmark::State& st) { run(st, "thesis"); }
+/// Whole-drive mode: a 300 m drive (1 m per sweep) accumulated, then sweeps of its middle fitted
+/// from the whole drive's curb map along its path (pass 2); pass 1 (labelling, map) on its own.
+Eigen::Isometry3d along(int i) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.translation().x() = i;
+  return T;
+}
+void BM_Detector_WholeDrive(benchmark::State& st) {
+  boundary::BoundaryDetector det{boundary::Params{}};
+  for (int i = 0; i < 300; ++i) det.accumulate(street(), along(i), 0.1 * i);
+  det.finishAccumulation();
+  int i = 50;
+  for (auto _ : st) {
+    benchmark::DoNotOptimize(det.process(street(), along(i), 0.1 * i));
+    i = i < 250 ? i + 1 : 50;
+  }
+  st.counters["cells"] = static_cast<double>(det.curbMap().size());
+}
+void BM_Detector_WholeDrive_FirstPass(benchmark::State& st) {
+  boundary::BoundaryDetector det{boundary::Params{}};
+  int i = 0;
+  for (auto _ : st) det.accumulate(street(), along(i), 0.1 * i), ++i;
+}
 void BM_GroundLabelsOnly(benchmark::State& st) {
   preprocess::GroundSegParams g;
   for (auto _ : st) benchmark::DoNotOptimize(preprocess::segmentGroundWithHeights(street().points, g));
@@ -77,6 +100,8 @@ BENCHMARK(BM_Detector_Ransac_Turning)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Detector_Ransac_Turning_NoBend)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Detector_Ransac_ParkingRules)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Detector_Thesis)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Detector_WholeDrive)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Detector_WholeDrive_FirstPass)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_GroundLabelsOnly)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_LabelPoints)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_LabelPoints_ParkingRules)->Unit(benchmark::kMillisecond);
