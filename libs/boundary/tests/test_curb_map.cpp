@@ -21,6 +21,16 @@ Eigen::Isometry3d at(double x, double y = 0, double yaw = 0) {
   return T;
 }
 
+/// The sweep at x = \p X [m] of a straight street with cars parked on the right (0.2 m off the curb
+/// at y = -3.5 m, 6.5 m slots, 5 of 12 taken as on the shipped urban loop).
+roadslam::Scan parkedStreetSweep(double X) {
+  const bool taken[] = {true, false, false, true, true, false, false, true, false, true, false, false};
+  test::Road r;
+  for (int k = 0; k < 12; ++k)
+    if (taken[k]) r.boxes.push_back({k * 6.5 + 1.0 - X, k * 6.5 + 5.5 - X, -3.3, -1.5, -1.9, -0.4});
+  return test::castSweep(r, static_cast<unsigned>(X + 1));
+}
+
 }  // namespace
 
 TEST(CurbMap, CellsAreMeansSeenFromTheVehicle) {
@@ -57,13 +67,7 @@ TEST(CurbMap, PrunesBehindFarAndOld) {
 // Parked cars on the right (0.2 m off the curb, 6.5 m slots, 5 of 12 taken as on the shipped urban loop) along a straight road;
 // the vehicle drives 1 m per sweep. One sweep sees the curb only through the gaps.
 TEST(CurbMap, DrivingPastParkedCarsFindsTheHiddenCurb) {
-  const bool taken[] = {true, false, false, true, true, false, false, true, false, true, false, false};
-  auto sweepAt = [&](double X) {
-    test::Road r;
-    for (int k = 0; k < 12; ++k)
-      if (taken[k]) r.boxes.push_back({k * 6.5 + 1.0 - X, k * 6.5 + 5.5 - X, -3.3, -1.5, -1.9, -0.4});
-    return test::castSweep(r, static_cast<unsigned>(X + 1));
-  };
+  const auto sweepAt = parkedStreetSweep;
   Params one, many;
   one.ground.sensor_height_m = many.ground.sensor_height_m = 1.9;
   one.memory_frames = 0;  // only this sweep's evidence (cells not seen now are dropped)
@@ -108,13 +112,7 @@ TEST(CurbMap, DrivingPastParkedCarsFindsTheHiddenCurb) {
 // Whole-drive mode on the same street: the first pass drives past all the cars, so each sweep's fit
 // has the curb seen through every gap, also those ahead that the cars hide from the vehicle.
 TEST(CurbMap, WholeDriveSeesTheGapsAheadThatTheCarsHide) {
-  const bool taken[] = {true, false, false, true, true, false, false, true, false, true, false, false};
-  auto sweepAt = [&](double X) {
-    test::Road r;
-    for (int k = 0; k < 12; ++k)
-      if (taken[k]) r.boxes.push_back({k * 6.5 + 1.0 - X, k * 6.5 + 5.5 - X, -3.3, -1.5, -1.9, -0.4});
-    return test::castSweep(r, static_cast<unsigned>(X + 1));
-  };
+  const auto sweepAt = parkedStreetSweep;
   Params p;
   p.ground.sensor_height_m = 1.9;
   p.max_hold_frames = 0;          // what is found comes from evidence ...
