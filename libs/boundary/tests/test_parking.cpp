@@ -23,29 +23,12 @@ namespace {
 
 constexpr double kH = 1.9;  // lidar above the road [m]
 
-/// An aisle of ini/sim/parking-lot.ini seen from its right lane: curbs 9.5 m left and 6.5 m right,
-/// 5 m perpendicular bays on both sides, cars as in libs/sim (body 0.25-1.0 m above the road, 4.4 m
-/// long, 1.8 m wide, 0.3 m off the curb; cabin 1.0-1.5 m, 1 m back from the ends) in 2.7 m slots,
-/// every fifth slot empty (80 % taken). Returns the boxes of the car bodies.
-std::vector<Box> parkingAisle(Road& road) {
-  road.left_y = 9.5;
-  road.right_y = -6.5;
+/// An aisle of ini/sim/parking-lot.ini (synthetic_road.h: 5 m perpendicular bays, 80 % taken, cars
+/// 0.3 m off the curbs 9.5 m left and 6.5 m right) with its 0.12 m curbs. Returns the car bodies.
+std::vector<Box> parkingLotAisle(Road& road) {
   road.curb_h = 0.12;
   road.sensor_height = kH;
-  std::vector<Box> bodies;
-  int slot = 0;
-  for (double x = -30; x < 45; x += 2.7, ++slot) {
-    if (slot % 5 == 2) continue;
-    for (int side : {+1, -1}) {
-      const double curb = side > 0 ? 9.5 : -6.5, front = curb - side * 0.3, end = front - side * 4.4;
-      const double x0 = x + (side > 0 ? 0.4 : 0.0);
-      bodies.push_back({x0, x0 + 1.8, std::min(front, end), std::max(front, end), -kH + 0.25, -kH + 1.0});
-      road.boxes.push_back(bodies.back());
-      const double c0 = end + side * 1.0, c1 = front - side * 1.0;
-      road.boxes.push_back({x0 + 0.1, x0 + 1.7, std::min(c0, c1), std::max(c0, c1), -kH + 1.0, -kH + 1.5});
-    }
-  }
-  return bodies;
+  return roadslam::boundary::test::parkingAisle(road);
 }
 
 Params shipped(const std::string& name) {
@@ -84,7 +67,7 @@ Counts curbPoints(const Scan& s, const Params& p, const std::vector<Box>& bodies
 
 TEST(ParkingBays, CarEndsAreNoCurbOverADrive) {
   Road road;
-  const auto bodies = parkingAisle(road);
+  const auto bodies = parkingLotAisle(road);
   // bounds-parking.ini: ground rules and curb guards; bounds.ini: the ground segmentation's
   // parked-car rules only; before: neither (the defect this test guards).
   const Params p = shipped("bounds-parking.ini"), ground_only = shipped("bounds.ini");

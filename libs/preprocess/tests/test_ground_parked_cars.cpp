@@ -1,6 +1,6 @@
 // Parked cars' ends are no road (issue #8). Oracle: a VLP-16-like sweep cast analytically over a
-// flat parking aisle (road at -1.9 m, 0.15 m curbs, car bodies 0.25-1.0 m above the road as in
-// libs/sim addParkedCar), so every point's surface and true height above the road are known.
+// flat parking aisle (synthetic_road.h: road at -1.9 m, 0.15 m curbs, car bodies 0.25-1.0 m above
+// the road as in libs/sim addParkedCar), so every point's surface and true height are known.
 #include "roadslam/preprocess/ground_segmentation.h"
 
 #include <gtest/gtest.h>
@@ -8,107 +8,23 @@
 
 #include <cmath>
 #include <iostream>
-#include <optional>
-#include <random>
 #include <vector>
+
+#include "synthetic_road.h"
 
 using namespace roadslam;
 using namespace roadslam::preprocess;
+using namespace roadslam::preprocess::fixtures;
 
 namespace {
 
-constexpr double kH = 1.9;      // lidar above the road [m]
-constexpr double kCurb = 0.15;  // curb height [m]
+constexpr double kH = 1.9;  // lidar above the road [m] (the fixture's default)
 
-struct Box {
-  double x0, x1, y0, y1, z0, z1;  // lidar frame [m]
-};
-
-enum class Surface { Road, Sidewalk, CurbFace, Car };
-
-struct Aisle {
-  double left_y = 9.5, right_y = -6.5;  // curb lines [m]
-  std::vector<Box> boxes;               // car bodies and cabins
-};
-
-struct Truth {
-  Surface surface;
-  double height_m;  // above the road surface under the point (sidewalk: above the sidewalk) [m]
-};
-
-std::optional<double> hitBox(const Box& b, const double d[3]) {
-  double t0 = 0, t1 = 1e9;
-  const double lo[3] = {b.x0, b.y0, b.z0}, hi[3] = {b.x1, b.y1, b.z1};
-  for (int k = 0; k < 3; ++k) {
-    if (std::abs(d[k]) < 1e-12) {
-      if (0 < lo[k] || 0 > hi[k]) return std::nullopt;
-      continue;
-    }
-    double a = lo[k] / d[k], c = hi[k] / d[k];
-    if (a > c) std::swap(a, c);
-    t0 = std::max(t0, a), t1 = std::min(t1, c);
-  }
-  if (t0 > t1) return std::nullopt;
-  return t0;
-}
-
-/// Range to the road, sidewalk or curb face along the unit direction d, with the surface hit.
-std::optional<std::pair<double, Surface>> hitGround(const Aisle& a, const double d[3]) {
-  if (d[2] >= -1e-6) return std::nullopt;
-  auto onWalk = [&](double y) { return y > a.left_y || y < a.right_y; };
-  const double t = kH / -d[2];
-  if (!onWalk(t * d[1])) return std::make_pair(t, Surface::Road);
-  const double tw = (kH - kCurb) / -d[2];
-  if (onWalk(tw * d[1])) return std::make_pair(tw, Surface::Sidewalk);
-  return std::make_pair((d[1] > 0 ? a.left_y : a.right_y) / d[1], Surface::CurbFace);
-}
-
-/// 1800 azimuths x 16 rings (-15..15 deg every 2 deg), range noise 0.01 m with a fixed seed.
-std::vector<ScanPoint> castSweep(const Aisle& a, unsigned seed, std::vector<Truth>& truth) {
-  std::mt19937 rng(seed);
-  std::normal_distribution<double> noise(0.0, 0.01);
-  std::vector<ScanPoint> pts;
-  for (int k = 0; k < 1800; ++k) {
-    const double az = (k * 0.2 - 180.0) * M_PI / 180.0;
-    for (int ring = 0; ring < 16; ++ring) {
-      const double e = (-15.0 + 2.0 * ring) * M_PI / 180.0;
-      const double d[3] = {std::cos(e) * std::cos(az), std::cos(e) * std::sin(az), std::sin(e)};
-      auto hit = hitGround(a, d);
-      for (const auto& b : a.boxes)
-        if (const auto tb = hitBox(b, d); tb && (!hit || *tb < hit->first)) hit = std::make_pair(*tb, Surface::Car);
-      if (!hit || hit->first > 100) continue;
-      const double r = hit->first + noise(rng);
-      ScanPoint p;
-      p.x = static_cast<float>(r * d[0]), p.y = static_cast<float>(r * d[1]), p.z = static_cast<float>(r * d[2]);
-      p.ring = static_cast<uint16_t>(ring);
-      pts.push_back(p);
-      const double z = hit->first * d[2] + kH;
-      truth.push_back({hit->second, hit->second == Surface::Sidewalk ? z - kCurb : z});
-    }
-  }
-  return pts;
-}
-
-void addCar(Aisle& a, double x0, double end_y, int side) {
-  // libs/sim addParkedCar: body 0.25-1.0 m, 4.4 m long, 1.8 m wide; cabin 1.0-1.5 m, 1 m in from the ends.
-  const double front = end_y + side * 4.4;
-  a.boxes.push_back({x0, x0 + 1.8, std::min(end_y, front), std::max(end_y, front), -kH + 0.25, -kH + 1.0});
-  const double c0 = end_y + side * 1.0, c1 = front - side * 1.0;
-  a.boxes.push_back({x0 + 0.1, x0 + 1.7, std::min(c0, c1), std::max(c0, c1), -kH + 1.0, -kH + 1.5});
-}
-
-/// An aisle of ini/sim/parking-lot.ini: 5 m perpendicular bays, cars 0.3 m off the curbs in 2.7 m
-/// slots, every fifth slot empty; their ends face the aisle 4.8 m left and 1.8 m right of the lidar,
-/// shifted by \p dx along the aisle.
-Aisle parkingAisle(double dx) {
-  Aisle a;
-  int slot = 0;
-  for (double x = -30; x < 45; x += 2.7, ++slot) {
-    if (slot % 5 == 2) continue;
-    addCar(a, x + 0.4 - dx, a.left_y - 0.3 - 4.4, +1);
-    addCar(a, x - dx, a.right_y + 0.3 + 4.4, -1);
-  }
-  return a;
+/// The fixture's parking aisle shifted by \p dx, its points in \p pts and their truth.
+void aisleSweep(double dx, unsigned seed, std::vector<ScanPoint>& pts, std::vector<PointTruth>& truth) {
+  Road a;
+  parkingAisle(a, dx);
+  pts = castSweep(a, seed, &truth).points;
 }
 
 /// Points within range by surface; "measured": with a ground line in reach (height not NaN).
@@ -120,7 +36,7 @@ struct Tally {
 /// Counts within \p max_r of the lidar: car points labelled ground and those whose height above the
 /// ground line is within 0.15 m of their true height; road labelled ground; sidewalk heights within
 /// 0.06 m of the sidewalk's (the street fixture's sidewalks are ground: curbs are read off the step).
-void tally(const std::vector<ScanPoint>& pts, const std::vector<Truth>& truth, double max_r, Tally& t,
+void tally(const std::vector<ScanPoint>& pts, const std::vector<PointTruth>& truth, double max_r, Tally& t,
            bool rules = true, bool level_behind_structure = false) {
   GroundSegParams p;
   p.sensor_height_m = kH;
@@ -131,7 +47,7 @@ void tally(const std::vector<ScanPoint>& pts, const std::vector<Truth>& truth, d
     if (std::hypot(pts[i].x, pts[i].y) > max_r) continue;
     const float h = gl.height_above_ground_m[i];
     switch (truth[i].surface) {
-      case Surface::Car:
+      case Surface::Box:
         ++t.car, t.car_ground += gl.ground[i], t.car_measured += !std::isnan(h);
         t.car_height_ok += !std::isnan(h) && std::abs(h - truth[i].height_m) <= 0.15;
         break;
@@ -161,8 +77,9 @@ void report(const char* what, const Tally& t) {
 TEST(GroundSegmentationParkedCars, CarEndsInTheAisleAreNoGround) {
   Tally off, t, lv;
   for (int k = 0; k < 6; ++k) {
-    std::vector<Truth> truth;
-    const auto pts = castSweep(parkingAisle(0.9 * k), 11 + k, truth);
+    std::vector<ScanPoint> pts;
+    std::vector<PointTruth> truth;
+    aisleSweep(0.9 * k, 11 + k, pts, truth);
     tally(pts, truth, 30.0, off, false);
     tally(pts, truth, 30.0, t);
     tally(pts, truth, 30.0, lv, true, true);
@@ -194,12 +111,11 @@ TEST(GroundSegmentationParkedCars, CarEndsInTheAisleAreNoGround) {
 // A car standing in the lane with its end 4 m ahead (inside the blind circle: rings 0-1 hit its end
 // face, ring 2 its bonnet), in a street with curbs 4 m left and 3.5 m right.
 TEST(GroundSegmentationParkedCars, CarEndAheadInsideTheBlindCircleIsNoGround) {
-  Aisle a;
-  a.left_y = 4.0, a.right_y = -3.5;
+  Road a;  // curbs 4 m left and 3.5 m right
   a.boxes.push_back({4.0, 8.4, -0.9, 0.9, -kH + 0.25, -kH + 1.0});
   a.boxes.push_back({5.0, 7.4, -0.8, 0.8, -kH + 1.0, -kH + 1.5});
-  std::vector<Truth> truth;
-  const auto pts = castSweep(a, 5, truth);
+  std::vector<PointTruth> truth;
+  const auto pts = castSweep(a, 5, &truth).points;
   Tally off, t;
   tally(pts, truth, 30.0, off, false);
   tally(pts, truth, 30.0, t);
