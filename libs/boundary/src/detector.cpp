@@ -102,6 +102,17 @@ std::vector<Eigen::Vector3d> tallPointsInMap(const Scan& scan, const Labelling& 
   return out;
 }
 
+/// The curb points of \p scan, map frame.
+std::vector<Eigen::Vector3d> curbPointsInMap(const Scan& scan, const Labelling& lab, const Eigen::Isometry3d& T_map_lidar) {
+  std::vector<Eigen::Vector3d> out;
+  for (size_t i = 0; i < scan.points.size(); ++i) {
+    if (lab.cls[i] != PointClass::Curb) continue;
+    const auto& q = scan.points[i];
+    out.push_back(T_map_lidar * Eigen::Vector3d(q.x, q.y, q.z));
+  }
+  return out;
+}
+
 double yawOf(const Eigen::Isometry3d& T) { return std::atan2(T.linear()(1, 0), T.linear()(0, 0)); }
 
 /// The points of \p pts within \p gate (lateral) of the polyline \p line (vertices ascending in x).
@@ -251,13 +262,7 @@ void BoundaryDetector::accumulate(const Scan& scan, const Eigen::Isometry3d& T_m
   if (!drive_stamps_s_.empty() && stamp_s < drive_stamps_s_.back())
     throw std::invalid_argument("BoundaryDetector::accumulate: sweeps out of time order");
   const Labelling lab = labelPoints(scan, p_);
-  std::vector<Eigen::Vector3d> curbs_map;
-  for (size_t i = 0; i < scan.points.size(); ++i) {
-    if (lab.cls[i] != PointClass::Curb) continue;
-    const auto& q = scan.points[i];
-    curbs_map.push_back(T_map_lidar * Eigen::Vector3d(q.x, q.y, q.z));
-  }
-  curb_map_.insert(curbs_map, drive_stamps_s_.size());
+  curb_map_.insert(curbPointsInMap(scan, lab, T_map_lidar), drive_stamps_s_.size());
   if (p_.curb_veto_cells >= 0) {
     const auto tall = tallPointsInMap(scan, lab, T_map_lidar, p_);
     drive_tall_.insert(drive_tall_.end(), tall.begin(), tall.end());
@@ -299,15 +304,10 @@ BoundaryFrame BoundaryDetector::process(const Scan& scan, const Eigen::Isometry3
   f.ground_points = last_.ground;
   f.curb_count = last_.curb;
   f.obstacle_points = last_.obstacle;
-  std::vector<Eigen::Vector3d> curbs_map;
-  for (size_t i = 0; i < all.points.size(); ++i) {
-    if (last_.cls[i] != PointClass::Curb) continue;
-    const auto& q = all.points[i];
-    f.curb_points.push_back({q.x, q.y});
-    curbs_map.push_back(T_map_lidar * Eigen::Vector3d(q.x, q.y, q.z));
-  }
+  for (size_t i = 0; i < all.points.size(); ++i)
+    if (last_.cls[i] == PointClass::Curb) f.curb_points.push_back({all.points[i].x, all.points[i].y});
   if (!whole_drive_) {
-    curb_map_.insert(curbs_map, f.index);
+    curb_map_.insert(curbPointsInMap(all, last_, T_map_lidar), f.index);
     if (p_.curb_veto_cells >= 0) curb_map_.erase(tallPointsInMap(scan, last_, T_map_lidar, p_), p_.curb_veto_cells);
     curb_map_.prune(T_map_lidar, -p_.fit_min_x_m, p_.curb_map_radius_m, f.index, static_cast<size_t>(p_.memory_frames));
   }

@@ -50,9 +50,9 @@ struct ArcFrame {
 };
 
 /// Coordinates along the drive's own path (whole-drive mode, where the whole trajectory is known):
-/// s = arc length of the nearest point of the path [m] (0 at the vehicle), d = offset to the left of
-/// it [m]. The path is a polyline of the vehicle's positions, vehicle frame; past its first and last
-/// vertex it goes on straight. A curb along the road the vehicle drives is d = const through any
+/// s = arc length along the path [m] (0 at the vehicle), d = offset to its left [m]. The path is a
+/// polyline of the vehicle's positions, vehicle frame; past its first and last vertex it goes on
+/// straight. A curb along the road the vehicle drives is d = const through any
 /// corner, where one arc (ArcFrame, BendFrame) only holds for one piece of it.
 ///
 /// Offsets are taken along normals interpolated between the vertices' (each vertex's is the bisector
@@ -63,7 +63,8 @@ struct PathFrame {
   std::vector<Vec2> v;    ///< vertices, vehicle frame [m]
   std::vector<double> s;  ///< arc length at each vertex [m]
   std::vector<Vec2> n;    ///< unit normal (left) at each vertex [-]
-  /// (x, y) -> (s, d) at the nearest point of the path; false for a path of fewer than 2 vertices.
+  /// (x, y) -> (s, d): the point of the path whose (interpolated) normal passes through (x, y), the
+  /// nearest of them; false when there is none (a path of fewer than 2 vertices).
   bool toArc(const Vec2& q, Vec2& out) const;
   Vec2 toXY(const Vec2& a) const;
 };
