@@ -218,16 +218,14 @@ void BoundaryDetector::fitSides(const Eigen::Isometry3d& T_map_lidar, std::mt199
   const double kappa = pathCurvature(T_map_lidar);
   detail::BendFrame arc;
   detail::PathFrame drive_path;
-  std::vector<Vec2> cells;
+  const std::vector<Vec2> cells = fitCells(T_map_lidar);
   if (whole_drive_) {
-    cells = curb_map_.inVehicle(T_map_lidar, p_.whole_drive_min_sightings, std::hypot(p_.fit_max_x_m, p_.max_lateral_m));
     const auto it = std::lower_bound(drive_stamps_s_.begin(), drive_stamps_s_.end(), f.stamp_s);
     size_t k = std::min<size_t>(it - drive_stamps_s_.begin(), drive_stamps_s_.size() - 1);
     if (k > 0 && f.stamp_s - drive_stamps_s_[k - 1] < drive_stamps_s_[k] - f.stamp_s) --k;
     drive_path = detail::pathAround(drive_pos_, k, T_map_lidar, -p_.fit_min_x_m, p_.fit_max_x_m, p_.path_step_m);
     arc.path = &drive_path;
   } else {
-    cells = curb_map_.inVehicle(T_map_lidar, p_.curb_min_sightings);
     arc = detail::chooseFrame(cells, kappa, p_);
   }
   f.path_curvature = kappa;
@@ -257,6 +255,12 @@ void BoundaryDetector::fitSides(const Eigen::Isometry3d& T_map_lidar, std::mt199
     for (auto& v : sb->polyline_vehicle) v = arc.toXY(v);
 }
 
+std::vector<Vec2> BoundaryDetector::fitCells(const Eigen::Isometry3d& T_map_lidar) const {
+  if (whole_drive_)
+    return curb_map_.inVehicle(T_map_lidar, p_.whole_drive_min_sightings, std::hypot(p_.fit_max_x_m, p_.max_lateral_m));
+  return curb_map_.inVehicle(T_map_lidar, p_.curb_min_sightings);
+}
+
 void BoundaryDetector::accumulate(const Scan& scan, const Eigen::Isometry3d& T_map_lidar, double stamp_s) {
   if (whole_drive_) throw std::logic_error("BoundaryDetector::accumulate after finishAccumulation");
   if (!drive_stamps_s_.empty() && stamp_s < drive_stamps_s_.back())
@@ -265,7 +269,9 @@ void BoundaryDetector::accumulate(const Scan& scan, const Eigen::Isometry3d& T_m
   curb_map_.insert(curbPointsInMap(scan, lab, T_map_lidar), drive_stamps_s_.size());
   if (p_.curb_veto_cells >= 0) {
     const auto tall = tallPointsInMap(scan, lab, T_map_lidar, p_);
-    drive_tall_.insert(drive_tall_.end(), tall.begin(), tall.end());
+    // One per cell over the drive: a parked car stands in the same cells for hundreds of sweeps.
+    for (const auto& m : tall)
+      if (drive_tall_cells_.insert(detail::cellKey(m.x(), m.y(), p_.curb_map_cell_m)).second) drive_tall_.push_back(m);
   }
   drive_stamps_s_.push_back(stamp_s);
   drive_pos_.push_back(T_map_lidar.translation());
@@ -275,6 +281,7 @@ void BoundaryDetector::finishAccumulation() {
   // After all sweeps: a cell any sweep saw standing is dropped, whichever came first.
   curb_map_.erase(drive_tall_, p_.curb_veto_cells);
   drive_tall_ = {};
+  drive_tall_cells_ = {};
   whole_drive_ = !drive_stamps_s_.empty();
 }
 

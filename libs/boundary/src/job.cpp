@@ -181,7 +181,7 @@ nlohmann::json runBoundsJob(const BoundsRequest& req) {
       char name[32];
       std::snprintf(name, sizeof name, "frames/%06zu.png", f.index);
       last_png = req.out_dir + "/" + name;
-      drawTopView(last_png, *scan, det.lastLabelling(), f, 8.0, det.curbMap().inVehicle(T, det.wholeDrive() ? params.whole_drive_min_sightings : params.curb_min_sightings, 80.0));
+      drawTopView(last_png, *scan, det.lastLabelling(), f, 8.0, det.fitCells(T));
       std::snprintf(name, sizeof name, "frames/%06zu_cost.png", f.index);
       writeCostGridPng(req.out_dir + "/" + name, f.grid);
     }

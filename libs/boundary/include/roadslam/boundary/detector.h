@@ -16,6 +16,7 @@
 #include <array>
 #include <deque>
 #include <random>
+#include <unordered_set>
 #include <vector>
 
 #include "roadslam/boundary/curb_map.h"
@@ -62,6 +63,9 @@ class BoundaryDetector {
   /// passing, from behind. Needs poses consistent over the drive (a trajectory, or a pose graph's).
   void finishAccumulation();
   bool wholeDrive() const { return whole_drive_; }
+  /// The curb-map cells the fit of a sweep at \p T_map_lidar uses, vehicle frame [m]: those seen by
+  /// curb_min_sightings sweeps (whole-drive mode: whole_drive_min_sightings, within the fit's reach).
+  std::vector<Vec2> fitCells(const Eigen::Isometry3d& T_map_lidar) const;
   /// The labelling of the last processed sweep (its points first, then any local-map points).
   const Labelling& lastLabelling() const { return last_; }
 
@@ -72,7 +76,8 @@ class BoundaryDetector {
   bool whole_drive_ = false;               ///< see finishAccumulation()
   std::vector<double> drive_stamps_s_;     ///< whole-drive mode: the accumulated sweeps' stamps [s] ...
   std::vector<Eigen::Vector3d> drive_pos_; ///< ... and positions, map frame [m]
-  std::vector<Eigen::Vector3d> drive_tall_;///< ... and tall points (curb_veto_cells), map frame [m]
+  std::vector<Eigen::Vector3d> drive_tall_;///< ... and tall points (curb_veto_cells), map frame [m], one per cell
+  std::unordered_set<int64_t> drive_tall_cells_;  ///< the cells of drive_tall_
   Labelling last_;
   /// Per side (0 left, 1 right): the last accepted boundary, map frame, and sweeps held since.
   struct Track {

@@ -17,7 +17,7 @@ namespace roadslam::boundary {
 nlohmann::json toJson(const BoundaryFrame& f, bool with_grid = false);
 
 /// Top view (vehicle frame, x up): ground grey, curbs yellow, cells of the accumulated curb map
-/// \p curb_map (vehicle frame [m], e.g. BoundaryDetector::curbMap().inVehicle) brown, obstacles red
+/// \p curb_map (vehicle frame [m], e.g. BoundaryDetector::fitCells) brown, obstacles red
 /// with their rectangles, free space green outline, left boundary blue, right boundary magenta, 10 m
 /// grid. Atomic write; throws std::runtime_error naming the path when it cannot be written.
 void drawTopView(const std::string& png_path, const Scan& scan, const Labelling& lab, const BoundaryFrame& f,
