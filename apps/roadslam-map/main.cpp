@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   try {
     const auto out = roadslam::pipeline::runMapJob(req);
     if (!quiet) std::cout << out.summary.dump(2) << "\n";
+    for (const auto& w : out.summary["warnings"]) std::cerr << "roadslam-map: warning: " << w.get<std::string>() << "\n";
     return out.interrupted ? 130 : 0;
   } catch (const std::exception& e) {
     std::cerr << "roadslam-map: " << e.what() << "\n";

@@ -2,8 +2,10 @@
 
 #include "line_parsing.h"
 #include "roadslam/common/atomic_file.h"
+#include "roadslam/common/config.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -16,13 +18,25 @@ namespace fs = std::filesystem;
 namespace roadslam::datasets {
 namespace {
 constexpr size_t kBytesPerPoint = 16;  // 4 x float32: x, y, z, reflectance (KITTI devkit readme)
-constexpr double kKittiPeriodS = 0.1;  // HDL-64E at 10 Hz
 
 bool hostIsLittleEndian() {
   const uint16_t one = 1;
   uint8_t first = 0;
   std::memcpy(&first, &one, 1);
   return first == 1;
+}
+/// Adds \p rad to each point's elevation, keeping its range and azimuth.
+void raiseElevation(Scan& scan, double rad) {
+  for (auto& p : scan.points) {
+    const double rxy = std::hypot(p.x, p.y);
+    if (rxy <= 0) continue;
+    const double range = std::hypot(rxy, static_cast<double>(p.z));
+    const double el = std::atan2(static_cast<double>(p.z), rxy) + rad;
+    const double k = range * std::cos(el) / rxy;
+    p.x = static_cast<float>(p.x * k);
+    p.y = static_cast<float>(p.y * k);
+    p.z = static_cast<float>(range * std::sin(el));
+  }
 }
 }  // namespace
 
@@ -66,7 +80,35 @@ void writeKittiBin(const std::string& path, const Scan& scan) {
   writeFileAtomically(path, bytes);
 }
 
-KittiScanFolder::KittiScanFolder(const std::string& folder, const std::string& times_path) {
+void KittiParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, const std::string& s) {
+  times_from_azimuth = readBool(c, s, "times_from_azimuth", times_from_azimuth);
+  timing.period_s = readDouble(c, s, "sweep_period_s", timing.period_s);
+  timing.spin = spinDirectionFromString(readString(c, s, "spin", toString(timing.spin)), "[" + s + "] spin");
+  timing.cut_azimuth_deg = readDouble(c, s, "cut_azimuth_deg", timing.cut_azimuth_deg);
+  timing.stamp_reference = stampReferenceFromString(
+      readString(c, s, "stamp_reference", toString(timing.stamp_reference)), "[" + s + "] stamp_reference");
+  elevation_correction_rad = readDouble(c, s, "elevation_correction_deg", elevation_correction_rad * 180.0 / M_PI) * M_PI / 180.0;
+  if (!(timing.period_s > 0)) throw std::runtime_error("[" + s + "] sweep_period_s must be positive");
+}
+
+void KittiParams::saveToConfigFile(mrpt::config::CConfigFileBase& c, const std::string& s) const {
+  c.write(s, "times_from_azimuth", times_from_azimuth);
+  c.write(s, "sweep_period_s", timing.period_s);
+  c.write(s, "spin", toString(timing.spin));
+  c.write(s, "cut_azimuth_deg", timing.cut_azimuth_deg);
+  c.write(s, "stamp_reference", toString(timing.stamp_reference));
+  c.write(s, "elevation_correction_deg", elevation_correction_rad * 180.0 / M_PI);
+}
+
+Scan KittiScanFolder::read(size_t i) const {
+  Scan scan = readKittiBin(path(i), stamp(i));
+  if (params_.times_from_azimuth) timesFromAzimuth(scan, params_.timing);
+  if (params_.elevation_correction_rad != 0.0) raiseElevation(scan, params_.elevation_correction_rad);
+  return scan;
+}
+
+KittiScanFolder::KittiScanFolder(const std::string& folder, const std::string& times_path, KittiParams params)
+    : params_(std::move(params)) {
   if (!fs::is_directory(folder)) throw std::runtime_error("KITTI folder '" + folder + "' not found");
   for (const auto& e : fs::directory_iterator(folder)) {
     if (e.is_regular_file() && e.path().extension() == ".bin") files_.push_back(e.path().string());
@@ -98,7 +140,7 @@ KittiScanFolder::KittiScanFolder(const std::string& folder, const std::string& t
 
 double KittiScanFolder::stamp(size_t i) const {
   if (i >= files_.size()) throw std::out_of_range("KittiScanFolder::stamp: index out of range");
-  return times_s_.empty() ? kKittiPeriodS * static_cast<double>(i) : times_s_[i];
+  return times_s_.empty() ? params_.timing.period_s * static_cast<double>(i) : times_s_[i];
 }
 
 std::string unpackTarZstOnce(const std::string& tar_zst, const std::string& dest_dir) {

@@ -94,7 +94,9 @@ TEST(KittiScans, FolderOrderAndTimesBesideOrOneLevelUp) {
   ASSERT_EQ(up.size(), 3u);
   EXPECT_DOUBLE_EQ(up.stamp(1), 0.11);
   for (size_t i = 0; i < 3; ++i) EXPECT_EQ(up.read(i).points.size(), i + 1);
-  EXPECT_DOUBLE_EQ(up.read(2).stamp_s, 0.205);
+  // the stamps are mid-sweep (KittiParams): a sweep's first firing is half a period earlier
+  EXPECT_DOUBLE_EQ(up.read(2).stamp_s, 0.205 - 0.05);
+  EXPECT_TRUE(up.read(2).times_from_azimuth);
   std::ofstream(seq / "velodyne" / "times.txt") << "5\n6\n";
   EXPECT_THROW(KittiScanFolder((seq / "velodyne").string()), std::runtime_error);  // count mismatch
   EXPECT_THROW(KittiScanFolder((seq / "nope").string()), std::runtime_error);
@@ -106,7 +108,10 @@ TEST(KittiScans, Odometry00First16) {
   if (!fs::exists(kOdo + "velodyne/000000.bin")) GTEST_SKIP() << "missing " << kOdo << "velodyne/000000.bin";
   const size_t expected[16] = {124668, 124605, 124478, 124167, 123969, 123924, 123373, 122765,
                                122123, 121357, 121018, 120945, 120503, 120295, 120406, 121023};
-  KittiScanFolder folder(kOdo + "velodyne", kOdo + "times_first16.txt");
+  KittiParams as_stored;  // the file's values: no elevation correction, no time estimate
+  as_stored.times_from_azimuth = false;
+  as_stored.elevation_correction_rad = 0;
+  KittiScanFolder folder(kOdo + "velodyne", kOdo + "times_first16.txt", as_stored);
   ASSERT_EQ(folder.size(), 16u);
   for (size_t i = 0; i < 16; ++i) EXPECT_EQ(folder.read(i).points.size(), expected[i]) << i;
   const Scan s0 = folder.read(0);
@@ -119,4 +124,27 @@ TEST(KittiScans, Odometry00First16) {
   const Scan s15 = folder.read(15);
   EXPECT_EQ(s15.points[0].y, 8.241253852844238f);
   EXPECT_NEAR(s15.stamp_s, 1.555212, 1e-9);
+}
+
+// The defaults: times from the azimuth (clockwise, cut behind, stamp = when facing forward) and
+// the elevation raised by 0.22 deg with range and azimuth kept, against the file's own values.
+TEST(KittiScans, TimedAndElevationCorrectedByDefault) {
+  if (!fs::exists(kOdo + "velodyne/000000.bin")) GTEST_SKIP() << "missing " << kOdo << "velodyne/000000.bin";
+  const KittiScanFolder folder(kOdo + "velodyne", kOdo + "times_first16.txt");
+  const Scan raw = readKittiBin(folder.path(3), folder.stamp(3));
+  const Scan s = folder.read(3);
+  ASSERT_EQ(s.points.size(), raw.points.size());
+  EXPECT_NEAR(s.stamp_s, folder.stamp(3) - 0.05, 1e-12);
+  ASSERT_TRUE(s.has_point_times);
+  for (size_t i = 0; i < s.points.size(); i += 997) {
+    const auto& p = s.points[i];
+    const auto& q = raw.points[i];
+    const double az = std::atan2(q.y, q.x), el = std::atan2(q.z, std::hypot(q.x, q.y));
+    EXPECT_NEAR(std::atan2(p.y, p.x), az, 1e-5);
+    EXPECT_NEAR(std::atan2(p.z, std::hypot(p.x, p.y)), el + 0.22 * M_PI / 180, 1e-5);
+    EXPECT_NEAR(std::hypot(p.x, p.y, p.z), std::hypot(q.x, q.y, q.z), 1e-4);
+    // behind the car (az = +-180 deg) the sweep starts and ends, facing forward is its middle
+    const double expected_t = 0.05 * (1.0 - az / M_PI);
+    EXPECT_NEAR(p.t, expected_t, 1e-6) << "azimuth " << az * 180 / M_PI;
+  }
 }

@@ -26,12 +26,4 @@ std::vector<Eigen::Vector3d> deskew(const Scan& scan, const Eigen::Isometry3d& d
   return out;
 }
 
-void timesFromAzimuth(Scan& scan, double sweep_duration_s) {
-  for (auto& p : scan.points) {
-    const double yaw = -std::atan2(static_cast<double>(p.y), static_cast<double>(p.x));
-    p.t = static_cast<float>(0.5 * (yaw / M_PI + 1.0) * sweep_duration_s);
-  }
-  scan.has_point_times = true;
-}
-
 }  // namespace roadslam::odometry

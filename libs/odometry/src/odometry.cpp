@@ -6,6 +6,7 @@
 #include <unordered_set>
 
 #include "roadslam/odometry/deskew.h"
+#include "roadslam/common/sweep_timing.h"
 #include "roadslam/common/voxel_hash.h"
 
 namespace roadslam::odometry {
@@ -178,6 +179,40 @@ registration::RegistrationResult Odometry::match(const std::vector<Eigen::Vector
   return registration::align(*target_, source, T_pred, rp);
 }
 
+Eigen::Isometry3d Odometry::searchFirstMotion(const Scan& scan, const Eigen::Isometry3d& guess,
+                                              FrameResult& res) const {
+  // Scan to scan against the first sweep, both as recorded: at 15 m/s the sweeps are 1.5 m apart,
+  // beyond the voxel map's reach (its neighbour voxels) and its 0.2-0.7 m kernel. A coarse NDT level
+  // of 8 m cells sees that far (Magnusson 2009, Sec. 6.2.4: multi-resolution widens the basin).
+  registration::Params rp;
+  rp.method = registration::Method::Ndt;
+  rp.ndt_resolution_m = 2.0;
+  rp.ndt_levels = 3;
+  rp.max_iterations = 40;
+  rp.max_correction_m = 15.0;
+  const auto target_pts = registration::voxelDownsample(last_frame_points_, 0.5);
+  const auto source = registration::voxelDownsample(deskew(scan, Eigen::Isometry3d::Identity(), 1.0), 0.5);
+  const registration::Target target(target_pts, rp);
+  const auto r = registration::align(target, source, guess, rp);
+  if (!r.converged) {
+    res.reason = "first motion search: " + registration::toString(r.status);
+    return guess;
+  }
+  return r.T_target_source;
+}
+
+void Odometry::redeskewFirstFrame(const Eigen::Isometry3d& delta_sweep) {
+  // The first sweep went into the map as recorded (its motion was unknown); with the motion known it
+  // is deskewed like every other sweep and the map built again from it.
+  const double ref = first_scan_->has_point_times ? params_.deskew_reference : 0.0;
+  last_frame_points_ = deskew(*first_scan_, delta_sweep, params_.sweep_duration_s, ref);
+  gmap_ = GaussianVoxelMap(params_.map_voxel_m, params_.map_points_per_voxel, params_.map_radius_m, 7,
+                           params_.map_ring_lines_on_walls);
+  map_.clear();
+  updateMap(T_world_last_);
+  first_scan_.reset();
+}
+
 void Odometry::updateMap(const Eigen::Isometry3d& T_world_lidar) {
   // A bounded number of points of each frame per map voxel (KISS-ICP inserts the frame voxelised at
   // half the map voxel): a voxel then fills from several frames and rings, so the scan line of one
@@ -219,13 +254,21 @@ FrameResult Odometry::process(Scan scan, const std::optional<MotionPrior>& given
   const double dt = have_pose_ ? scan.stamp_s - last_stamp_s_ : params_.sweep_duration_s;
   Eigen::Isometry3d delta_pred = predict(prior);
   if (!prior && have_pose_ && dt > 0 && last_dt_s_ > 0) delta_pred = scaleMotion(delta_pred, dt / last_dt_s_);
+  const bool first_motion = have_pose_ && !motion_known_;
+  if (first_motion && !prior && params_.first_motion_search) delta_pred = searchFirstMotion(scan, delta_pred, res);
   const Eigen::Isometry3d T_pred = T_world_last_ * delta_pred;
 
-  if (params_.times_from_azimuth && !scan.has_point_times) timesFromAzimuth(scan, params_.sweep_duration_s);
+  if (params_.times_from_azimuth && !scan.has_point_times) {
+    timesFromAzimuth(scan, SweepTiming{params_.sweep_duration_s, SpinDirection::Clockwise, 180.0, StampReference::Start});
+  }
+  res.point_times = pointTimesName(scan);
+  res.deskewed = params_.deskew && scan.has_point_times;
   const double sweep = params_.sweep_duration_s;
   const Eigen::Isometry3d delta_sweep =
       scaleMotion(delta_pred, dt > 0 && have_pose_ ? sweep / dt : 1.0);
   if (!params_.deskew) scan.has_point_times = false;  // deskew() then keeps the points as they are
+  if (first_motion && first_scan_ && params_.deskew) redeskewFirstFrame(delta_sweep);
+  first_scan_.reset();
   const double ref = scan.has_point_times ? params_.deskew_reference : 0.0;
   res.stamp_s = poseTimeOf(scan);
   last_frame_points_ = deskew(scan, delta_sweep, sweep, ref);
@@ -245,6 +288,7 @@ FrameResult Odometry::process(Scan scan, const std::optional<MotionPrior>& given
     res.status = source.empty() ? FrameStatus::Empty : FrameStatus::First;
     if (source.empty()) return res;
     res.T_world_lidar = Eigen::Isometry3d::Identity();
+    if (params_.first_motion_search && params_.deskew && scan.has_point_times) first_scan_ = scan;
   } else {
     const auto r = match(source, T_pred, res);
     res.iterations = r.iterations;
@@ -289,6 +333,10 @@ FrameResult Odometry::process(Scan scan, const std::optional<MotionPrior>& given
     last_dt_s_ = dt;
   }
   if (res.status == FrameStatus::Standstill) delta_last_ = Eigen::Isometry3d::Identity();
+  if (res.status == FrameStatus::Ok || res.status == FrameStatus::Degenerate ||
+      res.status == FrameStatus::Standstill || (prior && have_pose_)) {
+    motion_known_ = true;
+  }
   T_world_last_ = res.T_world_lidar;
   last_stamp_s_ = scan.stamp_s;
   have_pose_ = true;

@@ -37,6 +37,7 @@ void Params::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, const st
   deskew_reference = readDouble(c, s, "deskew_reference", deskew_reference);
   times_from_azimuth = readBool(c, s, "times_from_azimuth", times_from_azimuth);
   sweep_duration_s = readDouble(c, s, "sweep_duration_s", sweep_duration_s);
+  first_motion_search = readBool(c, s, "first_motion_search", first_motion_search);
   keyframe_distance_m = readDouble(c, s, "keyframe_distance_m", keyframe_distance_m);
   keyframe_angle_rad = readDouble(c, s, "keyframe_angle_deg", keyframe_angle_rad / kDeg) * kDeg;
   standstill_translation_m = readDouble(c, s, "standstill_translation_m", standstill_translation_m);
@@ -98,6 +99,7 @@ void Params::saveToConfigFile(mrpt::config::CConfigFileBase& c, const std::strin
   c.write(s, "deskew_reference", deskew_reference);
   c.write(s, "times_from_azimuth", times_from_azimuth);
   c.write(s, "sweep_duration_s", sweep_duration_s);
+  c.write(s, "first_motion_search", first_motion_search);
   c.write(s, "keyframe_distance_m", keyframe_distance_m);
   c.write(s, "keyframe_angle_deg", keyframe_angle_rad / kDeg);
   c.write(s, "standstill_translation_m", standstill_translation_m);

@@ -11,6 +11,8 @@
 #include "roadslam/common/config.h"
 #include "roadslam/common/progress.h"
 #include "roadslam/common/stop_signal.h"
+#include "roadslam/datasets/kitti_scans.h"
+#include "roadslam/odometry/vehicle_prior.h"
 #include "roadslam/mapping/map_outputs.h"
 #include "roadslam/mapping/mapper.h"
 #include "roadslam/pipeline/can_prior.h"
@@ -36,12 +38,16 @@ void prepareOutDir(const std::string& dir) {
 struct JobParams {
   odometry::Params odometry;
   velodyne::DecoderParams decoder;
+  datasets::KittiParams kitti;
+  odometry::VehiclePriorParams vehicle_prior;  ///< read by CanPriorStream with --can; recorded always
   mapping::MapperParams mapper;
   mapping::MapOutputParams maps;
 
   void load(const mrpt::config::CConfigFileBase& cfg) {
     odometry.loadFromConfigFile(cfg);
     decoder.loadFromConfigFile(cfg, "velodyne");
+    kitti.loadFromConfigFile(cfg, "kitti");
+    vehicle_prior.loadFromConfigFile(cfg, "vehicle_prior");
     mapper.loadFromConfigFile(cfg);
     maps.loadFromConfigFile(cfg);
   }
@@ -49,6 +55,8 @@ struct JobParams {
     mrpt::config::CConfigFileMemory out;
     odometry.saveToConfigFile(out);
     decoder.saveToConfigFile(out, "velodyne");
+    kitti.saveToConfigFile(out, "kitti");
+    vehicle_prior.saveToConfigFile(out, "vehicle_prior");
     mapper.saveToConfigFile(out);
     maps.saveToConfigFile(out);
     return out.getContent();
@@ -93,6 +101,12 @@ void calibrateCan(CanPriorStream& can, const std::vector<odometry::FrameResult>&
 }
 
 }  // namespace
+
+std::string effectiveMapConfig(const mrpt::config::CConfigFileBase& cfg) {
+  JobParams params;
+  params.load(cfg);
+  return params.used();
+}
 
 MapOutcome runMapJob(const MapRequest& req) {
   const auto cfg = loadIniFile(req.config_path);
@@ -140,6 +154,14 @@ MapOutcome runMapJob(const MapRequest& req) {
   const auto T_map_kf = mapper.keyframePoses();
   for (const auto& f : out.frames) out.T_map_lidar.push_back(mapper.correctedPose(f, T_map_kf));
   out.summary = summarize(out.frames);
+  out.summary["warnings"] = nlohmann::json::array();
+  const int timed = out.summary["deskewed_frames"].get<int>();
+  const int posed = static_cast<int>(out.frames.size()) - out.summary["frames_by_status"].value("skipped", 0);
+  if (params.odometry.deskew && timed < posed) {
+    out.summary["warnings"].push_back("deskew = true, but " + std::to_string(posed - timed) + " of " +
+                                      std::to_string(posed) + " sweeps carry no point times and were not deskewed "
+                                      "(set [odometry] times_from_azimuth or the source's [kitti] times_from_azimuth)");
+  }
   const auto st = stream->stats();
   out.summary["input"] = stream->describe();
   out.summary["packets"] = st.packets;

@@ -23,13 +23,14 @@ bool hasPose(const odometry::FrameResult& f) {
 
 std::string framesCsv(const std::vector<odometry::FrameResult>& frames) {
   std::ostringstream os;
-  os << "index,stamp_s,status,keyframe,x_m,y_m,z_m,points_in,points_registered,iterations,inliers,"
+  os << "index,stamp_s,status,point_times,deskewed,keyframe,x_m,y_m,z_m,points_in,points_registered,iterations,inliers,"
         "fitness_m,threshold_m,weak_directions,ms_preprocess,ms_register,ms_map,ms_total,reason\n";
   char buf[512];
   for (const auto& f : frames) {
     const auto t = f.T_world_lidar.translation();
-    std::snprintf(buf, sizeof buf, "%zu,%.6f,%s,%d,%.4f,%.4f,%.4f,%d,%d,%d,%d,%.4f,%.3f,%d,%.3f,%.3f,%.3f,%.3f,",
-                  f.index, f.stamp_s, odometry::toString(f.status), f.keyframe ? 1 : 0, t.x(), t.y(), t.z(),
+    std::snprintf(buf, sizeof buf, "%zu,%.6f,%s,%s,%d,%d,%.4f,%.4f,%.4f,%d,%d,%d,%d,%.4f,%.3f,%d,%.3f,%.3f,%.3f,%.3f,",
+                  f.index, f.stamp_s, odometry::toString(f.status), f.point_times, f.deskewed ? 1 : 0,
+                  f.keyframe ? 1 : 0, t.x(), t.y(), t.z(),
                   f.points_in, f.points_registered, f.iterations, f.inliers, f.fitness_m, f.threshold_m,
                   f.weak_directions, f.ms_preprocess, f.ms_register, f.ms_map, f.ms_total);
     std::string reason = f.reason;
@@ -46,7 +47,13 @@ nlohmann::json summarize(const std::vector<odometry::FrameResult>& frames) {
   std::map<std::string, int> by_status, reasons;
   std::vector<double> ms;
   int keyframes = 0, failed = 0;
+  std::map<std::string, int> timed_by;
+  int deskewed = 0;
   for (const auto& f : frames) {
+    if (hasPose(f)) {
+      ++timed_by[f.point_times];
+      deskewed += f.deskewed ? 1 : 0;
+    }
     ++by_status[odometry::toString(f.status)];
     if (f.keyframe) ++keyframes;
     if (f.status == odometry::FrameStatus::NotConverged || f.status == odometry::FrameStatus::Empty) {
@@ -61,6 +68,8 @@ nlohmann::json summarize(const std::vector<odometry::FrameResult>& frames) {
   j["keyframes"] = keyframes;
   j["failed_frames"] = failed;
   j["failure_reasons"] = reasons;
+  j["point_times"] = timed_by;
+  j["deskewed_frames"] = deskewed;
   j["frames_by_status"] = by_status;
   j["ms_per_frame_mean"] = ms.empty() ? 0.0 : mean / ms.size();
   j["ms_per_frame_p50"] = percentile(ms, 0.5);

@@ -56,7 +56,7 @@ class VelodyneStream : public ScanStream {
 
 class KittiStream : public ScanStream {
  public:
-  explicit KittiStream(const std::string& dir) : folder_(dir), dir_(dir) {}
+  KittiStream(const std::string& dir, const datasets::KittiParams& p) : folder_(dir, "", p), dir_(dir) {}
   std::optional<Scan> next() override {
     if (i_ >= folder_.size()) return std::nullopt;
     ++stats_.sweeps;
@@ -77,7 +77,11 @@ class KittiStream : public ScanStream {
 
 std::unique_ptr<ScanStream> openScanStream(const std::string& path, const mrpt::config::CConfigFileBase& cfg) {
   if (!fs::exists(path)) throw std::runtime_error("input '" + path + "' does not exist");
-  if (fs::is_directory(path)) return std::make_unique<KittiStream>(path);
+  if (fs::is_directory(path)) {
+    datasets::KittiParams kp;
+    kp.loadFromConfigFile(cfg, "kitti");
+    return std::make_unique<KittiStream>(path, kp);
+  }
   velodyne::DecoderParams dp;
   dp.loadFromConfigFile(cfg, "velodyne");
   const std::string ext = fs::path(path).extension().string();

@@ -4,6 +4,7 @@
 /// Frames: "vehicle" is the lidar frame projected on its xy plane (x forward, y left) [m]; "map" is
 /// the frame of the poses given with each sweep (T_map_lidar).
 
+#include <cmath>
 #include <string>
 
 #include "roadslam/preprocess/ground_segmentation.h"
@@ -93,7 +94,7 @@ struct Params {
   int max_hold_frames = 3;              ///< a side not seen is held (moved with the vehicle) this long [-]
   double track_gate_m = 0.5;            ///< a new fit farther than this from the held side is an outlier [m]
   double hold_decay = 0.85;             ///< confidence factor per held sweep [-]
-  double hold_max_turn_rad = 0.035;     ///< a held side is dropped once the vehicle turned this much since its fit (ini: hold_max_turn_deg) [rad]
+  double hold_max_turn_rad = 2.0 * M_PI / 180.0;     ///< a held side is dropped once the vehicle turned this much since its fit (ini: hold_max_turn_deg) [rad]
   /// Sides are fitted along the arc the vehicle drives (curvature = heading change / path length
   /// over this many past sweeps) so they follow corners; 0 = in the vehicle frame [-].
   int path_curvature_frames = 5;

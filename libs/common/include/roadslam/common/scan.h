@@ -21,7 +21,10 @@ struct Scan {
   double stamp_s = 0;            ///< time of the first firing of the sweep [s, epoch or capture clock]
   std::vector<ScanPoint> points;
   bool partial = false;          ///< first/last sweep of a stream that does not cover a full turn
-  bool has_point_times = false;  ///< false for sources without per-point time (KITTI .bin)
+  bool has_point_times = false;  ///< ScanPoint::t is set (by the sensor, or estimated: below)
+  /// ScanPoint::t was estimated from each point's azimuth and the sweep period (KITTI .bin carries
+  /// no time), not measured: see roadslam/common/sweep_timing.h
+  bool times_from_azimuth = false;
   bool has_rings = false;        ///< false for sources without ring ids
 };
 

@@ -14,6 +14,7 @@
 /// The graph-level check after optimisation (the loop edge must be satisfied once the graph is
 /// optimised) lives in Mapper.
 
+#include <cmath>
 #include <Eigen/Geometry>
 #include <string>
 #include <vector>
@@ -50,8 +51,8 @@ struct LoopClosureParams {
   double min_overlap = 0.55;         ///< fine ICP inliers / source points must be above [-]
   double consistency_abs_m = 1.5;    ///< correction allowed regardless of the path [m]
   double consistency_ratio = 0.03;   ///< ... plus this fraction of the path between the keyframes [-]
-  double consistency_rot_rad = 0.0349; ///< rotation correction allowed regardless of the path [rad]; ini _deg
-  double consistency_rot_rad_per_m = 5.236e-4; ///< ... plus this per metre of path [rad/m]; ini consistency_rot_deg_per_100m
+  double consistency_rot_rad = 2.0 * M_PI / 180.0; ///< rotation correction allowed regardless of the path [rad]; ini _deg
+  double consistency_rot_rad_per_m = 3.0 * M_PI / 180.0 / 100.0; ///< ... plus this per metre of path [rad/m]; ini consistency_rot_deg_per_100m
   double max_loop_residual_m = 0.5;  ///< after optimisation the loop edge must hold within this [m]
   double information_scale = 1.0;    ///< multiplies the fine ICP information of a loop edge [-]
   double skip_after_loop_m = 10.0;   ///< no query for this much path after an accepted loop [m]

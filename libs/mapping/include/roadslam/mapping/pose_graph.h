@@ -9,6 +9,7 @@
 /// 6x6 in the order [tx ty tz rx ry rz] (m, rad), the order of the SE(3) logarithm MRPT's optimiser
 /// uses for the residual, which is also the order of registration::RegistrationResult::information.
 
+#include <cmath>
 #include <Eigen/Geometry>
 #include <memory>
 #include <string>
@@ -38,7 +39,7 @@ struct PoseGraphParams {
   /// and a CAN edge or a loop can correct it [-]. 0 = off (every direction gets the mean).
   double isotropic_weak_ratio = 0.0;
   double odometry_sigma_t_m = 0.05;       ///< fallback / floor std of an odometry edge translation [m]
-  double odometry_sigma_r_rad = 0.005;    ///< ... and rotation [rad]; ini odometry_sigma_r_deg
+  double odometry_sigma_r_rad = 0.29 * M_PI / 180.0;    ///< ... and rotation [rad]; ini odometry_sigma_r_deg
   /// Wheel-odometry (CAN) constraints between consecutive keyframes (Mapper with a WheelMotion per
   /// frame), fused into the keyframe edge (fuseMeasurements). Planar: strong in base x, y, yaw, weak
   /// in z, roll, pitch; the std grows with the distance d between the keyframes:
@@ -46,7 +47,7 @@ struct PoseGraphParams {
   bool can_edges = false;
   double can_sigma_t_m = 0.02;            ///< sigma_0 of base x, y [m]
   double can_sigma_t_per_m = 0.01;        ///< k of base x, y [m/m]
-  double can_sigma_yaw_rad = 0.001;       ///< sigma_0 of yaw [rad]; ini can_sigma_yaw_deg
+  double can_sigma_yaw_rad = 0.001;      ///< sigma_0 of yaw [rad]; ini can_sigma_yaw_deg
   double can_sigma_yaw_rad_per_m = 0.0005; ///< k of yaw [rad/m]; ini can_sigma_yaw_deg_per_m
   double can_weak_information = 1e-4;     ///< information of base z, roll, pitch [1/m^2, 1/rad^2]
 

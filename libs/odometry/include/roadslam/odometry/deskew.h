@@ -23,9 +23,4 @@ namespace roadslam::odometry {
 std::vector<Eigen::Vector3d> deskew(const Scan& scan, const Eigen::Isometry3d& delta_T_start_end,
                                     double sweep_duration_s, double reference_fraction = 0.0);
 
-/// Per-point times from the azimuth for sweeps without them (KITTI HDL-64E: the sweep starts and ends
-/// behind the car, rotating counter-clockwise seen from above; KISS-ICP GetTimestamps): fills
-/// ScanPoint::t in [0, sweep_duration_s) and sets scan.has_point_times.
-void timesFromAzimuth(Scan& scan, double sweep_duration_s);
-
 }  // namespace roadslam::odometry

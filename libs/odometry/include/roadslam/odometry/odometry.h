@@ -7,8 +7,9 @@
 ///   -> (prior along degenerate directions) -> standstill check -> update the local map.
 /// Frames: "world" is the odometry frame = lidar frame of the first sweep; poses are T_world_lidar at
 /// FrameResult::stamp_s: the sweep's stamp (first firing) plus deskew_reference * sweep_duration_s
-/// for deskewed sweeps (mid-sweep by default), the sweep stamp otherwise.
+/// for sweeps with point times (mid-sweep by default), the sweep stamp otherwise.
 
+#include <cmath>
 #include <Eigen/Geometry>
 #include <memory>
 #include <optional>
@@ -39,14 +40,14 @@ struct Params {
   /// With matcher = registration: `local_map` (the map of recent frames) or `last_scan` (scan to
   /// scan, as the MATLAB thesis matched consecutive sweeps).
   std::string registration_target = "local_map";
-  double registration_voxel_m = 1.0;   ///< voxel of the source points registered [m]
+  double registration_voxel_m = 0.75;   ///< voxel of the source points registered [m]
   double map_voxel_m = 1.0;            ///< voxel of the local map [m]
   int map_points_per_voxel = 20;       ///< points kept per map voxel [-]
   /// voxel_map: a map voxel off the road crossed by one scan ring constrains across the vertical
   /// surface through it (gaussian_voxel_map.cpp); false = it waits for a second ring [-]
   bool map_ring_lines_on_walls = true;
   double map_insert_voxel_m = 0.25;    ///< each frame adds one point per voxel of this size to the map [m]
-  double map_radius_m = 60.0;          ///< local map radius around the vehicle [m]
+  double map_radius_m = 80.0;          ///< local map radius around the vehicle [m]
   bool adaptive_threshold = true;      ///< KISS-ICP adaptive max correspondence distance
   double initial_threshold_m = 2.0;    ///< threshold before the adaptive one has data [m]
   /// Upper bound of the adaptive sigma [m]: a few bad frames at the start (an empty map, a car that
@@ -60,12 +61,19 @@ struct Params {
   double max_range_m = 100.0;          ///< sensor range for the adaptive threshold [m]
   bool deskew = true;                  ///< motion-compensate sweeps that carry point times
   double deskew_reference = 0.5;       ///< pose time within the sweep when deskewing [fraction of the sweep]
-  bool times_from_azimuth = false;     ///< estimate point times from the azimuth (KITTI .bin)
+  /// A sweep that arrives without point times gets them from the azimuth (clockwise, cut behind,
+  /// its stamp the first firing: sweep_timing.h), so it is deskewed too. KITTI folders are timed by
+  /// their source ([kitti], which knows its stamps are mid-sweep) before they reach the odometry.
+  bool times_from_azimuth = true;
   double sweep_duration_s = 0.1;       ///< nominal sweep period, used when stamps are missing [s]
+  /// A drive that starts at speed: the second sweep's motion, still unknown to constant velocity, is
+  /// first found by a wide multi-resolution NDT against the first sweep (2, 4, 8 m cells, up to 15 m),
+  /// and the first sweep is then deskewed with it before the map holds it [-]
+  bool first_motion_search = true;
   double keyframe_distance_m = 1.0;    ///< new keyframe after this translation [m]
-  double keyframe_angle_rad = 0.1745;  ///< ... or this rotation [rad]; ini keyframe_angle_deg
+  double keyframe_angle_rad = 10.0 * M_PI / 180.0;  ///< ... or this rotation [rad]; ini keyframe_angle_deg
   double standstill_translation_m = 0.02;  ///< motion below this and ... [m/frame]
-  double standstill_rotation_rad = 0.0017; ///< ... below this is standing [rad/frame]; ini _deg
+  double standstill_rotation_rad = 0.1 * M_PI / 180.0; ///< ... below this is standing [rad/frame]; ini _deg
   double standstill_speed_mps = 0.05;  ///< a prior speed below this is standing [m/s]
   /// Replace the weak directions by an external motion prior (wheel odometry). The constant-velocity
   /// prediction is not used there: it carries no information of its own and measured worse.
@@ -82,7 +90,7 @@ struct Params {
   /// matcher, against the up direction summed over all frames so far (robustly).
   bool gravity_prior = true;
   double gravity_weight_m2 = 1.0;       ///< GravityPrior::scale_m2 [m^2]
-  double gravity_kernel_rad = 0.035;    ///< [rad]; ini gravity_kernel_deg
+  double gravity_kernel_rad = 2.0 * M_PI / 180.0;    ///< [rad]; ini gravity_kernel_deg
   /// The prior starts once the summed structures know both tilts this well [1/rad^2]
   double gravity_min_information = 1e5;
   VerticalStructureParams vertical;     ///< ini vertical_* keys
@@ -125,6 +133,8 @@ struct FrameResult {
   FrameStatus status = FrameStatus::Ok;
   std::string reason;           ///< registration status text when not Ok; an ignored prior
   bool keyframe = false;
+  const char* point_times = "none";  ///< how the sweep was timed: sensor, azimuth or none
+  bool deskewed = false;        ///< motion-compensated (deskew on and the sweep had point times)
   int points_in = 0, points_registered = 0;  ///< raw and registered source points [-]
   int iterations = 0, inliers = 0;
   double fitness_m = 0;         ///< inlier RMSE [m]
@@ -147,10 +157,11 @@ class Odometry {
 
   const Params& params() const { return params_; }
   /// Time the pose of \p scan will refer to (FrameResult::stamp_s) [s]: for asking a motion prior
-  /// for the interval before calling process().
+  /// for the interval before calling process(). A sweep with point times spans sweep_duration_s from
+  /// its stamp (the first firing), and its pose is that at deskew_reference of it, deskewed or not.
   double poseTimeOf(const Scan& scan) const {
     const bool times = scan.has_point_times || params_.times_from_azimuth;
-    return scan.stamp_s + (params_.deskew && times ? params_.deskew_reference * params_.sweep_duration_s : 0.0);
+    return scan.stamp_s + (times ? params_.deskew_reference * params_.sweep_duration_s : 0.0);
   }
   const LocalMap& localMap() const { return map_; }
   const GaussianVoxelMap& voxelMap() const { return gmap_; }
@@ -168,6 +179,8 @@ class Odometry {
   registration::RegistrationResult match(const std::vector<Eigen::Vector3d>& source,
                                          const Eigen::Isometry3d& T_pred, FrameResult& res);
   void updateMap(const Eigen::Isometry3d& T_world_lidar);
+  Eigen::Isometry3d searchFirstMotion(const Scan& scan, const Eigen::Isometry3d& guess, FrameResult& res) const;
+  void redeskewFirstFrame(const Eigen::Isometry3d& delta_sweep);
 
   Params params_;
   preprocess::PreprocessChain chain_;
@@ -178,6 +191,8 @@ class Odometry {
   bool target_stale_ = true;
   size_t frames_ = 0;
   bool have_pose_ = false;
+  bool motion_known_ = false;          ///< a frame after the first was registered (or a prior given)
+  std::optional<Scan> first_scan_;     ///< the first sweep, preprocessed, until the motion is known
   double last_stamp_s_ = 0;
   double last_dt_s_ = 0;
   Eigen::Isometry3d T_world_last_ = Eigen::Isometry3d::Identity();

@@ -35,7 +35,9 @@ namespace roadslam::odometry {
 struct VehiclePriorParams {
   /// Lidar mounting on the vehicle base (ini: lidar_x_m, lidar_y_m, lidar_z_m [m],
   /// lidar_roll_deg, lidar_pitch_deg, lidar_yaw_deg [deg], ZYX Euler angles).
-  Eigen::Isometry3d T_base_lidar = Eigen::Isometry3d::Identity();
+  /// Default: the simulator's car (roof lidar 1.2 m ahead of the rear axle, 1.9 m up), as in
+  /// ini/default.ini.
+  Eigen::Isometry3d T_base_lidar = Eigen::Translation3d(1.2, 0.0, 1.9) * Eigen::Isometry3d::Identity();
   double max_extrapolation_s = 0.1;  ///< query past the last CAN pose by at most this (constant velocity) [s]
   double history_s = 5.0;            ///< CAN poses kept behind the newest one [s]
   vehicle::DeadReckoningParams dead_reckoning;  ///< same section: yaw_source, speed_scale, yaw_rate_bias_deg_s, ...

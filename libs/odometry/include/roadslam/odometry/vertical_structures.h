@@ -13,6 +13,7 @@
 /// (used as a prior in the voxel-map registration: voxel_map_align.cpp). Frames: lidar frame of the
 /// sweep, metres; directions are unit vectors.
 
+#include <cmath>
 #include <Eigen/Core>
 #include <cstdint>
 #include <string>
@@ -32,7 +33,7 @@ struct VerticalStructureParams {
   double voxel_m = 1.0;             ///< cell edge in the lidar's x and y for the local shape analysis [m]
   double voxel_height_m = 2.0;      ///< cell height (tall cells make trunks and poles lines) [m]
   int min_points = 6;               ///< points a voxel needs [-]
-  double max_tilt_rad = 0.26;       ///< normals within this of horizontal, axes of vertical [rad]; ini _deg
+  double max_tilt_rad = 15.0 * M_PI / 180.0;       ///< normals within this of horizontal, axes of vertical [rad]; ini _deg
   double planarity = 0.05;          ///< plane: smallest / middle eigenvalue below this [-]
   double min_plane_extent_m = 0.15; ///< plane: std along its second axis at least this (not a ring) [m]
   double min_thickness_m = 0.02;    ///< floor of a structure's spread across itself (range noise) [m]

@@ -12,6 +12,7 @@
 /// the maps (see roadslam/mapping/map_outputs.h), config_used.ini (every parameter as used) and
 /// summary.json (with loop_closures and loop_candidates_rejected).
 
+#include <mrpt/config/CConfigFileBase.h>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -48,6 +49,10 @@ MapOutcome runMapJob(const MapRequest& req);
 void writeMapOutputs(const std::string& out_dir, const std::vector<odometry::FrameResult>& frames,
                      const std::vector<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>>& T_map_lidar,
                      const nlohmann::json& summary);
+
+/// Every parameter of the map job's components as loaded from \p cfg (config_used.ini's text):
+/// keys \p cfg leaves out hold the code's defaults.
+std::string effectiveMapConfig(const mrpt::config::CConfigFileBase& cfg);
 
 /// Summary statistics of \p frames (counts per status, ms per frame mean/p50/p95/max).
 nlohmann::json summarize(const std::vector<odometry::FrameResult>& frames);

@@ -29,8 +29,8 @@ size_t removeEgo(std::vector<ScanPoint>& pts, const EgoParams& p);
 
 /// Keeps points whose 3D range lies in [min_range_m, max_range_m].
 struct RangeParams {
-  double min_range_m = 0.0;    ///< [m]; ini `min_range_m`
-  double max_range_m = 120.0;  ///< [m]; ini `max_range_m`
+  double min_range_m = 1.0;    ///< [m]; ini `min_range_m`
+  double max_range_m = 100.0;  ///< [m]; ini `max_range_m`
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section);
   void saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& section) const;
 };

@@ -30,7 +30,7 @@ size_t randomDownsample(std::vector<ScanPoint>& pts, const RandomDownsampleParam
 /// points more than 2^20 voxels from the origin are dropped (counted in the return value).
 struct VoxelParams {
   enum class Mode { Centroid, First };
-  double voxel_size_m = 0.5;  ///< voxel edge [m]; ini `voxel_size_m`
+  double voxel_size_m = 0.25;  ///< voxel edge [m]; ini `voxel_size_m`
   Mode mode = Mode::Centroid; ///< ini `voxel_mode` = centroid | first
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section);
   void saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& section) const;

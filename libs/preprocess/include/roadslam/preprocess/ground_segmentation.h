@@ -25,7 +25,7 @@ struct GroundSegParams {
   int num_sectors = 180;             ///< azimuth sectors over 360 deg [-]; ini `seg_sectors`
   double bin_length_m = 0.5;         ///< range-bin length [m]; ini `seg_bin_length_m`
   double max_range_m = 80.0;         ///< points beyond are labelled non-ground [m]; ini `seg_max_range_m`
-  double sensor_height_m = 1.73;     ///< lidar height above the road under the car [m]; ini `seg_sensor_height_m`
+  double sensor_height_m = 1.9;      ///< lidar height above the road under the car [m]; ini `seg_sensor_height_m`
   double max_start_height_m = 0.4;   ///< a first segment must start within this of -sensor_height [m]; ini `seg_max_start_height_m`
   double max_slope = 0.3;            ///< |dz/dr| of a ground segment [-] (0.3 = 16.7 deg); ini `seg_max_slope`
   double max_fit_error_m = 0.05;     ///< RMS residual of a segment's prototypes [m]; ini `seg_max_fit_error_m`

@@ -3,6 +3,7 @@
 /// Parameters shared by every registration method (ICP point-to-point, ICP point-to-plane, NDT).
 /// The method itself is a parameter: one signature, one result struct, the choice lives in the ini.
 
+#include <cmath>
 #include <string>
 
 namespace mrpt::config {
@@ -31,7 +32,7 @@ struct Params {
   Kernel kernel = Kernel::GemanMcClure;        ///< ICP robust kernel
   double kernel_scale_m = 0.5;                 ///< ICP robust kernel scale [m]
   double convergence_translation_m = 5e-4;     ///< stop when the update is below this [m]
-  double convergence_rotation_rad = 1.745e-4;  ///< stop when the update is below this [rad]; ini _deg
+  double convergence_rotation_rad = 0.01 * M_PI / 180.0;  ///< stop when the update is below this [rad]; ini _deg
   int min_source_points = 20;                  ///< fewer valid source points: TooFewPoints [-]
   int min_inliers = 20;                        ///< fewer correspondences: TooFewCorrespondences [-]
   double max_correction_m = 5.0;               ///< correction beyond the initial guess => Diverged [m]
