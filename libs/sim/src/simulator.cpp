@@ -76,7 +76,7 @@ ScenarioParams ScenarioParams::fromFile(const std::string& path) {
 
 Simulator::Simulator(const ScenarioParams& params) : p_(params) {
   world_ = buildWorld(p_.world, p_.seed, route_);
-  trajectory_ = std::make_unique<Trajectory>(route_, world_.ground, p_.trajectory);
+  trajectory_ = std::make_unique<Trajectory>(route_, world_.ground, p_.trajectory, &world_);
   lidar_ = std::make_unique<LidarSimulator>(world_, *trajectory_, p_.lidar, p_.seed);
 }
 
