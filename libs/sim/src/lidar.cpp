@@ -32,6 +32,7 @@ LidarSimulator::LidarSimulator(const World& world, const Trajectory& trajectory,
   for (int i = 0; i < n; ++i) {
     LaserCalibration& c = calib_[static_cast<std::size_t>(i)];
     if (p_.calib_elevation_std_deg > 0) c.elevation_rad = p_.calib_elevation_std_deg * kDeg * cal.normal();
+    if (p_.calib_elevation_bias_deg != 0) c.elevation_rad += p_.calib_elevation_bias_deg * kDeg;
     if (p_.calib_azimuth_std_deg > 0) c.azimuth_rad = p_.calib_azimuth_std_deg * kDeg * cal.normal();
     if (p_.calib_range_std_m > 0) c.range_m = p_.calib_range_std_m * cal.normal();
     const double e = nominalElevationDeg(i) * kDeg + c.elevation_rad;

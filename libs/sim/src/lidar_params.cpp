@@ -14,7 +14,7 @@ namespace roadslam::sim {
   X(dropout_prob) X(min_signal) X(max_incidence_deg) X(mount_x_m) X(mount_y_m) X(mount_height_m) \
   X(mount_roll_deg) X(mount_pitch_deg) X(mount_yaw_deg) X(jitter_deg) X(azimuth_resolution_deg)  \
   X(beam_divergence_mrad) X(mixed_pixel_prob) X(mixed_pixel_min_gap_m) X(calib_elevation_std_deg) \
-  X(calib_azimuth_std_deg) X(calib_range_std_m)
+  X(calib_azimuth_std_deg) X(calib_range_std_m) X(calib_elevation_bias_deg)
 
 void LidarParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, const std::string& s) {
 #define RS_LOAD(k) k = readDouble(c, s, #k, k);
@@ -32,8 +32,9 @@ void LidarParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, con
     throw std::runtime_error("[" + s + "] mixed_pixel_prob must be in [0, 1], mixed_pixel_min_gap_m > 0");
   if (mixed_pixel_prob > 0 && beam_divergence_mrad <= 0)
     throw std::runtime_error("[" + s + "] mixed_pixel_prob > 0 needs beam_divergence_mrad > 0 (a footprint)");
-  if (calib_elevation_std_deg < 0 || calib_azimuth_std_deg < 0 || calib_range_std_m < 0)
-    throw std::runtime_error("[" + s + "] calib_*_std must be >= 0");
+  if (calib_elevation_std_deg < 0 || calib_azimuth_std_deg < 0 || calib_range_std_m < 0 ||
+      std::abs(calib_elevation_bias_deg) > 2)
+    throw std::runtime_error("[" + s + "] calib_*_std must be >= 0, |calib_elevation_bias_deg| <= 2");
   if (rotation_hz < 5 || rotation_hz > 20)
     throw std::runtime_error("[" + s + "] rotation_hz must be within 5..20 (VLP-16: 300-1200 rpm)");
   if (max_range_m <= 0 || max_range_m > 130 || min_range_m < 0 || range_noise_m < 0 ||

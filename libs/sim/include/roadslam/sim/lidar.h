@@ -41,14 +41,19 @@ struct LidarParams {
   double mount_height_m = 1.9;      ///< lidar origin above the ground [m]
   double mount_roll_deg = 0, mount_pitch_deg = 0, mount_yaw_deg = 0;  ///< T_vehicle_lidar [deg]
   double jitter_deg = 0.02;         ///< amplitude of the mount vibration (not in the ground truth) [deg]
-  double azimuth_resolution_deg = 0.09;  ///< hdl64: azimuth step between firing columns [deg]
-                                         ///< (the VLP-16's follows from rotation_hz)
+  /// hdl64: azimuth step between firing columns [deg] (the VLP-16's follows from rotation_hz). The
+  /// HDL-64E S2 fires each laser at ~20.8 kHz (1.33 M points/s over 64 lasers): 0.0864 deg at 5 Hz
+  /// (the datasheet's 0.09 deg), 0.1728 deg at 10 Hz; KITTI raw 2011_09_26_0001's consecutive
+  /// points of a ring are 0.18 deg apart.
+  double azimuth_resolution_deg = 0.1728;
   double beam_divergence_mrad = 0;  ///< full-angle beam divergence; 0 = one ray per firing [mrad]
   int footprint_rays = 4;           ///< with divergence: sub-rays on the footprint's rim (+ centre) [-]
   double mixed_pixel_prob = 0;      ///< a footprint straddling a depth edge returns a range between
                                     ///< the two surfaces with this probability [0..1]
   double mixed_pixel_min_gap_m = 0.5;  ///< depth difference within a footprint that makes an edge [m]
   double calib_elevation_std_deg = 0;  ///< per-laser elevation offset, drawn once from the seed [deg]
+  double calib_elevation_bias_deg = 0; ///< elevation offset common to all lasers (KITTI's scans
+                                       ///< are bent by ~0.22 deg: Deschaud, IMLS-SLAM, ICRA 2018) [deg]
   double calib_azimuth_std_deg = 0;    ///< per-laser azimuth offset [deg]
   double calib_range_std_m = 0;        ///< per-laser range offset [m]
 
