@@ -114,17 +114,10 @@ bool World::traceCell(const Ray& ray, const Cell& cell, int ix, int iy, double t
   const double t_best = hit.valid ? hit.t : std::numeric_limits<double>::infinity();
   double tg = -1;
   if (surface.any()) {
-    // Crown exactly; roughness by fixed-point iteration on the height at the last crossing (the
-    // roughness' slope is small: a few cm over its ~1 m wavelength).
     static const CrownLine kFlat{};
     const CrownLine& cl = crown_.empty() ? kFlat : crown_[static_cast<std::size_t>(iy) * nx_ + ix];
-    double offset = 0;
-    for (int it = 0; it < (surface.roughness_m != 0 ? 4 : 1); ++it) {
-      const double t = crownedGroundHit(ray, cl, f0, a, t_in, t_out, offset);
-      if (t < 0) break;
-      tg = t;
-      offset = surface.roughness(ray.o.x + t * ray.d.x, ray.o.y + t * ray.d.y);
-    }
+    tg = surface.roughness_m != 0 ? roughGroundHit(ray, cl, f0, a, t_in, t_out)
+                                  : crownedGroundHit(ray, cl, f0, a, t_in, t_out, 0);
   } else if (t_in > 0 && f0 + a * t_in < 0) {
     tg = t_in;
   } else if (a < 0) {

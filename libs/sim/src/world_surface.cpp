@@ -104,4 +104,39 @@ double World::crownedGroundHit(const Ray& ray, const CrownLine& cl, double f0, d
   return -1;
 }
 
+double World::roughGroundHit(const Ray& ray, const CrownLine& cl, double f0, double a, double t_in,
+                             double t_out) const {
+  // The ray cannot meet the surface before it is below crown + B nor after it is below crown - B
+  // (B bounds |roughness|): march that stretch in steps of 1/16 of the central wavelength across
+  // the ground (4+ samples per period of the shortest wave), then bisect the first sign change.
+  const double B = surface.roughnessBound();
+  const double t1 = crownedGroundHit(ray, cl, f0, a, t_in, t_out, B);
+  if (t1 < 0) return -1;
+  const double t2 = crownedGroundHit(ray, cl, f0, a, t_in, t_out, -B);
+  const double t_end = t2 < 0 ? t_out : t2;
+  const double lat0 = (ray.o.x - cl.px) * cl.dy - (ray.o.y - cl.py) * cl.dx;
+  const double latd = ray.d.x * cl.dy - ray.d.y * cl.dx;
+  auto g = [&](double t) {
+    return f0 + a * t - crown(surface.cross_slope, cl.hw, lat0 + latd * t) -
+           surface.roughness(ray.o.x + t * ray.d.x, ray.o.y + t * ray.d.y);
+  };
+  double ta = t1, ga = g(ta);
+  if (ga < 0) return ta;  // entered the cell below the surface (a step), or grazing at t1
+  double step = surface.roughness_wavelength_m / 16 / std::max(1e-6, std::hypot(ray.d.x, ray.d.y));
+  step = std::max(step, (t_end - t1) / 512);
+  while (ta < t_end) {
+    double tb = std::min(ta + step, t_end);
+    const double gb = g(tb);
+    if (gb < 0) {
+      for (int i = 0; i < 30 && tb - ta > 1e-7; ++i) {
+        const double tm = 0.5 * (ta + tb);
+        (g(tm) < 0 ? tb : ta) = tm;
+      }
+      return tb;
+    }
+    ta = tb;
+  }
+  return -1;
+}
+
 }  // namespace roadslam::sim

@@ -125,6 +125,9 @@ class World {
   /// [t_in, t_out]; < 0 when none. \p f0, \p a: the ray's height above the plane, f0 + a t.
   double crownedGroundHit(const Ray& ray, const CrownLine& cl, double f0, double a, double t_in,
                           double t_out, double offset) const;
+  /// Same on plane + crown + roughness (a march and bisection: the roughness is not linear).
+  double roughGroundHit(const Ray& ray, const CrownLine& cl, double f0, double a, double t_in,
+                        double t_out) const;
   void buildCrownLines();
   std::vector<CrownLine> crown_;  ///< per cell, when surface.cross_slope != 0
 
