@@ -2,6 +2,7 @@
 // 64-beam rings on a flat ground and sweep timing, the crowned road in the rays and in the ground
 // truth, suspension pitch and roll, roughness, mixed pixels at a depth edge.
 #include <gtest/gtest.h>
+#include <mrpt/config/CConfigFileMemory.h>
 
 #include <algorithm>
 #include <cmath>
@@ -272,4 +273,44 @@ TEST(SimHard, MixedPixelsOnlyAtDepthEdgesWithAFootprint) {
   EXPECT_EQ(inBetween(0, 0), 0);
   EXPECT_EQ(inBetween(3, 0), 0);
   EXPECT_GT(inBetween(3, 1), 10);
+}
+
+// The hard scenarios turn every new key on; they save and reload to the same ini.
+TEST(SimHard, HardScenariosSaveAndReloadIdentically) {
+  for (const char* name : {"urban-loop-hard.ini", "highway-hard.ini", "city-hdl64.ini"}) {
+    SCOPED_TRACE(name);
+    const ScenarioParams a = ScenarioParams::fromFile(iniPath(name));
+    EXPECT_GT(a.lidar.beam_divergence_mrad, 0);
+    EXPECT_GT(a.lidar.mixed_pixel_prob, 0);
+    EXPECT_GT(a.lidar.calib_elevation_std_deg, 0);
+    EXPECT_GT(a.world.road_cross_slope, 0);
+    EXPECT_GT(a.world.road_roughness_m, 0);
+    EXPECT_GT(a.world.hedge_prob, 0);
+    EXPECT_GT(a.trajectory.k_pitch_deg_per_mps2, 0);
+    mrpt::config::CConfigFileMemory cfg, cfg2;
+    a.saveToConfigFile(cfg);
+    ScenarioParams b;
+    b.loadFromConfigFile(cfg);
+    b.saveToConfigFile(cfg2);
+    EXPECT_EQ(cfg.getContent(), cfg2.getContent());
+  }
+  EXPECT_TRUE(ScenarioParams::fromFile(iniPath("city-hdl64.ini")).lidar.hdl64());
+}
+
+TEST(SimHard, BadNewValuesAreNamed) {
+  auto message = [](const char* section, const char* key, const char* value) {
+    mrpt::config::CConfigFileMemory cfg;
+    cfg.write(section, key, value);
+    ScenarioParams p;
+    try {
+      p.loadFromConfigFile(cfg);
+    } catch (const std::exception& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_NE(message("lidar", "model", "hdl32").find("hdl32"), std::string::npos);
+  EXPECT_NE(message("lidar", "mixed_pixel_prob", "0.5").find("beam_divergence_mrad"), std::string::npos);
+  EXPECT_NE(message("world", "road_cross_slope", "0.5").find("road_cross_slope"), std::string::npos);
+  EXPECT_NE(message("trajectory", "k_pich_deg_per_mps2", "0.1").find("k_pich_deg_per_mps2"), std::string::npos);
 }
