@@ -39,6 +39,7 @@ LidarSimulator::LidarSimulator(const World& world, const Trajectory& trajectory,
     dir_el_[static_cast<std::size_t>(i)] = {std::cos(e), std::sin(e), e};
   }
   columns_ = 2 * static_cast<int>(std::lround(180.0 / p_.azimuth_resolution_deg));
+  cos_max_inc_ = std::cos(p_.max_incidence_deg * kDeg);
   for (int i = 0; i < 3; ++i) jitter_phase_[i] = 2 * M_PI * uniform01(seed_ + 101 + i);
   cars_.resize(world.cars.size());
 }
@@ -168,7 +169,7 @@ bool LidarSimulator::fire(const Pose3& T_world_lidar, int i, double az_deg, uint
   const MaterialProps& m = materialProps(hit.material);
   const double signal = m.reflectivity * cos_inc * 100.0 / std::max(100.0, hit.t * hit.t);
   if (hit.t < p_.min_range_m) { ++counters_.too_close; return false; }
-  if (cos_inc < std::cos(p_.max_incidence_deg * kDeg)) { ++counters_.grazing; return false; }
+  if (cos_inc < cos_max_inc_) { ++counters_.grazing; return false; }
   if (signal < p_.min_signal) { ++counters_.dark; return false; }
   if (uniform01(key + 1) < p_.dropout_prob + m.dropout) { ++counters_.dropped; return false; }
   const double u1 = 1.0 - uniform01(key + 2), u2 = uniform01(key + 3);

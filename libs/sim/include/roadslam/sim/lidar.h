@@ -160,6 +160,7 @@ class LidarSimulator {
   std::vector<Vec3> dir_el_;  ///< (cos e, sin e, e) per laser, true elevation
   std::vector<LaserCalibration> calib_;
   int columns_ = 0;
+  double cos_max_inc_ = 0;  ///< returns at a smaller cos(incidence) are lost [-]
   std::vector<Prism> cars_;
   double jitter_phase_[3];
   LidarCounters counters_;
