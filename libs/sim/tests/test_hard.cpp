@@ -314,3 +314,15 @@ TEST(SimHard, BadNewValuesAreNamed) {
   EXPECT_NE(message("world", "road_cross_slope", "0.5").find("road_cross_slope"), std::string::npos);
   EXPECT_NE(message("trajectory", "k_pich_deg_per_mps2", "0.1").find("k_pich_deg_per_mps2"), std::string::npos);
 }
+
+// Hedges and canopy lobes are porous foliage spheres: turning them on adds many.
+TEST(SimHard, VegetationAddsFoliageSpheres) {
+  ScenarioParams p = ScenarioParams::fromFile(iniPath("urban-loop.ini"));
+  const Simulator plain(p);
+  p.world.hedge_prob = 1;
+  p.world.canopy_lobes = 3;
+  const Simulator green(p);
+  EXPECT_GT(green.world().spheres.size(), 4 * plain.world().spheres.size());
+  for (const Sphere& s : green.world().spheres) ASSERT_EQ(s.material, Material::Foliage);
+  EXPECT_GT(materialProps(Material::Foliage).porosity, 0.0f);
+}
