@@ -1,5 +1,6 @@
-// roadslam-sim: simulate a scenario into DIR/velodyne.pcap + DIR/can.log + ground truth, optionally streaming
-// the data packets over UDP. See docs/apps/roadslam-sim.md.
+// roadslam-sim: simulate a scenario into DIR/velodyne.pcap (or, for [lidar] model = hdl64, a KITTI raw-style
+// DIR/velodyne/*.bin folder) + DIR/can.log + ground truth, optionally streaming the data packets over UDP.
+// See docs/apps/roadslam-sim.md.
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
@@ -10,7 +11,7 @@
 #include "roadslam/sim/simulator.h"
 
 int main(int argc, char** argv) {
-  CLI::App app{"roadslam-sim: packet-level VLP-16 simulator with ground truth"};
+  CLI::App app{"roadslam-sim: packet-level VLP-16 / KITTI-style HDL-64E simulator with ground truth"};
   std::string scenario, out, udp, top_view;
   unsigned long long seed = 0;
   double duration = 0, speed = 1.0;
@@ -41,11 +42,17 @@ int main(int argc, char** argv) {
     roadslam::sim::Simulator sim(params);
     const auto rep = roadslam::sim::runToDirectory(sim, opt);
     const auto& s = rep.stats;
-    std::printf("%s seed %llu: %.1f s, %llu packets, %llu sweeps, %llu points, %.1f m, %.1fx real time%s\n",
-                params.name.c_str(), static_cast<unsigned long long>(params.seed), s.duration_s,
-                static_cast<unsigned long long>(s.data_packets), static_cast<unsigned long long>(s.sweeps),
-                static_cast<unsigned long long>(s.lidar.returns), s.distance_m, rep.real_time_factor,
-                udp.empty() ? "" : (", " + std::to_string(rep.packets_sent) + " packets sent").c_str());
+    if (params.lidar.hdl64())
+      std::printf("%s seed %llu: %.1f s, hdl64, %llu sweeps in %s/velodyne, %llu points, %.1f m, %.1fx real time\n",
+                  params.name.c_str(), static_cast<unsigned long long>(params.seed), s.duration_s,
+                  static_cast<unsigned long long>(s.sweeps), out.c_str(),
+                  static_cast<unsigned long long>(s.lidar.returns), s.distance_m, rep.real_time_factor);
+    else
+      std::printf("%s seed %llu: %.1f s, %llu packets, %llu sweeps, %llu points, %.1f m, %.1fx real time%s\n",
+                  params.name.c_str(), static_cast<unsigned long long>(params.seed), s.duration_s,
+                  static_cast<unsigned long long>(s.data_packets), static_cast<unsigned long long>(s.sweeps),
+                  static_cast<unsigned long long>(s.lidar.returns), s.distance_m, rep.real_time_factor,
+                  udp.empty() ? "" : (", " + std::to_string(rep.packets_sent) + " packets sent").c_str());
     if (rep.can_frames > 0) std::printf("can.log: %zu CAN frames, DBC %s\n", rep.can_frames, rep.can_dbc.c_str());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "roadslam-sim: %s\n", e.what());

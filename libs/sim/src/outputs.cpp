@@ -10,7 +10,10 @@
 
 #include "roadslam/can/candump.h"
 #include "roadslam/common/atomic_file.h"
+#include "roadslam/datasets/kitti_scans.h"
+#include "roadslam/datasets/trajectory_io.h"
 #include "roadslam/pcap/pcap_writer.h"
+#include "roadslam/sim/eigen.h"
 
 namespace roadslam::sim {
 
@@ -115,6 +118,32 @@ void writeObjects(const Simulator& sim, double duration_s, const std::string& pa
                               {"spheres", w.spheres.size()}}}};
   writeFileAtomically(path, j.dump() + "\n");
 }
+/// hdl64: the KITTI raw-style folder: velodyne/NNNNNN.bin, times.txt, poses_velo_kitti.txt.
+SimStats writeKittiFolder(Simulator& sim, const std::string& d) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::create_directories(d + "velodyne", ec);
+  if (!fs::is_directory(d + "velodyne")) throw std::runtime_error("cannot create folder " + d + "velodyne");
+  std::string times;
+  datasets::PoseList poses;
+  Eigen::Isometry3d T_first_world = Eigen::Isometry3d::Identity();
+  const auto& lidar = sim.lidar();
+  const SimStats st = sim.runSweeps([&](uint64_t k, Scan&& scan) {
+    char name[32];
+    std::snprintf(name, sizeof(name), "velodyne/%06llu.bin", static_cast<unsigned long long>(k));
+    datasets::writeKittiBin(d + name, scan);
+    // %.6f, not datasets::writeTimes (11 significant digits: 0.1 s on the epoch clock).
+    char line[64];
+    std::snprintf(line, sizeof(line), "%.6f\n", scan.stamp_s);
+    times += line;
+    const Eigen::Isometry3d T_world_lidar = toEigen(lidar.lidarPose(lidar.sweepStamp_s(k)));
+    if (k == 0) T_first_world = T_world_lidar.inverse();
+    poses.push_back(T_first_world * T_world_lidar);
+  });
+  writeFileAtomically(d + "times.txt", times);
+  datasets::writeKittiPoses(d + "poses_velo_kitti.txt", poses);
+  return st;
+}
 }  // namespace
 
 RunReport runToDirectory(Simulator& sim, const OutputOptions& opt) {
@@ -127,7 +156,10 @@ RunReport runToDirectory(Simulator& sim, const OutputOptions& opt) {
   std::unique_ptr<UdpStreamer> udp;
   if (!opt.udp_host.empty()) udp = std::make_unique<UdpStreamer>(opt.udp_host, opt.udp_port, opt.udp_speed);
   RunReport rep;
-  {
+  if (sim.params().lidar.hdl64()) {
+    if (udp) throw std::runtime_error("--udp needs [lidar] model = vlp16 (hdl64 writes a .bin folder)");
+    rep.stats = writeKittiFolder(sim, d);
+  } else {
     PcapSink pcap(d + "velodyne.pcap", udp.get());
     rep.stats = sim.run(pcap);
     pcap.commit();
@@ -161,7 +193,7 @@ RunReport runToDirectory(Simulator& sim, const OutputOptions& opt) {
             {"lost_returns", {{"no_hit", s.lidar.no_hit}, {"too_close", s.lidar.too_close},
                               {"grazing", s.lidar.grazing}, {"dark", s.lidar.dark},
                               {"dropped", s.lidar.dropped}}},
-            {"start_epoch_s", sim.params().start_epoch_s}};
+            {"start_epoch_s", sim.params().start_epoch_s}, {"lidar_model", sim.params().lidar.model}};
   if (sim.params().can.enabled) {
     j["can_frames"] = rep.can_frames;
     j["can_dbc"] = rep.can_dbc;

@@ -162,6 +162,20 @@ void addBuilding(const WorldParams& p, const Station& st, int side, double w, do
                                        2.0, H, Material::Facade));
 }
 
+/// A hedge along the back of the sidewalk from arc length \p s over \p w [m]: overlapping porous
+/// bushes (spheres of diameter ~hedge_height_m) every 0.7 m.
+void addHedge(const WorldParams& p, const Road& r, double s, double w, int side, const RoadIndex& index,
+              Rng& rng, World& world) {
+  const double sw = std::max(0.0, p.sidewalk_width_m), off = r.half_width_m + sw + 0.5;
+  for (double a = s; a < s + w; a += 0.7) {
+    const Station st = station(r, a);
+    const Vec2 c = st.at(0, side * off);
+    const double rad = 0.5 * p.hedge_height_m * rng.uniform(0.85, 1.15);
+    if (index.clearance(c.x, c.y) < sw + 0.5 - rad) continue;
+    world.spheres.push_back({{c.x, c.y, world.ground.height(c.x, c.y) + 0.9 * rad}, rad, Material::Foliage});
+  }
+}
+
 void addParkedCar(const Station& st, int side, double off, double angle, Rng& rng, World& world) {
   const double yaw = st.h + angle + rng.uniform(-0.04, 0.04);
   const Material m = rng.uniform() < 0.3 ? Material::DarkPaint : Material::CarPaint;
@@ -183,7 +197,11 @@ void addRoadsideObjects(const WorldParams& p, const RoadIndex& index, Rng& rng, 
     for (int side : {+1, -1}) {
       const double front = hw + sw + p.building_setback_m;
       for (double s = 0, w = rng.uniform(8, 25); s + w < len; s += w + rng.uniform(0, 4), w = rng.uniform(8, 25)) {
-        if (rng.uniform() >= p.building_density || inTunnel(p, ir, s + w / 2, 20)) continue;
+        if (rng.uniform() >= p.building_density || inTunnel(p, ir, s + w / 2, 20)) {
+          if (p.hedge_prob > 0 && !inTunnel(p, ir, s + w / 2, 20) && rng.uniform() < p.hedge_prob)
+            addHedge(p, r, s, w, side, index, rng, world);
+          continue;
+        }
         const Station st = station(r, s + w / 2);
         bool ok = true;
         for (double a : {-w / 2, 0.0, w / 2})
@@ -209,6 +227,13 @@ void addRoadsideObjects(const WorldParams& p, const RoadIndex& index, Rng& rng, 
         const double g = world.ground.height(c.x, c.y), trunk = rng.uniform(2.5, 3.5), cr = rng.uniform(1.5, 3.0);
         world.cylinders.push_back({c.x, c.y, rng.uniform(0.15, 0.25), g - 0.5, g + trunk + 0.5 * cr, Material::Bark});
         world.spheres.push_back({{c.x, c.y, g + trunk + 0.7 * cr}, cr, Material::Foliage});
+        // Irregular canopies: lobes around the crown, each porous with its own random depth.
+        for (int l = 0; l < p.canopy_lobes; ++l) {
+          const double dir = rng.uniform(0, 2 * M_PI), lr = cr * rng.uniform(0.4, 0.7);
+          world.spheres.push_back({{c.x + 0.7 * cr * std::cos(dir), c.y + 0.7 * cr * std::sin(dir),
+                                    g + trunk + 0.7 * cr + cr * rng.uniform(-0.3, 0.5)},
+                                   lr, Material::Foliage});
+        }
       }
       if (p.parking_width_m < 1.5) continue;
       // Parallel parking: 6.5 m slots; angled (perpendicular) parking: 2.7 m slots.

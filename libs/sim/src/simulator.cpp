@@ -76,7 +76,7 @@ ScenarioParams ScenarioParams::fromFile(const std::string& path) {
 
 Simulator::Simulator(const ScenarioParams& params) : p_(params) {
   world_ = buildWorld(p_.world, p_.seed, route_);
-  trajectory_ = std::make_unique<Trajectory>(route_, world_.ground, p_.trajectory);
+  trajectory_ = std::make_unique<Trajectory>(route_, world_.ground, p_.trajectory, &world_);
   lidar_ = std::make_unique<LidarSimulator>(world_, *trajectory_, p_.lidar, p_.seed);
 }
 
@@ -96,7 +96,27 @@ double Simulator::packetCaptureTime(uint64_t k) const {
   return static_cast<double>(p_.start_epoch_s) + static_cast<double>(k + 1) * LidarSimulator::packetPeriod_s();
 }
 
+SimStats Simulator::runSweeps(const std::function<void(uint64_t, Scan&&)>& on_sweep,
+                              std::vector<TrueReturn>* truth) {
+  if (!p_.lidar.hdl64()) throw std::runtime_error("runSweeps: [lidar] model is not hdl64");
+  const auto wall0 = std::chrono::steady_clock::now();
+  SimStats st;
+  st.sweeps = static_cast<uint64_t>(std::floor(duration_s() * p_.lidar.rotation_hz + 1e-9));
+  Scan scan;
+  for (uint64_t k = 0; k < st.sweeps; ++k) {
+    lidar_->simulateSweep(k, scan, truth);
+    scan.stamp_s += static_cast<double>(p_.start_epoch_s);
+    on_sweep(k, std::move(scan));
+  }
+  st.duration_s = static_cast<double>(st.sweeps) / p_.lidar.rotation_hz;
+  st.distance_m = trajectory_->at(st.duration_s).s_m;
+  st.lidar = lidar_->counters();
+  st.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  return st;
+}
+
 SimStats Simulator::run(PacketSink& sink, std::vector<TrueReturn>* truth) {
+  if (p_.lidar.hdl64()) throw std::runtime_error("run: [lidar] model hdl64 has no packets (runSweeps)");
   const auto wall0 = std::chrono::steady_clock::now();
   const double T = duration_s(), P = LidarSimulator::packetPeriod_s();
   const auto n = static_cast<uint64_t>(std::floor(T / P));

@@ -19,6 +19,12 @@ void TrajectoryParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& c
   end_standing_s = readDouble(c, s, "end_standing_s", end_standing_s);
   laps = readInt(c, s, "laps", laps);
   track_width_m = readDouble(c, s, "track_width_m", track_width_m);
+  wheelbase_m = readDouble(c, s, "wheelbase_m", wheelbase_m);
+  k_pitch_deg_per_mps2 = readDouble(c, s, "k_pitch_deg_per_mps2", k_pitch_deg_per_mps2);
+  k_roll_deg_per_mps2 = readDouble(c, s, "k_roll_deg_per_mps2", k_roll_deg_per_mps2);
+  if (track_width_m <= 0 || wheelbase_m <= 0 || std::abs(k_pitch_deg_per_mps2) > 2 || std::abs(k_roll_deg_per_mps2) > 2)
+    throw std::runtime_error("[" + s + "] track_width_m, wheelbase_m must be > 0, |k_pitch_deg_per_mps2|, "
+                             "|k_roll_deg_per_mps2| <= 2");
   if (max_speed_kmh <= 0 || accel_mps2 <= 0 || decel_mps2 <= 0 || lateral_accel_mps2 <= 0 || laps < 1)
     throw std::runtime_error("[" + s + "] max_speed_kmh, accel_mps2, decel_mps2, lateral_accel_mps2 "
                              "must be > 0 and laps >= 1");
@@ -33,11 +39,15 @@ void TrajectoryParams::saveToConfigFile(mrpt::config::CConfigFileBase& c, const 
   c.write(s, "end_standing_s", end_standing_s);
   c.write(s, "laps", laps);
   c.write(s, "track_width_m", track_width_m);
+  c.write(s, "wheelbase_m", wheelbase_m);
+  c.write(s, "k_pitch_deg_per_mps2", k_pitch_deg_per_mps2);
+  c.write(s, "k_roll_deg_per_mps2", k_roll_deg_per_mps2);
 }
 
 std::vector<std::string> TrajectoryParams::keys() {
   return {"max_speed_kmh", "accel_mps2", "decel_mps2", "lateral_accel_mps2", "start_standing_s",
-          "end_standing_s", "laps", "track_width_m"};
+          "end_standing_s", "laps", "track_width_m", "wheelbase_m", "k_pitch_deg_per_mps2",
+          "k_roll_deg_per_mps2"};
 }
 
 namespace {
@@ -59,8 +69,9 @@ std::vector<double> speedProfile(const std::vector<double>& s, const std::vector
 }
 }  // namespace
 
-Trajectory::Trajectory(const Road& route, const Ground& ground, const TrajectoryParams& p)
-    : ground_(ground), p_(p), closed_(route.closed), route_len_(roadLength(route)) {
+Trajectory::Trajectory(const Road& route, const Ground& ground, const TrajectoryParams& p,
+                       const World* surface)
+    : ground_(ground), surface_(surface && surface->surface.any() ? surface : nullptr), p_(p), closed_(route.closed), route_len_(roadLength(route)) {
   // Dense route with smooth heading (mean of the adjacent segments) and curvature dh/ds.
   const auto& c = route.centerline;
   const std::size_t n = c.size();
@@ -134,6 +145,23 @@ VehicleState Trajectory::stateAtArcLength(double s, double v, double a) const {
   const double ch = std::cos(st.yaw), sh = std::sin(st.yaw);
   st.pitch = 0.0 - std::atan(g.x * ch + g.y * sh);  // (no -0) nose up on an uphill (ZYX: +pitch is nose down)
   st.roll = std::atan(-g.x * sh + g.y * ch);   // left side up when the ground rises to the left
+  if (surface_) {
+    // Wheel contacts on the crown and roughness: the rear axle's mean sets the reference height,
+    // the left/right and front/rear differences tilt the body.
+    const double hw = 0.5 * p_.track_width_m, L = p_.wheelbase_m;
+    auto off = [&](double along, double left) {
+      return surface_->surfaceOffset(st.x + along * ch - left * sh, st.y + along * sh + left * ch);
+    };
+    const double rl = off(0, hw), rr = off(0, -hw), fl = off(L, hw), fr = off(L, -hw);
+    st.z += 0.5 * (rl + rr);
+    st.roll += std::atan(0.5 * ((rl + fl) - (rr + fr)) / p_.track_width_m);
+    st.pitch -= std::atan(0.5 * ((fl + fr) - (rl + rr)) / L);
+  }
+  // Suspension: pitch and roll proportional to the accelerations (ZYX: +pitch nose down, +roll
+  // left side up; a left turn's lateral acceleration v^2 kappa > 0 rolls the body to the right).
+  constexpr double kDeg = M_PI / 180.0;
+  if (p_.k_pitch_deg_per_mps2 != 0) st.pitch -= p_.k_pitch_deg_per_mps2 * kDeg * a;
+  if (p_.k_roll_deg_per_mps2 != 0) st.roll += p_.k_roll_deg_per_mps2 * kDeg * v * v * kappa;
   st.speed_mps = v;
   st.accel_mps2 = a;
   st.yaw_rate_rps = v * kappa;

@@ -89,6 +89,11 @@ void World::buildGrid(double xmin, double ymin, double xmax, double ymax, double
     prism_cs_[2 * i] = std::cos(prisms[i].yaw);
     prism_cs_[2 * i + 1] = std::sin(prisms[i].yaw);
   }
+  if (surface.any()) {
+    const float bound = static_cast<float>(surface.roughnessBound());
+    for (Cell& c : cells_) c.zmax += bound;
+    buildCrownLines();
+  }
   refs_.clear();
   for (std::size_t k = 0; k < cells_.size(); ++k) {
     cells_[k].first = static_cast<uint32_t>(refs_.size());
@@ -108,7 +113,12 @@ bool World::traceCell(const Ray& ray, const Cell& cell, int ix, int iy, double t
   const double f0 = ray.o.z - cell.gz - cell.gx * (ray.o.x - xc) - cell.gy * (ray.o.y - yc);
   const double t_best = hit.valid ? hit.t : std::numeric_limits<double>::infinity();
   double tg = -1;
-  if (t_in > 0 && f0 + a * t_in < 0) {
+  if (surface.any()) {
+    static const CrownLine kFlat{};
+    const CrownLine& cl = crown_.empty() ? kFlat : crown_[static_cast<std::size_t>(iy) * nx_ + ix];
+    tg = surface.roughness_m != 0 ? roughGroundHit(ray, cl, f0, a, t_in, t_out)
+                                  : crownedGroundHit(ray, cl, f0, a, t_in, t_out, 0);
+  } else if (t_in > 0 && f0 + a * t_in < 0) {
     tg = t_in;
   } else if (a < 0) {
     const double t = -f0 / a;
@@ -231,6 +241,7 @@ CarPose World::carPose(const MovingCar& car, double t_s) const {
   out.x = p.x + car.lateral_m * std::sin(hd);  // to the right of the travel direction
   out.y = p.y - car.lateral_m * std::cos(hd);
   out.z = ground.height(out.x, out.y);
+  if (surface.any()) out.z += surfaceOffset(out.x, out.y);
   out.yaw = hd;
   return out;
 }

@@ -151,6 +151,10 @@ World buildWorld(const WorldParams& p, uint64_t seed, Road& route) {
       xmax = std::max(xmax, q.x);
       ymax = std::max(ymax, q.y);
     }
+  world.surface.cross_slope = p.road_cross_slope;
+  world.surface.roughness_m = p.road_roughness_m;
+  world.surface.roughness_wavelength_m = p.road_roughness_wavelength_m;
+  world.surface.seedWaves(seed);
   world.ground_margin_m = p.margin_m;
   world.buildGrid(xmin - p.margin_m, ymin - p.margin_m, xmax + p.margin_m, ymax + p.margin_m,
                   p.grid_cell_m);

@@ -12,8 +12,9 @@ namespace roadslam::sim {
   X(curb_height_m) X(sidewalk_width_m) X(building_density) X(building_min_height_m)           \
   X(building_max_height_m) X(building_setback_m) X(pole_spacing_m) X(tree_spacing_m)          \
   X(parked_car_prob) X(parking_angle_deg) X(moving_car_speed_kmh) X(hill_amplitude_m) X(hill_wavelength_m)         \
-  X(tunnel_start_m) X(tunnel_length_m) X(tunnel_height_m) X(grid_cell_m) X(margin_m)
-#define RS_INTS(X) X(streets) X(lanes_per_side) X(moving_cars)
+  X(tunnel_start_m) X(tunnel_length_m) X(tunnel_height_m) X(grid_cell_m) X(margin_m)          \
+  X(road_cross_slope) X(road_roughness_m) X(road_roughness_wavelength_m) X(hedge_prob) X(hedge_height_m)
+#define RS_INTS(X) X(streets) X(lanes_per_side) X(moving_cars) X(canopy_lobes)
 
 void WorldParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
                                      const std::string& s) {
@@ -32,6 +33,12 @@ void WorldParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
     throw std::runtime_error("[" + s + "] curb_height_m must be in [0, 0.5]");
   if (parking_angle_deg > 45 && parking_width_m < 4.6)
     throw std::runtime_error("[" + s + "] parking_angle_deg > 45 needs parking_width_m >= 4.6");
+  if (road_cross_slope < 0 || road_cross_slope > 0.1 || road_roughness_m < 0 || road_roughness_m > 0.1 ||
+      road_roughness_wavelength_m <= 0)
+    throw std::runtime_error("[" + s + "] road_cross_slope must be in [0, 0.1], road_roughness_m in "
+                             "[0, 0.1], road_roughness_wavelength_m > 0");
+  if (hedge_prob < 0 || hedge_prob > 1 || hedge_height_m <= 0 || canopy_lobes < 0 || canopy_lobes > 8)
+    throw std::runtime_error("[" + s + "] hedge_prob must be in [0, 1], hedge_height_m > 0, canopy_lobes 0..8");
   if (building_min_height_m > building_max_height_m)
     throw std::runtime_error("[" + s + "] building_min_height_m > building_max_height_m");
 }

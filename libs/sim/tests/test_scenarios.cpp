@@ -26,7 +26,7 @@ TEST(Scenarios, EveryShippedIniLoadsAndBuilds) {
     EXPECT_GT(sim.duration_s(), 20.0);
     ++n;
   }
-  EXPECT_EQ(n, 6);
+  EXPECT_EQ(n, 9);
 }
 
 TEST(Scenarios, UnknownKeysAndBadValuesAreNamed) {

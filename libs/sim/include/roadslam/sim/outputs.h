@@ -2,6 +2,12 @@
 /// \file outputs.h
 /// Running a scenario into an output folder (all files written atomically):
 ///   velodyne.pcap       data packets (port 2368) and $GPRMC position packets (port 8308)
+///                       ([lidar] model = vlp16), or with model = hdl64 a KITTI raw-style folder:
+///   velodyne/NNNNNN.bin float32 x, y, z, reflectance [0..1] per point, firing order, each sweep
+///                       from azimuth 180 deg (behind) clockwise round to 180 deg
+///   times.txt           one stamp per sweep, the moment it fires forward (azimuth 0, mid-sweep),
+///                       on the capture clock [s since epoch, %.6f]
+///   poses_velo_kitti.txt  T_lidar0_lidar at each stamp, KITTI 3x4 row-major (lidar0: first sweep)
 ///   gt_trajectory.tum   T_world_lidar every 10 ms, "t x y z qx qy qz qw", t on the capture clock
 ///   gt_vehicle.csv      vehicle reference state every 10 ms: pose, speed, acceleration, yaw rate,
 ///                       rear wheel speeds, distance (header line names the columns and units)

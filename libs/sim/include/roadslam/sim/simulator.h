@@ -6,6 +6,7 @@
 /// time is that of its last firing (first firing + 1.327104 ms), when a real sensor sends it.
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -77,7 +78,13 @@ class Simulator {
   double packetCaptureTime(uint64_t k) const;
 
   /// Simulates [0, duration_s()) into \p sink; appends true returns to \p truth when given.
+  /// vlp16 only (throws for hdl64).
   SimStats run(PacketSink& sink, std::vector<TrueReturn>* truth = nullptr);
+  /// hdl64 only (throws for vlp16): simulates every whole sweep within [0, duration_s()) and hands
+  /// each on with its index; Scan::stamp_s is its forward-facing moment on the capture clock [s
+  /// since epoch] (LidarSimulator::simulateSweep).
+  SimStats runSweeps(const std::function<void(uint64_t k, Scan&& scan)>& on_sweep,
+                     std::vector<TrueReturn>* truth = nullptr);
 
  private:
   ScenarioParams p_;

@@ -24,7 +24,13 @@ struct TrajectoryParams {
   double start_standing_s = 2.0;     ///< standing still before driving off [s]
   double end_standing_s = 1.0;       ///< standing still after arriving [s]
   int laps = 1;                      ///< closed routes: number of laps [-]
-  double track_width_m = 1.6;        ///< for the wheel speeds [m]
+  double track_width_m = 1.6;        ///< for the wheel speeds and the wheel contacts [m]
+  double wheelbase_m = 2.7;          ///< rear to front axle, for the wheel contacts on a rough road [m]
+  /// Suspension (both 0 = rigid): body pitch = -k_pitch * longitudinal acceleration (nose down when
+  /// braking), body roll = k_roll * lateral acceleration (leaning out of the turn); real motion of
+  /// the sensor, so in the ground truth [deg per m/s^2].
+  double k_pitch_deg_per_mps2 = 0;
+  double k_roll_deg_per_mps2 = 0;
 
   double max_speed_mps() const { return max_speed_kmh / 3.6; }
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section);
@@ -49,7 +55,10 @@ class Trajectory {
  public:
   static constexpr double kStep_s = 0.01;  ///< state table period [s]
 
-  Trajectory(const Road& route, const Ground& ground, const TrajectoryParams& p);
+  /// \p surface: when given, the car stands on its surfaceHeight (crown, roughness): its four wheel
+  /// contacts set the height, pitch and roll on top of the Ground's.
+  Trajectory(const Road& route, const Ground& ground, const TrajectoryParams& p,
+             const World* surface = nullptr);
   /// Time from the start until the vehicle has stood for end_standing_s at the end [s].
   double duration_s() const { return duration_; }
   double distance_m() const { return states_.empty() ? 0 : states_.back().s_m; }
@@ -61,6 +70,7 @@ class Trajectory {
  private:
   VehicleState stateAtArcLength(double s, double v, double a) const;
   const Ground& ground_;
+  const World* surface_;
   TrajectoryParams p_;
   bool closed_ = false;
   double route_len_ = 0;

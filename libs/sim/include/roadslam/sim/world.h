@@ -26,6 +26,25 @@ struct Ground {
   Vec2 gradient(double x, double y) const;
 };
 
+/// Small-scale road surface on top of Ground (both off when 0): a crowned carriageway (cross slope
+/// falling from the centreline to the curbs, so the road edges, sidewalks and terrain keep the
+/// Ground height) and a deterministic roughness height field (a sum of seeded plane waves).
+struct RoadSurface {
+  double cross_slope = 0;       ///< crown: height slope across the carriageway [m/m]
+  double roughness_m = 0;       ///< standard deviation of the roughness height [m]
+  double roughness_wavelength_m = 1.0;  ///< central wavelength of the roughness [m]
+  static constexpr int kWaves = 4;
+  double wave_kx[kWaves] = {}, wave_ky[kWaves] = {}, wave_phase[kWaves] = {};  ///< [rad/m, rad]
+  double wave_amplitude_m = 0;  ///< amplitude of each wave: roughness_m * sqrt(2 / kWaves) [m]
+  /// Draws the waves from \p seed (directions uniform, wavelengths 0.5..2 x the central one).
+  void seedWaves(uint64_t seed);
+  /// Roughness height at (x, y) [m]; 0 when roughness_m = 0.
+  double roughness(double x, double y) const;
+  /// Bound on |roughness| [m].
+  double roughnessBound() const { return kWaves * wave_amplitude_m; }
+  bool any() const { return cross_slope != 0 || roughness_m != 0; }
+};
+
 /// A road: dense centreline (about 0.5 m spacing) and the curb lines where sidewalks exist.
 struct Road {
   std::string name;
@@ -55,6 +74,7 @@ struct CarPose {
 class World {
  public:
   Ground ground;
+  RoadSurface surface;
   std::vector<Prism> prisms;
   std::vector<Cylinder> cylinders;
   std::vector<Sphere> spheres;
@@ -71,6 +91,12 @@ class World {
   /// draw that decides where a ray stops inside porous foliage. Allocation-free.
   bool raycast(const Ray& ray, double max_range, uint64_t ray_key, const Prism* dynamic,
                std::size_t n_dynamic, Hit& hit) const;
+
+  /// Height of the crown and roughness above Ground::height at (x, y) [m] (0 when RoadSurface is
+  /// off or outside the grid); the crown uses the nearest road of the grid cell.
+  double surfaceOffset(double x, double y) const;
+  /// Ground::height + surfaceOffset: the surface the ray caster sees and the car drives on [m].
+  double surfaceHeight(double x, double y) const { return ground.height(x, y) + surfaceOffset(x, y); }
 
   /// Car pose at time \p t_s [s] (cars wrap around at the end of a road).
   CarPose carPose(const MovingCar& car, double t_s) const;
@@ -89,8 +115,21 @@ class World {
     Material ground_material = Material::Terrain;
     uint32_t first = 0, count = 0;  ///< range in refs_
   };
+  /// The nearest road of a cell, for the crown: centreline point, unit direction, half width [m].
+  struct CrownLine {
+    double px = 0, py = 0, dx = 1, dy = 0, hw = 0;  ///< hw = 0: no road near this cell
+  };
   bool traceCell(const Ray& ray, const Cell& cell, int ix, int iy, double t_in, double t_out,
                  uint64_t ray_key, Hit& hit) const;
+  /// First crossing of the ray under the cell's detailed surface (plane + crown + \p offset) within
+  /// [t_in, t_out]; < 0 when none. \p f0, \p a: the ray's height above the plane, f0 + a t.
+  double crownedGroundHit(const Ray& ray, const CrownLine& cl, double f0, double a, double t_in,
+                          double t_out, double offset) const;
+  /// Same on plane + crown + roughness (a march and bisection: the roughness is not linear).
+  double roughGroundHit(const Ray& ray, const CrownLine& cl, double f0, double a, double t_in,
+                        double t_out) const;
+  void buildCrownLines();
+  std::vector<CrownLine> crown_;  ///< per cell, when surface.cross_slope != 0
 
   double x0_ = 0, y0_ = 0, cell_ = 5;
   int nx_ = 0, ny_ = 0;

@@ -43,6 +43,13 @@ struct WorldParams {
   double tunnel_start_m = 0;        ///< arc length on the first road where a tunnel starts [m]
   double tunnel_length_m = 0;       ///< [m]; 0 = no tunnel
   double tunnel_height_m = 5.5;     ///< ceiling height above the road [m]
+  double road_cross_slope = 0;       ///< crown: cross slope from the centreline down to the curbs
+                                    ///< [m/m]; 0 = flat across (RoadSurface)
+  double road_roughness_m = 0;      ///< standard deviation of the ground's roughness height [m]
+  double road_roughness_wavelength_m = 1.0;  ///< its central wavelength [m]
+  double hedge_prob = 0;            ///< a frontage stretch without a building gets a hedge [0..1]
+  double hedge_height_m = 1.2;      ///< [m]
+  int canopy_lobes = 0;             ///< extra porous lobes around each tree crown [-]
   double grid_cell_m = 5;           ///< ray-casting grid cell [m]
   double margin_m = 110;            ///< ground extends this far beyond the content (> max range) [m]
 
