@@ -11,6 +11,7 @@
 #include <memory>
 #include <map>
 #include <sstream>
+#include <vector>
 
 #include "roadslam/common/config.h"
 #include "roadslam/pipeline/map_job.h"
@@ -86,4 +87,24 @@ TEST(Defaults, DegreesAreWrittenBackAsGiven) {
   EXPECT_TRUE(sameValue(used.at("odometry.gravity_kernel_deg"), "2")) << used.at("odometry.gravity_kernel_deg");
   const Ini defaults = parse(pipeline::effectiveMapConfig(mrpt::config::CConfigFileMemory()));
   EXPECT_TRUE(sameValue(defaults.at("odometry.keyframe_angle_deg"), "10")) << defaults.at("odometry.keyframe_angle_deg");
+}
+
+// ini/kitti-hdl64.ini is complete: the keys of ini/default.ini, every one, with the 64-beam sensor's
+// own values only where its mounting differs.
+TEST(Defaults, The64BeamConfigSetsEveryKeyOfTheDefaultOne) {
+  const auto text = [](const std::string& name) {
+    std::ifstream f(std::string(ROADSLAM_SOURCE_DIR) + "/ini/" + name);
+    return std::string((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  };
+  const Ini def = parse(text("default.ini")), k64 = parse(text("kitti-hdl64.ini"));
+  ASSERT_GT(def.size(), 80u);
+  std::vector<std::string> differ;
+  for (const auto& [key, value] : def) {
+    ASSERT_TRUE(k64.count(key)) << "ini/kitti-hdl64.ini lacks " << key;
+    if (!sameValue(k64.at(key), value)) differ.push_back(key);
+  }
+  EXPECT_EQ(k64.size(), def.size());
+  EXPECT_EQ(differ, (std::vector<std::string>{"grid.lidar_height_m", "preprocess.ego_radius_m", "preprocess.seg_sensor_height_m"}));
+  const auto cfg = loadIniFile(std::string(ROADSLAM_SOURCE_DIR) + "/ini/kitti-hdl64.ini");
+  EXPECT_NO_THROW(pipeline::effectiveMapConfig(*cfg));
 }
