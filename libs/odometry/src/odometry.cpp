@@ -180,7 +180,7 @@ registration::RegistrationResult Odometry::match(const std::vector<Eigen::Vector
 }
 
 Eigen::Isometry3d Odometry::searchFirstMotion(const Scan& scan, const Eigen::Isometry3d& guess,
-                                              FrameResult& res) const {
+                                              FrameResult& res) {
   // Scan to scan against the first sweep, both as recorded: at 15 m/s the sweeps are 1.5 m apart,
   // beyond the voxel map's reach (its neighbour voxels) and its 0.2-0.7 m kernel. A coarse NDT level
   // of 8 m cells sees that far (Magnusson 2009, Sec. 6.2.4: multi-resolution widens the basin).
@@ -198,7 +198,22 @@ Eigen::Isometry3d Odometry::searchFirstMotion(const Scan& scan, const Eigen::Iso
     res.reason = "first motion search: " + registration::toString(r.status);
     return guess;
   }
-  return r.T_target_source;
+  // NDT's coarse cells can also slide a standing car along a row of parked cars by a car's length:
+  // the matcher itself, from either start, says which motion the map explains better.
+  const auto fine = registration::voxelDownsample(deskew(scan, Eigen::Isometry3d::Identity(), 1.0),
+                                                  params_.registration_voxel_m);
+  FrameResult scratch;
+  const auto from_guess = match(fine, T_world_last_ * guess, scratch);
+  const auto from_search = match(fine, T_world_last_ * r.T_target_source, scratch);
+  // The better of the two, judged as the odometry judges a frame: converged, then the points it
+  // explains, then their spread. Its motion also deskews the first sweep and this one.
+  const auto better = [](const registration::RegistrationResult& a, const registration::RegistrationResult& b) {
+    if (a.converged != b.converged) return a.converged;
+    if (std::abs(a.inliers - b.inliers) > 0.005 * std::max(a.inliers, b.inliers)) return a.inliers > b.inliers;
+    return a.fitness <= b.fitness;
+  };
+  const auto& best = better(from_search, from_guess) ? from_search : from_guess;
+  return T_world_last_.inverse() * best.T_target_source;
 }
 
 void Odometry::redeskewFirstFrame(const Eigen::Isometry3d& delta_sweep) {

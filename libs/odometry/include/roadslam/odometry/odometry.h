@@ -179,7 +179,7 @@ class Odometry {
   registration::RegistrationResult match(const std::vector<Eigen::Vector3d>& source,
                                          const Eigen::Isometry3d& T_pred, FrameResult& res);
   void updateMap(const Eigen::Isometry3d& T_world_lidar);
-  Eigen::Isometry3d searchFirstMotion(const Scan& scan, const Eigen::Isometry3d& guess, FrameResult& res) const;
+  Eigen::Isometry3d searchFirstMotion(const Scan& scan, const Eigen::Isometry3d& guess, FrameResult& res);
   void redeskewFirstFrame(const Eigen::Isometry3d& delta_sweep);
 
   Params params_;
