@@ -146,11 +146,12 @@ VehicleState Trajectory::stateAtArcLength(double s, double v, double a) const {
   st.pitch = 0.0 - std::atan(g.x * ch + g.y * sh);  // (no -0) nose up on an uphill (ZYX: +pitch is nose down)
   st.roll = std::atan(-g.x * sh + g.y * ch);   // left side up when the ground rises to the left
   if (surface_) {
-    // Wheel contacts on the crown and roughness: the rear axle's mean sets the reference height,
-    // the left/right and front/rear differences tilt the body.
+    // Wheel contacts on the crown (World::crownOffset: the suspension keeps the short-wavelength
+    // roughness from the body): the rear axle's mean sets the reference height, the left/right and
+    // front/rear differences tilt the body.
     const double hw = 0.5 * p_.track_width_m, L = p_.wheelbase_m;
     auto off = [&](double along, double left) {
-      return surface_->surfaceOffset(st.x + along * ch - left * sh, st.y + along * sh + left * ch);
+      return surface_->crownOffset(st.x + along * ch - left * sh, st.y + along * sh + left * ch);
     };
     const double rl = off(0, hw), rr = off(0, -hw), fl = off(L, hw), fr = off(L, -hw);
     st.z += 0.5 * (rl + rr);

@@ -32,7 +32,11 @@ double crown(double slope, double hw, double lat) { return slope * std::max(0.0,
 
 double World::surfaceOffset(double x, double y) const {
   if (!surface.any()) return 0;
-  double off = surface.roughness(x, y);
+  return surface.roughness(x, y) + crownOffset(x, y);
+}
+
+double World::crownOffset(double x, double y) const {
+  double off = 0;
   const int ix = static_cast<int>(std::floor((x - x0_) / cell_)), iy = static_cast<int>(std::floor((y - y0_) / cell_));
   if (!crown_.empty() && ix >= 0 && iy >= 0 && ix < nx_ && iy < ny_) {
     const CrownLine& c = crown_[static_cast<std::size_t>(iy) * nx_ + ix];

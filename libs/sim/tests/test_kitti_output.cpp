@@ -32,7 +32,9 @@ TEST(SimKittiOutput, FolderRoundTripsThroughLibsDatasets) {
   Simulator again(p);
   std::vector<Scan> sweeps;
   again.runSweeps([&](uint64_t, Scan&& s) { sweeps.push_back(std::move(s)); });
-  const datasets::KittiScanFolder folder(dir.str() + "/velodyne");
+  datasets::KittiParams as_written;  // the file's values, without KITTI's elevation correction
+  as_written.elevation_correction_rad = 0;
+  const datasets::KittiScanFolder folder(dir.str() + "/velodyne", "", as_written);
   ASSERT_EQ(folder.size(), 3u);
   ASSERT_TRUE(folder.hasTimes());
   const datasets::PoseList poses = datasets::readKittiPoses(dir.str() + "/poses_velo_kitti.txt");

@@ -95,6 +95,10 @@ class World {
   /// Height of the crown and roughness above Ground::height at (x, y) [m] (0 when RoadSurface is
   /// off or outside the grid); the crown uses the nearest road of the grid cell.
   double surfaceOffset(double x, double y) const;
+  /// The crown alone [m]: what the car's body rides on. Roughness of ~1 m wavelength reaches the
+  /// wheels at 10+ Hz, far above a car's 1-1.5 Hz body modes, so the suspension keeps it from the
+  /// body (Gillespie, Fundamentals of Vehicle Dynamics, 1992, ch. 5: ride isolation).
+  double crownOffset(double x, double y) const;
   /// Ground::height + surfaceOffset: the surface the ray caster sees and the car drives on [m].
   double surfaceHeight(double x, double y) const { return ground.height(x, y) + surfaceOffset(x, y); }
 
