@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   app.add_flag("--whole-drive", req.whole_drive,
                "two passes: fit every sweep from the curbs of the whole drive, along its own path "
                "(a finished drive; default: live, each sweep from the sweeps before it)");
+  app.add_flag("--allow-unknown-keys", req.allow_unknown_keys, "ini keys no component reads are warnings, not errors");
   app.add_flag("--quiet", quiet, "no progress bar and no summary on stdout");
   CLI11_PARSE(app, argc, argv);
   req.progress = !quiet;
@@ -26,6 +27,7 @@ int main(int argc, char** argv) {
   try {
     const auto summary = roadslam::boundary::runBoundsJob(req);
     if (!quiet) std::cout << summary.dump(2) << "\n";
+    for (const auto& w : summary["warnings"]) std::cerr << "roadslam-bounds: warning: " << w.get<std::string>() << "\n";
     return 0;
   } catch (const std::exception& e) {
     std::cerr << "roadslam-bounds: " << e.what() << "\n";

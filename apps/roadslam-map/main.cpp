@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   app.add_option("--max-frames", req.max_frames, "stop after this many frames (0 = all)");
   app.add_option("--can", req.can_log_path, "candump log of the same drive: wheel odometry prior")->check(CLI::ExistingFile);
   app.add_option("--vehicle", req.vehicle_ini_path, "the car's vehicle ini (ini/vehicles/...), with --can")->check(CLI::ExistingFile);
+  app.add_flag("--allow-unknown-keys", req.allow_unknown_keys, "ini keys no component reads are warnings, not errors");
   app.add_flag("--quiet", quiet, "no progress bar and no summary on stdout");
   CLI11_PARSE(app, argc, argv);
   req.progress = !quiet;

@@ -14,9 +14,11 @@
 #include "roadslam/common/config.h"
 #include "roadslam/common/progress.h"
 #include "roadslam/common/stop_signal.h"
+#include "roadslam/datasets/kitti_scans.h"
 #include "roadslam/datasets/trajectory_io.h"
 #include "roadslam/odometry/odometry.h"
 #include "roadslam/pipeline/scan_stream.h"
+#include "roadslam/velodyne/decoder_params.h"
 
 namespace fs = std::filesystem;
 
@@ -144,6 +146,16 @@ nlohmann::json runBoundsJob(const BoundsRequest& req) {
   const auto cfg = loadIniFile(req.config_path);
   Params params;
   params.loadFromConfigFile(*cfg);
+  {
+    // what the sweeps' source and the odometry read, in every mode, so their keys are checked too
+    odometry::Params op;
+    op.loadFromConfigFile(*cfg);
+    velodyne::DecoderParams dp;
+    dp.loadFromConfigFile(*cfg, "velodyne");
+    datasets::KittiParams kp;
+    kp.loadFromConfigFile(*cfg, "kitti");
+  }
+  const auto unknown_keys = cfg->checkEntries(req.allow_unknown_keys);
   std::error_code ec;
   fs::create_directories(req.out_dir + "/frames", ec);
   if (ec) throw std::runtime_error("cannot create output folder '" + req.out_dir + "': " + ec.message());
@@ -198,6 +210,7 @@ nlohmann::json runBoundsJob(const BoundsRequest& req) {
                       {"poses", req.trajectory_path.empty() ? "odometry" : req.trajectory_path},
                       {"mode", req.whole_drive ? "whole_drive" : "live"}, {"curb_map_cells", det.curbMap().size()}};
   if (req.whole_drive) s["ms_per_frame_first_pass_mean"] = drive.ms_mean;
+  s["warnings"] = unknown_keys;
   writeFileAtomically(req.out_dir + "/summary.json", s.dump(2) + "\n");
   return s;
 }

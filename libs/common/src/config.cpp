@@ -1,4 +1,5 @@
 #include "roadslam/common/config.h"
+#include "roadslam/common/checked_config.h"
 
 #include <mrpt/config/CConfigFile.h>
 
@@ -14,6 +15,7 @@ std::string where(const mrpt::config::CConfigFileBase& cfg, const std::string& s
                   const std::string& key) {
   std::string src;
   if (auto f = dynamic_cast<const mrpt::config::CConfigFile*>(&cfg)) src = f->getAssociatedFile() + ": ";
+  if (auto f = dynamic_cast<const CheckedConfig*>(&cfg)) src = f->path() + ": ";
   return src + "[" + section + "] " + key;
 }
 std::string raw(const mrpt::config::CConfigFileBase& cfg, const std::string& section,
@@ -22,10 +24,8 @@ std::string raw(const mrpt::config::CConfigFileBase& cfg, const std::string& sec
 }
 }  // namespace
 
-std::unique_ptr<mrpt::config::CConfigFileBase> loadIniFile(const std::string& path) {
-  std::ifstream probe(path);
-  if (!probe) throw std::runtime_error("cannot open config file '" + path + "'");
-  return std::make_unique<mrpt::config::CConfigFile>(path);
+std::unique_ptr<CheckedConfig> loadIniFile(const std::string& path) {
+  return std::make_unique<CheckedConfig>(path);
 }
 
 double readDouble(const mrpt::config::CConfigFileBase& cfg, const std::string& section,

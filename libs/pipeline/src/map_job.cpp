@@ -112,6 +112,7 @@ MapOutcome runMapJob(const MapRequest& req) {
   const auto cfg = loadIniFile(req.config_path);
   JobParams params;
   params.load(*cfg);
+  const auto unknown_keys = cfg->checkEntries(req.allow_unknown_keys);
   prepareOutDir(req.out_dir);
   writeFileAtomically(req.out_dir + "/config_used.ini", params.used());
   auto stream = openScanStream(req.input_path, *cfg);
@@ -155,6 +156,7 @@ MapOutcome runMapJob(const MapRequest& req) {
   for (const auto& f : out.frames) out.T_map_lidar.push_back(mapper.correctedPose(f, T_map_kf));
   out.summary = summarize(out.frames);
   out.summary["warnings"] = nlohmann::json::array();
+  for (const auto& w : unknown_keys) out.summary["warnings"].push_back(w);
   const int timed = out.summary["deskewed_frames"].get<int>();
   const int posed = static_cast<int>(out.frames.size()) - out.summary["frames_by_status"].value("skipped", 0);
   if (params.odometry.deskew && timed < posed) {

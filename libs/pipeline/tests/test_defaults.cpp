@@ -108,3 +108,14 @@ TEST(Defaults, The64BeamConfigSetsEveryKeyOfTheDefaultOne) {
   const auto cfg = loadIniFile(std::string(ROADSLAM_SOURCE_DIR) + "/ini/kitti-hdl64.ini");
   EXPECT_NO_THROW(pipeline::effectiveMapConfig(*cfg));
 }
+
+// Every shipped ini that roadslam-map takes is read whole: no key of it is unknown to the job.
+TEST(Defaults, EveryShippedMapIniIsReadWhole) {
+  for (const char* name : {"default.ini", "kitti-hdl64.ini", "thesis-icp.ini", "thesis-ndt.ini", "preprocess-kitti.ini",
+                           "preprocess-thesis.ini", "preprocess-vlp16-ground-removal.ini"}) {
+    const auto cfg = loadIniFile(std::string(ROADSLAM_SOURCE_DIR) + "/ini/" + name);
+    pipeline::effectiveMapConfig(*cfg);
+    const auto bad = cfg->unknownEntries();
+    EXPECT_TRUE(bad.empty()) << name << ": " << bad.front();
+  }
+}

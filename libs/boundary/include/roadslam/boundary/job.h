@@ -24,6 +24,8 @@ struct BoundsRequest {
   /// Off = live mode: each sweep sees only the curbs of the sweeps before it.
   bool whole_drive = false;
   bool progress = true;
+  /// Ini keys no component reads are warnings in the summary instead of an error (checked_config.h).
+  bool allow_unknown_keys = false;
 };
 
 /// Runs the job; returns the summary (frames, ms_per_frame_mean/max = detector wall time per sweep,

@@ -5,13 +5,16 @@
 
 #include <mrpt/config/CConfigFileBase.h>
 
+#include "roadslam/common/checked_config.h"
+
 #include <memory>
 #include <string>
 
 namespace roadslam {
 
 /// Opens an ini file; throws std::runtime_error naming the file when it is missing or unreadable.
-std::unique_ptr<mrpt::config::CConfigFileBase> loadIniFile(const std::string& path);
+/// It records the keys read, so a job can report the ones no component knows (checked_config.h).
+std::unique_ptr<CheckedConfig> loadIniFile(const std::string& path);
 
 /// Reads a double; throws naming section/key (and the source) when the value is not a number.
 double readDouble(const mrpt::config::CConfigFileBase& cfg, const std::string& section,
