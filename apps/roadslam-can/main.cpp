@@ -43,7 +43,18 @@ int main(int argc, char** argv) {
   raw->add_option("OUT", out, "output .rawlog")->required();
   for (auto* c : {odo, raw}) c->add_option("--data-root", data_root, "folder the ini's DBC path is relative to");
 
+  size_t max_bad = 0;
+  for (auto* c : {dec, info})
+    c->add_option("--max-bad-lines", max_bad, "exit 2 when the log has more lines the parser cannot read (default 0)");
   CLI11_PARSE(app, argc, argv);
+  // A log the user named is read whole or the run says so: bad lines above the limit fail it.
+  const auto checkBad = [&](const can::CandumpStats& st) {
+    if (st.bad <= max_bad) return 0;
+    const auto& first = st.issues.front();
+    std::cerr << "roadslam-can: " << log << ": " << st.bad << " of " << st.lines << " lines unreadable (first at line "
+              << first.line << ": " << first.reason << "); --max-bad-lines " << st.bad << " accepts them\n";
+    return 2;
+  };
   try {
     if (*dec) {
       std::vector<std::string> sel;
@@ -54,6 +65,7 @@ int main(int argc, char** argv) {
       const auto fmt = csv ? can::DecodeFormat::kCsv : json ? can::DecodeFormat::kJsonLines : can::DecodeFormat::kText;
       const auto counts = can::decodeLog(reader, decoder, fmt, std::cout);
       std::cerr << counts.summary() << "; " << reader.stats().bad << " bad log lines\n";
+      if (const int rc = checkBad(reader.stats())) return rc;
     } else if (*info) {
       can::CandumpStats st;
       const auto frames = can::readCandumpFile(log, &st);
@@ -62,6 +74,7 @@ int main(int argc, char** argv) {
       const auto li = can::analyzeLog(frames, db.get());
       std::cout << (json ? can::formatLogInfoJson(li) + "\n" : can::formatLogInfoText(li));
       if (st.bad) std::cerr << st.bad << " bad log lines (first at line " << st.issues.front().line << ")\n";
+      if (const int rc = checkBad(st)) return rc;
     } else if (*odo) {
       vehicle::OdometryJob job{vehicle, data_root, log, out, gnss, !no_scale, {}};
       std::cout << vehicle::runOdometryJob(job).text();

@@ -2,6 +2,7 @@
 
 #include <pcap/pcap.h>
 
+#include <cstdio>
 #include <stdexcept>
 
 #include "link_layer.h"
@@ -42,11 +43,13 @@ ReadStatus PcapReader::next(UdpDatagram& out) {
   for (;;) {
     pcap_pkthdr* hdr = nullptr;
     const u_char* data = nullptr;
+    FILE* f = pcap_file(impl_->handle);
+    const long at = f ? std::ftell(f) : -1;  // where the record starts (stdio accounts for its buffer)
     const int rc = pcap_next_ex(impl_->handle, &hdr, &data);
     if (rc == PCAP_ERROR_BREAK) return status_ = ReadStatus::EndOfFile;
     if (rc != 1) {
       error_ = "PcapReader: '" + path_ + "' damaged at record " + std::to_string(stats_.records) +
-               ": " + pcap_geterr(impl_->handle);
+               (at >= 0 ? " (byte " + std::to_string(at) + ")" : "") + ": " + pcap_geterr(impl_->handle);
       return status_ = ReadStatus::Error;
     }
     ++stats_.records;

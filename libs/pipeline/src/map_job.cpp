@@ -113,9 +113,15 @@ MapOutcome runMapJob(const MapRequest& req) {
   JobParams params;
   params.load(*cfg);
   const auto unknown_keys = cfg->checkEntries(req.allow_unknown_keys);
+  auto stream = openScanStream(req.input_path, *cfg);
+  // An input that gives no sweep at all is an error before any output exists.
+  std::optional<Scan> first = stream->next();
+  if (!first) {
+    const std::string err = stream->errorMessage();
+    throw std::runtime_error("input '" + req.input_path + "' gives no sweep" + (err.empty() ? "" : ": " + err));
+  }
   prepareOutDir(req.out_dir);
   writeFileAtomically(req.out_dir + "/config_used.ini", params.used());
-  auto stream = openScanStream(req.input_path, *cfg);
 
   MapOutcome out;
   odometry::Odometry odo(params.odometry);
@@ -132,7 +138,8 @@ MapOutcome runMapJob(const MapRequest& req) {
   }
   while (!stopRequested()) {
     if (req.max_frames && out.frames.size() >= req.max_frames) break;
-    auto scan = stream->next();
+    auto scan = first ? std::move(first) : stream->next();
+    first.reset();
     if (!scan) break;
     std::optional<odometry::MotionPrior> prior;
     std::optional<mapping::WheelMotion> wheel;
@@ -157,6 +164,12 @@ MapOutcome runMapJob(const MapRequest& req) {
   out.summary = summarize(out.frames);
   out.summary["warnings"] = nlohmann::json::array();
   for (const auto& w : unknown_keys) out.summary["warnings"].push_back(w);
+  const std::string damage = stream->errorMessage();
+  if (!damage.empty()) {
+    out.summary["warnings"].push_back("input damaged, " + std::to_string(stream->stats().sweeps) +
+                                      " sweeps read before it: " + damage);
+  }
+  out.summary["complete"] = damage.empty() && !out.interrupted;
   const int timed = out.summary["deskewed_frames"].get<int>();
   const int posed = static_cast<int>(out.frames.size()) - out.summary["frames_by_status"].value("skipped", 0);
   if (params.odometry.deskew && timed < posed) {

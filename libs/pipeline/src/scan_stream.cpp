@@ -47,6 +47,7 @@ class VelodyneStream : public ScanStream {
             static_cast<size_t>(s.malformed_packets) + a.malformed()};
   }
   std::string describe() const override { return src_->describe(); }
+  std::string errorMessage() const override { return src_->errorMessage(); }
 
  private:
   std::unique_ptr<sources::PacketSource> src_;
@@ -58,12 +59,24 @@ class KittiStream : public ScanStream {
  public:
   KittiStream(const std::string& dir, const datasets::KittiParams& p) : folder_(dir, "", p), dir_(dir) {}
   std::optional<Scan> next() override {
-    if (i_ >= folder_.size()) return std::nullopt;
-    ++stats_.sweeps;
-    return folder_.read(i_++);
+    // one unreadable .bin is counted and skipped: one bad scan never ends the run
+    while (i_ < folder_.size()) {
+      try {
+        auto scan = folder_.read(i_++);
+        ++stats_.sweeps;
+        return scan;
+      } catch (const std::exception& e) {
+        ++stats_.malformed_packets;
+        if (error_.empty()) error_ = e.what();
+      }
+    }
+    return std::nullopt;
   }
   StreamStats stats() const override { return stats_; }
   std::string describe() const override { return "kitti:" + dir_; }
+  std::string errorMessage() const override {
+    return error_.empty() ? "" : error_ + (stats_.malformed_packets > 1 ? " (and " + std::to_string(stats_.malformed_packets - 1) + " more)" : "");
+  }
   size_t sizeHint() const override { return folder_.size(); }
 
  private:
@@ -71,6 +84,7 @@ class KittiStream : public ScanStream {
   std::string dir_;
   size_t i_ = 0;
   StreamStats stats_;
+  std::string error_;
 };
 
 }  // namespace

@@ -32,6 +32,9 @@ class ScanStream {
   virtual std::string describe() const = 0;
   /// Total sweeps when known in advance (KITTI folders), else 0: for progress and ETA.
   virtual size_t sizeHint() const { return 0; }
+  /// Non-empty once the input turned out damaged (truncated, undecodable record, unreadable .bin):
+  /// names the file and the place; the sweeps before it were returned normally.
+  virtual std::string errorMessage() const { return {}; }
 };
 
 /// Opens \p path; the decoder reads the [velodyne] section of \p cfg (model, calibration, ...).
