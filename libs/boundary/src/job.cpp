@@ -156,6 +156,17 @@ nlohmann::json runBoundsJob(const BoundsRequest& req) {
     kp.loadFromConfigFile(*cfg, "kitti");
   }
   const auto unknown_keys = cfg->checkEntries(req.allow_unknown_keys);
+  {
+    // an input that gives no sweep at all is an error before any output exists
+    auto probe = pipeline::openScanStream(req.input_path, *cfg);
+    if (!probe->next()) {
+      const std::string err = probe->errorMessage();
+      throw std::runtime_error("input '" + req.input_path + "' gives no sweep" + (err.empty() ? "" : ": " + err));
+    }
+  }
+  // a trajectory that cannot be read fails here too (whole-drive mode reads it again in pass 1)
+  std::unique_ptr<PoseSource> poses = std::make_unique<PoseSource>(req.trajectory_path, *cfg);
+  if (req.whole_drive) poses.reset();
   std::error_code ec;
   fs::create_directories(req.out_dir + "/frames", ec);
   if (ec) throw std::runtime_error("cannot create output folder '" + req.out_dir + "': " + ec.message());
@@ -167,8 +178,6 @@ nlohmann::json runBoundsJob(const BoundsRequest& req) {
   if (req.whole_drive) drive = accumulateDrive(req, *cfg, det);
   const std::vector<SweepPose>& recorded = drive.poses;
   auto stream = pipeline::openScanStream(req.input_path, *cfg);
-  std::unique_ptr<PoseSource> poses;
-  if (!req.whole_drive) poses = std::make_unique<PoseSource>(req.trajectory_path, *cfg);
   AtomicFile jsonl(req.out_dir + "/boundaries.jsonl");
   Totals tot;
   ProgressBar bar("roadslam-bounds", stream->sizeHint());
@@ -211,6 +220,8 @@ nlohmann::json runBoundsJob(const BoundsRequest& req) {
                       {"mode", req.whole_drive ? "whole_drive" : "live"}, {"curb_map_cells", det.curbMap().size()}};
   if (req.whole_drive) s["ms_per_frame_first_pass_mean"] = drive.ms_mean;
   s["warnings"] = unknown_keys;
+  if (!stream->errorMessage().empty()) s["warnings"].push_back("input damaged: " + stream->errorMessage());
+  s["complete"] = stream->errorMessage().empty() && !stopRequested();
   writeFileAtomically(req.out_dir + "/summary.json", s.dump(2) + "\n");
   return s;
 }

@@ -62,8 +62,7 @@ void Params::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const 
   }
   hold_max_turn_rad = readDouble(cfg, s, "hold_max_turn_deg", hold_max_turn_rad * 180.0 / M_PI) * M_PI / 180.0;
   known.emplace_back("hold_max_turn_deg");
-  const auto unknown = unknownKeys(cfg, s, known);
-  require(unknown.empty(), s, unknown.empty() ? "" : unknown.front(), "unknown key");
+  rejectUnknownKeys(cfg, s, known);
   require(curb_min_jump_m > 0 && curb_max_jump_m > curb_min_jump_m, s, "curb_max_jump_m",
           "needs 0 < curb_min_jump_m < curb_max_jump_m");
   require(band_max_x_m > band_min_x_m, s, "band_max_x_m", "must exceed band_min_x_m");

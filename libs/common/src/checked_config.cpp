@@ -41,17 +41,18 @@ const std::vector<std::string>& knownSections() {
 }
 
 size_t editDistance(const std::string& a0, const std::string& b0) {
+  // optimal string alignment: a swap of two neighbours (heigth / height) is one edit
   const std::string a = lower(a0), b = lower(b0);
-  std::vector<size_t> prev(b.size() + 1), cur(b.size() + 1);
-  for (size_t j = 0; j <= b.size(); ++j) prev[j] = j;
+  std::vector<std::vector<size_t>> d(a.size() + 1, std::vector<size_t>(b.size() + 1));
+  for (size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
+  for (size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
   for (size_t i = 1; i <= a.size(); ++i) {
-    cur[0] = i;
     for (size_t j = 1; j <= b.size(); ++j) {
-      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
     }
-    std::swap(prev, cur);
   }
-  return prev[b.size()];
+  return d[a.size()][b.size()];
 }
 
 CheckedConfig::CheckedConfig(const std::string& path) : path_(path) {
@@ -112,6 +113,15 @@ std::vector<std::string> CheckedConfig::unknownEntries() const {
   std::vector<std::string> lines;
   for (auto& [n, s] : out) lines.push_back(std::move(s));
   return lines;
+}
+
+int CheckedConfig::lineOf(const std::string& section, const std::string& key) const {
+  const auto it = key_lines_.find({lower(section), lower(key)});
+  return it == key_lines_.end() ? 0 : it->second;
+}
+
+std::string nearestName(const std::string& word, const std::vector<std::string>& candidates) {
+  return nearest(word, candidates);
 }
 
 std::vector<std::string> CheckedConfig::checkEntries(bool allow) const {

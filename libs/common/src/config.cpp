@@ -72,6 +72,17 @@ std::string readString(const mrpt::config::CConfigFileBase& cfg, const std::stri
   return s.empty() ? default_value : s;
 }
 
+void rejectUnknownKeys(const mrpt::config::CConfigFileBase& cfg, const std::string& section,
+                       const std::vector<std::string>& known) {
+  const auto bad = unknownKeys(cfg, section, known);
+  if (bad.empty()) return;
+  std::string at;
+  if (auto f = dynamic_cast<const CheckedConfig*>(&cfg)) at = f->path() + ":" + std::to_string(f->lineOf(section, bad.front())) + ": ";
+  const std::string near = nearestName(bad.front(), known);
+  throw std::runtime_error(at + "unknown key '" + bad.front() + "' in [" + section + "]" +
+                           (near.empty() ? "" : " (nearest known: " + near + ")"));
+}
+
 std::vector<std::string> unknownKeys(const mrpt::config::CConfigFileBase& cfg,
                                      const std::string& section,
                                      const std::vector<std::string>& known) {

@@ -49,4 +49,5 @@ TEST(CheckedConfig, EditDistance) {
   EXPECT_EQ(editDistance("kitten", "sitting"), 3u);
   EXPECT_EQ(editDistance("", "abc"), 3u);
   EXPECT_EQ(editDistance("ABC", "abc"), 0u);
+  EXPECT_EQ(editDistance("curb_heigth_m", "curb_height_m"), 1u);
 }

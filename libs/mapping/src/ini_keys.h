@@ -8,10 +8,6 @@
 
 namespace roadslam::mapping {
 
-inline void rejectUnknownKeys(const mrpt::config::CConfigFileBase& cfg, const std::string& section,
-                              const std::vector<std::string>& known) {
-  const auto unknown = unknownKeys(cfg, section, known);
-  if (!unknown.empty()) throw std::runtime_error("[" + section + "] unknown key '" + unknown.front() + "'");
-}
+using roadslam::rejectUnknownKeys;
 
 }  // namespace roadslam::mapping

@@ -113,6 +113,7 @@ MapOutcome runMapJob(const MapRequest& req) {
   JobParams params;
   params.load(*cfg);
   const auto unknown_keys = cfg->checkEntries(req.allow_unknown_keys);
+  if (!req.can_log_path.empty() && req.vehicle_ini_path.empty()) throw std::runtime_error("--can needs --vehicle (the car's vehicle ini)");
   auto stream = openScanStream(req.input_path, *cfg);
   // An input that gives no sweep at all is an error before any output exists.
   std::optional<Scan> first = stream->next();
@@ -133,7 +134,6 @@ MapOutcome runMapJob(const MapRequest& req) {
   if (params.maps.octomap.enabled) octo = std::make_unique<mapping::OctoMapWorker>(params.maps.octomap);
   std::unique_ptr<CanPriorStream> can;
   if (!req.can_log_path.empty()) {
-    if (req.vehicle_ini_path.empty()) throw std::runtime_error("--can needs --vehicle (the car's vehicle ini)");
     can = std::make_unique<CanPriorStream>(req.can_log_path, req.vehicle_ini_path, *cfg);
   }
   while (!stopRequested()) {

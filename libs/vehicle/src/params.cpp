@@ -118,6 +118,9 @@ VehicleParams loadVehicleIni(const std::string& path, const std::string& data_ro
     p.data_root = (std::filesystem::path(path).parent_path() / p.data_root).lexically_normal().string();
   }
   if (p.dbc.empty()) throw std::runtime_error(path + ": [vehicle] dbc is required");
+  if (!std::filesystem::is_regular_file(p.dbcPath())) {
+    throw std::runtime_error(path + ": [vehicle] dbc = '" + p.dbc + "': no such file '" + p.dbcPath() + "'");
+  }
   return p;
 }
 

@@ -21,8 +21,11 @@ namespace roadslam {
 /// roadslam-bounds alike), so it is not reported; a section outside it is.
 const std::vector<std::string>& knownSections();
 
-/// Edit distance (Levenshtein) between \p a and \p b, case-insensitive.
+/// Edit distance between \p a and \p b, case-insensitive: insertions, deletions, substitutions and
+/// swaps of neighbours (optimal string alignment).
 size_t editDistance(const std::string& a, const std::string& b);
+/// The candidate nearest to \p word, or "" when none is within half its length.
+std::string nearestName(const std::string& word, const std::vector<std::string>& candidates);
 
 class CheckedConfig : public mrpt::config::CConfigFileBase {
  public:
@@ -43,6 +46,8 @@ class CheckedConfig : public mrpt::config::CConfigFileBase {
   /// Throws std::runtime_error listing unknownEntries() unless there are none or \p allow, in which
   /// case they are returned as warnings.
   std::vector<std::string> checkEntries(bool allow) const;
+  /// 1-based line of \p key in \p section, 0 when the file has no such key.
+  int lineOf(const std::string& section, const std::string& key) const;
 
  protected:
   void writeString(const std::string& section, const std::string& name, const std::string& str) override;

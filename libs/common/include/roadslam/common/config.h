@@ -26,6 +26,12 @@ bool readBool(const mrpt::config::CConfigFileBase& cfg, const std::string& secti
 std::string readString(const mrpt::config::CConfigFileBase& cfg, const std::string& section,
                        const std::string& key, const std::string& default_value);
 
+/// Throws std::runtime_error for the first key of \p section that is not in \p known, naming the
+/// file and line (when \p cfg is a CheckedConfig) and the nearest known key: for components that
+/// know their keys up front and check them themselves.
+void rejectUnknownKeys(const mrpt::config::CConfigFileBase& cfg, const std::string& section,
+                       const std::vector<std::string>& known);
+
 /// Keys present in \p section that are not in \p known: reported so a typo in an ini never goes unseen.
 std::vector<std::string> unknownKeys(const mrpt::config::CConfigFileBase& cfg,
                                      const std::string& section,

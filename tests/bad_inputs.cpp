@@ -1,0 +1,311 @@
+// The bad-input table (issue #17): every app that reads files, inis or a command line is run on bad
+// ones as a user would, as a child process. Each row gives the exit code and a piece of the message
+// the user must see (documented in docs/apps/*.md); no row may crash (a signal), hang, or leave a
+// temporary or half-written file in its output folder. The same table runs against sanitizer builds
+// (ASan + UBSan) with ROADSLAM_BIN_DIR pointing at them (ctest label `sanitize`).
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kSrc = ROADSLAM_SOURCE_DIR;
+
+std::string binDir() {
+  const char* env = std::getenv("ROADSLAM_BIN_DIR");
+  return env && *env ? env : std::string(ROADSLAM_BINARY_DIR) + "/bin";
+}
+
+/// Working folder of the table: bad files are made here once.
+const fs::path& work() {
+  static const fs::path w = [] {
+    const fs::path p = fs::path(ROADSLAM_BINARY_DIR) / "test-out" / ("bad-inputs-" + std::to_string(::getpid()));
+    fs::remove_all(p);
+    fs::create_directories(p);
+    return p;
+  }();
+  return w;
+}
+
+void write(const fs::path& p, const std::string& text) {
+  fs::create_directories(p.parent_path());
+  std::ofstream(p, std::ios::binary) << text;
+}
+
+std::string randomBytes(size_t n, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::string s(n, '\0');
+  for (auto& c : s) c = static_cast<char>(rng() & 0xFF);
+  return s;
+}
+
+std::string fileText(const fs::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+}
+
+/// The bad files every row may name as {W}/...
+void makeFiles() {
+  static bool done = false;
+  if (done) return;
+  done = true;
+  const fs::path w = work();
+  const std::string def = fileText(kSrc + "/ini/default.ini");
+  write(w / "random.rawlog", randomBytes(20000, 1));
+  write(w / "random.pcap", randomBytes(20000, 2));
+  write(w / "empty.pcap", "");
+  write(w / "empty.rawlog", "");
+  const std::string pcap = fileText(kSrc + "/rawlogs/boxroom-vlp16.pcap");
+  write(w / "truncated.pcap", pcap.substr(0, 300000));
+  write(w / "notes.txt", "not a recording\n");
+  fs::create_directories(w / "empty-dir");
+  write(w / "typo-key.ini", def + "\n[odometry]\nvoxel_sise_m = 0.5\n");
+  write(w / "typo-section.ini", def + "\n[odometri]\nmap_radius_m = 50\n");
+  write(w / "not-a-number.ini", "[preprocess]\nvoxel_size_m = abc\n");
+  write(w / "bad-matcher.ini", "[odometry]\nmatcher = kiss\n");
+  write(w / "negative-voxel.ini", "[odometry]\nmap_voxel_m = -1\n");
+  write(w / "bad-spin.ini", "[kitti]\nspin = sideways\n");
+  write(w / "bad-stamp-reference.ini", "[kitti]\nstamp_reference = centre\n");
+  write(w / "bad-bool.ini", "[odometry]\ndeskew = maybe\n");
+  write(w / "bounds-typo.ini", fileText(kSrc + "/ini/bounds.ini") + "\n[boundary]\ncurb_min_jmup_m = 0.1\n");
+  write(w / "a-file", "x");
+  // a long KITTI folder for the signal row: one sweep under 3000 names (hard links, no space)
+  {
+    std::string sweep;
+    for (int i = 0; i < 20000; ++i) {
+      const float a = static_cast<float>(i) * 0.0031f, r = 5.0f + static_cast<float>(i % 50);
+      const float rec[4] = {r * std::cos(a), r * std::sin(a), -1.7f + 0.01f * static_cast<float>(i % 300), 0.5f};
+      sweep.append(reinterpret_cast<const char*>(rec), sizeof rec);
+    }
+    write(w / "kitti-long" / "000000.bin", sweep);
+    for (int i = 1; i < 3000; ++i) {
+      char name[16];
+      std::snprintf(name, sizeof name, "%06d.bin", i);
+      fs::create_hard_link(w / "kitti-long" / "000000.bin", w / "kitti-long" / name);
+    }
+  }
+  // KITTI folders: one good sweep, one damaged; a times file of the wrong length
+  std::string bin;
+  for (int i = 0; i < 2000; ++i) {
+    const float rec[4] = {10.0f + static_cast<float>(i % 40), static_cast<float>(i / 40) - 25.0f, -1.7f, 0.5f};
+    bin.append(reinterpret_cast<const char*>(rec), sizeof rec);
+  }
+  write(w / "kitti-damaged" / "000000.bin", bin);
+  write(w / "kitti-damaged" / "000001.bin", bin.substr(0, 1001));
+  write(w / "kitti-damaged" / "000002.bin", bin);
+  write(w / "kitti-bad-times" / "velodyne" / "000000.bin", bin);
+  write(w / "kitti-bad-times" / "times.txt", "0.0\n0.1\n0.2\n");
+  write(w / "kitti-bad-times-value" / "velodyne" / "000000.bin", bin);
+  write(w / "kitti-bad-times-value" / "times.txt", "zero\n");
+  // CAN
+  write(w / "garbage.log", randomBytes(0, 0) + "hello world\n(12.5) can0 zzz#00\nnot candump\n");
+  write(w / "half-good.log", "(1.000000) can0 123#0011\n(1.010000) can0 123#0011\nbroken line\n");
+  write(w / "garbage.dbc", "BO_ x y z\nSG_ nonsense\n");
+  write(w / "bad-vehicle.ini", "[vehicle]\ndbc = nope.dbc\n");
+  // trajectories
+  write(w / "three-columns.tum", "1 2 3\n");
+  write(w / "words.tum", "# t x y z qx qy qz qw\n1.0 0 0 zero 0 0 0 1\n");
+  write(w / "a.tum", "1.0 0 0 0 0 0 0 1\n2.0 1 0 0 0 0 0 1\n3.0 2 0 0 0 0 0 1\n");
+  write(w / "later.tum", "100.0 0 0 0 0 0 0 1\n101.0 1 0 0 0 0 0 1\n");
+  // simulator and grabber inis
+  write(w / "sim-typo.ini", fileText(kSrc + "/ini/sim/urban-loop.ini") + "\n[lidar]\nrange_nosie_m = 0.1\n");
+  write(w / "sim-bad-value.ini", "[scenario]\nduration_s = -5\n");
+  write(w / "grab-typo.ini", fileText(kSrc + "/ini/grab.ini") + "\n[grab]\nsegmnet_mb = 5\n");
+}
+
+struct Row {
+  const char* id;
+  const char* command;   ///< app and arguments; {W} = the table's folder, {O} = this row's output, {S} = sources
+  int exit_code;         ///< expected exit code
+  const char* message;   ///< must appear in stdout + stderr ("" = anything)
+  int signal_after_ms = 0;  ///< > 0: send SIGINT after this long
+};
+
+// clang-format off
+const Row kTable[] = {
+  // roadslam-map: command line
+  {"map-no-config",        "roadslam-map --input {W}/truncated.pcap --out {O}", 106, "--config is required"},
+  {"map-config-missing",   "roadslam-map --config {W}/nope.ini --input {W}/truncated.pcap --out {O}", 105, "File does not exist"},
+  {"map-unknown-option",   "roadslam-map --config {S}/ini/default.ini --input {W}/truncated.pcap --out {O} --voxel 3", 109, "--voxel"},
+  {"map-bad-max-frames",   "roadslam-map --config {S}/ini/default.ini --input {W}/truncated.pcap --out {O} --max-frames many", 104, "--max-frames"},
+  {"map-can-no-vehicle",   "roadslam-map --config {S}/ini/default.ini --input {W}/truncated.pcap --out {O} --can {W}/half-good.log", 1, "--can needs --vehicle"},
+  // roadslam-map: inputs
+  {"map-input-missing",    "roadslam-map --config {S}/ini/default.ini --input {W}/nope.pcap --out {O}", 1, "does not exist"},
+  {"map-random-rawlog",    "roadslam-map --config {S}/ini/default.ini --input {W}/random.rawlog --out {O}", 1, "gives no sweep"},
+  {"map-empty-rawlog",     "roadslam-map --config {S}/ini/default.ini --input {W}/empty.rawlog --out {O}", 1, "gives no sweep"},
+  {"map-random-pcap",      "roadslam-map --config {S}/ini/default.ini --input {W}/random.pcap --out {O}", 1, "random.pcap"},
+  {"map-empty-pcap",       "roadslam-map --config {S}/ini/default.ini --input {W}/empty.pcap --out {O}", 1, "empty.pcap"},
+  {"map-truncated-pcap",   "roadslam-map --config {S}/ini/default.ini --input {W}/truncated.pcap --out {O} --quiet", 0, "input damaged, 4 sweeps read before it"},
+  {"map-unknown-kind",     "roadslam-map --config {S}/ini/default.ini --input {W}/notes.txt --out {O}", 1, "unknown kind"},
+  {"map-empty-folder",     "roadslam-map --config {S}/ini/default.ini --input {W}/empty-dir --out {O}", 1, "holds no .bin"},
+  {"map-kitti-damaged",    "roadslam-map --config {S}/ini/default.ini --input {W}/kitti-damaged --out {O} --quiet", 0, "not a multiple of 16"},
+  {"map-kitti-times-count","roadslam-map --config {S}/ini/default.ini --input {W}/kitti-bad-times/velodyne --out {O}", 1, "has 3 stamps for 1 .bin"},
+  {"map-kitti-times-value","roadslam-map --config {S}/ini/default.ini --input {W}/kitti-bad-times-value/velodyne --out {O}", 1, "times.txt:1"},
+  {"map-out-is-a-file",    "roadslam-map --config {S}/ini/default.ini --input {W}/truncated.pcap --out {W}/a-file/x", 1, "cannot create output folder"},
+  // roadslam-map: inis
+  {"map-typo-key",         "roadslam-map --config {W}/typo-key.ini --input {W}/truncated.pcap --out {O}", 1, "unknown key 'voxel_sise_m' in [odometry]"},
+  {"map-typo-section",     "roadslam-map --config {W}/typo-section.ini --input {W}/truncated.pcap --out {O}", 1, "unknown section [odometri] (nearest known: [odometry])"},
+  {"map-typo-allowed",     "roadslam-map --config {W}/typo-key.ini --input {W}/truncated.pcap --out {O} --quiet --allow-unknown-keys", 0, "warning: "},
+  {"map-not-a-number",     "roadslam-map --config {W}/not-a-number.ini --input {W}/truncated.pcap --out {O}", 1, "[preprocess] voxel_size_m = 'abc' is not a number"},
+  {"map-bad-matcher",      "roadslam-map --config {W}/bad-matcher.ini --input {W}/truncated.pcap --out {O}", 1, "expected voxel_map or registration"},
+  {"map-negative-voxel",   "roadslam-map --config {W}/negative-voxel.ini --input {W}/truncated.pcap --out {O}", 1, "must be positive"},
+  {"map-bad-spin",         "roadslam-map --config {W}/bad-spin.ini --input {W}/truncated.pcap --out {O}", 1, "[kitti] spin = 'sideways'"},
+  {"map-bad-stamp-ref",    "roadslam-map --config {W}/bad-stamp-reference.ini --input {W}/truncated.pcap --out {O}", 1, "expected start, middle or end"},
+  {"map-bad-bool",         "roadslam-map --config {W}/bad-bool.ini --input {W}/truncated.pcap --out {O}", 1, "is not a boolean"},
+  // roadslam-map: signals
+  {"map-sigint",           "roadslam-map --config {S}/ini/default.ini --input {W}/kitti-long --out {O} --quiet", 130, "", 1500},
+  // roadslam-bounds
+  {"bounds-typo-key",      "roadslam-bounds --config {W}/bounds-typo.ini --input {W}/truncated.pcap --out {O}", 1, "unknown key 'curb_min_jmup_m' in [boundary] (nearest known: curb_min_jump_m)"},
+  {"bounds-random-rawlog", "roadslam-bounds --config {S}/ini/bounds.ini --input {W}/random.rawlog --out {O}", 1, "gives no sweep"},
+  {"bounds-input-missing", "roadslam-bounds --config {S}/ini/bounds.ini --input {W}/nope.pcap --out {O}", 1, "does not exist"},
+  {"bounds-bad-trajectory","roadslam-bounds --config {S}/ini/bounds.ini --input {W}/truncated.pcap --trajectory {W}/three-columns.tum --out {O}", 1, "three-columns.tum"},
+  {"bounds-truncated-pcap","roadslam-bounds --config {S}/ini/bounds.ini --input {W}/truncated.pcap --out {O} --quiet", 0, "input damaged"},
+  // roadslam-can
+  {"can-decode-garbage",   "roadslam-can decode --dbc {S}/ini/vehicles/roadslam-sim.dbc {W}/garbage.log", 2, "3 of 3 lines unreadable (first at line 1"},
+  {"can-decode-allowed",   "roadslam-can decode --dbc {S}/ini/vehicles/roadslam-sim.dbc {W}/garbage.log --max-bad-lines 3", 0, "3 bad log lines"},
+  {"can-decode-half-good", "roadslam-can decode --dbc {S}/ini/vehicles/roadslam-sim.dbc {W}/half-good.log", 2, "first at line 3"},
+  {"can-info-garbage",     "roadslam-can info {W}/garbage.log", 2, "unreadable"},
+  {"can-bad-dbc",          "roadslam-can decode --dbc {W}/garbage.dbc {W}/half-good.log", 1, "garbage.dbc"},
+  {"can-log-missing",      "roadslam-can decode --dbc {S}/ini/vehicles/roadslam-sim.dbc {W}/nope.log", 105, "File does not exist"},
+  {"can-bad-vehicle",      "roadslam-can odometry --vehicle {W}/bad-vehicle.ini {W}/half-good.log --out {O}/odo.tum", 1, "bad-vehicle.ini"},
+  // roadslam-rawlog
+  {"rawlog-info-random",   "roadslam-rawlog info {W}/random.rawlog", 1, "not a readable MRPT rawlog"},
+  {"rawlog-info-truncated","roadslam-rawlog info {W}/truncated.pcap", 1, "damaged at record 239 (byte 299344)"},
+  {"rawlog-info-missing",  "roadslam-rawlog info {W}/nope.rawlog", 1, "nope.rawlog"},
+  {"rawlog-convert-random","roadslam-rawlog convert {W}/random.pcap {O}/x.rawlog", 1, "random.pcap"},
+  // roadslam-eval
+  {"eval-gt-missing",      "roadslam-eval --gt {W}/nope.tum --est {W}/a.tum", 105, "File does not exist"},
+  {"eval-three-columns",   "roadslam-eval --gt {W}/three-columns.tum --est {W}/a.tum", 1, "3 columns, expected 8"},
+  {"eval-words",           "roadslam-eval --gt {W}/words.tum --est {W}/a.tum", 1, "words.tum"},
+  {"eval-no-pairs",        "roadslam-eval --gt {W}/a.tum --est {W}/later.tum", 1, "only 0 poses"},
+  // roadslam-sim
+  {"sim-typo-key",         "roadslam-sim --scenario {W}/sim-typo.ini --out {O}", 1, "range_nosie_m"},
+  {"sim-bad-value",        "roadslam-sim --scenario {W}/sim-bad-value.ini --out {O}", 1, "duration_s"},
+  {"sim-missing",          "roadslam-sim --scenario {W}/nope.ini --out {O}", 105, "File does not exist"},
+  // roadslam-grab
+  {"grab-typo-key",        "roadslam-grab --config {W}/grab-typo.ini --out {O} --duration 0.1", 1, "segmnet_mb"},
+  {"grab-missing",         "roadslam-grab --config {W}/nope.ini --out {O}", 105, "File does not exist"},
+};
+// clang-format on
+
+struct Outcome {
+  int exit_code = -1;
+  int signal = 0;
+  bool timed_out = false;
+  std::string output;
+};
+
+std::vector<std::string> split(const std::string& s) {
+  std::vector<std::string> out;
+  std::istringstream in(s);
+  for (std::string w; in >> w;) out.push_back(w);
+  return out;
+}
+
+std::string expand(std::string s, const std::string& out_dir) {
+  const std::pair<std::string, std::string> subst[] = {{"{W}", work().string()}, {"{O}", out_dir}, {"{S}", kSrc}};
+  for (const auto& [k, v] : subst) {
+    for (size_t p; (p = s.find(k)) != std::string::npos;) s.replace(p, k.size(), v);
+  }
+  return s;
+}
+
+Outcome run(const std::vector<std::string>& argv, const fs::path& log, int signal_after_ms) {
+  Outcome o;
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    dup2(fd, 1);
+    dup2(fd, 2);
+    std::vector<char*> args;
+    for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+    args.push_back(nullptr);
+    execv(args[0], args.data());
+    _exit(127);
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  bool signalled = false;
+  int status = 0;
+  for (;;) {
+    const pid_t r = waitpid(pid, &status, WNOHANG);
+    if (r == pid) break;
+    const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - t0).count();
+    if (signal_after_ms > 0 && !signalled && ms >= signal_after_ms) {
+      kill(pid, SIGINT);
+      signalled = true;
+    }
+    if (ms > 120000) {
+      kill(pid, SIGKILL);
+      waitpid(pid, &status, 0);
+      o.timed_out = true;
+      break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  if (WIFEXITED(status)) o.exit_code = WEXITSTATUS(status);
+  if (WIFSIGNALED(status)) o.signal = WTERMSIG(status);
+  o.output = fileText(log);
+  return o;
+}
+
+/// Files an interrupted or failed run must never leave: temporaries of the atomic writers.
+std::vector<std::string> leftovers(const fs::path& dir) {
+  std::vector<std::string> out;
+  if (!fs::exists(dir)) return out;
+  for (const auto& e : fs::recursive_directory_iterator(dir)) {
+    const std::string name = e.path().filename().string();
+    if (name.find(".tmp") != std::string::npos || name.find(".write_test") != std::string::npos) out.push_back(e.path().string());
+  }
+  return out;
+}
+
+class BadInputs : public ::testing::TestWithParam<Row> {};
+
+}  // namespace
+
+TEST_P(BadInputs, GivesTheDocumentedMessageAndExitCode) {
+  makeFiles();
+  const Row& row = GetParam();
+  const fs::path out = work() / "out" / row.id;
+  auto argv = split(expand(row.command, out.string()));
+  argv[0] = binDir() + "/" + argv[0];
+  ASSERT_TRUE(fs::exists(argv[0])) << argv[0] << " is not built";
+  const Outcome o = run(argv, work() / (std::string(row.id) + ".log"), row.signal_after_ms);
+  EXPECT_FALSE(o.timed_out) << row.id << " hung";
+  EXPECT_EQ(o.signal, 0) << row.id << " crashed with signal " << o.signal << ":\n" << o.output;
+  EXPECT_EQ(o.exit_code, row.exit_code) << row.id << ":\n" << o.output;
+  EXPECT_NE(o.output.find(row.message), std::string::npos) << row.id << ": expected '" << row.message << "' in:\n" << o.output;
+  EXPECT_EQ(o.output.find("runtime error"), std::string::npos) << "UBSan: " << o.output;       // -fsanitize=undefined
+  EXPECT_EQ(o.output.find("AddressSanitizer"), std::string::npos) << "ASan: " << o.output;
+  const auto left = leftovers(out);
+  EXPECT_TRUE(left.empty()) << row.id << " left " << left.front();
+  if (row.exit_code != 0 && row.exit_code != 130 && std::string(row.command).find("{O}") != std::string::npos) {
+    // a run refused at the door writes nothing
+    EXPECT_TRUE(!fs::exists(out) || fs::is_empty(out)) << row.id << " wrote into " << out;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Table, BadInputs, ::testing::ValuesIn(kTable),
+                         [](const ::testing::TestParamInfo<Row>& i) {
+                           std::string n = i.param.id;
+                           for (auto& c : n) c = std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+                           return n;
+                         });
+
+TEST(BadInputs, TheTableHasFortyRows) { EXPECT_GE(std::size(kTable), 40u); }
