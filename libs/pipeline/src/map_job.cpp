@@ -114,7 +114,7 @@ MapOutcome runMapJob(const MapRequest& req) {
   params.load(*cfg);
   prepareOutDir(req.out_dir);
   writeFileAtomically(req.out_dir + "/config_used.ini", params.used());
-  auto stream = openScanStream(req.input_path, *cfg);
+  auto stream = openScanStream(req.input_path, *cfg, req.times_path);
 
   MapOutcome out;
   odometry::Odometry odo(params.odometry);
@@ -155,6 +155,7 @@ MapOutcome runMapJob(const MapRequest& req) {
   for (const auto& f : out.frames) out.T_map_lidar.push_back(mapper.correctedPose(f, T_map_kf));
   out.summary = summarize(out.frames);
   out.summary["warnings"] = nlohmann::json::array();
+  for (const auto& w : stream->warnings()) out.summary["warnings"].push_back(w);
   const int timed = out.summary["deskewed_frames"].get<int>();
   const int posed = static_cast<int>(out.frames.size()) - out.summary["frames_by_status"].value("skipped", 0);
   if (params.odometry.deskew && timed < posed) {

@@ -32,4 +32,8 @@ struct BoundsRequest {
 /// problems (no pose, no ground, no curbs) are counted and reported in the summary.
 nlohmann::json runBoundsJob(const BoundsRequest& req);
 
+/// runBoundsJob's summary for a person: aligned lines (input, mode, frames, found rates, ms per frame,
+/// outputs in \p out_dir). summary.json keeps every field.
+std::string summaryText(const nlohmann::json& summary, const std::string& out_dir);
+
 }  // namespace roadslam::boundary

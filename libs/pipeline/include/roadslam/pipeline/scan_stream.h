@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "roadslam/common/scan.h"
 
@@ -32,10 +33,17 @@ class ScanStream {
   virtual std::string describe() const = 0;
   /// Total sweeps when known in advance (KITTI folders), else 0: for progress and ETA.
   virtual size_t sizeHint() const { return 0; }
+  /// What the stream had to assume, for the run's summary (e.g. a KITTI folder without a times file
+  /// timed at its nominal sweep period). Empty when nothing was assumed.
+  virtual std::vector<std::string> warnings() const { return {}; }
 };
 
 /// Opens \p path; the decoder reads the [velodyne] section of \p cfg (model, calibration, ...).
-/// Throws std::runtime_error naming the path when it is missing or of an unknown kind.
-std::unique_ptr<ScanStream> openScanStream(const std::string& path, const mrpt::config::CConfigFileBase& cfg);
+/// \p times_path: the times file of a KITTI folder (one stamp [s] per line) when it is not times.txt
+/// beside the .bin files or one level up; empty = search there. Throws std::runtime_error naming the
+/// path when it is missing or of an unknown kind, or when \p times_path is given for a recording
+/// that is not a KITTI folder.
+std::unique_ptr<ScanStream> openScanStream(const std::string& path, const mrpt::config::CConfigFileBase& cfg,
+                                           const std::string& times_path = "");
 
 }  // namespace roadslam::pipeline
