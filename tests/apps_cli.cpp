@@ -180,10 +180,16 @@ TEST(AppsCli, BoundsQuietTextAndJson) {
   const AppRun quiet = run("roadslam-bounds", args + " --quiet");
   ASSERT_EQ(quiet.code, 0) << quiet.err;
   EXPECT_EQ(quiet.out, "");
-  const AppRun text = run("roadslam-bounds", args);
+  EXPECT_NE(quiet.err.find("roadslam-bounds: warning: KITTI folder"), std::string::npos) << quiet.err;
+  {
+    std::ofstream f(yard + "/stamps.txt");
+    f << "1700000000.1\n1700000000.2\n1700000000.3\n";
+  }
+  const AppRun text = run("roadslam-bounds", args + " --times " + yard + "/stamps.txt");
   ASSERT_EQ(text.code, 0) << text.err;
+  EXPECT_EQ(text.err.find("warning"), std::string::npos) << text.err;
   EXPECT_EQ(text.out.find('{'), std::string::npos) << text.out;
-  for (const char* label : {"input ", "frames ", "found ", "ms per frame ", "outputs "})
+  for (const char* label : {"input ", "frames ", "found ", "ms per frame ", "warnings ", "outputs "})
     EXPECT_NE(text.out.find(label), std::string::npos) << label << "\n" << text.out;
   const AppRun json = run("roadslam-bounds", args + " --json");
   ASSERT_EQ(json.code, 0) << json.err;

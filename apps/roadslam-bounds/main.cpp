@@ -16,6 +16,8 @@ int main(int argc, char** argv) {
   app.add_option("--out", req.out_dir, "output folder (created when missing)")->required();
   app.add_option("--trajectory", req.trajectory_path, "TUM poses T_map_lidar (else the odometry runs)")
       ->check(CLI::ExistingFile);
+  app.add_option("--times", req.times_path, "KITTI folder: its times file (default: times.txt beside or one level up)")
+      ->check(CLI::ExistingFile);
   app.add_option("--png-every", req.png_every, "draw every N-th sweep into OUT/frames (0 = none)");
   app.add_option("--max-frames", req.max_frames, "stop after this many sweeps (0 = all)");
   app.add_flag("--whole-drive", req.whole_drive,
@@ -29,6 +31,7 @@ int main(int argc, char** argv) {
   try {
     const auto summary = roadslam::boundary::runBoundsJob(req);
     if (!quiet) std::cout << (json ? summary.dump(2) + "\n" : roadslam::boundary::summaryText(summary, req.out_dir));
+    for (const auto& w : summary["warnings"]) std::cerr << "roadslam-bounds: warning: " << w.get<std::string>() << "\n";
     return 0;
   } catch (const std::exception& e) {
     std::cerr << "roadslam-bounds: " << e.what() << "\n";

@@ -105,7 +105,7 @@ struct Drive {
 Drive accumulateDrive(const BoundsRequest& req, const mrpt::config::CConfigFileBase& cfg, BoundaryDetector& det) {
   Drive d;
   std::vector<SweepPose>& out = d.poses;
-  auto stream = pipeline::openScanStream(req.input_path, cfg);
+  auto stream = pipeline::openScanStream(req.input_path, cfg, req.times_path);
   PoseSource poses(req.trajectory_path, cfg);
   ProgressBar bar("roadslam-bounds: whole drive, pass 1", stream->sizeHint());
   size_t n = 0;
@@ -154,7 +154,7 @@ nlohmann::json runBoundsJob(const BoundsRequest& req) {
   Drive drive;  // whole-drive mode: pass 1's poses, replayed in pass 2
   if (req.whole_drive) drive = accumulateDrive(req, *cfg, det);
   const std::vector<SweepPose>& recorded = drive.poses;
-  auto stream = pipeline::openScanStream(req.input_path, *cfg);
+  auto stream = pipeline::openScanStream(req.input_path, *cfg, req.times_path);
   std::unique_ptr<PoseSource> poses;
   if (!req.whole_drive) poses = std::make_unique<PoseSource>(req.trajectory_path, *cfg);
   AtomicFile jsonl(req.out_dir + "/boundaries.jsonl");
@@ -198,6 +198,7 @@ nlohmann::json runBoundsJob(const BoundsRequest& req) {
                       {"poses", req.trajectory_path.empty() ? "odometry" : req.trajectory_path},
                       {"mode", req.whole_drive ? "whole_drive" : "live"}, {"curb_map_cells", det.curbMap().size()}};
   if (req.whole_drive) s["ms_per_frame_first_pass_mean"] = drive.ms_mean;
+  s["warnings"] = stream->warnings();
   writeFileAtomically(req.out_dir + "/summary.json", s.dump(2) + "\n");
   return s;
 }
