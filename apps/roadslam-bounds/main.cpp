@@ -3,16 +3,20 @@
 #include <iostream>
 
 #include "roadslam/boundary/job.h"
+#include "roadslam/common/cli.h"
 #include "roadslam/common/stop_signal.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"Road boundaries (curbs), obstacles, free space and a cost grid per sweep"};
   roadslam::boundary::BoundsRequest req;
-  bool quiet = false;
+  bool quiet = false, json = false;
+  roadslam::addVersionFlag(app, "roadslam-bounds");
   app.add_option("--config", req.config_path, "ini file (e.g. ini/bounds.ini)")->required()->check(CLI::ExistingFile);
   app.add_option("--input", req.input_path, "recording: .pcap, .rawlog or folder of KITTI .bin sweeps")->required();
   app.add_option("--out", req.out_dir, "output folder (created when missing)")->required();
   app.add_option("--trajectory", req.trajectory_path, "TUM poses T_map_lidar (else the odometry runs)")
+      ->check(CLI::ExistingFile);
+  app.add_option("--times", req.times_path, "KITTI folder: its times file (default: times.txt beside or one level up)")
       ->check(CLI::ExistingFile);
   app.add_option("--png-every", req.png_every, "draw every N-th sweep into OUT/frames (0 = none)");
   app.add_option("--max-frames", req.max_frames, "stop after this many sweeps (0 = all)");
@@ -20,13 +24,14 @@ int main(int argc, char** argv) {
                "two passes: fit every sweep from the curbs of the whole drive, along its own path "
                "(a finished drive; default: live, each sweep from the sweeps before it)");
   app.add_flag("--allow-unknown-keys", req.allow_unknown_keys, "ini keys no component reads are warnings, not errors");
-  app.add_flag("--quiet", quiet, "no progress bar and no summary on stdout");
+  app.add_flag("--quiet", quiet, "nothing on stdout (no progress bar, no summary); errors on stderr");
+  app.add_flag("--json", json, "print the summary as JSON (as in OUT/summary.json) instead of text");
   CLI11_PARSE(app, argc, argv);
   req.progress = !quiet;
   roadslam::installStopSignalHandlers();
   try {
     const auto summary = roadslam::boundary::runBoundsJob(req);
-    if (!quiet) std::cout << summary.dump(2) << "\n";
+    if (!quiet) std::cout << (json ? summary.dump(2) + "\n" : roadslam::boundary::summaryText(summary, req.out_dir));
     for (const auto& w : summary["warnings"]) std::cerr << "roadslam-bounds: warning: " << w.get<std::string>() << "\n";
     return 0;
   } catch (const std::exception& e) {

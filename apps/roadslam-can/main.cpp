@@ -4,6 +4,7 @@
 #include <roadslam/vehicle/jobs.h>
 
 #include <CLI/CLI.hpp>
+#include <roadslam/common/cli.h>
 
 #include <iostream>
 #include <memory>
@@ -13,6 +14,7 @@ using namespace roadslam;
 
 int main(int argc, char** argv) {
   CLI::App app{"CAN bus tools: decode candump logs with a DBC, summarize them, dead-reckon and export to MRPT rawlogs"};
+  roadslam::addVersionFlag(app, "roadslam-can");
   app.require_subcommand(1);
   app.failure_message([](const CLI::App*, const CLI::Error& e) { return "roadslam-can: " + std::string(e.what()) + "\n"; });
   std::string dbc, log, vehicle, out, data_root, gnss, signals;

@@ -5,6 +5,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "roadslam/common/cli.h"
 #include "roadslam/eval/boundary_metrics.h"
 #include "roadslam/eval/evaluate.h"
 
@@ -13,10 +14,13 @@ int main(int argc, char** argv) {
                "relative translation/rotation errors over distance segments; `bounds`: road boundaries"};
   roadslam::eval::EvalRequest req;
   bool json = false;
+  roadslam::addVersionFlag(app, "roadslam-eval");
   app.add_option("--gt", req.gt_path, "ground truth, TUM or KITTI 3x4")->check(CLI::ExistingFile);
   app.add_option("--est", req.est_path, "estimate, TUM or KITTI 3x4")->check(CLI::ExistingFile);
   app.add_option("--gt-times", req.gt_times_path, "times file for a KITTI-format GT")->check(CLI::ExistingFile);
   app.add_option("--est-times", req.est_times_path, "times file for a KITTI-format estimate")->check(CLI::ExistingFile);
+  app.add_option("--calib", req.gt_calib_path, "KITTI odometry calib.txt: its Tr turns camera-frame GT poses into LiDAR ones")
+      ->check(CLI::ExistingFile);
   app.add_option("--max-dt", req.max_dt_s, "association tolerance [s]");
   app.add_option("--segments", req.metrics.segment_lengths_m, "segment lengths [m] (default: KITTI's or 10-90 % of the path)");
   app.add_option("--plot", req.plot_path, "write a PNG: trajectories from above and error along the distance");
@@ -53,8 +57,9 @@ int main(int argc, char** argv) {
       return 1;
     }
     const auto out = roadslam::eval::evaluate(req);
+    for (const auto& w : out.warnings) std::cerr << "roadslam-eval: warning: " << w << "\n";
     if (json) {
-      std::cout << roadslam::eval::toJson(out.metrics).dump(2) << "\n";
+      std::cout << roadslam::eval::toJson(out, req).dump(2) << "\n";
     } else {
       std::cout << roadslam::eval::toText(out.metrics);
     }

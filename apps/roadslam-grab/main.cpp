@@ -6,10 +6,12 @@
 #include <exception>
 #include <string>
 
+#include "roadslam/common/cli.h"
 #include "roadslam/grabber/session.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"roadslam-grab: live LiDAR + CAN recording into MRPT rawlogs"};
+  roadslam::addVersionFlag(app, "roadslam-grab");
   roadslam::grabber::SessionOptions opt;
   app.add_option("--config", opt.ini_path, "grabber ini (ini/grab.ini)")->required()->check(CLI::ExistingFile);
   app.add_option("--out", opt.out_dir, "session folder")->required();

@@ -2,27 +2,32 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 
+#include "roadslam/common/cli.h"
 #include "roadslam/common/stop_signal.h"
 #include "roadslam/pipeline/map_job.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"LiDAR odometry and mapping over a recording (.pcap, .rawlog or a KITTI .bin folder)"};
   roadslam::pipeline::MapRequest req;
-  bool quiet = false;
+  bool quiet = false, json = false;
+  roadslam::addVersionFlag(app, "roadslam-map");
   app.add_option("--config", req.config_path, "ini file (e.g. ini/default.ini)")->required()->check(CLI::ExistingFile);
   app.add_option("--input", req.input_path, "recording: .pcap, .rawlog or folder of KITTI .bin sweeps")->required();
   app.add_option("--out", req.out_dir, "output folder (created when missing)")->required();
+  app.add_option("--times", req.times_path, "KITTI folder: its times file (default: times.txt beside or one level up)")
+      ->check(CLI::ExistingFile);
   app.add_option("--max-frames", req.max_frames, "stop after this many frames (0 = all)");
   app.add_option("--can", req.can_log_path, "candump log of the same drive: wheel odometry prior")->check(CLI::ExistingFile);
   app.add_option("--vehicle", req.vehicle_ini_path, "the car's vehicle ini (ini/vehicles/...), with --can")->check(CLI::ExistingFile);
   app.add_flag("--allow-unknown-keys", req.allow_unknown_keys, "ini keys no component reads are warnings, not errors");
-  app.add_flag("--quiet", quiet, "no progress bar and no summary on stdout");
+  app.add_flag("--quiet", quiet, "nothing on stdout (no progress bar, no summary); errors and warnings on stderr");
+  app.add_flag("--json", json, "print the summary as JSON (as in OUT/summary.json) instead of text");
   CLI11_PARSE(app, argc, argv);
   req.progress = !quiet;
   roadslam::installStopSignalHandlers();
   try {
     const auto out = roadslam::pipeline::runMapJob(req);
-    if (!quiet) std::cout << out.summary.dump(2) << "\n";
+    if (!quiet) std::cout << (json ? out.summary.dump(2) + "\n" : roadslam::pipeline::summaryText(out.summary, req.out_dir));
     for (const auto& w : out.summary["warnings"]) std::cerr << "roadslam-map: warning: " << w.get<std::string>() << "\n";
     return out.interrupted ? 130 : 0;
   } catch (const std::exception& e) {

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "roadslam/common/atomic_file.h"
+#include "roadslam/common/cli.h"
 #include "roadslam/sources/boxroom.h"
 #include "roadslam/sources/recorder.h"
 #include "roadslam/sources/recording.h"
@@ -38,6 +39,7 @@ struct DecoderOptions {
 
 int main(int argc, char** argv) {
   CLI::App app{"Summarise and convert Velodyne recordings (.pcap, MRPT .rawlog)"};
+  roadslam::addVersionFlag(app, "roadslam-rawlog");
   app.require_subcommand(1);
 
   std::string info_in;

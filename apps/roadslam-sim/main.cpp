@@ -7,11 +7,13 @@
 #include <exception>
 #include <string>
 
+#include "roadslam/common/cli.h"
 #include "roadslam/sim/outputs.h"
 #include "roadslam/sim/simulator.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"roadslam-sim: packet-level VLP-16 / KITTI-style HDL-64E simulator with ground truth"};
+  roadslam::addVersionFlag(app, "roadslam-sim");
   std::string scenario, out, udp, top_view;
   unsigned long long seed = 0;
   double duration = 0, speed = 1.0;

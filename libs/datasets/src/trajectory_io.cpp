@@ -3,6 +3,7 @@
 #include "line_parsing.h"
 #include "roadslam/common/atomic_file.h"
 
+#include <cstdio>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
@@ -90,8 +91,14 @@ std::vector<double> readTimes(const std::string& path) {
 }
 
 void writeTimes(const std::string& path, const std::vector<double>& stamps_s) {
+  // Fixed point with 9 decimals: an epoch stamp (~1.7e9 s) keeps its microseconds and more; a
+  // significant-digit format would cut it to 0.1 s.
   std::string out;
-  for (double t : stamps_s) out += fmtNumber(t) + '\n';
+  char buf[64];
+  for (double t : stamps_s) {
+    std::snprintf(buf, sizeof buf, "%.9f\n", t);
+    out += buf;
+  }
   writeFileAtomically(path, out);
 }
 

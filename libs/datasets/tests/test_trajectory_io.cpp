@@ -132,3 +132,22 @@ TEST(TrajectoryIo, KittiRawDrivePoses) {
     EXPECT_LT((expect.translation() - traj.poses[i].translation()).norm(), 1e-3) << i;
   }
 }
+
+// Epoch stamps (~1.7e9 s) keep their microseconds through every stamp writer: times.txt and TUM.
+TEST(TrajectoryIo, EpochStampsSurviveWriteAndRead) {
+  const std::vector<double> t = {1700000000.123456, 1700000000.223457, 1700000001.000001, 1699999999.999999};
+  const std::string tp = tempFile("epoch_times.txt");
+  writeTimes(tp, t);
+  const auto back = readTimes(tp);
+  ASSERT_EQ(back.size(), t.size());
+  for (size_t i = 0; i < t.size(); ++i) EXPECT_NEAR(back[i], t[i], 1e-6) << i;
+
+  Trajectory traj;
+  traj.stamps_s = t;
+  traj.poses = randomPoses(t.size(), 3);
+  const std::string tum = tempFile("epoch.tum");
+  writeTum(tum, traj);
+  const auto tb = readTum(tum);
+  ASSERT_EQ(tb.stamps_s.size(), t.size());
+  for (size_t i = 0; i < t.size(); ++i) EXPECT_NEAR(tb.stamps_s[i], t[i], 1e-6) << i;
+}

@@ -1,6 +1,7 @@
 #include "roadslam/eval/boundary_metrics.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -266,8 +267,10 @@ std::string perFrameCsv(const BoundaryMetrics& m) {
   s << "stamp_s,scored,left_found,left_gt_stations,left_error_mean_m,left_error_max_m,"
        "right_found,right_gt_stations,right_error_mean_m,right_error_max_m\n";
   s.precision(10);
+  char stamp[64];
   for (const auto& f : m.per_frame) {
-    s << f.stamp_s << ',' << f.scored;
+    std::snprintf(stamp, sizeof stamp, "%.9f", f.stamp_s);  // fixed: epoch stamps keep their microseconds
+    s << stamp << ',' << f.scored;
     for (int k : {0, 1}) s << ',' << f.found[k] << ',' << f.gt_stations[k] << ',' << f.error_mean_m[k] << ',' << f.error_max_m[k];
     s << '\n';
   }

@@ -1,5 +1,7 @@
 #include "roadslam/eval/evaluate.h"
 
+#include <algorithm>
+#include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -41,10 +43,30 @@ datasets::Trajectory readTrajectoryAnyFormat(const std::string& path, const std:
 }
 
 EvalOutcome evaluate(const EvalRequest& req) {
-  const auto gt = readTrajectoryAnyFormat(req.gt_path, req.gt_times_path);
+  auto gt = readTrajectoryAnyFormat(req.gt_path, req.gt_times_path);
+  if (!req.gt_calib_path.empty()) {
+    gt.poses = datasets::cameraPosesToVelodyne(gt.poses, datasets::readKittiOdometryCalib(req.gt_calib_path).T_cam0_velo);
+  }
   const auto est = readTrajectoryAnyFormat(req.est_path, req.est_times_path);
   EvalOutcome out;
   out.matched = associate(gt, est, req.max_dt_s);
+  out.est_poses = est.poses.size();
+  out.gt_poses = gt.poses.size();
+  out.paired_by_time = !gt.stamps_s.empty() && !est.stamps_s.empty();
+  if (const size_t paired = out.matched.gt.size(); paired < req.min_paired_fraction * static_cast<double>(out.est_poses)) {
+    char buf[512];
+    std::snprintf(buf, sizeof buf, "only %zu of the estimate's %zu poses (%.0f %%) paired with one of the %zu ground-truth poses",
+                  paired, out.est_poses, 100.0 * static_cast<double>(paired) / static_cast<double>(std::max<size_t>(out.est_poses, 1)),
+                  out.gt_poses);
+    std::string w = buf;
+    if (out.paired_by_time) {
+      std::snprintf(buf, sizeof buf, " within max dt %g s: check both files' clocks and units, or --max-dt", req.max_dt_s);
+      w += buf;
+    } else {
+      w += " (paired by index: a file without stamps)";
+    }
+    out.warnings.push_back(w);
+  }
   if (out.matched.gt.size() < 2) {
     throw std::runtime_error("only " + std::to_string(out.matched.gt.size()) + " poses of '" +
                              req.est_path + "' match '" + req.gt_path +
@@ -80,6 +102,17 @@ nlohmann::json toJson(const TrajectoryMetrics& m) {
                    {"rre_deg_per_100m", s.r_err_deg_per_100m},
                    {"count", s.segments}});
   }
+  return j;
+}
+
+nlohmann::json toJson(const EvalOutcome& o, const EvalRequest& req) {
+  nlohmann::json j = toJson(o.metrics);
+  j["est_poses"] = o.est_poses;
+  j["gt_poses"] = o.gt_poses;
+  j["paired_by"] = o.paired_by_time ? "time" : "index";
+  j["max_dt_s"] = req.max_dt_s;
+  j["gt_calib"] = req.gt_calib_path;
+  j["warnings"] = o.warnings;
   return j;
 }
 

@@ -214,3 +214,14 @@ TEST(BoundaryMetrics, EstimateReadInItsOwnMapFrame) {
   gt_frame.est_in_gt_frame = true;
   EXPECT_LT(evaluateBoundaries(curbs(), gt, odo, gt_frame).detection_rate, 0.5);
 }
+
+// The per-frame CSV keeps an epoch stamp's microseconds (10 significant digits had cut it to 0.1 s).
+TEST(BoundaryMetrics, PerFrameCsvKeepsEpochStampMicroseconds) {
+  BoundaryMetrics m;
+  BoundaryFrameScore f;
+  f.stamp_s = 1700000000.123456;
+  m.per_frame.push_back(f);
+  const std::string csv = perFrameCsv(m);
+  const auto row = csv.substr(csv.find('\n') + 1);
+  EXPECT_NEAR(std::stod(row.substr(0, row.find(','))), f.stamp_s, 1e-6) << row;
+}

@@ -197,7 +197,12 @@ void OctoMapBuilder::writeBt(const std::string& path) const {
   const std::string tmp = tempPathFor(path);
   {
     std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    if (!f || !tree().writeBinaryConst(f) || !f.flush()) {
+    // octomap's writeBinaryConst() with its header, without the " done." it prints on stderr
+    // (AbstractOccupancyOcTree.cpp, OCTOMAP_DEBUG in Debian's library build): a --quiet run stays quiet.
+    const auto& t = tree();
+    f << "# Octomap OcTree binary file\n# (feel free to add / change comments, but leave the first line as it is!)\n#\n"
+      << "id " << t.getTreeType() << "\nsize " << t.size() << "\nres " << t.getResolution() << "\ndata\n";
+    if (!f || !t.writeBinaryData(f) || !f.flush()) {
       throw std::runtime_error("cannot write octomap '" + path + "'");
     }
   }

@@ -114,7 +114,7 @@ MapOutcome runMapJob(const MapRequest& req) {
   params.load(*cfg);
   const auto unknown_keys = cfg->checkEntries(req.allow_unknown_keys);
   if (!req.can_log_path.empty() && req.vehicle_ini_path.empty()) throw std::runtime_error("--can needs --vehicle (the car's vehicle ini)");
-  auto stream = openScanStream(req.input_path, *cfg);
+  auto stream = openScanStream(req.input_path, *cfg, req.times_path);
   // An input that gives no sweep at all is an error before any output exists.
   std::optional<Scan> first = stream->next();
   if (!first) {
@@ -170,6 +170,7 @@ MapOutcome runMapJob(const MapRequest& req) {
                                       " sweeps read before it: " + damage);
   }
   out.summary["complete"] = damage.empty() && !out.interrupted;
+  for (const auto& w : stream->warnings()) out.summary["warnings"].push_back(w);
   const int timed = out.summary["deskewed_frames"].get<int>();
   const int posed = static_cast<int>(out.frames.size()) - out.summary["frames_by_status"].value("skipped", 0);
   if (params.odometry.deskew && timed < posed) {

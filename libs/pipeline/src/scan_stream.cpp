@@ -2,6 +2,8 @@
 
 #include <mrpt/config/CConfigFileBase.h>
 
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <stdexcept>
 
@@ -57,7 +59,8 @@ class VelodyneStream : public ScanStream {
 
 class KittiStream : public ScanStream {
  public:
-  KittiStream(const std::string& dir, const datasets::KittiParams& p) : folder_(dir, "", p), dir_(dir) {}
+  KittiStream(const std::string& dir, const std::string& times_path, const datasets::KittiParams& p)
+      : folder_(dir, times_path, p), dir_(dir) {}
   std::optional<Scan> next() override {
     // one unreadable .bin is counted and skipped: one bad scan never ends the run
     while (i_ < folder_.size()) {
@@ -78,6 +81,15 @@ class KittiStream : public ScanStream {
     return error_.empty() ? "" : error_ + (stats_.malformed_packets > 1 ? " (and " + std::to_string(stats_.malformed_packets - 1) + " more)" : "");
   }
   size_t sizeHint() const override { return folder_.size(); }
+  std::vector<std::string> warnings() const override {
+    if (folder_.hasTimes()) return {};
+    char period[32];
+    std::snprintf(period, sizeof period, "%g", folder_.params().timing.period_s);
+    return {"KITTI folder '" + dir_ + "' has no times file (times.txt beside the .bin files or one level up): "
+            "the sweeps were stamped at the nominal [kitti] sweep_period_s = " + period + " s (" +
+            std::to_string(static_cast<int>(std::lround(1.0 / folder_.params().timing.period_s))) +
+            " Hz) assumed; give the real one with --times FILE"};
+  }
 
  private:
   datasets::KittiScanFolder folder_;
@@ -89,12 +101,17 @@ class KittiStream : public ScanStream {
 
 }  // namespace
 
-std::unique_ptr<ScanStream> openScanStream(const std::string& path, const mrpt::config::CConfigFileBase& cfg) {
+std::unique_ptr<ScanStream> openScanStream(const std::string& path, const mrpt::config::CConfigFileBase& cfg,
+                                           const std::string& times_path) {
   if (!fs::exists(path)) throw std::runtime_error("input '" + path + "' does not exist");
   if (fs::is_directory(path)) {
     datasets::KittiParams kp;
     kp.loadFromConfigFile(cfg, "kitti");
-    return std::make_unique<KittiStream>(path, kp);
+    return std::make_unique<KittiStream>(path, times_path, kp);
+  }
+  if (!times_path.empty()) {
+    throw std::runtime_error("a times file ('" + times_path + "') applies to a KITTI folder only; '" + path +
+                             "' is a file whose packets carry their own stamps");
   }
   velodyne::DecoderParams dp;
   dp.loadFromConfigFile(cfg, "velodyne");

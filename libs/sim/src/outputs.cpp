@@ -132,7 +132,7 @@ SimStats writeKittiFolder(Simulator& sim, const std::string& d) {
     char name[32];
     std::snprintf(name, sizeof(name), "velodyne/%06llu.bin", static_cast<unsigned long long>(k));
     datasets::writeKittiBin(d + name, scan);
-    // %.6f, not datasets::writeTimes (11 significant digits: 0.1 s on the epoch clock).
+    // %.6f: the epoch clock to the microsecond (as datasets::writeTimes, which writes 9 decimals).
     char line[64];
     std::snprintf(line, sizeof(line), "%.6f\n", scan.stamp_s);
     times += line;

@@ -16,6 +16,7 @@ struct BoundsRequest {
   std::string input_path;       ///< recording
   std::string out_dir;          ///< created when missing
   std::string trajectory_path;  ///< TUM T_map_lidar; empty = run the odometry
+  std::string times_path;       ///< KITTI folder input: its times file when not times.txt beside/above (optional)
   int png_every = 10;           ///< draw every N-th sweep (0 = none) [-]
   size_t max_frames = 0;        ///< 0 = all
   /// Whole-drive mode (a finished drive, e.g. for a map): two passes over the recording. The first
@@ -29,9 +30,14 @@ struct BoundsRequest {
 };
 
 /// Runs the job; returns the summary (frames, ms_per_frame_mean/max = detector wall time per sweep,
-/// without decoding, odometry and deskew; found rates, statuses, reasons counted).
+/// without decoding, odometry and deskew; found rates, statuses, reasons counted; "warnings": what the
+/// input left to assume, e.g. a KITTI folder timed at its nominal rate).
 /// Throws std::runtime_error with a one-line reason on configuration or file problems; per-sweep
 /// problems (no pose, no ground, no curbs) are counted and reported in the summary.
 nlohmann::json runBoundsJob(const BoundsRequest& req);
+
+/// runBoundsJob's summary for a person: aligned lines (input, mode, frames, found rates, ms per frame,
+/// outputs in \p out_dir). summary.json keeps every field.
+std::string summaryText(const nlohmann::json& summary, const std::string& out_dir);
 
 }  // namespace roadslam::boundary

@@ -21,7 +21,8 @@ struct Trajectory {
 };
 
 Trajectory readTum(const std::string& path);
-/// Writes atomically with 9 significant digits for stamps after the point and 9 for values.
+/// Writes atomically in fixed point with 9 decimals for stamps and values (epoch stamps keep their
+/// nanoseconds as far as a double holds them).
 void writeTum(const std::string& path, const Trajectory& traj);
 
 PoseList readKittiPoses(const std::string& path);
@@ -29,6 +30,7 @@ void writeKittiPoses(const std::string& path, const PoseList& poses);
 
 /// One stamp [s] per line (KITTI times.txt).
 std::vector<double> readTimes(const std::string& path);
+/// Writes atomically, fixed point with 9 decimals ("%.9f"): epoch stamps keep their microseconds.
 void writeTimes(const std::string& path, const std::vector<double>& stamps_s);
 
 /// KITTI pose file + times file into one Trajectory; throws when the counts differ.

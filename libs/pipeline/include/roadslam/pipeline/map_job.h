@@ -25,6 +25,7 @@ struct MapRequest {
   std::string config_path;  ///< ini with [odometry], [preprocess], [registration], [velodyne]
   std::string input_path;   ///< .pcap, .rawlog or KITTI folder
   std::string out_dir;      ///< created when missing
+  std::string times_path;   ///< KITTI folder input: its times file when not times.txt beside/above (optional)
   size_t max_frames = 0;    ///< 0 = all
   std::string can_log_path;     ///< candump log of the same recording: wheel odometry prior (optional)
   std::string vehicle_ini_path; ///< the car's vehicle ini (DBC mapping), required with can_log_path
@@ -59,5 +60,9 @@ std::string effectiveMapConfig(const mrpt::config::CConfigFileBase& cfg);
 
 /// Summary statistics of \p frames (counts per status, ms per frame mean/p50/p95/max).
 nlohmann::json summarize(const std::vector<odometry::FrameResult>& frames);
+
+/// runMapJob's summary for a person: aligned lines (input, frames, failed/degenerate, distance,
+/// duration, ms per frame, loop closures, warnings, outputs in \p out_dir). summary.json keeps the rest.
+std::string summaryText(const nlohmann::json& summary, const std::string& out_dir);
 
 }  // namespace roadslam::pipeline

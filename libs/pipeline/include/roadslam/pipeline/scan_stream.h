@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "roadslam/common/scan.h"
 
@@ -35,10 +36,17 @@ class ScanStream {
   /// Non-empty once the input turned out damaged (truncated, undecodable record, unreadable .bin):
   /// names the file and the place; the sweeps before it were returned normally.
   virtual std::string errorMessage() const { return {}; }
+  /// What the stream had to assume, for the run's summary (e.g. a KITTI folder without a times file
+  /// timed at its nominal sweep period). Empty when nothing was assumed.
+  virtual std::vector<std::string> warnings() const { return {}; }
 };
 
 /// Opens \p path; the decoder reads the [velodyne] section of \p cfg (model, calibration, ...).
-/// Throws std::runtime_error naming the path when it is missing or of an unknown kind.
-std::unique_ptr<ScanStream> openScanStream(const std::string& path, const mrpt::config::CConfigFileBase& cfg);
+/// \p times_path: the times file of a KITTI folder (one stamp [s] per line) when it is not times.txt
+/// beside the .bin files or one level up; empty = search there. Throws std::runtime_error naming the
+/// path when it is missing or of an unknown kind, or when \p times_path is given for a recording
+/// that is not a KITTI folder.
+std::unique_ptr<ScanStream> openScanStream(const std::string& path, const mrpt::config::CConfigFileBase& cfg,
+                                           const std::string& times_path = "");
 
 }  // namespace roadslam::pipeline
