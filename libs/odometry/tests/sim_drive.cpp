@@ -71,10 +71,10 @@ struct OdometryRun {
         return Eigen::Vector2d(std::atan2(-z.y(), z.z()), std::atan2(z.x(), z.z())) * 180.0 / M_PI;
       };
       const Eigen::Vector2d te = tilt(f.T_world_lidar), tg = tilt(G);
-      std::printf("%zu %s vc=%d it=%d inl=%d/%d fit=%.3f thr=%.2f weak=%d ev=%.4f est=(%.2f %.2f %.2f) gt=(%.2f %.2f %.2f) "
+      std::printf("%zu %s vc=%d it=%d inl=%d/%d fit=%.3f thr=%.2f weak=%d ev=%.4f mi=%.4f est=(%.2f %.2f %.2f) gt=(%.2f %.2f %.2f) "
                   "tilt_est=(%.3f %.3f) tilt_gt=(%.3f %.3f) %s\n", f.index,
                   toString(f.status), f.vertical_constraints, f.iterations, f.inliers, f.points_registered, f.fitness_m, f.threshold_m,
-                  f.weak_directions, f.min_eigenvalue, e.x(), e.y(), e.z(), g.x(), g.y(), g.z(), te.x(), te.y(),
+                  f.weak_directions, f.min_eigenvalue, f.motion_information, e.x(), e.y(), e.z(), g.x(), g.y(), g.z(), te.x(), te.y(),
                   tg.x(), tg.y(), f.reason.c_str());
     }
     m.gt.push_back(toEigen(sim.lidar().lidarPose(t)));
