@@ -75,8 +75,10 @@ struct Params {
   double standstill_translation_m = 0.02;  ///< motion below this and ... [m/frame]
   double standstill_rotation_rad = 0.1 * M_PI / 180.0; ///< ... below this is standing [rad/frame]; ini _deg
   double standstill_speed_mps = 0.05;  ///< a prior speed below this is standing [m/s]
-  /// Replace the weak directions by the prediction: the external motion prior (wheel odometry), or
-  /// the constant-velocity prediction without one; false keeps the registration's values there.
+  /// Replace the registration's weak eigen-directions (degeneracy_threshold) by an external motion
+  /// prior (wheel odometry). The constant-velocity prediction is not used there: it carries no
+  /// information of its own and measured worse. (A weak motion, motion_degeneracy_threshold, takes
+  /// the prediction in any case: the prior, else constant velocity.)
   bool use_prior_on_degeneracy = true;
   double degeneracy_threshold = 0.01;  ///< normalised Hessian eigenvalue below which a direction is weak [-]
   /// voxel_map: a frame is degenerate when the scans' information of the translation along the
