@@ -324,10 +324,14 @@ FrameResult Odometry::process(Scan scan, const std::optional<MotionPrior>& given
       // the full 6x6 spectrum look healthy (a tunnel): the motion's own information decides too.
       const Eigen::Vector3d motion = T_pred.translation() - T_world_last_.translation();
       const Eigen::Vector3d n = motion.normalized();
-      const bool judge_motion = params_.matcher == "voxel_map" && motion_known_ &&
-                                motion.norm() >= params_.standstill_translation_m;
-      if (judge_motion) res.motion_information = surface.along(n);
-      const bool weak_motion = judge_motion && res.motion_information < params_.motion_degeneracy_threshold;
+      if (params_.matcher == "voxel_map" && motion_known_ && motion.norm() >= params_.standstill_translation_m) {
+        res.motion_information = surface.along(n);
+      }
+      // Constant velocity is only as good as the motion it repeats: without a prior it replaces the
+      // scans only after a frame whose scans saw the motion (a highway's standing start, whose first
+      // motion was a few decimetres of noise, carried that on and drifted 2 % RTE).
+      const bool weak_motion = (prior || motion_seen_) &&
+                               res.motion_information < params_.motion_degeneracy_threshold;
       // The full spectrum's weak eigenvectors mix rotation with translation and fall below the
       // threshold on open roads too: only an external prior replaces them (constant velocity there
       // tilted the simulated tunnel's approach by 9 deg). Along the motion, constant velocity is the
@@ -350,6 +354,8 @@ FrameResult Odometry::process(Scan scan, const std::optional<MotionPrior>& given
       threshold_.update(T_pred.inverse() * T_est, delta);
     }
     res.T_world_lidar = T_est;
+    motion_seen_ = prior || (res.status == FrameStatus::Ok && res.motion_information >= params_.motion_degeneracy_threshold) ||
+                   (res.status == FrameStatus::Degenerate && motion_seen_);
   }
   res.ms_register = msSince(t_reg);
 

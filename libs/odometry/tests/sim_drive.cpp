@@ -78,6 +78,8 @@ struct OdometryRun {
                   tg.x(), tg.y(), f.reason.c_str());
     }
     m.gt.push_back(toEigen(sim.lidar().lidarPose(t)));
+    r.statuses.push_back(f.status);
+    r.gt_positions.push_back(m.gt.back().translation());
     m.est.push_back(f.T_world_lidar);
     m.stamps_s.push_back(f.stamp_s);
     if (on_frame) on_frame(f, odo);
@@ -95,6 +97,7 @@ SimDriveResult runSimDrive(const std::string& scenario_ini, double duration_s, c
   auto sp = sim::ScenarioParams::fromFile(scenario_ini);
   sp.duration_s = duration_s;
   if (options.laps > 0) sp.trajectory.laps = options.laps;
+  if (options.edit_scenario) options.edit_scenario(sp);
   sim::Simulator s(sp);
   OdometryRun run(s, params);
   run.on_frame = options.on_frame;

@@ -205,6 +205,8 @@ class Odometry {
   size_t frames_ = 0;
   bool have_pose_ = false;
   bool motion_known_ = false;          ///< a frame after the first was registered (or a prior given)
+  /// the last frame's motion was measured by its scans (or given by a prior), or repeats one that was
+  bool motion_seen_ = false;
   std::optional<Scan> first_scan_;     ///< the first sweep, preprocessed, until the motion is known
   double last_stamp_s_ = 0;
   double last_dt_s_ = 0;
