@@ -85,6 +85,9 @@ struct Params {
   /// predicted motion, n^T H_tt n per pair without single-ring voxels (SurfaceInformation::along),
   /// is below this: the fraction of the pairs that measure the motion (a tunnel) [-]. 0 = off.
   double motion_degeneracy_threshold = 0.01;
+  /// ... and only once a frame's scans clearly saw the motion (this much information along it, after
+  /// a start or a standstill): constant velocity then repeats a measured motion, not noise [-]
+  double motion_seen_threshold = 0.03;
   /// A registration that used up its iterations is still taken when at least this fraction of the
   /// source points found a partner (IRLS often ends in a tiny limit cycle, not in a bad pose) [-]
   double min_inlier_fraction = 0.3;
