@@ -116,6 +116,39 @@ void Odometry::applyPriorOnWeakDirections(const WeakBasis& weak, double lever_m,
   T_est = kept * T_pred;
 }
 
+void Odometry::judgeDegeneracy(const registration::RegistrationResult& r, const SurfaceInformation& surface,
+                               const Eigen::Isometry3d& T_pred, const std::optional<MotionPrior>& prior,
+                               Eigen::Isometry3d& T_est, FrameResult& res) const {
+  // Along the predicted motion the scans may measure nothing real while ring-pattern voxels and
+  // the full 6x6 spectrum look healthy (a tunnel): the motion's own information decides too.
+  const Eigen::Vector3d motion = T_pred.translation() - T_world_last_.translation();
+  const Eigen::Vector3d n = motion.normalized();
+  if (params_.matcher == "voxel_map" && motion_known_ && motion.norm() >= params_.standstill_translation_m) {
+    res.motion_information = surface.along(n);
+  }
+  // Constant velocity is only as good as the motion it repeats: without a prior it replaces the
+  // scans only once a frame's scans clearly saw the motion (motion_seen_threshold), and until the
+  // car stands or tracking fails. The simulated highway's standing start, whose first motion was
+  // a few decimetres of noise, had carried that on (RTE 0.16 -> 2 %); its slow, open start
+  // (0.001-0.01 along the motion) then lost 15 % RTE to constant velocity while accelerating.
+  const bool weak_motion = (prior || motion_seen_) &&
+                           res.motion_information < params_.motion_degeneracy_threshold;
+  // The full spectrum's weak eigenvectors mix rotation with translation and fall below the
+  // threshold on open roads too: only an external prior replaces them (constant velocity there
+  // tilted the simulated tunnel's approach by 9 deg). Along the motion, constant velocity is the
+  // best guess left without one.
+  const bool weak_eigen = r.degeneracy.degenerate && params_.use_prior_on_degeneracy && prior;
+  // Where the spectrum found weak eigenvectors they are the prior's, as before; adding the motion
+  // axis to them measured no better (simulated tunnel with the CAN prior: RTE 0.296 vs 0.294 %).
+  if (weak_eigen || weak_motion) {
+    const WeakBasis weak = weakBasis(weak_eigen ? r.degeneracy : registration::Degeneracy{},
+                                     weak_motion && !weak_eigen ? &n : nullptr);
+    applyPriorOnWeakDirections(weak, r.degeneracy.length_scale_m, T_pred, T_est);
+    res.information = reduceInformation(r.information, surface.information, weak, r.degeneracy.length_scale_m);
+    res.status = FrameStatus::Degenerate;
+  }
+}
+
 void Odometry::updateUp(const FrameResult& res) {
   // The world's up direction: every frame's structures rotated into the world frame and summed
   // (robustly around the current estimate), so early errors average out; the prior pulls each new
@@ -320,32 +353,7 @@ FrameResult Odometry::process(Scan scan, const std::optional<MotionPrior>& given
       res.reason = registration::toString(r.status) + (r.reason.empty() ? "" : ": " + r.reason);
       T_est = T_pred;
     } else {
-      // Along the predicted motion the scans may measure nothing real while ring-pattern voxels and
-      // the full 6x6 spectrum look healthy (a tunnel): the motion's own information decides too.
-      const Eigen::Vector3d motion = T_pred.translation() - T_world_last_.translation();
-      const Eigen::Vector3d n = motion.normalized();
-      if (params_.matcher == "voxel_map" && motion_known_ && motion.norm() >= params_.standstill_translation_m) {
-        res.motion_information = surface.along(n);
-      }
-      // Constant velocity is only as good as the motion it repeats: without a prior it replaces the
-      // scans only once a frame's scans clearly saw the motion (motion_seen_threshold), and until the
-      // car stands or tracking fails. The simulated highway's standing start, whose first motion was
-      // a few decimetres of noise, had carried that on (RTE 0.16 -> 2 %); its slow, open start
-      // (0.001-0.01 along the motion) then lost 15 % RTE to constant velocity while accelerating.
-      const bool weak_motion = (prior || motion_seen_) &&
-                               res.motion_information < params_.motion_degeneracy_threshold;
-      // The full spectrum's weak eigenvectors mix rotation with translation and fall below the
-      // threshold on open roads too: only an external prior replaces them (constant velocity there
-      // tilted the simulated tunnel's approach by 9 deg). Along the motion, constant velocity is the
-      // best guess left without one.
-      const bool weak_eigen = r.degeneracy.degenerate && params_.use_prior_on_degeneracy && prior;
-      if (weak_eigen || weak_motion) {
-        const WeakBasis weak = weakBasis(weak_eigen ? r.degeneracy : registration::Degeneracy{},
-                                         weak_motion ? &n : nullptr);
-        applyPriorOnWeakDirections(weak, r.degeneracy.length_scale_m, T_pred, T_est);
-        res.information = reduceInformation(r.information, surface.information, weak, r.degeneracy.length_scale_m);
-        res.status = FrameStatus::Degenerate;
-      }
+      judgeDegeneracy(r, surface, T_pred, prior, T_est, res);
     }
     const Eigen::Isometry3d delta = T_world_last_.inverse() * T_est;
     if (res.status == FrameStatus::Ok && isStandstill(delta, prior)) {

@@ -188,6 +188,11 @@ class Odometry {
   Eigen::Isometry3d predict(const std::optional<MotionPrior>& prior) const;
   void applyPriorOnWeakDirections(const Eigen::Matrix<double, 6, Eigen::Dynamic>& weak, double lever_m,
                                   const Eigen::Isometry3d& T_pred, Eigen::Isometry3d& T_est) const;
+  /// Marks \p res degenerate and puts the prediction into \p T_est along the directions the scans
+  /// leave unmeasured (weak_directions.h), reducing res.information there.
+  void judgeDegeneracy(const registration::RegistrationResult& r, const SurfaceInformation& surface,
+                       const Eigen::Isometry3d& T_pred, const std::optional<MotionPrior>& prior,
+                       Eigen::Isometry3d& T_est, FrameResult& res) const;
   bool isStandstill(const Eigen::Isometry3d& delta, const std::optional<MotionPrior>& prior) const;
   void updateKeyframe(FrameResult& res);
   void updateUp(const FrameResult& res);
