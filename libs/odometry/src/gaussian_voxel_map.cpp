@@ -37,6 +37,7 @@ GaussianVoxelMap::GaussianVoxelMap(double voxel_m, int max_points_per_voxel, dou
 void GaussianVoxelMap::refresh(Voxel& v) const {
   v.mean = v.sum / v.n;
   v.valid = false;
+  v.ring_line = false;
   if (v.n < kMinPointsForCovariance) return;
   const Eigen::Matrix3d cov = v.scatter / v.n - v.mean * v.mean.transpose();
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
@@ -47,11 +48,15 @@ void GaussianVoxelMap::refresh(Voxel& v) const {
   const bool ground = 2 * v.ground_n > v.n;
   if (lambda(1) < thin2 && std::abs(V.col(2).z()) < kMaxRingLineSlope) {  // one ring
     const Eigen::Vector3d d = V.col(2);
+    v.ring_line = true;
     if (ground) {
       const Eigen::Vector3d up = (Eigen::Vector3d::UnitZ() - d.z() * d).normalized();
       v.info = up * up.transpose();
     } else {
-      if (!ring_lines_on_walls_) return;
+      if (!ring_lines_on_walls_) {
+        v.ring_line = false;
+        return;
+      }
       const Eigen::Vector3d across = Eigen::Vector3d::UnitZ().cross(d).normalized();
       v.info = across * across.transpose();
     }

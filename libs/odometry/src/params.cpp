@@ -45,6 +45,8 @@ void Params::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, const st
   standstill_speed_mps = readDouble(c, s, "standstill_speed_mps", standstill_speed_mps);
   use_prior_on_degeneracy = readBool(c, s, "use_prior_on_degeneracy", use_prior_on_degeneracy);
   degeneracy_threshold = readDouble(c, s, "degeneracy_threshold", degeneracy_threshold);
+  motion_degeneracy_threshold = readDouble(c, s, "motion_degeneracy_threshold", motion_degeneracy_threshold);
+  motion_seen_threshold = readDouble(c, s, "motion_seen_threshold", motion_seen_threshold);
   min_inlier_fraction = readDouble(c, s, "min_inlier_fraction", min_inlier_fraction);
   ground_aware_map = readBool(c, s, "ground_aware_map", ground_aware_map);
   map_ground_max_range_m = readDouble(c, s, "map_ground_max_range_m", map_ground_max_range_m);
@@ -107,6 +109,8 @@ void Params::saveToConfigFile(mrpt::config::CConfigFileBase& c, const std::strin
   c.write(s, "standstill_speed_mps", standstill_speed_mps);
   c.write(s, "use_prior_on_degeneracy", use_prior_on_degeneracy);
   c.write(s, "degeneracy_threshold", degeneracy_threshold);
+  c.write(s, "motion_degeneracy_threshold", motion_degeneracy_threshold);
+  c.write(s, "motion_seen_threshold", motion_seen_threshold);
   c.write(s, "min_inlier_fraction", min_inlier_fraction);
   c.write(s, "ground_aware_map", ground_aware_map);
   c.write(s, "map_ground_max_range_m", map_ground_max_range_m);

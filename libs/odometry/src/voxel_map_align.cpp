@@ -30,6 +30,7 @@ Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
 
 struct LinearSystem {
   Matrix6d H = Matrix6d::Zero();
+  Matrix6d H_ring = Matrix6d::Zero();  ///< part of H from single-ring voxels (when asked for)
   Vector6d b = Vector6d::Zero();
   int inliers = 0;
   double sq_sum = 0;  ///< sum of squared Mahalanobis residuals of inliers [m^2]
@@ -42,7 +43,7 @@ struct LinearSystem {
 // iterations most points stay in their voxel and need no hash look-up (same pairs as nearest()).
 LinearSystem buildSystem(const GaussianVoxelMap& map, const std::vector<Eigen::Vector3d>& src,
                          const Eigen::Isometry3d& T, const VoxelAlignParams& p,
-                         std::vector<GaussianVoxelMap::Candidates>& cache) {
+                         std::vector<GaussianVoxelMap::Candidates>& cache, bool split_rings = false) {
   LinearSystem ls;
   const double s2 = p.kernel_scale_m * p.kernel_scale_m;
   Eigen::Matrix<double, 3, 6> J;
@@ -61,6 +62,7 @@ LinearSystem buildSystem(const GaussianVoxelMap& map, const std::vector<Eigen::V
     J.rightCols<3>() = -skew(x);
     const Eigen::Matrix<double, 6, 3> JtO = J.transpose() * v->info;
     ls.H.noalias() += w * JtO * J;
+    if (split_rings && v->ring_line) ls.H_ring.noalias() += w * JtO * J;
     ls.b.noalias() += w * JtO * d;
     ls.sq_sum += r2;
     ls.range_sq_sum += ps.squaredNorm();
@@ -96,7 +98,7 @@ RegistrationResult failed(const Eigen::Isometry3d& T, Status s, std::string why)
 
 RegistrationResult alignToVoxelMap(const GaussianVoxelMap& map, const std::vector<Eigen::Vector3d>& src,
                                    const Eigen::Isometry3d& guess, const VoxelAlignParams& p,
-                                   const GravityPrior* gravity) {
+                                   const GravityPrior* gravity, SurfaceInformation* surface) {
   if (!guess.matrix().allFinite()) return failed(guess, Status::NonFiniteInput, "initial guess is not finite");
   if (map.empty()) return failed(guess, Status::EmptyTarget, "local map is empty");
   if (static_cast<int>(src.size()) < p.min_inliers) {
@@ -127,7 +129,7 @@ RegistrationResult alignToVoxelMap(const GaussianVoxelMap& map, const std::vecto
       break;
     }
   }
-  LinearSystem fin = buildSystem(map, src, T, p, cache);
+  LinearSystem fin = buildSystem(map, src, T, p, cache, surface != nullptr);
   const Matrix6d H_scan = fin.H;  // degeneracy is the scan's: the tilt prior adds no translation
   if (gravity && gravity->constraints) addGravity(*gravity, T.linear(), fin);
   r.T_target_source = T;
@@ -136,6 +138,11 @@ RegistrationResult alignToVoxelMap(const GaussianVoxelMap& map, const std::vecto
   r.fitness = fin.inliers ? std::sqrt(fin.sq_sum / fin.inliers) : 0.0;
   const double var = std::max(r.fitness * r.fitness, 1e-4);
   r.information = fin.H / var;
+  if (surface) {
+    surface->H = H_scan - fin.H_ring;
+    surface->information = surface->H / var;
+    surface->inliers = fin.inliers;
+  }
   const double lever = fin.inliers ? std::sqrt(fin.range_sq_sum / fin.inliers) : 1.0;
   r.degeneracy = registration::analyseDegeneracy(H_scan, fin.inliers, std::max(lever, 1.0), p.degeneracy_threshold);
   if (!r.converged) r.reason = "no convergence in " + std::to_string(p.max_iterations) + " iterations";

@@ -71,13 +71,15 @@ struct OdometryRun {
         return Eigen::Vector2d(std::atan2(-z.y(), z.z()), std::atan2(z.x(), z.z())) * 180.0 / M_PI;
       };
       const Eigen::Vector2d te = tilt(f.T_world_lidar), tg = tilt(G);
-      std::printf("%zu %s vc=%d it=%d inl=%d/%d fit=%.3f thr=%.2f weak=%d ev=%.4f est=(%.2f %.2f %.2f) gt=(%.2f %.2f %.2f) "
+      std::printf("%zu %s vc=%d it=%d inl=%d/%d fit=%.3f thr=%.2f weak=%d ev=%.4f mi=%.4f est=(%.2f %.2f %.2f) gt=(%.2f %.2f %.2f) "
                   "tilt_est=(%.3f %.3f) tilt_gt=(%.3f %.3f) %s\n", f.index,
                   toString(f.status), f.vertical_constraints, f.iterations, f.inliers, f.points_registered, f.fitness_m, f.threshold_m,
-                  f.weak_directions, f.min_eigenvalue, e.x(), e.y(), e.z(), g.x(), g.y(), g.z(), te.x(), te.y(),
+                  f.weak_directions, f.min_eigenvalue, f.motion_information, e.x(), e.y(), e.z(), g.x(), g.y(), g.z(), te.x(), te.y(),
                   tg.x(), tg.y(), f.reason.c_str());
     }
     m.gt.push_back(toEigen(sim.lidar().lidarPose(t)));
+    r.statuses.push_back(f.status);
+    r.gt_positions.push_back(m.gt.back().translation());
     m.est.push_back(f.T_world_lidar);
     m.stamps_s.push_back(f.stamp_s);
     if (on_frame) on_frame(f, odo);
@@ -95,6 +97,7 @@ SimDriveResult runSimDrive(const std::string& scenario_ini, double duration_s, c
   auto sp = sim::ScenarioParams::fromFile(scenario_ini);
   sp.duration_s = duration_s;
   if (options.laps > 0) sp.trajectory.laps = options.laps;
+  if (options.edit_scenario) options.edit_scenario(sp);
   sim::Simulator s(sp);
   OdometryRun run(s, params);
   run.on_frame = options.on_frame;

@@ -3,10 +3,15 @@
 // against the simulator's exact lidar poses.
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "roadslam/eval/trajectory_metrics.h"
 #include "roadslam/odometry/odometry.h"
 #include "roadslam/odometry/vehicle_prior.h"
+
+namespace roadslam::sim {
+struct ScenarioParams;
+}
 
 namespace roadslam::odometry::test {
 
@@ -15,6 +20,8 @@ struct SimDriveResult {
   size_t frames = 0, failed = 0, degenerate = 0;
   double ms_mean = 0;
   size_t with_prior = 0;  ///< frames given a CAN motion prior
+  std::vector<FrameStatus> statuses;         ///< per frame with a pose
+  std::vector<Eigen::Vector3d> gt_positions;  ///< the simulator's lidar position per frame, world frame [m]
 };
 
 struct SimDriveOptions {
@@ -24,6 +31,8 @@ struct SimDriveOptions {
   VehiclePriorParams prior;
   /// Closed routes: laps to drive (0 = the scenario's own [trajectory] laps).
   int laps = 0;
+  /// Changes the scenario read from the ini before it is simulated (e.g. a shorter tunnel).
+  std::function<void(sim::ScenarioParams&)> edit_scenario;
   /// Called after every processed frame (e.g. to sample memory).
   std::function<void(const FrameResult&, const Odometry&)> on_frame;
 };

@@ -1,7 +1,7 @@
 // The CAN motion prior on simulated drives (libs/sim writes the car's CAN, libs/vehicle decodes it
 // with ini/vehicles/roadslam-sim.ini, VehiclePrior turns it into the lidar motion): the tunnel does
-// not diverge with the prior and does without it (the control); the urban-loop start is not made
-// worse by it.
+// not diverge with the prior and drifts without it (the control: its degenerate frames are crossed at
+// constant velocity); the urban-loop start is not made worse by it.
 #include <gtest/gtest.h>
 
 #include <iostream>
@@ -34,11 +34,13 @@ TEST(VehiclePriorSim, TunnelDoesNotDivergeWithTheCanPriorAndDoesWithout) {
   print("tunnel 45 s without prior", r_none);
   EXPECT_EQ(r_can.with_prior + 1, r_can.frames);  // every frame but the first had the prior
   EXPECT_GT(r_can.degenerate, 0u);
-  // measured: with the prior RTE 0.26 %, ATE 0.55 m; without RTE 43 %, ATE 102 m
+  // measured: with the prior RTE 0.26 %, ATE 0.55 m; without RTE 4.7 %, ATE 11.5 m, 206 frames
+  // degenerate and crossed at constant velocity (before the degeneracy along the motion: 43 %, 102 m)
   EXPECT_LT(r_can.metrics.rte_percent, 1.0);
   EXPECT_LT(r_can.metrics.ate_rmse_m, 1.5);
-  EXPECT_GT(r_none.metrics.rte_percent, 5.0);
-  EXPECT_GT(r_none.metrics.ate_rmse_m, 10.0);
+  EXPECT_GT(r_none.metrics.rte_percent, 2.0);
+  EXPECT_GT(r_none.metrics.ate_rmse_m, 5.0);
+  EXPECT_GT(r_none.degenerate, 150u);
 }
 
 // 30 s of the urban loop (good geometry everywhere): the prior only seeds the registration.

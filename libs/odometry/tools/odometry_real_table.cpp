@@ -64,7 +64,7 @@ int main(int argc, char** argv) {
   if (drives.empty()) drives = sharedDrives();
   const size_t stride = std::getenv("ODOMETRY_STRIDE") ? std::stoul(std::getenv("ODOMETRY_STRIDE")) : 1;
   const bool verbose = std::getenv("ODOMETRY_FRAMES") && std::string(std::getenv("ODOMETRY_FRAMES")) == "1";
-  std::printf("%-28s %6s %6s %7s %8s %8s %8s %9s %9s %8s\n", "drive", "frames", "failed", "dist_m", "ATE_m",
+  std::printf("%-28s %6s %6s %6s %7s %8s %8s %8s %9s %9s %8s\n", "drive", "frames", "failed", "degen", "dist_m", "ATE_m",
               "RTE_%", "RRE_d/hm", "end_dz_m", "end_dpitch", "ms/frame");
   for (const auto& d : drives) {
     const datasets::KittiScanFolder folder(d.dir, d.times, kp);
@@ -82,7 +82,7 @@ int main(int argc, char** argv) {
     }
     odometry::Odometry odo(params);
     eval::MatchedTrajectories m;
-    size_t failed = 0;
+    size_t failed = 0, degenerate = 0;
     double ms = 0;
     for (size_t i = 0; i < folder.size(); i += stride) {
       auto scan = folder.read(i);
@@ -90,6 +90,7 @@ int main(int argc, char** argv) {
       const auto r = odo.process(std::move(scan));
       ms += r.ms_total;
       if (r.status == odometry::FrameStatus::NotConverged || r.status == odometry::FrameStatus::Empty) ++failed;
+      if (r.status == odometry::FrameStatus::Degenerate) ++degenerate;
       m.gt.push_back(gt[i]);
       m.est.push_back(r.T_world_lidar);
       if (verbose) {
@@ -104,7 +105,7 @@ int main(int argc, char** argv) {
     const auto mt = eval::computeMetrics(m);
     const Eigen::Isometry3d end = m.gt.back().inverse() * m.est.back();
     const double end_pitch = std::asin(std::clamp(-end.rotation()(2, 0), -1.0, 1.0)) * 180 / M_PI;
-    std::printf("%-28s %6zu %6zu %7.1f %8.3f %8.3f %8.3f %9.3f %9.3f %8.2f\n", d.name.c_str(), m.est.size(), failed,
+    std::printf("%-28s %6zu %6zu %6zu %7.1f %8.3f %8.3f %8.3f %9.3f %9.3f %8.2f\n", d.name.c_str(), m.est.size(), failed, degenerate,
                 mt.path_length_m, mt.ate_rmse_m, mt.rte_percent, mt.rre_deg_per_100m,
                 (m.est.back().translation() - m.gt.back().translation()).z(), end_pitch,
                 ms / static_cast<double>(m.est.size()));

@@ -24,20 +24,54 @@ bool hasPose(const odometry::FrameResult& f) {
 std::string framesCsv(const std::vector<odometry::FrameResult>& frames) {
   std::ostringstream os;
   os << "index,stamp_s,status,point_times,deskewed,keyframe,x_m,y_m,z_m,points_in,points_registered,iterations,inliers,"
-        "fitness_m,threshold_m,weak_directions,ms_preprocess,ms_register,ms_map,ms_total,reason\n";
+        "fitness_m,threshold_m,weak_directions,motion_information,ms_preprocess,ms_register,ms_map,ms_total,reason\n";
   char buf[512];
   for (const auto& f : frames) {
     const auto t = f.T_world_lidar.translation();
-    std::snprintf(buf, sizeof buf, "%zu,%.6f,%s,%s,%d,%d,%.4f,%.4f,%.4f,%d,%d,%d,%d,%.4f,%.3f,%d,%.3f,%.3f,%.3f,%.3f,",
+    std::snprintf(buf, sizeof buf, "%zu,%.6f,%s,%s,%d,%d,%.4f,%.4f,%.4f,%d,%d,%d,%d,%.4f,%.3f,%d,%.5f,%.3f,%.3f,%.3f,%.3f,",
                   f.index, f.stamp_s, odometry::toString(f.status), f.point_times, f.deskewed ? 1 : 0,
                   f.keyframe ? 1 : 0, t.x(), t.y(), t.z(),
                   f.points_in, f.points_registered, f.iterations, f.inliers, f.fitness_m, f.threshold_m,
-                  f.weak_directions, f.ms_preprocess, f.ms_register, f.ms_map, f.ms_total);
+                  f.weak_directions, f.motion_information, f.ms_preprocess, f.ms_register, f.ms_map, f.ms_total);
     std::string reason = f.reason;
     std::replace(reason.begin(), reason.end(), ',', ';');
     os << buf << reason << "\n";
   }
   return os.str();
+}
+
+/// How much of the drive the scans could not see the motion in (FrameStatus::Degenerate): the count,
+/// its fraction of the frames with a pose, and the longest run of consecutive degenerate frames, in
+/// frames and in seconds from the last frame before it (the motion over that span was predicted).
+nlohmann::json blindness(const std::vector<odometry::FrameResult>& frames) {
+  int degenerate = 0, posed = 0, run = 0, longest = 0;
+  double longest_s = 0, longest_start_s = 0;
+  const odometry::FrameResult* before_run = nullptr;
+  const odometry::FrameResult* prev = nullptr;
+  for (const auto& f : frames) {
+    if (!hasPose(f)) continue;
+    ++posed;
+    if (f.status == odometry::FrameStatus::Degenerate) {
+      ++degenerate;
+      if (run++ == 0) before_run = prev;
+      const double span_s = f.stamp_s - (before_run ? before_run->stamp_s : f.stamp_s);
+      if (run > longest) {
+        longest = run;
+        longest_s = span_s;
+        longest_start_s = before_run ? before_run->stamp_s : f.stamp_s;
+      }
+    } else {
+      run = 0;
+    }
+    prev = &f;
+  }
+  nlohmann::json j;
+  j["degenerate_frames"] = degenerate;
+  j["degenerate_fraction"] = posed ? static_cast<double>(degenerate) / posed : 0.0;
+  j["longest_blind_frames"] = longest;
+  j["longest_blind_s"] = longest_s;
+  j["longest_blind_start_s"] = longest_start_s;
+  return j;
 }
 
 }  // namespace
@@ -71,6 +105,7 @@ nlohmann::json summarize(const std::vector<odometry::FrameResult>& frames) {
   j["point_times"] = timed_by;
   j["deskewed_frames"] = deskewed;
   j["frames_by_status"] = by_status;
+  j["blind"] = blindness(frames);
   j["ms_per_frame_mean"] = ms.empty() ? 0.0 : mean / ms.size();
   j["ms_per_frame_p50"] = percentile(ms, 0.5);
   j["ms_per_frame_p95"] = percentile(ms, 0.95);

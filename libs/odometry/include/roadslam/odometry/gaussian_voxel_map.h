@@ -53,6 +53,9 @@ class GaussianVoxelMap {
     int ground_n = 0;                                   ///< points labelled ground
     uint32_t batch = 0;                                 ///< last insert() that touched it
     bool valid = false;                                 ///< enough points for a covariance
+    /// info comes from a single scan ring (a level plane on the road, an upright one off it): the
+    /// ring's place on the surface moves with the sensor, so it is no evidence of the motion
+    bool ring_line = false;
     Eigen::Vector3d mean = Eigen::Vector3d::Zero();
     Eigen::Matrix3d info = Eigen::Matrix3d::Zero();     ///< regularised inverse covariance [1/m^2]
   };
@@ -96,6 +99,23 @@ struct VoxelAlignParams {
   double degeneracy_threshold = 0.02;          ///< normalised Hessian eigenvalue [-]
 };
 
+/// What the scans measured, for judging degeneracy along a direction (Zhang et al., ICRA 2016,
+/// "On degeneracy of optimization-based state estimation problems"): the Gauss-Newton Hessian at the
+/// result without the tilt prior and without single-ring voxels (GaussianVoxelMap::Voxel::ring_line),
+/// whose constraints move with the sensor (a tunnel's ceiling crossed by one ring reads as an
+/// upright surface across the tunnel and would hold the vehicle back along its axis).
+struct SurfaceInformation {
+  Eigen::Matrix<double, 6, 6> H = Eigen::Matrix<double, 6, 6>::Zero();  ///< [t, w] left increments, map frame [1/m^2, 1/rad^2, 1/m/rad]
+  /// H scaled like RegistrationResult::information (by the inverse squared fitness) [1/m^2, 1/rad^2]
+  Eigen::Matrix<double, 6, 6> information = Eigen::Matrix<double, 6, 6>::Zero();
+  int inliers = 0;  ///< all pairs of the final system, ring lines included (the normaliser) [-]
+  /// n^T H_tt n / inliers: the information of the translation along the unit vector \p n_map
+  /// (map frame), per pair: the fraction of the pairs that measure it [-]
+  double along(const Eigen::Vector3d& n_map) const {
+    return inliers > 0 ? n_map.dot(H.topLeftCorner<3, 3>() * n_map) / inliers : 0.0;
+  }
+};
+
 /// Absolute tilt prior of the alignment: the sweep's vertical structures (lidar frame) must stand
 /// along \p up_map. Each constraint adds the residual (R n) . up [rad] with the weight
 /// scale_m2 * VerticalConstraint::weight, under a Geman-McClure kernel of scale kernel_rad so
@@ -110,11 +130,12 @@ struct GravityPrior {
 };
 
 /// Aligns \p points_source (lidar frame) to \p map from \p T_map_source_guess, with an optional
-/// tilt prior.
+/// tilt prior; \p surface (optional) receives the scans' information without the ring lines.
 registration::RegistrationResult alignToVoxelMap(const GaussianVoxelMap& map,
                                                  const std::vector<Eigen::Vector3d>& points_source,
                                                  const Eigen::Isometry3d& T_map_source_guess,
                                                  const VoxelAlignParams& params,
-                                                 const GravityPrior* gravity = nullptr);
+                                                 const GravityPrior* gravity = nullptr,
+                                                 SurfaceInformation* surface = nullptr);
 
 }  // namespace roadslam::odometry

@@ -75,10 +75,19 @@ struct Params {
   double standstill_translation_m = 0.02;  ///< motion below this and ... [m/frame]
   double standstill_rotation_rad = 0.1 * M_PI / 180.0; ///< ... below this is standing [rad/frame]; ini _deg
   double standstill_speed_mps = 0.05;  ///< a prior speed below this is standing [m/s]
-  /// Replace the weak directions by an external motion prior (wheel odometry). The constant-velocity
-  /// prediction is not used there: it carries no information of its own and measured worse.
+  /// Replace the registration's weak eigen-directions (degeneracy_threshold) by an external motion
+  /// prior (wheel odometry). The constant-velocity prediction is not used there: it carries no
+  /// information of its own and measured worse. (A weak motion, motion_degeneracy_threshold, takes
+  /// the prediction in any case: the prior, else constant velocity.)
   bool use_prior_on_degeneracy = true;
   double degeneracy_threshold = 0.01;  ///< normalised Hessian eigenvalue below which a direction is weak [-]
+  /// voxel_map: a frame is degenerate when the scans' information of the translation along the
+  /// predicted motion, n^T H_tt n per pair without single-ring voxels (SurfaceInformation::along),
+  /// is below this: the fraction of the pairs that measure the motion (a tunnel) [-]. 0 = off.
+  double motion_degeneracy_threshold = 0.01;
+  /// ... and only once a frame's scans clearly saw the motion (this much information along it, after
+  /// a start or a standstill): constant velocity then repeats a measured motion, not noise [-]
+  double motion_seen_threshold = 0.03;
   /// A registration that used up its iterations is still taken when at least this fraction of the
   /// source points found a partner (IRLS often ends in a tiny limit cycle, not in a bad pose) [-]
   double min_inlier_fraction = 0.3;
@@ -118,7 +127,10 @@ enum class FrameStatus {
   Ok,             ///< registered and converged
   First,          ///< first frame: defines the world frame
   Standstill,     ///< vehicle standing: pose held, map not updated
-  Degenerate,     ///< converged, weak directions filled from the external motion prior
+  /// converged, but the scans leave a direction unmeasured (degeneracy_threshold, or
+  /// motion_degeneracy_threshold along the motion): it comes from the external motion prior, or from
+  /// the constant-velocity prediction without one; FrameResult::information is reduced there
+  Degenerate,
   NotConverged,   ///< registration failed: pose from the prediction (reason in FrameResult::reason)
   Skipped,        ///< dropped by frame skipping (no pose)
   Empty           ///< no usable points: pose from the prediction
@@ -141,6 +153,9 @@ struct FrameResult {
   double threshold_m = 0;       ///< correspondence threshold used [m]
   int weak_directions = 0;      ///< degenerate directions of the registration [-]
   double min_eigenvalue = 0;    ///< smallest normalised Hessian eigenvalue (degeneracy measure) [-]
+  /// information of the translation along the predicted motion per pair, single-ring voxels left out
+  /// (SurfaceInformation::along); NaN when the motion is too small to have a direction [-]
+  double motion_information = std::nan("");
   int vertical_constraints = 0; ///< tilt constraints from vertical structures (gravity prior) [-]
   double ms_preprocess = 0, ms_register = 0, ms_map = 0, ms_total = 0;  ///< wall time [ms]
   Eigen::Matrix<double, 6, 6> information = Eigen::Matrix<double, 6, 6>::Zero();
@@ -171,13 +186,19 @@ class Odometry {
 
  private:
   Eigen::Isometry3d predict(const std::optional<MotionPrior>& prior) const;
-  void applyPriorOnWeakDirections(const registration::RegistrationResult& r,
+  void applyPriorOnWeakDirections(const Eigen::Matrix<double, 6, Eigen::Dynamic>& weak, double lever_m,
                                   const Eigen::Isometry3d& T_pred, Eigen::Isometry3d& T_est) const;
+  /// Marks \p res degenerate and puts the prediction into \p T_est along the directions the scans
+  /// leave unmeasured (weak_directions.h), reducing res.information there.
+  void judgeDegeneracy(const registration::RegistrationResult& r, const SurfaceInformation& surface,
+                       const Eigen::Isometry3d& T_pred, const std::optional<MotionPrior>& prior,
+                       Eigen::Isometry3d& T_est, FrameResult& res) const;
   bool isStandstill(const Eigen::Isometry3d& delta, const std::optional<MotionPrior>& prior) const;
   void updateKeyframe(FrameResult& res);
   void updateUp(const FrameResult& res);
   registration::RegistrationResult match(const std::vector<Eigen::Vector3d>& source,
-                                         const Eigen::Isometry3d& T_pred, FrameResult& res);
+                                         const Eigen::Isometry3d& T_pred, FrameResult& res,
+                                         SurfaceInformation* surface = nullptr);
   void updateMap(const Eigen::Isometry3d& T_world_lidar);
   Eigen::Isometry3d searchFirstMotion(const Scan& scan, const Eigen::Isometry3d& guess, FrameResult& res);
   void redeskewFirstFrame(const Eigen::Isometry3d& delta_sweep);
@@ -192,6 +213,8 @@ class Odometry {
   size_t frames_ = 0;
   bool have_pose_ = false;
   bool motion_known_ = false;          ///< a frame after the first was registered (or a prior given)
+  /// the last frame's motion was measured by its scans (or given by a prior), or repeats one that was
+  bool motion_seen_ = false;
   std::optional<Scan> first_scan_;     ///< the first sweep, preprocessed, until the motion is known
   double last_stamp_s_ = 0;
   double last_dt_s_ = 0;

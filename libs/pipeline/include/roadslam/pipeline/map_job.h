@@ -58,7 +58,9 @@ void writeMapOutputs(const std::string& out_dir, const std::vector<odometry::Fra
 /// keys \p cfg leaves out hold the code's defaults.
 std::string effectiveMapConfig(const mrpt::config::CConfigFileBase& cfg);
 
-/// Summary statistics of \p frames (counts per status, ms per frame mean/p50/p95/max).
+/// Summary statistics of \p frames (counts per status, ms per frame mean/p50/p95/max) and `blind`:
+/// degenerate frames, their fraction of the frames with a pose, the longest run of them in frames
+/// and in seconds (from the last frame before the run to its last frame) and where it starts [s].
 nlohmann::json summarize(const std::vector<odometry::FrameResult>& frames);
 
 /// runMapJob's summary for a person: aligned lines (input, frames, failed/degenerate, distance,
