@@ -118,6 +118,8 @@ void makeFiles() {
   write(w / "half-good.log", "(1.000000) can0 123#0011\n(1.010000) can0 123#0011\nbroken line\n");
   write(w / "garbage.dbc", "BO_ x y z\nSG_ nonsense\n");
   write(w / "bad-vehicle.ini", "[vehicle]\ndbc = nope.dbc\n");
+  write(w / "roadslam-sim.dbc", fileText(kSrc + "/ini/vehicles/roadslam-sim.dbc"));
+  write(w / "vehicle-typo.ini", fileText(kSrc + "/ini/vehicles/roadslam-sim.ini") + "\nwheelbase_mm = 2.7\n");
   // trajectories
   write(w / "three-columns.tum", "1 2 3\n");
   write(w / "words.tum", "# t x y z qx qy qz qw\n1.0 0 0 zero 0 0 0 1\n");
@@ -184,6 +186,7 @@ const Row kTable[] = {
   {"can-bad-dbc",          "roadslam-can decode --dbc {W}/garbage.dbc {W}/half-good.log", 1, "garbage.dbc"},
   {"can-log-missing",      "roadslam-can decode --dbc {S}/ini/vehicles/roadslam-sim.dbc {W}/nope.log", 105, "File does not exist"},
   {"can-bad-vehicle",      "roadslam-can odometry --vehicle {W}/bad-vehicle.ini {W}/half-good.log --out {O}/odo.tum", 1, "bad-vehicle.ini"},
+  {"can-vehicle-typo",     "roadslam-can odometry --vehicle {W}/vehicle-typo.ini --data-root {S}/ini/vehicles {W}/half-good.log --out {O}/odo.tum", 1, "unknown key 'wheelbase_mm' in [vehicle] (nearest known: wheelbase_m)"},
   // roadslam-rawlog
   {"rawlog-info-random",   "roadslam-rawlog info {W}/random.rawlog", 1, "not a readable MRPT rawlog"},
   {"rawlog-info-truncated","roadslam-rawlog info {W}/truncated.pcap", 1, "damaged at record 239 (byte 299344)"},

@@ -75,8 +75,7 @@ void VehicleParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
     if (m.sign != 1.0 && m.sign != -1.0) throw std::runtime_error("[" + s + "] " + k + "_sign must be 1 or -1");
     for (const char* suffix : {"", "_add", "_negate_if", "_unit", "_sign"}) known.push_back(k + suffix);
   }
-  const auto unknown = unknownKeys(cfg, s, known);
-  if (!unknown.empty()) throw std::runtime_error("[" + s + "] unknown key '" + unknown.front() + "'");
+  rejectUnknownKeys(cfg, s, known);
   if (wheelbase_m <= 0 || steering_ratio <= 0) {
     throw std::runtime_error("[" + s + "] wheelbase_m and steering_ratio must be positive");
   }
