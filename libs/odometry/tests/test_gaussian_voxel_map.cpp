@@ -3,20 +3,14 @@
 #include <cmath>
 #include <random>
 
+#include "labelled_cloud.h"
 #include "roadslam/odometry/gaussian_voxel_map.h"
 
 using namespace roadslam::odometry;
 
 namespace {
 
-struct Cloud {
-  std::vector<Eigen::Vector3d> points;
-  std::vector<uint8_t> ground;
-  void add(const Eigen::Vector3d& p, bool is_ground) {
-    points.push_back(p);
-    ground.push_back(is_ground ? 1 : 0);
-  }
-};
+using test::Cloud;
 
 // A yard closed by three walls (x = 12, y = +-8) on a flat road 1.9 m below the sensor. The walls
 // carry single scan rings at the heights given, each in its own 1 m voxel row, as a VLP-16 sees a

@@ -7,6 +7,7 @@
 #include <iostream>
 #include <random>
 
+#include "labelled_cloud.h"
 #include "roadslam/odometry/gaussian_voxel_map.h"
 #include "roadslam/odometry/odometry.h"
 #include "roadslam/odometry/weak_directions.h"
@@ -15,14 +16,7 @@ using namespace roadslam::odometry;
 
 namespace {
 
-struct Cloud {
-  std::vector<Eigen::Vector3d> points;
-  std::vector<uint8_t> ground;
-  void add(const Eigen::Vector3d& p, bool is_ground) {
-    points.push_back(p);
-    ground.push_back(is_ground ? 1 : 0);
-  }
-};
+using test::Cloud;
 
 constexpr double kHalfWidth = 5.75, kRoad = -1.9, kCeiling = 3.6;  // [m] about the sensor
 constexpr double kHalfLength = 40.0;  // [m]
