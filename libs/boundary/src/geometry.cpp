@@ -73,7 +73,7 @@ std::vector<std::vector<size_t>> gridClusters(const std::vector<Vec2>& pts, doub
       const int64_t ix = k >> 32, iy = static_cast<int32_t>(k & 0xffffffffLL);
       for (int dx = -1; dx <= 1; ++dx) {
         for (int dy = -1; dy <= 1; ++dy) {
-          const int64_t nk = ((ix + dx) << 32) ^ ((iy + dy) & 0xffffffffLL);
+          const int64_t nk = packCell(ix + dx, iy + dy);
           if (cells.count(nk) && !label.count(nk)) {
             label[nk] = id;
             stack.push_back(nk);

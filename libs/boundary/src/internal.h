@@ -13,9 +13,14 @@
 
 namespace roadslam::boundary::detail {
 
+/// Cell (ix, iy) packed into one key: ix in the high 32 bits, iy in the low. Shifted as unsigned (a
+/// negative ix shifted left is undefined in C++17; UBSan found it); the bits are two's complement.
+inline int64_t packCell(int64_t ix, int64_t iy) {
+  return static_cast<int64_t>((static_cast<uint64_t>(ix) << 32) ^ (static_cast<uint64_t>(iy) & 0xffffffffULL));
+}
+
 inline int64_t cellKey(double x, double y, double cell) {
-  const auto ix = static_cast<int64_t>(std::floor(x / cell)), iy = static_cast<int64_t>(std::floor(y / cell));
-  return (ix << 32) ^ (iy & 0xffffffffLL);
+  return packCell(static_cast<int64_t>(std::floor(x / cell)), static_cast<int64_t>(std::floor(y / cell)));
 }
 
 /// Something standing (a car side, wall or trunk) rather than road or curb: off the ground, between
