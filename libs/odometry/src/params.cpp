@@ -64,6 +64,7 @@ void Params::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, const st
   vertical.face_margin_m = readDouble(c, s, "vertical_face_margin_m", vertical.face_margin_m);
   vertical.linearity = readDouble(c, s, "vertical_linearity", vertical.linearity);
   vertical.min_line_extent_m = readDouble(c, s, "vertical_min_line_extent_m", vertical.min_line_extent_m);
+  vertical.lean_rad = readDouble(c, s, "vertical_lean_deg", vertical.lean_rad / kDeg) * kDeg;
   if (gravity_weight_m2 < 0 || gravity_kernel_rad <= 0 || gravity_min_information < 0 ||
       vertical.voxel_m <= 0 || vertical.voxel_height_m <= 0 || vertical.min_points < 3) {
     throw std::runtime_error("[" + s + "] gravity_weight_m2 >= 0, gravity_kernel_deg, vertical_voxel_m > 0, "
@@ -128,6 +129,7 @@ void Params::saveToConfigFile(mrpt::config::CConfigFileBase& c, const std::strin
   c.write(s, "vertical_face_margin_m", vertical.face_margin_m);
   c.write(s, "vertical_linearity", vertical.linearity);
   c.write(s, "vertical_min_line_extent_m", vertical.min_line_extent_m);
+  c.write(s, "vertical_lean_deg", vertical.lean_rad / kDeg);
   preprocess.saveToConfigFile(c, pre);
   registration.saveToConfigFile(c, reg);
 }

@@ -54,6 +54,7 @@ std::vector<VerticalConstraint> findVerticalStructures(const std::vector<Eigen::
   const double sin_tilt = std::sin(p.max_tilt_rad), cos_tilt = std::cos(p.max_tilt_rad);
   const double plane_ext2 = p.min_plane_extent_m * p.min_plane_extent_m;
   const double line_ext2 = p.min_line_extent_m * p.min_line_extent_m;
+  const double lean2 = p.lean_rad * p.lean_rad;
   std::vector<VerticalConstraint> out;
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
   for (const auto& kv : cells) {
@@ -71,14 +72,14 @@ std::vector<VerticalConstraint> findVerticalStructures(const std::vector<Eigen::
       const Eigen::Vector3d n = es.eigenvectors().col(0);
       if (std::abs(n.dot(up)) >= sin_tilt || cutByFace(mean, n, kv.first, p, p.face_margin_m)) continue;
       const Eigen::Vector3d v = (up - up.dot(n) * n).normalized();
-      out.push_back({n, m.n * v.dot(cov * v) / thick2});
+      out.push_back({n, 1.0 / (thick2 / (m.n * v.dot(cov * v)) + lean2)});
     } else if (ev(2) >= line_ext2 && ev(1) < p.linearity * ev(2)) {
       // A pole or trunk: its axis is vertical, so both normals of the axis are horizontal.
       const Eigen::Vector3d d = es.eigenvectors().col(2);
       if (std::abs(d.dot(up)) > cos_tilt) {
         Eigen::Vector3d a, b;
         orthonormalPair(d, a, b);
-        const double w = m.n * ev(2) / std::max(ev(1), p.min_thickness_m * p.min_thickness_m);
+        const double w = 1.0 / (std::max(ev(1), p.min_thickness_m * p.min_thickness_m) / (m.n * ev(2)) + lean2);
         out.push_back({a, w});
         out.push_back({b, w});
       }

@@ -40,6 +40,11 @@ struct VerticalStructureParams {
   double face_margin_m = 0.15;      ///< planes this close to a voxel face they parallel are dropped [m]
   double linearity = 0.05;          ///< line: middle / largest eigenvalue below this [-]
   double min_line_extent_m = 0.2;   ///< line: std along its axis at least this [m]
+  /// How far from vertical real structures stand (std) [rad]; ini vertical_lean_deg. A structure's
+  /// tilt variance is its fit's plus this, so no wall or trunk counts for more than 1 / lean^2 however
+  /// many points it has: facades and poles lean by tenths of a degree, trees by more, while a 64-beam
+  /// sensor fits a wall's normal to hundredths.
+  double lean_rad = 0.5 * M_PI / 180.0;
 };
 
 /// Constraints from the non-ground points of one sweep (\p is_ground empty or one flag per point),
