@@ -66,13 +66,13 @@ void BM_DefaultWithoutRingLines(benchmark::State& s) {
 }
 void BM_RegistrationIcpPointToPlane(benchmark::State& s) {
   auto p = fromIni("ini/default.ini");
-  p.matcher = "registration";
+  p.matcher = roadslam::odometry::Matcher::Registration;
   p.registration.method = registration::Method::IcpPointToPlane;
   runOdometry(s, p);
 }
 void BM_RegistrationNdt(benchmark::State& s) {
   auto p = fromIni("ini/default.ini");
-  p.matcher = "registration";
+  p.matcher = roadslam::odometry::Matcher::Registration;
   p.registration.method = registration::Method::Ndt;
   runOdometry(s, p);
 }
