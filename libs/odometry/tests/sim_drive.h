@@ -26,7 +26,8 @@ struct SimDriveResult {
 
 struct SimDriveOptions {
   /// Simulate the car's CAN traffic (libs/sim [can]), decode it with ini/vehicles/roadslam-sim.ini
-  /// and give every frame the pipeline::VehiclePrior motion (the odometry sees a MotionPrior); T_base_lidar is taken from the simulator's mount.
+  /// and give every frame the pipeline::VehiclePrior motion (the odometry sees a MotionPrior);
+  /// T_base_lidar is taken from the simulator's mount.
   bool can_prior = false;
   pipeline::VehiclePriorParams prior;
   /// Closed routes: laps to drive (0 = the scenario's own [trajectory] laps).

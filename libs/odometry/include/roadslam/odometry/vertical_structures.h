@@ -10,8 +10,8 @@
 /// Why: a 16-beam sensor sees the road as a few rings, so pitch and roll of scan-to-map odometry
 /// random-walk (about 2 deg per km on the simulated urban loop, which climbs 11 m in 1 km). These
 /// constraints give the odometry an absolute tilt reference, as an accelerometer does for an IMU
-/// (used as a prior in the voxel-map registration: registration/src/voxel_map_align.cpp). Frames: lidar frame of the
-/// sweep, metres; directions are unit vectors.
+/// (used as a prior in the voxel-map registration: registration/src/voxel_map_align.cpp).
+/// Frames: lidar frame of the sweep, metres; directions are unit vectors.
 
 #include <cmath>
 #include <Eigen/Core>
