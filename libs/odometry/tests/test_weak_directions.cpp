@@ -7,7 +7,7 @@
 #include <iostream>
 #include <random>
 
-#include "labelled_cloud.h"
+#include "../../registration/tests/labelled_cloud.h"
 #include "roadslam/registration/gaussian_voxel_map.h"
 #include "roadslam/odometry/odometry.h"
 #include "roadslam/odometry/weak_directions.h"
@@ -16,7 +16,7 @@ using namespace roadslam::odometry;
 
 namespace {
 
-using test::Cloud;
+using roadslam::registration::test::Cloud;
 
 constexpr double kHalfWidth = 5.75, kRoad = -1.9, kCeiling = 3.6;  // [m] about the sensor
 constexpr double kHalfLength = 40.0;  // [m]

@@ -6,7 +6,7 @@
 #include "labelled_cloud.h"
 #include "roadslam/registration/gaussian_voxel_map.h"
 
-using namespace roadslam::odometry;
+using namespace roadslam::registration;
 
 namespace {
 
@@ -41,18 +41,18 @@ Eigen::Isometry3d yardMotion() {
   return T;
 }
 
-roadslam::registration::RegistrationResult alignYard(bool ring_lines_on_walls) {
-  roadslam::registration::GaussianVoxelMap map(1.0, 100, 100.0, 7, ring_lines_on_walls);
+RegistrationResult alignYard(bool ring_lines_on_walls) {
+  GaussianVoxelMap map(1.0, 100, 100.0, 7, ring_lines_on_walls);
   const Cloud m = yard({0.3, 1.8, 3.3}, 1);
   map.insert(m.points, m.ground);
   // The next sweep's rings cross the walls at other heights: the sensor has moved.
   const Eigen::Isometry3d T_map_lidar = yardMotion();
   Cloud s = yard({0.8, 2.3}, 2);
   for (auto& p : s.points) p = T_map_lidar.inverse() * p;
-  roadslam::registration::VoxelAlignParams vp;
+  VoxelAlignParams vp;
   vp.max_correspondence_distance_m = 1.5;
   vp.kernel_scale_m = 0.5;
-  return roadslam::registration::align(map, s.points, Eigen::Isometry3d::Identity(), vp);
+  return align(map, s.points, Eigen::Isometry3d::Identity(), vp);
 }
 
 }  // namespace
@@ -61,20 +61,20 @@ TEST(GaussianVoxelMap, OneRingOnAWallConstrainsAcrossTheWallOnly) {
   // One horizontal ring across a wall whose normal is x, inside one voxel.
   Cloud c;
   for (double y = 0.05; y < 0.95; y += 0.05) c.add(Eigen::Vector3d(12.5, y, 1.4), false);
-  roadslam::registration::GaussianVoxelMap walls(1.0, 50, 100.0, 7, true);
+  GaussianVoxelMap walls(1.0, 50, 100.0, 7, true);
   walls.insert(c.points, c.ground);
   const auto* v = walls.nearest(Eigen::Vector3d(12.6, 0.5, 1.4), 1.0);
   ASSERT_NE(v, nullptr);
   EXPECT_NEAR(v->info(0, 0), 1.0, 1e-6);
   EXPECT_NEAR(v->info.trace(), 1.0, 1e-6);  // a projector on one direction: across the wall
 
-  roadslam::registration::GaussianVoxelMap waiting(1.0, 50, 100.0, 7, false);
+  GaussianVoxelMap waiting(1.0, 50, 100.0, 7, false);
   waiting.insert(c.points, c.ground);
   EXPECT_EQ(waiting.nearest(Eigen::Vector3d(12.6, 0.5, 1.4), 1.0), nullptr);
 
   // The same ring on the road constrains height only.
   std::vector<uint8_t> road(c.points.size(), 1);
-  roadslam::registration::GaussianVoxelMap ground(1.0, 50, 100.0, 7, true);
+  GaussianVoxelMap ground(1.0, 50, 100.0, 7, true);
   ground.insert(c.points, road);
   const auto* g = ground.nearest(Eigen::Vector3d(12.5, 0.5, 1.5), 1.0);
   ASSERT_NE(g, nullptr);
