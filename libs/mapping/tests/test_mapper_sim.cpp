@@ -7,7 +7,7 @@
 #include <iostream>
 
 #include "roadslam/mapping/mapper.h"
-#include "roadslam/odometry/vehicle_prior.h"
+#include "roadslam/pipeline/vehicle_prior.h"
 #include "roadslam/sim/can_output.h"
 #include "roadslam/sim/eigen.h"
 #include "roadslam/vehicle/params.h"
@@ -128,10 +128,10 @@ TunnelFrames tunnelFrames(double duration_s) {
   sim::Simulator s(p);
   const auto vp = vehicle::loadVehicleIni(std::string(ROADSLAM_SOURCE_DIR) + "/ini/vehicles/roadslam-sim.ini");
   vehicle::VehicleDecoder dec(vp);
-  odometry::VehiclePriorParams pp;
+  pipeline::VehiclePriorParams pp;
   pp.T_base_lidar = sim::toEigen(s.lidar().vehicleToLidar());
   pp.history_s = duration_s + 1;
-  odometry::VehiclePrior prior(pp, vp);
+  pipeline::VehiclePrior prior(pp, vp);
   vehicle::VehicleState state;
   const double t0 = static_cast<double>(p.start_epoch_s);
   for (const auto& f : sim::simulateCan(s, duration_s)) prior.update(state, dec.process(f, state));

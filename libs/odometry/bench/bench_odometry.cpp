@@ -58,7 +58,7 @@ odometry::Params fromIni(const std::string& rel) {
 }
 
 void BM_Default(benchmark::State& s) { runOdometry(s, fromIni("ini/default.ini")); }
-// The map before single rings off the road constrained (gaussian_voxel_map.cpp): their cost.
+// The map before single rings off the road constrained (registration/src/gaussian_voxel_map.cpp): their cost.
 void BM_DefaultWithoutRingLines(benchmark::State& s) {
   auto p = fromIni("ini/default.ini");
   p.map_ring_lines_on_walls = false;
@@ -66,13 +66,13 @@ void BM_DefaultWithoutRingLines(benchmark::State& s) {
 }
 void BM_RegistrationIcpPointToPlane(benchmark::State& s) {
   auto p = fromIni("ini/default.ini");
-  p.matcher = "registration";
+  p.matcher = roadslam::odometry::Matcher::Registration;
   p.registration.method = registration::Method::IcpPointToPlane;
   runOdometry(s, p);
 }
 void BM_RegistrationNdt(benchmark::State& s) {
   auto p = fromIni("ini/default.ini");
-  p.matcher = "registration";
+  p.matcher = roadslam::odometry::Matcher::Registration;
   p.registration.method = registration::Method::Ndt;
   runOdometry(s, p);
 }

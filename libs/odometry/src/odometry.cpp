@@ -48,7 +48,7 @@ void dropFarGround(std::vector<Eigen::Vector3d>& pts, std::vector<uint8_t>& grou
 }
 
 /// The tilt prior lives in the voxel-map matcher; the registration library's methods do not take it.
-bool usesGravityPrior(const Params& p) { return p.gravity_prior && p.matcher == "voxel_map"; }
+bool usesGravityPrior(const Params& p) { return p.gravity_prior && p.matcher == Matcher::VoxelMap; }
 
 double angleOf(const Eigen::Isometry3d& T) {
   return Eigen::AngleAxisd(T.rotation()).angle();
@@ -116,14 +116,14 @@ void Odometry::applyPriorOnWeakDirections(const WeakBasis& weak, double lever_m,
   T_est = kept * T_pred;
 }
 
-void Odometry::judgeDegeneracy(const registration::RegistrationResult& r, const SurfaceInformation& surface,
+void Odometry::judgeDegeneracy(const registration::RegistrationResult& r, const registration::SurfaceInformation& surface,
                                const Eigen::Isometry3d& T_pred, const std::optional<MotionPrior>& prior,
                                Eigen::Isometry3d& T_est, FrameResult& res) const {
   // Along the predicted motion the scans may measure nothing real while ring-pattern voxels and
   // the full 6x6 spectrum look healthy (a tunnel): the motion's own information decides too.
   const Eigen::Vector3d motion = T_pred.translation() - T_world_last_.translation();
   const Eigen::Vector3d n = motion.normalized();
-  if (params_.matcher == "voxel_map" && motion_known_ && motion.norm() >= params_.standstill_translation_m) {
+  if (params_.matcher == Matcher::VoxelMap && motion_known_ && motion.norm() >= params_.standstill_translation_m) {
     res.motion_information = surface.along(n);
   }
   // Constant velocity is only as good as the motion it repeats: without a prior it replaces the
@@ -173,7 +173,7 @@ void Odometry::updateKeyframe(FrameResult& res) {
 
 registration::RegistrationResult Odometry::match(const std::vector<Eigen::Vector3d>& source,
                                                  const Eigen::Isometry3d& T_pred, FrameResult& res,
-                                                 SurfaceInformation* surface) {
+                                                 registration::SurfaceInformation* surface) {
   registration::Params rp = params_.registration;
   if (params_.adaptive_threshold) {
     // AdaptiveThreshold gives tau = 3 sigma (Vizzo et al. 2023, eq. 7); KISS-ICP pairs points
@@ -182,12 +182,12 @@ registration::RegistrationResult Odometry::match(const std::vector<Eigen::Vector
     const double sigma =
         std::clamp(threshold_.threshold() / 3.0, params_.min_threshold_m, params_.max_threshold_m);
     // The voxel-map matcher pairs a point with a voxel mean, up to a voxel away on a wall.
-    rp.max_correspondence_distance_m = params_.matcher == "voxel_map" ? std::max(3.0 * sigma, params_.map_voxel_m) : 3.0 * sigma;
+    rp.max_correspondence_distance_m = params_.matcher == Matcher::VoxelMap ? std::max(3.0 * sigma, params_.map_voxel_m) : 3.0 * sigma;
     rp.kernel_scale_m = sigma / 3.0;
   }
   res.threshold_m = rp.max_correspondence_distance_m;
-  if (params_.matcher == "voxel_map") {
-    VoxelAlignParams vp;
+  if (params_.matcher == Matcher::VoxelMap) {
+    registration::VoxelAlignParams vp;
     vp.max_iterations = rp.max_iterations;
     vp.max_correspondence_distance_m = rp.max_correspondence_distance_m;
     vp.kernel_scale_m = rp.kernel_scale_m;
@@ -196,13 +196,13 @@ registration::RegistrationResult Odometry::match(const std::vector<Eigen::Vector
     vp.min_inliers = rp.min_inliers;
     vp.max_correction_m = rp.max_correction_m;
     vp.degeneracy_threshold = params_.degeneracy_threshold;
-    GravityPrior g;
+    registration::GravityPrior g;
     g.constraints = &vertical_;
     g.up_map = up_world_;
     g.scale_m2 = params_.gravity_weight_m2;
     g.kernel_rad = params_.gravity_kernel_rad;
-    return alignToVoxelMap(gmap_, source, T_pred, vp, usesGravityPrior(params_) && up_frames_ > 0 ? &g : nullptr,
-                           surface);
+    return registration::align(gmap_, source, T_pred, vp, usesGravityPrior(params_) && up_frames_ > 0 ? &g : nullptr,
+                               surface);
   }
   if (target_stale_ && !map_.empty()) {
     target_ = std::make_unique<registration::Target>(map_.points(), rp);
@@ -253,8 +253,8 @@ void Odometry::redeskewFirstFrame(const Eigen::Isometry3d& delta_sweep) {
   // is deskewed like every other sweep and the map built again from it.
   const double ref = first_scan_->has_point_times ? params_.deskew_reference : 0.0;
   last_frame_points_ = deskew(*first_scan_, delta_sweep, params_.sweep_duration_s, ref);
-  gmap_ = GaussianVoxelMap(params_.map_voxel_m, params_.map_points_per_voxel, params_.map_radius_m, 7,
-                           params_.map_ring_lines_on_walls);
+  gmap_ = registration::GaussianVoxelMap(params_.map_voxel_m, params_.map_points_per_voxel, params_.map_radius_m, 7,
+                                         params_.map_ring_lines_on_walls);
   map_.clear();
   updateMap(T_world_last_);
   first_scan_.reset();
@@ -269,7 +269,7 @@ void Odometry::updateMap(const Eigen::Isometry3d& T_world_lidar) {
   firstPerVoxel(last_frame_points_, last_ground_, params_.map_insert_voxel_m, world, ground);
   dropFarGround(world, ground, params_.map_ground_max_range_m);
   for (auto& p : world) p = T_world_lidar * p;
-  if (params_.matcher == "voxel_map") {
+  if (params_.matcher == Matcher::VoxelMap) {
     gmap_.insert(world, ground);
     gmap_.removeFar(T_world_lidar.translation());
   } else {
@@ -337,7 +337,7 @@ FrameResult Odometry::process(Scan scan, const std::optional<MotionPrior>& given
     res.T_world_lidar = Eigen::Isometry3d::Identity();
     if (params_.first_motion_search && params_.deskew && scan.has_point_times) first_scan_ = scan;
   } else {
-    SurfaceInformation surface;
+    registration::SurfaceInformation surface;
     const auto r = match(source, T_pred, res, &surface);
     res.iterations = r.iterations;
     res.inliers = r.inliers;

@@ -10,11 +10,27 @@ namespace {
 constexpr double kDeg = M_PI / 180.0;
 }
 
+std::string toString(Matcher m) {
+  switch (m) {
+    case Matcher::VoxelMap: return "voxel_map";
+    case Matcher::Registration: return "registration";
+  }
+  return "unknown";
+}
+
+Matcher matcherFromString(const std::string& s) {
+  for (Matcher m : {Matcher::VoxelMap, Matcher::Registration}) {
+    if (s == toString(m)) return m;
+  }
+  throw std::invalid_argument("matcher = '" + s + "': expected voxel_map or registration");
+}
+
 void Params::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, const std::string& s,
                                 const std::string& pre, const std::string& reg) {
-  matcher = readString(c, s, "matcher", matcher);
-  if (matcher != "voxel_map" && matcher != "registration") {
-    throw std::runtime_error("[" + s + "] matcher = '" + matcher + "': expected voxel_map or registration");
+  try {
+    matcher = matcherFromString(readString(c, s, "matcher", toString(matcher)));
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error("[" + s + "] " + e.what());
   }
   registration_target = readString(c, s, "registration_target", registration_target);
   if (registration_target != "local_map" && registration_target != "last_scan") {
@@ -84,7 +100,7 @@ void Params::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, const st
 
 void Params::saveToConfigFile(mrpt::config::CConfigFileBase& c, const std::string& s,
                               const std::string& pre, const std::string& reg) const {
-  c.write(s, "matcher", matcher);
+  c.write(s, "matcher", toString(matcher));
   c.write(s, "registration_target", registration_target);
   c.write(s, "registration_voxel_m", registration_voxel_m);
   c.write(s, "map_voxel_m", map_voxel_m);

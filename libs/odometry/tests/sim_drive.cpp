@@ -24,8 +24,8 @@ struct CanFeed {
   size_t next = 0;
   vehicle::VehicleDecoder decoder;
   vehicle::VehicleState state;
-  VehiclePrior prior;
-  CanFeed(const sim::Simulator& s, double duration_s, const vehicle::VehicleParams& vp, const VehiclePriorParams& pp)
+  pipeline::VehiclePrior prior;
+  CanFeed(const sim::Simulator& s, double duration_s, const vehicle::VehicleParams& vp, const pipeline::VehiclePriorParams& pp)
       : frames(sim::simulateCan(s, duration_s)), decoder(vp), prior(pp, vp) {}
   void feedUntil(double t_s) {
     for (; next < frames.size() && frames[next].timeSeconds() <= t_s; ++next)
@@ -102,7 +102,7 @@ SimDriveResult runSimDrive(const std::string& scenario_ini, double duration_s, c
   OdometryRun run(s, params);
   run.on_frame = options.on_frame;
   if (options.can_prior) {
-    VehiclePriorParams pp = options.prior;
+    pipeline::VehiclePriorParams pp = options.prior;
     pp.T_base_lidar = toEigen(s.lidar().vehicleToLidar());
     const auto vp = vehicle::loadVehicleIni(std::string(ROADSLAM_SOURCE_DIR) + "/ini/vehicles/roadslam-sim.ini");
     run.can = std::make_unique<CanFeed>(s, s.duration_s(), vp, pp);

@@ -7,7 +7,7 @@
 
 #include "roadslam/eval/trajectory_metrics.h"
 #include "roadslam/odometry/odometry.h"
-#include "roadslam/odometry/vehicle_prior.h"
+#include "roadslam/pipeline/vehicle_prior.h"
 
 namespace roadslam::sim {
 struct ScenarioParams;
@@ -26,9 +26,10 @@ struct SimDriveResult {
 
 struct SimDriveOptions {
   /// Simulate the car's CAN traffic (libs/sim [can]), decode it with ini/vehicles/roadslam-sim.ini
-  /// and give every frame the VehiclePrior motion; T_base_lidar is taken from the simulator's mount.
+  /// and give every frame the pipeline::VehiclePrior motion (the odometry sees a MotionPrior);
+  /// T_base_lidar is taken from the simulator's mount.
   bool can_prior = false;
-  VehiclePriorParams prior;
+  pipeline::VehiclePriorParams prior;
   /// Closed routes: laps to drive (0 = the scenario's own [trajectory] laps).
   int laps = 0;
   /// Changes the scenario read from the ini before it is simulated (e.g. a shorter tunnel).

@@ -38,7 +38,7 @@ TEST(OdometrySimFull, HillsWithinTheTarget) {
 }
 
 // The hardest start: from standstill on an open road, where single scan rings on the few walls,
-// trunks and car sides are most of what observes the forward motion (gaussian_voxel_map.cpp).
+// trunks and car sides are most of what observes the forward motion (registration/src/gaussian_voxel_map.cpp).
 // Measured 0.163 %; 0.65 % while single rings off the road waited for a second one.
 TEST(OdometrySimFull, HighwayWithinTheTarget) {
   const auto r = drive("highway");

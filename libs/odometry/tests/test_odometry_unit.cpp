@@ -127,14 +127,14 @@ TEST(OdometryUnit, ParamsRoundTripAndBadValuesNameTheKey) {
   odometry::Params p;
   p.map_voxel_m = 0.7;
   p.keyframe_angle_rad = 0.2;
-  p.matcher = "registration";
+  p.matcher = odometry::Matcher::Registration;
   mrpt::config::CConfigFileMemory cfg;
   p.saveToConfigFile(cfg);
   odometry::Params q;
   q.loadFromConfigFile(cfg);
   EXPECT_DOUBLE_EQ(q.map_voxel_m, 0.7);
   EXPECT_NEAR(q.keyframe_angle_rad, 0.2, 1e-8);  // the ini holds degrees with 9 digits
-  EXPECT_EQ(q.matcher, "registration");
+  EXPECT_EQ(q.matcher, odometry::Matcher::Registration);
   mrpt::config::CConfigFileMemory bad(std::string("[odometry]\nmatcher = kiss\n"));
   try {
     q.loadFromConfigFile(bad);

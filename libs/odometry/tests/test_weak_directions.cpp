@@ -1,4 +1,4 @@
-// Degeneracy along the motion (SurfaceInformation::along) on synthetic scenes whose answer is known:
+// Degeneracy along the motion (registration::SurfaceInformation::along) on synthetic scenes whose answer is known:
 // a tube (a tunnel: walls, road, ceiling) measures nothing along its axis, a box (the same tube
 // closed by end walls) does; and the weakened information keeps what is not weak.
 #include <gtest/gtest.h>
@@ -7,8 +7,8 @@
 #include <iostream>
 #include <random>
 
-#include "labelled_cloud.h"
-#include "roadslam/odometry/gaussian_voxel_map.h"
+#include "../../registration/tests/labelled_cloud.h"
+#include "roadslam/registration/gaussian_voxel_map.h"
 #include "roadslam/odometry/odometry.h"
 #include "roadslam/odometry/weak_directions.h"
 
@@ -16,7 +16,7 @@ using namespace roadslam::odometry;
 
 namespace {
 
-using test::Cloud;
+using roadslam::registration::test::Cloud;
 
 constexpr double kHalfWidth = 5.75, kRoad = -1.9, kCeiling = 3.6;  // [m] about the sensor
 constexpr double kHalfLength = 40.0;  // [m]
@@ -55,24 +55,24 @@ Cloud tube(double half_length, bool end_walls, uint32_t seed) {
 
 struct Aligned {
   roadslam::registration::RegistrationResult r;
-  SurfaceInformation surface;
+  roadslam::registration::SurfaceInformation surface;
 };
 
 Aligned alignTube(bool end_walls) {
   // No cap on the points per voxel: the scene is inserted row by row along x, and a capped voxel
   // would keep a short slice of its row (a corner of wall and road then reads as thin along x).
-  GaussianVoxelMap map(1.0, 100000, 100.0);
+  roadslam::registration::GaussianVoxelMap map(1.0, 100000, 100.0);
   const Cloud m = tube(kHalfLength, end_walls, 1);
   map.insert(m.points, m.ground);
   // The next sweep from the same place, other noise; in the open tube it ends short of the map's ends
   // (a wall's last column reads as a pole: the end of a tunnel is visible).
   const Cloud s = tube(end_walls ? kHalfLength : kHalfLength - 10, end_walls, 2);
-  VoxelAlignParams vp;
+  roadslam::registration::VoxelAlignParams vp;
   vp.max_correspondence_distance_m = 1.0;
   vp.kernel_scale_m = 0.2;
   vp.degeneracy_threshold = Params{}.degeneracy_threshold;
   Aligned a;
-  a.r = alignToVoxelMap(map, s.points, Eigen::Isometry3d::Identity(), vp, nullptr, &a.surface);
+  a.r = roadslam::registration::align(map, s.points, Eigen::Isometry3d::Identity(), vp, nullptr, &a.surface);
   return a;
 }
 

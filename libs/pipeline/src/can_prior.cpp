@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "roadslam/can/candump.h"
-#include "roadslam/odometry/vehicle_prior.h"
+#include "roadslam/pipeline/vehicle_prior.h"
 #include "roadslam/vehicle/params.h"
 #include "roadslam/vehicle/vehicle_state.h"
 
@@ -18,8 +18,8 @@ struct CanPriorStream::Impl {
         decoder(vehicle::loadVehicleIni(ini)),
         prior(loadPriorParams(cfg), decoder.params()) {}
 
-  static odometry::VehiclePriorParams loadPriorParams(const mrpt::config::CConfigFileBase& cfg) {
-    odometry::VehiclePriorParams p;
+  static pipeline::VehiclePriorParams loadPriorParams(const mrpt::config::CConfigFileBase& cfg) {
+    pipeline::VehiclePriorParams p;
     p.loadFromConfigFile(cfg, "vehicle_prior");
     return p;
   }
@@ -45,7 +45,7 @@ struct CanPriorStream::Impl {
   std::string path;
   can::CandumpReader reader;
   vehicle::VehicleDecoder decoder;
-  odometry::VehiclePrior prior;
+  pipeline::VehiclePrior prior;
   vehicle::VehicleState state;
   can::CanFrame pending;
   bool have_pending = false, ended = false;

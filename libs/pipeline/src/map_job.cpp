@@ -12,7 +12,7 @@
 #include "roadslam/common/progress.h"
 #include "roadslam/common/stop_signal.h"
 #include "roadslam/datasets/kitti_scans.h"
-#include "roadslam/odometry/vehicle_prior.h"
+#include "roadslam/pipeline/vehicle_prior.h"
 #include "roadslam/mapping/map_outputs.h"
 #include "roadslam/mapping/mapper.h"
 #include "roadslam/pipeline/can_prior.h"
@@ -39,7 +39,7 @@ struct JobParams {
   odometry::Params odometry;
   velodyne::DecoderParams decoder;
   datasets::KittiParams kitti;
-  odometry::VehiclePriorParams vehicle_prior;  ///< read by CanPriorStream with --can; recorded always
+  pipeline::VehiclePriorParams vehicle_prior;  ///< read by CanPriorStream with --can; recorded always
   mapping::MapperParams mapper;
   mapping::MapOutputParams maps;
 

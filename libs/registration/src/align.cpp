@@ -6,15 +6,6 @@
 namespace roadslam::registration {
 namespace {
 
-RegistrationResult fail(const Eigen::Isometry3d& T, Status s, std::string reason) {
-  RegistrationResult r;
-  r.T_target_source = T;
-  r.converged = false;
-  r.status = s;
-  r.reason = std::move(reason);
-  return r;
-}
-
 // Point-to-plane Hessian at the final estimate, the geometric information every method shares
 // (for point-to-point the p2p Hessian is N*I in translation and cannot reveal a corridor).
 // Normals: target point normals (ICP) or the cell's flattest axis (NDT). NDT targets have no
@@ -84,25 +75,25 @@ RegistrationResult align(const Target& target, const PointCloud& points_source,
                          const Eigen::Isometry3d& T_target_source_guess, const Params& params) {
   const Target::Impl& t = target.impl();
   const Eigen::Isometry3d& guess = T_target_source_guess;
-  if (!guess.matrix().allFinite()) return fail(guess, Status::NonFiniteInput, "initial guess is not finite");
+  if (!guess.matrix().allFinite()) return failed(guess, Status::NonFiniteInput, "initial guess is not finite");
   if (t.method != params.method) {
-    return fail(guess, Status::MethodMismatch,
+    return failed(guess, Status::MethodMismatch,
                 "target built for " + toString(t.method) + ", params ask for " + toString(params.method));
   }
   if (t.points.empty() || (params.method == Method::Ndt && t.ndt.back().num_valid == 0)) {
-    return fail(guess, Status::EmptyTarget, "target has " + std::to_string(t.points.size()) + " points");
+    return failed(guess, Status::EmptyTarget, "target has " + std::to_string(t.points.size()) + " points");
   }
   for (const auto& p : points_source) {
-    if (!p.allFinite()) return fail(guess, Status::NonFiniteInput, "source has a non-finite point");
+    if (!p.allFinite()) return failed(guess, Status::NonFiniteInput, "source has a non-finite point");
   }
   if (static_cast<int>(points_source.size()) < params.min_source_points) {
-    return fail(guess, Status::TooFewPoints,
+    return failed(guess, Status::TooFewPoints,
                 std::to_string(points_source.size()) + " source points < min_source_points = " +
                     std::to_string(params.min_source_points));
   }
   const SolveOutcome o = params.method == Method::Ndt ? solveNdt(t, points_source, guess, params)
                                                       : solveIcp(t, points_source, guess, params);
-  RegistrationResult r = fail(o.T_target_source, o.status, o.reason);
+  RegistrationResult r = failed(o.T_target_source, o.status, o.reason);
   r.iterations = o.iterations;
   r.converged = o.status == Status::Converged;
   if (o.status != Status::Converged && o.status != Status::MaxIterations) return r;

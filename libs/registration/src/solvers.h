@@ -4,6 +4,9 @@
 #include "roadslam/registration/robust_kernel.h"
 #include "target_impl.h"
 
+#include <string>
+#include <utility>
+
 namespace roadslam::registration {
 
 using Matrix6d = Eigen::Matrix<double, 6, 6>;
@@ -16,6 +19,16 @@ struct SolveOutcome {
   std::string reason;
   int iterations = 0;
 };
+
+/// A failed alignment: \p T (the guess or the last estimate), converged=false, \p s and \p reason.
+inline RegistrationResult failed(const Eigen::Isometry3d& T, Status s, std::string reason) {
+  RegistrationResult r;
+  r.T_target_source = T;
+  r.converged = false;
+  r.status = s;
+  r.reason = std::move(reason);
+  return r;
+}
 
 /// Left perturbation: T <- [R(w) | t] * T with delta = [t, w] (metres, radians).
 inline Eigen::Isometry3d applyIncrement(const Vector6d& delta, const Eigen::Isometry3d& T) {

@@ -17,11 +17,11 @@
 #include <vector>
 
 #include "roadslam/common/scan.h"
-#include "roadslam/odometry/gaussian_voxel_map.h"
 #include "roadslam/odometry/local_map.h"
 #include "roadslam/odometry/vertical_structures.h"
 #include "roadslam/preprocess/chain.h"
 #include "roadslam/registration/adaptive_threshold.h"
+#include "roadslam/registration/gaussian_voxel_map.h"
 #include "roadslam/registration/registration.h"
 
 namespace mrpt::config {
@@ -30,13 +30,22 @@ class CConfigFileBase;
 
 namespace roadslam::odometry {
 
+/// The scan matcher the odometry composes (ini [odometry] matcher; both behind registration's align()).
+enum class Matcher {
+  VoxelMap,     ///< `voxel_map`: the incremental Gaussian voxel map (registration/gaussian_voxel_map.h)
+  Registration  ///< `registration`: the [registration] method (ICP/NDT) against a registration::Target
+};
+std::string toString(Matcher m);
+/// The Matcher of an ini value; throws std::invalid_argument naming the valid ones.
+Matcher matcherFromString(const std::string& s);
+
 /// Odometry parameters. Ini section [odometry]; the preprocessing chain and the registration read
 /// their own sections ([preprocess], [registration]).
 struct Params {
   /// Scan matcher. `voxel_map`: the incremental Gaussian voxel map (fast, default);
   /// `registration`: the [registration] method (ICP/NDT) against a target rebuilt from the local map
   /// points whenever the map changes (slow: for comparisons and the thesis configs).
-  std::string matcher = "voxel_map";
+  Matcher matcher = Matcher::VoxelMap;
   /// With matcher = registration: `local_map` (the map of recent frames) or `last_scan` (scan to
   /// scan, as the MATLAB thesis matched consecutive sweeps).
   std::string registration_target = "local_map";
@@ -44,7 +53,7 @@ struct Params {
   double map_voxel_m = 1.0;            ///< voxel of the local map [m]
   int map_points_per_voxel = 20;       ///< points kept per map voxel [-]
   /// voxel_map: a map voxel off the road crossed by one scan ring constrains across the vertical
-  /// surface through it (gaussian_voxel_map.cpp); false = it waits for a second ring [-]
+  /// surface through it (registration/src/gaussian_voxel_map.cpp); false = it waits for a second ring [-]
   bool map_ring_lines_on_walls = true;
   double map_insert_voxel_m = 0.25;    ///< each frame adds one point per voxel of this size to the map [m]
   double map_radius_m = 80.0;          ///< local map radius around the vehicle [m]
@@ -82,7 +91,7 @@ struct Params {
   bool use_prior_on_degeneracy = true;
   double degeneracy_threshold = 0.01;  ///< normalised Hessian eigenvalue below which a direction is weak [-]
   /// voxel_map: a frame is degenerate when the scans' information of the translation along the
-  /// predicted motion, n^T H_tt n per pair without single-ring voxels (SurfaceInformation::along),
+  /// predicted motion, n^T H_tt n per pair without single-ring voxels (registration::SurfaceInformation::along),
   /// is below this: the fraction of the pairs that measure the motion (a tunnel) [-]. 0 = off.
   double motion_degeneracy_threshold = 0.01;
   /// ... and only once a frame's scans clearly saw the motion (this much information along it, after
@@ -98,7 +107,7 @@ struct Params {
   /// Tilt prior from vertical structures (walls, poles, trunks: vertical_structures.h) in the voxel-map
   /// matcher, against the up direction summed over all frames so far (robustly).
   bool gravity_prior = true;
-  double gravity_weight_m2 = 1.0;       ///< GravityPrior::scale_m2 [m^2]
+  double gravity_weight_m2 = 1.0;       ///< registration::GravityPrior::scale_m2 [m^2]
   double gravity_kernel_rad = 2.0 * M_PI / 180.0;    ///< [rad]; ini gravity_kernel_deg
   /// The prior starts once the summed structures know both tilts this well [1/rad^2]
   double gravity_min_information = 1e5;
@@ -154,7 +163,7 @@ struct FrameResult {
   int weak_directions = 0;      ///< degenerate directions of the registration [-]
   double min_eigenvalue = 0;    ///< smallest normalised Hessian eigenvalue (degeneracy measure) [-]
   /// information of the translation along the predicted motion per pair, single-ring voxels left out
-  /// (SurfaceInformation::along); NaN when the motion is too small to have a direction [-]
+  /// (registration::SurfaceInformation::along); NaN when the motion is too small to have a direction [-]
   double motion_information = std::nan("");
   int vertical_constraints = 0; ///< tilt constraints from vertical structures (gravity prior) [-]
   double ms_preprocess = 0, ms_register = 0, ms_map = 0, ms_total = 0;  ///< wall time [ms]
@@ -179,7 +188,7 @@ class Odometry {
     return scan.stamp_s + (times ? params_.deskew_reference * params_.sweep_duration_s : 0.0);
   }
   const LocalMap& localMap() const { return map_; }
-  const GaussianVoxelMap& voxelMap() const { return gmap_; }
+  const registration::GaussianVoxelMap& voxelMap() const { return gmap_; }
   /// Deskewed, preprocessed points of the last frame (lidar frame) [m] (for keyframe maps).
   const std::vector<Eigen::Vector3d>& lastFramePoints() const { return last_frame_points_; }
   const preprocess::PreprocessTotals& preprocessTotals() const { return chain_.totals(); }
@@ -190,7 +199,7 @@ class Odometry {
                                   const Eigen::Isometry3d& T_pred, Eigen::Isometry3d& T_est) const;
   /// Marks \p res degenerate and puts the prediction into \p T_est along the directions the scans
   /// leave unmeasured (weak_directions.h), reducing res.information there.
-  void judgeDegeneracy(const registration::RegistrationResult& r, const SurfaceInformation& surface,
+  void judgeDegeneracy(const registration::RegistrationResult& r, const registration::SurfaceInformation& surface,
                        const Eigen::Isometry3d& T_pred, const std::optional<MotionPrior>& prior,
                        Eigen::Isometry3d& T_est, FrameResult& res) const;
   bool isStandstill(const Eigen::Isometry3d& delta, const std::optional<MotionPrior>& prior) const;
@@ -198,7 +207,7 @@ class Odometry {
   void updateUp(const FrameResult& res);
   registration::RegistrationResult match(const std::vector<Eigen::Vector3d>& source,
                                          const Eigen::Isometry3d& T_pred, FrameResult& res,
-                                         SurfaceInformation* surface = nullptr);
+                                         registration::SurfaceInformation* surface = nullptr);
   void updateMap(const Eigen::Isometry3d& T_world_lidar);
   Eigen::Isometry3d searchFirstMotion(const Scan& scan, const Eigen::Isometry3d& guess, FrameResult& res);
   void redeskewFirstFrame(const Eigen::Isometry3d& delta_sweep);
@@ -206,7 +215,7 @@ class Odometry {
   Params params_;
   preprocess::PreprocessChain chain_;
   LocalMap map_;
-  GaussianVoxelMap gmap_;
+  registration::GaussianVoxelMap gmap_;
   registration::AdaptiveThreshold threshold_;
   std::unique_ptr<registration::Target> target_;
   bool target_stale_ = true;

@@ -10,8 +10,8 @@
 /// Why: a 16-beam sensor sees the road as a few rings, so pitch and roll of scan-to-map odometry
 /// random-walk (about 2 deg per km on the simulated urban loop, which climbs 11 m in 1 km). These
 /// constraints give the odometry an absolute tilt reference, as an accelerometer does for an IMU
-/// (used as a prior in the voxel-map registration: voxel_map_align.cpp). Frames: lidar frame of the
-/// sweep, metres; directions are unit vectors.
+/// (used as a prior in the voxel-map registration: registration/src/voxel_map_align.cpp).
+/// Frames: lidar frame of the sweep, metres; directions are unit vectors.
 
 #include <cmath>
 #include <Eigen/Core>
@@ -19,15 +19,13 @@
 #include <string>
 #include <vector>
 
+#include "roadslam/registration/gaussian_voxel_map.h"
+
 namespace roadslam::odometry {
 
-/// One constraint n . g_lidar = 0 on the up direction in the lidar frame.
-struct VerticalConstraint {
-  Eigen::Vector3d normal_lidar = Eigen::Vector3d::UnitX();  ///< unit, horizontal when the pose is right
-  /// Inverse variance of n . g [1/rad^2]: points x (spread along the structure's vertical)^2 /
-  /// (spread across it)^2, the spread across floored at min_thickness_m.
-  double weight = 0;
-};
+/// One constraint n . g_lidar = 0 on the up direction in the lidar frame: the registration's type,
+/// since the voxel-map matcher takes them as its tilt prior (registration::GravityPrior).
+using registration::VerticalConstraint;
 
 struct VerticalStructureParams {
   double voxel_m = 1.0;             ///< cell edge in the lidar's x and y for the local shape analysis [m]

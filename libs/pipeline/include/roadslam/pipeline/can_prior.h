@@ -2,7 +2,7 @@
 /// \file can_prior.h
 /// The vehicle's CAN log of a recording turned into the odometry's motion prior, sweep by sweep:
 /// frames are read lazily up to the time asked for, decoded with the car's vehicle ini (DBC mapping)
-/// and dead reckoned by odometry::VehiclePrior. The log and the LiDAR recording must share one clock
+/// and dead reckoned by pipeline::VehiclePrior. The log and the LiDAR recording must share one clock
 /// (the grabber and the simulator write both on the host/capture clock).
 
 #include <Eigen/Geometry>
@@ -36,7 +36,7 @@ class CanPriorStream {
   /// Lidar mounting on the base ([vehicle_prior] lidar_* keys).
   const Eigen::Isometry3d& baseToLidar() const;
   /// The odometry's motion T_lidarprev_lidarcurr between two converged frames: calibrates the wheel
-  /// odometry online (odometry::VehiclePrior::observeLidarMotion). Returns true when it was used.
+  /// odometry online (pipeline::VehiclePrior::observeLidarMotion). Returns true when it was used.
   bool observeLidarMotion(double t_prev_s, double t_curr_s, const Eigen::Isometry3d& T_lidarprev_lidarcurr);
   /// Calibration for summary.json: yaw_rate_bias_deg_s and speed_scale in use at the end, the online
   /// estimates (null until enough data) and their interval counts.

@@ -1,9 +1,9 @@
-#include "roadslam/odometry/gaussian_voxel_map.h"
+#include "roadslam/registration/gaussian_voxel_map.h"
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
 
-namespace roadslam::odometry {
+namespace roadslam::registration {
 namespace {
 
 constexpr int kMinPointsForCovariance = 5;
@@ -148,4 +148,4 @@ const GaussianVoxelMap::Voxel* GaussianVoxelMap::nearest(const Eigen::Vector3d& 
   return nearestOf(c, x, max_dist_m);
 }
 
-}  // namespace roadslam::odometry
+}  // namespace roadslam::registration

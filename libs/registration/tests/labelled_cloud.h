@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace roadslam::odometry::test {
+namespace roadslam::registration::test {
 
 struct Cloud {
   std::vector<Eigen::Vector3d> points;
@@ -15,4 +15,4 @@ struct Cloud {
   }
 };
 
-}  // namespace roadslam::odometry::test
+}  // namespace roadslam::registration::test

@@ -6,10 +6,10 @@
 #include <cmath>
 #include <iostream>
 
-#include "roadslam/odometry/vehicle_prior.h"
+#include "roadslam/pipeline/vehicle_prior.h"
 
 using namespace roadslam;
-using namespace roadslam::odometry;
+using namespace roadslam::pipeline;
 using vehicle::Quantity;
 
 namespace {

@@ -6,7 +6,7 @@
 
 #include <iostream>
 
-#include "sim_drive.h"
+#include "../../odometry/tests/sim_drive.h"
 
 using namespace roadslam;
 using namespace roadslam::odometry;

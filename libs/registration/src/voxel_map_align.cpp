@@ -2,25 +2,12 @@
 #include <Eigen/Eigenvalues>
 #include <cmath>
 
-#include "roadslam/odometry/gaussian_voxel_map.h"
+#include "roadslam/registration/gaussian_voxel_map.h"
 #include "roadslam/registration/robust_kernel.h"
+#include "solvers.h"
 
-namespace roadslam::odometry {
+namespace roadslam::registration {
 namespace {
-
-using Matrix6d = Eigen::Matrix<double, 6, 6>;
-using Vector6d = Eigen::Matrix<double, 6, 1>;
-using registration::RegistrationResult;
-using registration::Status;
-
-Eigen::Isometry3d applyIncrement(const Vector6d& delta, const Eigen::Isometry3d& T) {
-  Eigen::Isometry3d D = Eigen::Isometry3d::Identity();
-  const Eigen::Vector3d w = delta.tail<3>();
-  const double angle = w.norm();
-  if (angle > 0) D.linear() = Eigen::AngleAxisd(angle, w / angle).toRotationMatrix();
-  D.translation() = delta.head<3>();
-  return D * T;
-}
 
 Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
   Eigen::Matrix3d S;
@@ -58,7 +45,7 @@ LinearSystem buildSystem(const GaussianVoxelMap& map, const std::vector<Eigen::V
     if (!v) continue;
     const Eigen::Vector3d d = x - v->mean;
     const double r2 = d.dot(v->info * d);
-    const double w = registration::gemanMcClureWeight(r2, s2);
+    const double w = gemanMcClureWeight(r2, s2);
     J.rightCols<3>() = -skew(x);
     const Eigen::Matrix<double, 6, 3> JtO = J.transpose() * v->info;
     ls.H.noalias() += w * JtO * J;
@@ -78,27 +65,17 @@ void addGravity(const GravityPrior& g, const Eigen::Matrix3d& R, LinearSystem& l
   for (const auto& c : *g.constraints) {
     const Eigen::Vector3d n = R * c.normal_lidar;
     const double r = n.dot(g.up_map);
-    const double w = g.scale_m2 * c.weight * registration::gemanMcClureWeight(r * r, s2);
+    const double w = g.scale_m2 * c.weight * gemanMcClureWeight(r * r, s2);
     const Eigen::Vector3d J = n.cross(g.up_map);
     ls.H.bottomRightCorner<3, 3>().noalias() += w * J * J.transpose();
     ls.b.tail<3>().noalias() += w * J * r;
   }
 }
 
-RegistrationResult failed(const Eigen::Isometry3d& T, Status s, std::string why) {
-  RegistrationResult r;
-  r.T_target_source = T;
-  r.converged = false;
-  r.status = s;
-  r.reason = std::move(why);
-  return r;
-}
-
 }  // namespace
 
-RegistrationResult alignToVoxelMap(const GaussianVoxelMap& map, const std::vector<Eigen::Vector3d>& src,
-                                   const Eigen::Isometry3d& guess, const VoxelAlignParams& p,
-                                   const GravityPrior* gravity, SurfaceInformation* surface) {
+RegistrationResult align(const GaussianVoxelMap& map, const PointCloud& src, const Eigen::Isometry3d& guess,
+                         const VoxelAlignParams& p, const GravityPrior* gravity, SurfaceInformation* surface) {
   if (!guess.matrix().allFinite()) return failed(guess, Status::NonFiniteInput, "initial guess is not finite");
   if (map.empty()) return failed(guess, Status::EmptyTarget, "local map is empty");
   if (static_cast<int>(src.size()) < p.min_inliers) {
@@ -144,9 +121,9 @@ RegistrationResult alignToVoxelMap(const GaussianVoxelMap& map, const std::vecto
     surface->inliers = fin.inliers;
   }
   const double lever = fin.inliers ? std::sqrt(fin.range_sq_sum / fin.inliers) : 1.0;
-  r.degeneracy = registration::analyseDegeneracy(H_scan, fin.inliers, std::max(lever, 1.0), p.degeneracy_threshold);
+  r.degeneracy = analyseDegeneracy(H_scan, fin.inliers, std::max(lever, 1.0), p.degeneracy_threshold);
   if (!r.converged) r.reason = "no convergence in " + std::to_string(p.max_iterations) + " iterations";
   return r;
 }
 
-}  // namespace roadslam::odometry
+}  // namespace roadslam::registration

@@ -4,9 +4,9 @@
 #include <random>
 
 #include "labelled_cloud.h"
-#include "roadslam/odometry/gaussian_voxel_map.h"
+#include "roadslam/registration/gaussian_voxel_map.h"
 
-using namespace roadslam::odometry;
+using namespace roadslam::registration;
 
 namespace {
 
@@ -41,7 +41,7 @@ Eigen::Isometry3d yardMotion() {
   return T;
 }
 
-roadslam::registration::RegistrationResult alignYard(bool ring_lines_on_walls) {
+RegistrationResult alignYard(bool ring_lines_on_walls) {
   GaussianVoxelMap map(1.0, 100, 100.0, 7, ring_lines_on_walls);
   const Cloud m = yard({0.3, 1.8, 3.3}, 1);
   map.insert(m.points, m.ground);
@@ -52,7 +52,7 @@ roadslam::registration::RegistrationResult alignYard(bool ring_lines_on_walls) {
   VoxelAlignParams vp;
   vp.max_correspondence_distance_m = 1.5;
   vp.kernel_scale_m = 0.5;
-  return alignToVoxelMap(map, s.points, Eigen::Isometry3d::Identity(), vp);
+  return align(map, s.points, Eigen::Isometry3d::Identity(), vp);
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-#include "roadslam/odometry/vehicle_prior.h"
+#include "roadslam/pipeline/vehicle_prior.h"
 
 #include <mrpt/config/CConfigFileBase.h>
 
@@ -7,7 +7,7 @@
 
 #include "roadslam/common/config.h"
 
-namespace roadslam::odometry {
+namespace roadslam::pipeline {
 namespace {
 constexpr double kDeg = M_PI / 180;
 
@@ -104,10 +104,10 @@ std::optional<Eigen::Isometry3d> VehiclePrior::baseMotion(double t_prev_s, doubl
   return planar(a->x_m, a->y_m, a->yaw_rad).inverse() * planar(b->x_m, b->y_m, b->yaw_rad);
 }
 
-std::optional<MotionPrior> VehiclePrior::between(double t_prev_s, double t_curr_s) const {
+std::optional<odometry::MotionPrior> VehiclePrior::between(double t_prev_s, double t_curr_s) const {
   const auto T_baseprev_basecurr = baseMotion(t_prev_s, t_curr_s);
   if (!T_baseprev_basecurr) return std::nullopt;
-  MotionPrior m;
+  odometry::MotionPrior m;
   m.T_prev_curr = p_.T_base_lidar.inverse() * *T_baseprev_basecurr * p_.T_base_lidar;
   m.speed_mps = poseAt(t_curr_s)->v_mps;
   return m;
@@ -131,4 +131,4 @@ vehicle::CalibrationUse VehiclePrior::observeLidarMotion(double t_prev_s, double
   return use;
 }
 
-}  // namespace roadslam::odometry
+}  // namespace roadslam::pipeline

@@ -10,6 +10,8 @@
 /// regularisation, so it acts point-to-plane on flat voxels and point-to-line on poles.
 /// Solved by Gauss-Newton with a Geman-McClure kernel (IRLS), left perturbations [t, w] in the
 /// map frame. Frames: points inserted and the result are in the map (world) frame.
+/// The default matcher of the odometry; its align() has the shape of every registration method's
+/// (registration.h): target, source points, T_target_source guess, settings, one RegistrationResult.
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -18,11 +20,11 @@
 #include <unordered_map>
 #include <vector>
 
-#include "roadslam/odometry/vertical_structures.h"
 #include "roadslam/common/voxel_hash.h"
+#include "roadslam/registration/point_cloud.h"
 #include "roadslam/registration/registration.h"
 
-namespace roadslam::odometry {
+namespace roadslam::registration {
 
 class GaussianVoxelMap {
  public:
@@ -116,6 +118,15 @@ struct SurfaceInformation {
   }
 };
 
+/// One constraint n . g_lidar = 0 on the up direction in the lidar frame (a vertical structure of the
+/// sweep: odometry/vertical_structures.h finds them).
+struct VerticalConstraint {
+  Eigen::Vector3d normal_lidar = Eigen::Vector3d::UnitX();  ///< unit, horizontal when the pose is right
+  /// Inverse variance of n . g [1/rad^2]: points x (spread along the structure's vertical)^2 /
+  /// (spread across it)^2, the spread across floored at min_thickness_m.
+  double weight = 0;
+};
+
 /// Absolute tilt prior of the alignment: the sweep's vertical structures (lidar frame) must stand
 /// along \p up_map. Each constraint adds the residual (R n) . up [rad] with the weight
 /// scale_m2 * VerticalConstraint::weight, under a Geman-McClure kernel of scale kernel_rad so
@@ -129,13 +140,11 @@ struct GravityPrior {
   double kernel_rad = 0.035;                          ///< [rad]
 };
 
-/// Aligns \p points_source (lidar frame) to \p map from \p T_map_source_guess, with an optional
-/// tilt prior; \p surface (optional) receives the scans' information without the ring lines.
-registration::RegistrationResult alignToVoxelMap(const GaussianVoxelMap& map,
-                                                 const std::vector<Eigen::Vector3d>& points_source,
-                                                 const Eigen::Isometry3d& T_map_source_guess,
-                                                 const VoxelAlignParams& params,
-                                                 const GravityPrior* gravity = nullptr,
-                                                 SurfaceInformation* surface = nullptr);
+/// Aligns \p points_source (lidar frame [m]) to \p target from \p T_target_source_guess, with an
+/// optional tilt prior; \p surface (optional) receives the scans' information without the ring lines.
+/// Never throws on data problems: failures come back with converged=false and a Status.
+RegistrationResult align(const GaussianVoxelMap& target, const PointCloud& points_source,
+                         const Eigen::Isometry3d& T_target_source_guess, const VoxelAlignParams& params,
+                         const GravityPrior* gravity = nullptr, SurfaceInformation* surface = nullptr);
 
-}  // namespace roadslam::odometry
+}  // namespace roadslam::registration

@@ -1,7 +1,7 @@
 #pragma once
 /// \file vehicle_prior.h
-/// The CAN motion prior of the odometry: the decoded vehicle state stream (libs/vehicle) dead
-/// reckoned in the plane (wheel speeds + yaw rate, standstill yaw-rate bias estimate), turned into
+/// The CAN motion prior, a pipeline stage: the odometry sees only what it produces, an
+/// odometry::MotionPrior. The decoded vehicle state stream (libs/vehicle) dead reckoned in the plane (wheel speeds + yaw rate, standstill yaw-rate bias estimate), turned into
 /// the lidar's motion between two sweep times:
 ///     T_lidarprev_lidarcurr = T_base_lidar^-1 * T_baseprev_basecurr * T_base_lidar
 /// Frames: base = vehicle body (x forward, y left, z up, ISO 8855, origin below the rear axle);
@@ -30,7 +30,7 @@ namespace mrpt::config {
 class CConfigFileBase;
 }
 
-namespace roadslam::odometry {
+namespace roadslam::pipeline {
 
 struct VehiclePriorParams {
   /// Lidar mounting on the vehicle base (ini: lidar_x_m, lidar_y_m, lidar_z_m [m],
@@ -57,7 +57,7 @@ class VehiclePrior {
   /// Lidar motion from the pose at \p t_prev_s to the pose at \p t_curr_s [s since epoch] and the
   /// vehicle speed at \p t_curr_s; nullopt when the CAN poses do not cover both times (before the
   /// first pose, older than history_s, or more than max_extrapolation_s after the newest pose).
-  std::optional<MotionPrior> between(double t_prev_s, double t_curr_s) const;
+  std::optional<odometry::MotionPrior> between(double t_prev_s, double t_curr_s) const;
   /// Base motion T_baseprev_basecurr over the same interval (planar: x, y, yaw).
   std::optional<Eigen::Isometry3d> baseMotion(double t_prev_s, double t_curr_s) const;
 
@@ -80,4 +80,4 @@ class VehiclePrior {
   std::deque<vehicle::Pose2D> poses_;  ///< T_odom_base after each integration step, time order
 };
 
-}  // namespace roadslam::odometry
+}  // namespace roadslam::pipeline
