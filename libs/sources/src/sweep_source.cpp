@@ -11,6 +11,12 @@ SweepSource::SweepSource(std::unique_ptr<PacketSource> packets,
                          const velodyne::DecoderParams& params)
     : packets_(std::move(packets)), assembler_(params) {}
 
+ScanSourceStats SweepSource::stats() const {
+  const auto& a = assembler_.stats();
+  const auto& s = packets_->stats();
+  return {a.sweeps, a.partial_sweeps, s.packets, s.malformed_packets + a.malformed()};
+}
+
 Scan SweepSource::deliver(Scan s) {
   ++stats_.sweeps;
   stats_.points += s.points.size();

@@ -41,7 +41,13 @@ class SweepSource : public ScanSource {
   bool finished() const override { return finished_ && !assembler_.hasSweep(); }
   /// GPS fixes received since the last call, in arrival order.
   std::vector<TimedGpsFix> takeGpsFixes() override;
-  std::string describe() const override { return "velodyne:" + packets_->describe(); }
+  /// The packet source's origin, e.g. "pcap:/path/file.pcap" (what the jobs' summaries show as input).
+  std::string describe() const override { return packets_->describe(); }
+  /// Sweeps closed by the assembler, packets read, and malformed packets: the source's plus the
+  /// decoder's rejections (see sweepStats() for the sweeps handed out and the GPS fixes).
+  ScanSourceStats stats() const override;
+  /// The packet source's damage report (truncated or undecodable recording), empty when none.
+  std::string errorMessage() const override { return packets_->errorMessage(); }
 
   /// Optional observer of every raw packet (data and position) in arrival order, with the number
   /// of sweeps the assembler closed while taking it (data packets only): lets a recorder store the
@@ -52,7 +58,7 @@ class SweepSource : public ScanSource {
   const PacketSource& packets() const { return *packets_; }
   const velodyne::SweepStats& assemblerStats() const { return assembler_.stats(); }
   const velodyne::Decoder& decoder() const { return assembler_.decoder(); }
-  const SweepSourceStats& stats() const { return stats_; }
+  const SweepSourceStats& sweepStats() const { return stats_; }
 
  private:
   Scan deliver(Scan s);
