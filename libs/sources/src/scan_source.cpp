@@ -79,11 +79,13 @@ std::unique_ptr<ScanSource> openScanSource(const std::string& path, const mrpt::
   velodyne::DecoderParams dp;
   dp.loadFromConfigFile(cfg, "velodyne");
   const std::string ext = fs::path(path).extension().string();
-  if (ext == ".pcap" || ext == ".pcapng") {
-    return std::make_unique<SweepSource>(std::make_unique<PcapPacketSource>(path), dp);
-  }
-  if (ext == ".rawlog" || ext == ".gz") {
-    return std::make_unique<SweepSource>(std::make_unique<RawlogPacketSource>(path), dp);
+  std::unique_ptr<PacketSource> packets;
+  if (ext == ".pcap" || ext == ".pcapng") packets = std::make_unique<PcapPacketSource>(path);
+  if (ext == ".rawlog" || ext == ".gz") packets = std::make_unique<RawlogPacketSource>(path);
+  if (packets) {
+    auto sweeps = std::make_unique<SweepSource>(std::move(packets), dp);
+    sweeps->setMaxPendingGpsFixes(SweepSource::kMaxPendingGpsFixes);  // the jobs take no fixes
+    return sweeps;
   }
   throw std::runtime_error("input '" + path +
                            "': unknown kind (expected .pcap, .rawlog or a folder of KITTI .bin sweeps)");

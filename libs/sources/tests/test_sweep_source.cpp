@@ -73,6 +73,31 @@ TEST(SweepSource, BoxRoomPointsLieOnTheWalls) {
   fs::remove(file);
 }
 
+// A consumer that never takes the GPS fixes (the jobs) keeps only the newest ones.
+TEST(SweepSource, UntakenGpsFixesAreCappedKeepingTheNewest) {
+  BoxRoomParams p;
+  p.revolutions = 3;
+  const fs::path file = boxRoomFile(p, "sweep_gps_cap_");
+  std::vector<TimedGpsFix> all;
+  {
+    SweepSource ref(std::make_unique<PcapPacketSource>(file.string()));
+    while (ref.next()) {
+    }
+    all = ref.takeGpsFixes();
+  }
+  ASSERT_EQ(all.size(), 3u);
+  SweepSource capped(std::make_unique<PcapPacketSource>(file.string()));
+  capped.setMaxPendingGpsFixes(2);
+  while (capped.next()) {
+  }
+  const auto kept = capped.takeGpsFixes();
+  ASSERT_EQ(kept.size(), 2u);
+  EXPECT_EQ(kept[0].stamp_s, all[1].stamp_s);
+  EXPECT_EQ(kept[1].stamp_s, all[2].stamp_s);
+  EXPECT_EQ(capped.sweepStats().gps_fixes_dropped, 1u);
+  fs::remove(file);
+}
+
 // openScanSource: a pcap opens as a SweepSource whose counters are the assembler's and the packet
 // source's; what it refuses is named.
 TEST(ScanSource, OpensAPcapByItsPathAndCountsPacketsAndSweeps) {
