@@ -11,7 +11,10 @@
 #include <netinet/in.h>
 #include <nlohmann/json.hpp>
 #include <sys/socket.h>
+#include <sys/wait.h>
 #include <unistd.h>
+
+#include <csignal>
 
 #include <atomic>
 #include <chrono>
@@ -235,6 +238,52 @@ TEST(RawlogApp, RecordCapturesLiveLoopbackTrafficThatInfoReads) {
                               (tmpDir() / "none.pcap").string(), freeUdpPort(), freeUdpPort()));
   expectOneLineFailureNaming(none, (tmpDir() / "none.pcap").string());
   EXPECT_FALSE(fs::exists(tmpDir() / "none.pcap"));
+}
+
+// Ctrl-C (common/stop_signal.h) ends an unlimited recording cleanly: exit 0, the summary line,
+// a complete capture that info reads, no temporary file left.
+TEST(RawlogApp, CtrlCEndsARecordingWithACompleteCapture) {
+  ASSERT_TRUE(fs::exists(kBox)) << kBox;
+  std::vector<roadslam::velodyne::RawPacket> packets;
+  {
+    roadslam::sources::PcapPacketSource src(kBox);
+    while (auto p = src.next()) packets.push_back(*p);
+  }
+  const uint16_t data_port = freeUdpPort(), pos_port = freeUdpPort();
+  const fs::path out = tmpDir() / "sigint.pcap", o = tmpDir() / "sigint.out", e = tmpDir() / "sigint.err";
+  const std::string cmd = fmt::format("exec {} record {} --bind 127.0.0.1 --port {} --position-port {} --seconds 30 >{} 2>{} </dev/null",
+                                      ROADSLAM_RAWLOG_BIN, out.string(), data_port, pos_port, o.string(), e.string());
+  const pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  // Send for a while (the app binds at its own pace), then Ctrl-C it.
+  const int fd = socket(AF_INET, SOCK_DGRAM, 0);
+  sockaddr_in to{};
+  to.sin_family = AF_INET;
+  to.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  const auto t0 = std::chrono::steady_clock::now();
+  for (std::size_t i = 0; std::chrono::steady_clock::now() - t0 < std::chrono::milliseconds(1500); ++i) {
+    const auto& p = packets[i % packets.size()];
+    to.sin_port = htons(p.dst_port == 2368 ? data_port : pos_port);
+    sendto(fd, p.payload.data(), p.payload.size(), 0, reinterpret_cast<sockaddr*>(&to), sizeof to);
+    if (i % 10 == 0) std::this_thread::sleep_for(std::chrono::microseconds(500));
+  }
+  close(fd);
+  kill(pid, SIGINT);
+  int status = 0;
+  ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  const std::string err = slurp(e), stdout_text = slurp(o);
+  ASSERT_TRUE(WIFEXITED(status)) << "ended by signal " << (WIFSIGNALED(status) ? WTERMSIG(status) : 0) << "\n" << err;
+  EXPECT_EQ(WEXITSTATUS(status), 0) << err;
+  EXPECT_NE(stdout_text.find(out.string() + ": "), std::string::npos) << stdout_text;
+  const json j = info(out.string());
+  EXPECT_GT(j["packets"].get<int>(), 0);
+  EXPECT_EQ(j["malformed_packets"], 0);
+  for (const auto& entry : fs::directory_iterator(tmpDir()))
+    EXPECT_EQ(entry.path().string().find(out.string() + ".tmp"), std::string::npos) << entry.path();
 }
 
 TEST(RawlogApp, BadInputsFailWithOneLineNamingTheFile) {

@@ -4,22 +4,18 @@
 #include <mrpt/config/CConfigFileMemory.h>
 #include <fmt/core.h>
 
-#include <atomic>
-#include <csignal>
 #include <exception>
 #include <string>
 
 #include "roadslam/common/atomic_file.h"
 #include "roadslam/common/cli.h"
+#include "roadslam/common/stop_signal.h"
 #include "roadslam/sources/boxroom.h"
 #include "roadslam/sources/recorder.h"
 #include "roadslam/sources/recording.h"
 #include "roadslam/sources/udp_receiver.h"
 
 namespace {
-std::atomic<bool> g_stop{false};
-extern "C" void onSignal(int) { g_stop = true; }
-
 struct DecoderOptions {
   std::string model = "auto";
   std::string calibration;
@@ -84,10 +80,9 @@ int main(int argc, char** argv) {
       fmt::print("{}: {} sweeps ({} packets), {} GPS records\n", conv_out, s.observations,
                  s.packets, s.gps);
     } else if (*rec) {
-      std::signal(SIGINT, onSignal);
-      std::signal(SIGTERM, onSignal);
+      roadslam::installStopSignalHandlers();  // Ctrl-C ends the recording cleanly; a second one at once
       UdpReceiver rx(udp);
-      const RecordSummary r = recordToPcap(rx, rec_out, limits, &g_stop);
+      const RecordSummary r = recordToPcap(rx, rec_out, limits);
       mrpt::config::CConfigFileMemory used;  // the configuration used, next to the output
       udp.saveToConfigFile(used, "udp");
       roadslam::writeFileAtomically(rec_out + ".ini", used.getContent());

@@ -17,7 +17,7 @@
 #include "roadslam/datasets/kitti_scans.h"
 #include "roadslam/datasets/trajectory_io.h"
 #include "roadslam/odometry/odometry.h"
-#include "roadslam/pipeline/scan_stream.h"
+#include "roadslam/sources/scan_source.h"
 #include "roadslam/velodyne/decoder_params.h"
 
 namespace fs = std::filesystem;
@@ -107,7 +107,7 @@ struct Drive {
 Drive accumulateDrive(const BoundsRequest& req, const mrpt::config::CConfigFileBase& cfg, BoundaryDetector& det) {
   Drive d;
   std::vector<SweepPose>& out = d.poses;
-  auto stream = pipeline::openScanStream(req.input_path, cfg, req.times_path);
+  auto stream = sources::openScanSource(req.input_path, cfg, req.times_path);
   PoseSource poses(req.trajectory_path, cfg);
   ProgressBar bar("roadslam-bounds: whole drive, pass 1", stream->sizeHint());
   size_t n = 0;
@@ -158,7 +158,7 @@ nlohmann::json runBoundsJob(const BoundsRequest& req) {
   const auto unknown_keys = cfg->checkEntries(req.allow_unknown_keys);
   {
     // an input that gives no sweep at all is an error before any output exists
-    auto probe = pipeline::openScanStream(req.input_path, *cfg, req.times_path);
+    auto probe = sources::openScanSource(req.input_path, *cfg, req.times_path);
     if (!probe->next()) {
       const std::string err = probe->errorMessage();
       throw std::runtime_error("input '" + req.input_path + "' gives no sweep" + (err.empty() ? "" : ": " + err));
@@ -177,7 +177,7 @@ nlohmann::json runBoundsJob(const BoundsRequest& req) {
   Drive drive;  // whole-drive mode: pass 1's poses, replayed in pass 2
   if (req.whole_drive) drive = accumulateDrive(req, *cfg, det);
   const std::vector<SweepPose>& recorded = drive.poses;
-  auto stream = pipeline::openScanStream(req.input_path, *cfg, req.times_path);
+  auto stream = sources::openScanSource(req.input_path, *cfg, req.times_path);
   AtomicFile jsonl(req.out_dir + "/boundaries.jsonl");
   Totals tot;
   ProgressBar bar("roadslam-bounds", stream->sizeHint());

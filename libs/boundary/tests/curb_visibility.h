@@ -17,7 +17,7 @@
 #include "roadslam/common/config.h"
 #include "roadslam/datasets/trajectory_io.h"
 #include "roadslam/eval/boundary_metrics.h"
-#include "roadslam/pipeline/scan_stream.h"
+#include "roadslam/sources/scan_source.h"
 
 namespace roadslam::boundary::test {
 
@@ -41,7 +41,7 @@ inline std::vector<SweepView> curbVisibilityBoth(const std::string& drive, const
                                                  double sensor_height_m = 1.9, double curb_h_m = 0.15,
                                                  double face_tol_m = 0.15) {
   const auto cfg = loadIniFile(ini);
-  auto stream = pipeline::openScanStream(drive + "/velodyne.pcap", *cfg);
+  auto stream = sources::openScanSource(drive + "/velodyne.pcap", *cfg);
   const auto traj = datasets::readTum(drive + "/gt_trajectory.tum");
   const auto curbs = eval::readGtCurbs(drive + "/gt_boundaries.json");
   std::unordered_map<int64_t, Eigen::Vector2d> seen_map;  // face returns of all sweeps so far, map frame

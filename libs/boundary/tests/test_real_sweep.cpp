@@ -16,7 +16,7 @@
 #include "roadslam/boundary/detector.h"
 #include "roadslam/boundary/job.h"
 #include "roadslam/common/config.h"
-#include "roadslam/pipeline/scan_stream.h"
+#include "roadslam/sources/scan_source.h"
 
 namespace fs = std::filesystem;
 using namespace roadslam;
@@ -29,7 +29,7 @@ const std::string kMrpt = std::string(ROADSLAM_SHARED_DATA) + "/velodyne/mrpt_sa
 std::optional<Scan> sweep(const std::string& path, int k) {
   mrpt::config::CConfigFileMemory cfg;
   cfg.write("velodyne", "model", std::string("vlp16"));  // the VeloView capture reports 0x21
-  auto s = pipeline::openScanStream(path, cfg);
+  auto s = sources::openScanSource(path, cfg);
   std::optional<Scan> out;
   for (int i = 0; i <= k; ++i) out = s->next();
   return out;

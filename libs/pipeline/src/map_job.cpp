@@ -16,7 +16,7 @@
 #include "roadslam/mapping/map_outputs.h"
 #include "roadslam/mapping/mapper.h"
 #include "roadslam/pipeline/can_prior.h"
-#include "roadslam/pipeline/scan_stream.h"
+#include "roadslam/sources/scan_source.h"
 #include "roadslam/velodyne/decoder_params.h"
 
 namespace fs = std::filesystem;
@@ -114,7 +114,7 @@ MapOutcome runMapJob(const MapRequest& req) {
   params.load(*cfg);
   const auto unknown_keys = cfg->checkEntries(req.allow_unknown_keys);
   if (!req.can_log_path.empty() && req.vehicle_ini_path.empty()) throw std::runtime_error("--can needs --vehicle (the car's vehicle ini)");
-  auto stream = openScanStream(req.input_path, *cfg, req.times_path);
+  auto stream = sources::openScanSource(req.input_path, *cfg, req.times_path);
   // An input that gives no sweep at all is an error before any output exists.
   std::optional<Scan> first = stream->next();
   if (!first) {

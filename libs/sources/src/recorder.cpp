@@ -5,12 +5,12 @@
 #include <stdexcept>
 
 #include "roadslam/common/atomic_file.h"
+#include "roadslam/common/stop_signal.h"
 #include "roadslam/pcap/pcap_writer.h"
 
 namespace roadslam::sources {
 
-RecordSummary recordToPcap(PacketSource& src, const std::string& out, const RecordLimits& limits,
-                           const std::atomic<bool>* stop) {
+RecordSummary recordToPcap(PacketSource& src, const std::string& out, const RecordLimits& limits) {
   const std::string tmp = tempPathFor(out);
   RecordSummary sum;
   const auto t0 = std::chrono::steady_clock::now();
@@ -19,7 +19,7 @@ RecordSummary recordToPcap(PacketSource& src, const std::string& out, const Reco
   };
   try {
     pcap::PcapWriter writer(tmp);
-    while (!(stop && *stop) && !src.finished()) {
+    while (!stopRequested() && !src.finished()) {
       if (limits.duration_s > 0 && elapsed_s() >= limits.duration_s) break;
       if (limits.max_packets > 0 && sum.packets >= limits.max_packets) break;
       auto p = src.next();

@@ -69,7 +69,7 @@ RecordingSummary summarizeRecording(const std::string& path, const velodyne::Dec
   if (!err.empty()) throw std::runtime_error(err);
   const SourceStats& ps = sweeps.packets().stats();
   if (ps.data_packets == 0) throw std::runtime_error(path + ": no Velodyne data packets");
-  const SweepSourceStats& ss = sweeps.stats();
+  const SweepSourceStats& ss = sweeps.sweepStats();
   s.packets = ps.data_packets;
   s.position_packets = ps.position_packets;
   s.points = ss.points;

@@ -11,6 +11,20 @@ SweepSource::SweepSource(std::unique_ptr<PacketSource> packets,
                          const velodyne::DecoderParams& params)
     : packets_(std::move(packets)), assembler_(params) {}
 
+ScanSourceStats SweepSource::stats() const {
+  const auto& a = assembler_.stats();
+  const auto& s = packets_->stats();
+  return {a.sweeps, a.partial_sweeps, s.packets, s.malformed_packets + a.malformed()};
+}
+
+void SweepSource::keepFix(const TimedGpsFix& f) {
+  if (max_pending_fixes_ > 0 && fixes_.size() >= max_pending_fixes_) {
+    fixes_.pop_front();
+    ++stats_.gps_fixes_dropped;
+  }
+  fixes_.push_back(f);
+}
+
 Scan SweepSource::deliver(Scan s) {
   ++stats_.sweeps;
   stats_.points += s.points.size();
@@ -28,7 +42,7 @@ std::optional<Scan> SweepSource::next() {
   while (!assembler_.hasSweep()) {
     if (finished_) return std::nullopt;
     auto pkt = packets_->next();
-    for (auto& f : packets_->takeDecodedFixes()) fixes_.push_back(f);
+    for (auto& f : packets_->takeDecodedFixes()) keepFix(f);
     if (!pkt) {
       if (!packets_->finished()) return std::nullopt;  // live: nothing within the timeout
       finished_ = true;
@@ -37,7 +51,7 @@ std::optional<Scan> SweepSource::next() {
     }
     std::size_t closed = 0;
     if (pkt->payload.size() == velodyne::kPositionPacketSize) {
-      if (auto fix = decodeGpsFix(*pkt)) fixes_.push_back(*fix);
+      if (auto fix = decodeGpsFix(*pkt)) keepFix(*fix);
     } else {
       const std::size_t before = assembler_.stats().sweeps + assembler_.stats().empty_sweeps_dropped;
       if (assembler_.addPacket(pkt->payload.data(), pkt->payload.size(), pkt->stamp_s) !=
@@ -51,8 +65,8 @@ std::optional<Scan> SweepSource::next() {
 }
 
 std::vector<TimedGpsFix> SweepSource::takeGpsFixes() {
-  std::vector<TimedGpsFix> out;
-  out.swap(fixes_);
+  std::vector<TimedGpsFix> out(fixes_.begin(), fixes_.end());
+  fixes_.clear();
   stats_.gps_fixes += out.size();
   return out;
 }

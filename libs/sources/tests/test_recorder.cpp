@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <thread>
 
+#include "roadslam/common/stop_signal.h"
 #include "roadslam/sources/boxroom.h"
 #include "roadslam/sources/pcap_source.h"
 #include "roadslam/sources/recorder.h"
@@ -97,4 +98,35 @@ TEST(Recorder, NothingReceivedThrowsNamingTheOutputAndWritesNothing) {
   EXPECT_FALSE(fs::exists(out));
   for (const auto& entry : fs::directory_iterator(fs::temp_directory_path()))
     EXPECT_EQ(entry.path().string().find(out.string() + ".tmp"), std::string::npos);
+}
+
+// A stop request (what Ctrl-C turns into, roadslam/common/stop_signal.h) ends a live recording
+// between packets and keeps a complete capture of what came before it.
+TEST(Recorder, StopRequestEndsALiveRecordingWithACompleteCapture) {
+  struct Endless : PacketSource {  // live: never finishes; asks to stop after 50 packets
+    SourceStats st;
+    std::optional<roadslam::velodyne::RawPacket> next() override {
+      roadslam::velodyne::RawPacket p;
+      p.stamp_s = 1000.0 + 1e-3 * double(st.packets);
+      p.dst_port = 2368;
+      p.payload.assign(roadslam::velodyne::kDataPacketSize, 0);
+      ++st.packets;
+      if (st.packets == 50) roadslam::requestStop();
+      return p;
+    }
+    bool finished() const override { return false; }
+    const SourceStats& stats() const override { return st; }
+    std::string describe() const override { return "endless"; }
+  } src;
+  const fs::path out = tmp("rec_stop_").string() + ".pcap";
+  roadslam::clearStopRequest();
+  const RecordSummary sum = recordToPcap(src, out.string(), RecordLimits{});
+  roadslam::clearStopRequest();
+  EXPECT_EQ(sum.packets, 50u);
+  PcapPacketSource replay(out.string());
+  size_t n = 0;
+  while (replay.next()) ++n;
+  EXPECT_EQ(n, 50u);
+  EXPECT_TRUE(replay.errorMessage().empty()) << replay.errorMessage();
+  fs::remove(out);
 }

@@ -3,6 +3,7 @@
 // as the pcap replay.
 #include <arpa/inet.h>
 #include <gtest/gtest.h>
+#include <mrpt/config/CConfigFileMemory.h>
 #include <netinet/in.h>
 #include <sys/socket.h>
 #include <unistd.h>
@@ -11,6 +12,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <thread>
 
 #include "roadslam/sources/boxroom.h"
@@ -47,7 +49,7 @@ TEST(SweepSource, BoxRoomPointsLieOnTheWalls) {
   std::vector<roadslam::Scan> sweeps;
   while (auto s = src.next()) sweeps.push_back(std::move(*s));
   EXPECT_TRUE(src.finished());
-  EXPECT_EQ(src.describe(), "velodyne:pcap:" + file.string());
+  EXPECT_EQ(src.describe(), "pcap:" + file.string());
   ASSERT_EQ(sweeps.size(), 4u);  // partial lead-in, 2 complete, partial lead-out
   EXPECT_TRUE(sweeps.front().partial);
   EXPECT_TRUE(sweeps.back().partial);
@@ -66,8 +68,73 @@ TEST(SweepSource, BoxRoomPointsLieOnTheWalls) {
   // Range quantisation (2 mm) and the 0.01 deg azimuth encoding at <= 9.4 m: well under 2 cm.
   EXPECT_LT(worst, 0.02);
   EXPECT_EQ(src.takeGpsFixes().size(), 3u);
-  EXPECT_NEAR(sweep_source.stats().sweepRate_hz(), 1.0 / (76 * 1327.104e-6), 1e-3);
+  EXPECT_NEAR(sweep_source.sweepStats().sweepRate_hz(), 1.0 / (76 * 1327.104e-6), 1e-3);
   for (std::size_t i = 1; i < sweeps.size(); ++i) EXPECT_GT(sweeps[i].stamp_s, sweeps[i - 1].stamp_s);
+  fs::remove(file);
+}
+
+// A consumer that never takes the GPS fixes (the jobs) keeps only the newest ones.
+TEST(SweepSource, UntakenGpsFixesAreCappedKeepingTheNewest) {
+  BoxRoomParams p;
+  p.revolutions = 3;
+  const fs::path file = boxRoomFile(p, "sweep_gps_cap_");
+  std::vector<TimedGpsFix> all;
+  {
+    SweepSource ref(std::make_unique<PcapPacketSource>(file.string()));
+    while (ref.next()) {
+    }
+    all = ref.takeGpsFixes();
+  }
+  ASSERT_EQ(all.size(), 3u);
+  SweepSource capped(std::make_unique<PcapPacketSource>(file.string()));
+  capped.setMaxPendingGpsFixes(2);
+  while (capped.next()) {
+  }
+  const auto kept = capped.takeGpsFixes();
+  ASSERT_EQ(kept.size(), 2u);
+  EXPECT_EQ(kept[0].stamp_s, all[1].stamp_s);
+  EXPECT_EQ(kept[1].stamp_s, all[2].stamp_s);
+  EXPECT_EQ(capped.sweepStats().gps_fixes_dropped, 1u);
+  fs::remove(file);
+}
+
+// openScanSource: a pcap opens as a SweepSource whose counters are the assembler's and the packet
+// source's; what it refuses is named.
+TEST(ScanSource, OpensAPcapByItsPathAndCountsPacketsAndSweeps) {
+  BoxRoomParams p;
+  p.revolutions = 3;
+  const fs::path file = boxRoomFile(p, "scan_source_open_");
+  mrpt::config::CConfigFileMemory cfg;
+  auto src = openScanSource(file.string(), cfg);
+  size_t n = 0;
+  while (src->next()) ++n;
+  EXPECT_TRUE(src->finished());
+  EXPECT_EQ(src->describe(), "pcap:" + file.string());
+  EXPECT_EQ(src->sizeHint(), 0u);
+  EXPECT_TRUE(src->errorMessage().empty());
+  EXPECT_TRUE(src->warnings().empty());
+  const ScanSourceStats st = src->stats();
+  EXPECT_EQ(n, 4u);
+  EXPECT_EQ(st.sweeps, 4u);
+  EXPECT_EQ(st.partial_sweeps, 2u);
+  PcapPacketSource packets(file.string());
+  while (packets.next()) {
+  }
+  EXPECT_EQ(st.packets, packets.stats().packets);
+  EXPECT_GE(st.packets, 3u * 76u);
+  EXPECT_EQ(st.malformed_packets, 0u);
+
+  EXPECT_THROW(openScanSource(file.string() + ".missing", cfg), std::runtime_error);
+  EXPECT_THROW(openScanSource(file.string(), cfg, "times.txt"), std::runtime_error);
+  const fs::path other = fs::temp_directory_path() / ("scan_source_open_" + std::to_string(getpid()) + ".txt");
+  { std::ofstream(other) << "x"; }
+  try {
+    openScanSource(other.string(), cfg);
+    ADD_FAILURE() << "an unknown kind opened";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("unknown kind"), std::string::npos) << e.what();
+  }
+  fs::remove(other);
   fs::remove(file);
 }
 

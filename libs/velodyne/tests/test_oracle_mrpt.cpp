@@ -81,6 +81,9 @@ void comparePointCounts(const std::string& pcap, const std::string& mrpt_model, 
                         double lo, double hi) {
   if (!test::exists(pcap)) GTEST_SKIP() << "missing " << pcap;
   const auto packets = pcap::readUdpDatagrams(pcap, kDefaultDataPort);
+  // The comparison's precondition: at least one whole chunk, else the loop below compares nothing.
+  ASSERT_GE(packets.size(), kChunk) << pcap << ": " << packets.size() << " data packets, fewer than one chunk of "
+                                    << kChunk << ": nothing would be compared";
   DecoderParams params;
   params.min_range_m = 1.0;  // MRPT's TGeneratePointCloudParameters::minDistance default
   const Decoder decoder(params);
@@ -108,6 +111,7 @@ void comparePointCounts(const std::string& pcap, const std::string& mrpt_model, 
     ours_total += ours.size();
     mrpt_total += theirs;
   }
+  ASSERT_GT(mrpt_total, 0u) << pcap << ": no chunk compared";
   std::cout << mrpt_model << " total: ours " << ours_total << " MRPT " << mrpt_total << " ratio "
             << static_cast<double>(ours_total) / static_cast<double>(mrpt_total) << "\n";
 }

@@ -6,7 +6,6 @@
 /// included. Packets are written on the standard ports of their role (data 2368, position 8308)
 /// even when the receiver listened on others.
 
-#include <atomic>
 #include <cstdint>
 #include <string>
 
@@ -25,10 +24,11 @@ struct RecordSummary {
 };
 
 /// Copies packets from \p src to the pcap \p out (written under a temporary name, renamed at the
-/// end) until a limit is reached, \p stop becomes true, or a recording source is exhausted.
+/// end) until a limit is reached, a stop is requested (SIGINT/SIGTERM once the app installed
+/// roadslam/common/stop_signal.h's handlers, or requestStop()), or a recording source is exhausted;
+/// what was recorded until then is a complete pcap.
 /// Throws std::runtime_error naming \p out when it cannot be written, or when no packet at all
 /// was recorded (the output is then not created).
-RecordSummary recordToPcap(PacketSource& src, const std::string& out, const RecordLimits& limits,
-                           const std::atomic<bool>* stop = nullptr);
+RecordSummary recordToPcap(PacketSource& src, const std::string& out, const RecordLimits& limits);
 
 }  // namespace roadslam::sources

@@ -1,10 +1,13 @@
 #pragma once
 /// \file scan_source.h
-/// One interface for every origin of decoded sweeps: the Velodyne SweepSource (over live UDP,
-/// pcap or rawlog packets) today, KITTI scan folders and simulators later. The odometry and
-/// mapping stages consume a ScanSource and never know whether data is live or recorded
-/// (STYLE.md rule 3).
+/// One interface for every origin of decoded sweeps: Velodyne packets (live UDP, pcap, MRPT rawlog)
+/// through SweepSource, and KITTI folders of NNNNNN.bin sweeps; a merged multi-sensor source later.
+/// The jobs (roadslam-map, roadslam-bounds) and the odometry consume a ScanSource and never know
+/// whether data is live or recorded, nor of which kind (STYLE.md rule 3). openScanSource() opens a
+/// recording by what its path is.
 
+#include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -12,7 +15,19 @@
 #include "roadslam/common/scan.h"
 #include "roadslam/sources/gps_fix.h"
 
+namespace mrpt::config {
+class CConfigFileBase;
+}
+
 namespace roadslam::sources {
+
+/// What every scan source counts; the per-sweep path counts problems here, never throws.
+struct ScanSourceStats {
+  uint64_t sweeps = 0;             ///< sweeps closed (partial included) [count]
+  uint64_t partial_sweeps = 0;     ///< of which the first/last partial sweeps (returned, flagged) [count]
+  uint64_t packets = 0;            ///< packets read (Velodyne inputs; 0 for KITTI) [count]
+  uint64_t malformed_packets = 0;  ///< packets rejected by the source or the decoder; KITTI: unreadable .bin files [count]
+};
 
 class ScanSource {
  public:
@@ -24,8 +39,28 @@ class ScanSource {
   virtual bool finished() const = 0;
   /// GPS fixes received since the last call, in arrival order (none for sources without GPS).
   virtual std::vector<TimedGpsFix> takeGpsFixes() { return {}; }
-  /// Short human-readable origin, e.g. "velodyne:pcap:/path/file.pcap".
+  /// Short human-readable origin, e.g. "pcap:/path/file.pcap" or "kitti:/path/velodyne_points/data".
   virtual std::string describe() const = 0;
+  /// Counters so far (see ScanSourceStats).
+  virtual ScanSourceStats stats() const = 0;
+  /// Total sweeps when known in advance (KITTI folders), else 0: for progress and ETA.
+  virtual size_t sizeHint() const { return 0; }
+  /// Non-empty once the input turned out damaged (truncated, undecodable record, unreadable .bin):
+  /// names the file and the place; the sweeps before it were returned normally.
+  virtual std::string errorMessage() const { return {}; }
+  /// What the source had to assume, for the run's summary (e.g. a KITTI folder without a times file
+  /// timed at its nominal sweep period). Empty when nothing was assumed.
+  virtual std::vector<std::string> warnings() const { return {}; }
 };
+
+/// Opens the recording \p path by what it is: a .pcap/.pcapng (Velodyne UDP capture), a .rawlog or
+/// .gz (MRPT, CObservationVelodyneScan packets), or a folder of KITTI NNNNNN.bin sweeps. The decoder
+/// reads the [velodyne] section of \p cfg (model, calibration, ...), a KITTI folder the [kitti]
+/// section (datasets::KittiParams). \p times_path: the times file of a KITTI folder (one stamp [s]
+/// per line) when it is not times.txt beside the .bin files or one level up; empty = search there.
+/// Throws std::runtime_error naming the path when it is missing or of an unknown kind, or when
+/// \p times_path is given for a recording that is not a KITTI folder.
+std::unique_ptr<ScanSource> openScanSource(const std::string& path, const mrpt::config::CConfigFileBase& cfg,
+                                           const std::string& times_path = "");
 
 }  // namespace roadslam::sources

@@ -4,6 +4,7 @@
 /// frame, see libs/velodyne decoder.h) and GPS fixes, through libs/velodyne's SweepAssembler.
 /// The first sweep of a stream and the one closed at its end are flagged Scan::partial.
 
+#include <deque>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -22,6 +23,7 @@ struct SweepSourceStats {
   uint64_t partial_sweeps = 0;   ///< of which partial [count]
   uint64_t points = 0;           ///< points in returned sweeps [count]
   uint64_t gps_fixes = 0;        ///< fixes handed out by takeGpsFixes() [count]
+  uint64_t gps_fixes_dropped = 0;  ///< oldest fixes dropped beyond setMaxPendingGpsFixes() [count]
   uint64_t undecodable_packets = 0;  ///< data packets the decoder rejected (bad flag, model) [count]
   double first_wrap_stamp_s = 0; ///< Scan::stamp_s of the first sweep that began at a wrap [s]
   double last_wrap_stamp_s = 0;  ///< ... and of the last one [s]
@@ -41,7 +43,18 @@ class SweepSource : public ScanSource {
   bool finished() const override { return finished_ && !assembler_.hasSweep(); }
   /// GPS fixes received since the last call, in arrival order.
   std::vector<TimedGpsFix> takeGpsFixes() override;
-  std::string describe() const override { return "velodyne:" + packets_->describe(); }
+  /// Keep at most \p n untaken fixes, the newest (0 = all, the default). For consumers that never
+  /// take them: a VLP-16 sends about 150 position packets a second, so an hour's drive would pile
+  /// up half a million. openScanSource() sets kMaxPendingGpsFixes.
+  void setMaxPendingGpsFixes(std::size_t n) { max_pending_fixes_ = n; }
+  static constexpr std::size_t kMaxPendingGpsFixes = 4096;
+  /// The packet source's origin, e.g. "pcap:/path/file.pcap" (what the jobs' summaries show as input).
+  std::string describe() const override { return packets_->describe(); }
+  /// Sweeps closed by the assembler, packets read, and malformed packets: the source's plus the
+  /// decoder's rejections (see sweepStats() for the sweeps handed out and the GPS fixes).
+  ScanSourceStats stats() const override;
+  /// The packet source's damage report (truncated or undecodable recording), empty when none.
+  std::string errorMessage() const override { return packets_->errorMessage(); }
 
   /// Optional observer of every raw packet (data and position) in arrival order, with the number
   /// of sweeps the assembler closed while taking it (data packets only): lets a recorder store the
@@ -52,14 +65,16 @@ class SweepSource : public ScanSource {
   const PacketSource& packets() const { return *packets_; }
   const velodyne::SweepStats& assemblerStats() const { return assembler_.stats(); }
   const velodyne::Decoder& decoder() const { return assembler_.decoder(); }
-  const SweepSourceStats& stats() const { return stats_; }
+  const SweepSourceStats& sweepStats() const { return stats_; }
 
  private:
   Scan deliver(Scan s);
+  void keepFix(const TimedGpsFix& f);
 
   std::unique_ptr<PacketSource> packets_;
   velodyne::SweepAssembler assembler_;
-  std::vector<TimedGpsFix> fixes_;
+  std::deque<TimedGpsFix> fixes_;
+  std::size_t max_pending_fixes_ = 0;
   PacketObserver observer_;
   SweepSourceStats stats_;
   bool finished_ = false;

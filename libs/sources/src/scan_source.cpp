@@ -1,4 +1,4 @@
-#include "roadslam/pipeline/scan_stream.h"
+#include "roadslam/sources/scan_source.h"
 
 #include <mrpt/config/CConfigFileBase.h>
 
@@ -10,56 +10,18 @@
 #include "roadslam/datasets/kitti_scans.h"
 #include "roadslam/sources/pcap_source.h"
 #include "roadslam/sources/rawlog_source.h"
+#include "roadslam/sources/sweep_source.h"
 #include "roadslam/velodyne/decoder_params.h"
-#include "roadslam/velodyne/sweep_assembler.h"
 
 namespace fs = std::filesystem;
 
-namespace roadslam::pipeline {
+namespace roadslam::sources {
 namespace {
 
-/// Velodyne packets (pcap or rawlog) cut into sweeps by our decoder.
-class VelodyneStream : public ScanStream {
+/// A folder of KITTI NNNNNN.bin sweeps (libs/datasets), timed per the [kitti] section.
+class KittiScanSource : public ScanSource {
  public:
-  VelodyneStream(std::unique_ptr<sources::PacketSource> src, const velodyne::DecoderParams& p)
-      : src_(std::move(src)), assembler_(p) {}
-
-  std::optional<Scan> next() override {
-    while (!assembler_.hasSweep()) {
-      if (finished_) return std::nullopt;
-      auto pkt = src_->next();
-      if (!pkt) {
-        if (src_->finished()) {
-          assembler_.finish();
-          finished_ = true;
-        }
-        continue;
-      }
-      if (pkt->payload.size() == velodyne::kDataPacketSize) {
-        assembler_.addPacket(pkt->payload.data(), pkt->payload.size(), pkt->stamp_s);
-      }
-    }
-    return assembler_.takeSweep();
-  }
-
-  StreamStats stats() const override {
-    const auto& a = assembler_.stats();
-    const auto& s = src_->stats();
-    return {a.sweeps, a.partial_sweeps, static_cast<size_t>(s.packets),
-            static_cast<size_t>(s.malformed_packets) + a.malformed()};
-  }
-  std::string describe() const override { return src_->describe(); }
-  std::string errorMessage() const override { return src_->errorMessage(); }
-
- private:
-  std::unique_ptr<sources::PacketSource> src_;
-  velodyne::SweepAssembler assembler_;
-  bool finished_ = false;
-};
-
-class KittiStream : public ScanStream {
- public:
-  KittiStream(const std::string& dir, const std::string& times_path, const datasets::KittiParams& p)
+  KittiScanSource(const std::string& dir, const std::string& times_path, const datasets::KittiParams& p)
       : folder_(dir, times_path, p), dir_(dir) {}
   std::optional<Scan> next() override {
     // one unreadable .bin is counted and skipped: one bad scan never ends the run
@@ -75,7 +37,8 @@ class KittiStream : public ScanStream {
     }
     return std::nullopt;
   }
-  StreamStats stats() const override { return stats_; }
+  bool finished() const override { return i_ >= folder_.size(); }
+  ScanSourceStats stats() const override { return stats_; }
   std::string describe() const override { return "kitti:" + dir_; }
   std::string errorMessage() const override {
     return error_.empty() ? "" : error_ + (stats_.malformed_packets > 1 ? " (and " + std::to_string(stats_.malformed_packets - 1) + " more)" : "");
@@ -95,19 +58,19 @@ class KittiStream : public ScanStream {
   datasets::KittiScanFolder folder_;
   std::string dir_;
   size_t i_ = 0;
-  StreamStats stats_;
+  ScanSourceStats stats_;
   std::string error_;
 };
 
 }  // namespace
 
-std::unique_ptr<ScanStream> openScanStream(const std::string& path, const mrpt::config::CConfigFileBase& cfg,
+std::unique_ptr<ScanSource> openScanSource(const std::string& path, const mrpt::config::CConfigFileBase& cfg,
                                            const std::string& times_path) {
   if (!fs::exists(path)) throw std::runtime_error("input '" + path + "' does not exist");
   if (fs::is_directory(path)) {
     datasets::KittiParams kp;
     kp.loadFromConfigFile(cfg, "kitti");
-    return std::make_unique<KittiStream>(path, times_path, kp);
+    return std::make_unique<KittiScanSource>(path, times_path, kp);
   }
   if (!times_path.empty()) {
     throw std::runtime_error("a times file ('" + times_path + "') applies to a KITTI folder only; '" + path +
@@ -116,14 +79,16 @@ std::unique_ptr<ScanStream> openScanStream(const std::string& path, const mrpt::
   velodyne::DecoderParams dp;
   dp.loadFromConfigFile(cfg, "velodyne");
   const std::string ext = fs::path(path).extension().string();
-  if (ext == ".pcap" || ext == ".pcapng") {
-    return std::make_unique<VelodyneStream>(std::make_unique<sources::PcapPacketSource>(path), dp);
-  }
-  if (ext == ".rawlog" || ext == ".gz") {
-    return std::make_unique<VelodyneStream>(std::make_unique<sources::RawlogPacketSource>(path), dp);
+  std::unique_ptr<PacketSource> packets;
+  if (ext == ".pcap" || ext == ".pcapng") packets = std::make_unique<PcapPacketSource>(path);
+  if (ext == ".rawlog" || ext == ".gz") packets = std::make_unique<RawlogPacketSource>(path);
+  if (packets) {
+    auto sweeps = std::make_unique<SweepSource>(std::move(packets), dp);
+    sweeps->setMaxPendingGpsFixes(SweepSource::kMaxPendingGpsFixes);  // the jobs take no fixes
+    return sweeps;
   }
   throw std::runtime_error("input '" + path +
                            "': unknown kind (expected .pcap, .rawlog or a folder of KITTI .bin sweeps)");
 }
 
-}  // namespace roadslam::pipeline
+}  // namespace roadslam::sources
