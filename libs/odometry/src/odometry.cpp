@@ -273,7 +273,7 @@ void Odometry::updateMap(const Eigen::Isometry3d& T_world_lidar) {
     gmap_.insert(world, ground);
     gmap_.removeFar(T_world_lidar.translation());
   } else {
-    if (params_.registration_target == "last_scan") map_.clear();
+    if (params_.registration_target == RegistrationTarget::LastScan) map_.clear();
     map_.insert(world);
     map_.removeFar(T_world_lidar.translation());
     target_stale_ = true;

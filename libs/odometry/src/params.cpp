@@ -25,17 +25,25 @@ Matcher matcherFromString(const std::string& s) {
   throw std::invalid_argument("matcher = '" + s + "': expected voxel_map or registration");
 }
 
+std::string toString(RegistrationTarget t) {
+  return t == RegistrationTarget::LastScan ? "last_scan" : "local_map";
+}
+
+RegistrationTarget registrationTargetFromString(const std::string& s) {
+  for (RegistrationTarget t : {RegistrationTarget::LocalMap, RegistrationTarget::LastScan}) {
+    if (s == toString(t)) return t;
+  }
+  throw std::invalid_argument("registration_target = '" + s + "': expected local_map or last_scan");
+}
+
 void Params::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, const std::string& s,
                                 const std::string& pre, const std::string& reg) {
   try {
     matcher = matcherFromString(readString(c, s, "matcher", toString(matcher)));
+    registration_target =
+        registrationTargetFromString(readString(c, s, "registration_target", toString(registration_target)));
   } catch (const std::invalid_argument& e) {
     throw std::runtime_error("[" + s + "] " + e.what());
-  }
-  registration_target = readString(c, s, "registration_target", registration_target);
-  if (registration_target != "local_map" && registration_target != "last_scan") {
-    throw std::runtime_error("[" + s + "] registration_target = '" + registration_target +
-                             "': expected local_map or last_scan");
   }
   registration_voxel_m = readDouble(c, s, "registration_voxel_m", registration_voxel_m);
   map_voxel_m = readDouble(c, s, "map_voxel_m", map_voxel_m);
@@ -101,7 +109,7 @@ void Params::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, const st
 void Params::saveToConfigFile(mrpt::config::CConfigFileBase& c, const std::string& s,
                               const std::string& pre, const std::string& reg) const {
   c.write(s, "matcher", toString(matcher));
-  c.write(s, "registration_target", registration_target);
+  c.write(s, "registration_target", toString(registration_target));
   c.write(s, "registration_voxel_m", registration_voxel_m);
   c.write(s, "map_voxel_m", map_voxel_m);
   c.write(s, "map_points_per_voxel", map_points_per_voxel);

@@ -18,6 +18,7 @@
 #include "roadslam/datasets/trajectory_io.h"
 #include "roadslam/eval/trajectory_metrics.h"
 #include "roadslam/odometry/odometry.h"
+#include "roadslam/sources/scan_source.h"
 
 namespace fs = std::filesystem;
 using namespace roadslam;
@@ -57,8 +58,6 @@ int main(int argc, char** argv) {
   const auto cfg = loadIniFile(argv[1]);
   odometry::Params params;
   params.loadFromConfigFile(*cfg);
-  datasets::KittiParams kp;
-  kp.loadFromConfigFile(*cfg);
   std::vector<Drive> drives;
   for (int i = 2; i + 2 < argc; i += 3) drives.push_back({fs::path(argv[i]).filename().string(), argv[i], argv[i + 1], argv[i + 2]});
   if (drives.empty()) drives = sharedDrives();
@@ -67,7 +66,8 @@ int main(int argc, char** argv) {
   std::printf("%-28s %6s %6s %6s %7s %8s %8s %8s %9s %9s %8s\n", "drive", "frames", "failed", "degen", "dist_m", "ATE_m",
               "RTE_%", "RRE_d/hm", "end_dz_m", "end_dpitch", "ms/frame");
   for (const auto& d : drives) {
-    const datasets::KittiScanFolder folder(d.dir, d.times, kp);
+    // the sweeps as roadslam-map reads them: one ScanSource, [kitti] and --times as there
+    const auto source = sources::openScanSource(d.dir, *cfg, d.times);
     datasets::PoseList gt;
     if (d.camera_frame_calib) {
       const auto cam = datasets::readKittiTrajectory(d.poses, d.times);
@@ -76,16 +76,22 @@ int main(int argc, char** argv) {
     } else {
       gt = datasets::readKittiPoses(d.poses);
     }
-    if (gt.size() != folder.size()) {
-      std::fprintf(stderr, "%s: %zu poses for %zu sweeps\n", d.name.c_str(), gt.size(), folder.size());
+    if (gt.size() != source->sizeHint()) {
+      std::fprintf(stderr, "%s: %zu poses for %zu sweeps\n", d.name.c_str(), gt.size(), source->sizeHint());
       return 1;
     }
     odometry::Odometry odo(params);
     eval::MatchedTrajectories m;
     size_t failed = 0, degenerate = 0;
     double ms = 0;
-    for (size_t i = 0; i < folder.size(); i += stride) {
-      auto scan = folder.read(i);
+    for (size_t i = 0; i < gt.size(); ++i) {
+      auto next = source->next();
+      if (!next) {
+        std::fprintf(stderr, "%s: sweep %zu unreadable: %s\n", d.name.c_str(), i, source->errorMessage().c_str());
+        return 1;
+      }
+      if (i % stride != 0) continue;
+      Scan scan = std::move(*next);
       if (stride > 1) scan.stamp_s = 0.1 * static_cast<double>(i / stride);  // the same sweeps, K times as fast
       const auto r = odo.process(std::move(scan));
       ms += r.ms_total;

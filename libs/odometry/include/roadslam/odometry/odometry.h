@@ -39,6 +39,15 @@ std::string toString(Matcher m);
 /// The Matcher of an ini value; throws std::invalid_argument naming the valid ones.
 Matcher matcherFromString(const std::string& s);
 
+/// What matcher = registration aligns each sweep to.
+enum class RegistrationTarget {
+  LocalMap,  ///< `local_map`: the map of recent frames
+  LastScan   ///< `last_scan`: the previous sweep alone, as the MATLAB thesis matched consecutive sweeps
+};
+std::string toString(RegistrationTarget t);
+/// The RegistrationTarget of an ini value; throws std::invalid_argument naming the valid ones.
+RegistrationTarget registrationTargetFromString(const std::string& s);
+
 /// Odometry parameters. Ini section [odometry]; the preprocessing chain and the registration read
 /// their own sections ([preprocess], [registration]).
 struct Params {
@@ -48,7 +57,7 @@ struct Params {
   Matcher matcher = Matcher::VoxelMap;
   /// With matcher = registration: `local_map` (the map of recent frames) or `last_scan` (scan to
   /// scan, as the MATLAB thesis matched consecutive sweeps).
-  std::string registration_target = "local_map";
+  RegistrationTarget registration_target = RegistrationTarget::LocalMap;
   double registration_voxel_m = 0.75;   ///< voxel of the source points registered [m]
   double map_voxel_m = 1.0;            ///< voxel of the local map [m]
   int map_points_per_voxel = 20;       ///< points kept per map voxel [-]
