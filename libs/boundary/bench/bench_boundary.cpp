@@ -27,7 +27,7 @@ void parkingRules(boundary::Params& p) {
   p.curb_min_range_m = 5, p.curb_level_cells = 5, p.curb_veto_cells = 2;
 }
 
-void run(benchmark::State& st, const std::string& method, bool parallel = true, double yaw_per_sweep = 0.0,
+void run(benchmark::State& st, boundary::Method method, bool parallel = true, double yaw_per_sweep = 0.0,
          bool bend = true, bool parking = false, int draws = 0) {
   boundary::Params p;
   p.method = method;
@@ -45,14 +45,14 @@ void run(benchmark::State& st, const std::string& method, bool parallel = true, 
   st.counters["points"] = static_cast<double>(street().points.size());
 }
 
-void BM_Detector_Ransac(benchmark::State& st) { run(st, "ransac"); }
-void BM_Detector_Ransac_200Draws(benchmark::State& st) { run(st, "ransac", true, 0.0, true, false, 200); }
-void BM_Detector_Ransac_NoParallel(benchmark::State& st) { run(st, "ransac", false); }
-void BM_Detector_Ransac_NoBend(benchmark::State& st) { run(st, "ransac", true, 0.0, false); }
-void BM_Detector_Ransac_Turning(benchmark::State& st) { run(st, "ransac", true, 1.0 / 14.0); }  // R = 14 m
-void BM_Detector_Ransac_Turning_NoBend(benchmark::State& st) { run(st, "ransac", true, 1.0 / 14.0, false); }
-void BM_Detector_Ransac_ParkingRules(benchmark::State& st) { run(st, "ransac", true, 0.0, true, true); }
-void BM_Detector_Thesis(benchmark::State& st) { run(st, "thesis"); }
+void BM_Detector_Ransac(benchmark::State& st) { run(st, boundary::Method::Ransac); }
+void BM_Detector_Ransac_200Draws(benchmark::State& st) { run(st, boundary::Method::Ransac, true, 0.0, true, false, 200); }
+void BM_Detector_Ransac_NoParallel(benchmark::State& st) { run(st, boundary::Method::Ransac, false); }
+void BM_Detector_Ransac_NoBend(benchmark::State& st) { run(st, boundary::Method::Ransac, true, 0.0, false); }
+void BM_Detector_Ransac_Turning(benchmark::State& st) { run(st, boundary::Method::Ransac, true, 1.0 / 14.0); }  // R = 14 m
+void BM_Detector_Ransac_Turning_NoBend(benchmark::State& st) { run(st, boundary::Method::Ransac, true, 1.0 / 14.0, false); }
+void BM_Detector_Ransac_ParkingRules(benchmark::State& st) { run(st, boundary::Method::Ransac, true, 0.0, true, true); }
+void BM_Detector_Thesis(benchmark::State& st) { run(st, boundary::Method::Thesis); }
 /// Whole-drive mode: a 300 m drive (1 m per sweep) accumulated, then sweeps of its middle fitted
 /// from the whole drive's curb map along its path (pass 2); pass 1 (labelling, map) on its own.
 Eigen::Isometry3d along(int i) {

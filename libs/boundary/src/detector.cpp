@@ -236,19 +236,21 @@ void BoundaryDetector::fitSides(const Eigen::Isometry3d& T_map_lidar, std::mt199
     Vec2 a;
     if (arc.toArc(q, a)) pts.push_back(a);
   }
+  // Up to completeParallel a side is found only by its own fit (fitSide, or checkWidth's refit), so
+  // `found` here means "fitted from this sweep's curb map", never continued or held.
   SideBoundary l = detail::fitSide(pts, +1, p_, rng), r = detail::fitSide(pts, -1, p_, rng);
   const bool width_known = road_width_m_ > 0 && f.index - road_width_frame_ <= static_cast<size_t>(p_.memory_frames);
   // The width of the pair as fitted: a new width is adopted once it persists (updateWidth), even
   // while checkWidth rejects one side of it.
-  const double w_fit = l.reason == "ok" && r.reason == "ok" ? detail::parallelOffset(r, l, pts, -1, p_)
-                                                             : std::numeric_limits<double>::quiet_NaN();
-  if (width_known && p_.width_jump_m > 0 && l.reason == "ok" && r.reason == "ok") checkWidth(l, r, pts, rng, T_map_lidar, arc);
+  const double w_fit = l.found && r.found ? detail::parallelOffset(r, l, pts, -1, p_)
+                                          : std::numeric_limits<double>::quiet_NaN();
+  if (width_known && p_.width_jump_m > 0 && l.found && r.found) checkWidth(l, r, pts, rng, T_map_lidar, arc);
   updateWidth(w_fit, width_known, f.index);
   // Each side from the other's own fit only: a continued side never continues the other one.
   const SideBoundary l_own = l;
   const double width = width_known ? road_width_m_ : std::numeric_limits<double>::quiet_NaN();
-  if (r.reason == "ok") detail::completeParallel(l, r, pts, +1, p_, width);
-  if (l_own.reason == "ok") detail::completeParallel(r, l_own, pts, -1, p_, width);
+  if (r.found) detail::completeParallel(l, r, pts, +1, p_, width);
+  if (l_own.found) detail::completeParallel(r, l_own, pts, -1, p_, width);
   f.left = track(std::move(l), pts, +1, rng, tracks_[0], T_map_lidar, arc);
   f.right = track(std::move(r), pts, -1, rng, tracks_[1], T_map_lidar, arc);
   for (SideBoundary* sb : {&f.left, &f.right})
@@ -324,9 +326,9 @@ BoundaryFrame BoundaryDetector::process(const Scan& scan, const Eigen::Isometry3
     const std::string why = f.points == 0 ? "no points in the sweep" : "no ground found: heights above the road unknown";
     f.left.reason = f.right.reason = why;
   } else {
-    f.obstacles = clusterObstacles(scan, last_, p_, p_.method == "thesis");
+    f.obstacles = clusterObstacles(scan, last_, p_, p_.method == Method::Thesis);
     std::mt19937 rng(static_cast<unsigned>(p_.ransac_seed));
-    if (p_.method == "thesis") {
+    if (p_.method == Method::Thesis) {
       f.left = detail::fitSideThesis(f.obstacles, +1, p_, rng);
       f.right = detail::fitSideThesis(f.obstacles, -1, p_, rng);
     } else {

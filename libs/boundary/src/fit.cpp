@@ -90,7 +90,7 @@ void preferInnerLine(const std::vector<Vec2>& pts, int side, int degree, int min
                      Score& best, std::vector<double>& best_c) {
   constexpr double kInnerGap = 2.5;      // [m] a sidewalk (3 m) in, not a parked car's sill (within 2.2 m of the curb)
   constexpr double kMaxHeadingDiff = 0.1;  // |c1 - c1'| of "parallel" [-]
-  if (p.inner_curb_share <= 0 || p.method == "thesis") return;
+  if (p.inner_curb_share <= 0 || p.method == Method::Thesis) return;
   std::vector<Vec2> inner;
   for (const auto& q : pts)
     if (side * (q.y - polyEval(best_c, q.x)) < -kInnerGap) inner.push_back(q);
@@ -111,7 +111,7 @@ void spanPolyline(std::vector<Vec2> inl, const std::vector<double>& c, const Par
   std::sort(inl.begin(), inl.end(), [](const Vec2& a, const Vec2& b) { return a.x < b.x; });
   // Stretches of inliers separated by more than max_bridge_m; report the one spanning most of the band.
   // The thesis baseline's points are one corner per shape, metres apart: its line is not cut.
-  const double bridge = p.method == "thesis" ? std::numeric_limits<double>::infinity() : p.max_bridge_m;
+  const double bridge = p.method == Method::Thesis ? std::numeric_limits<double>::infinity() : p.max_bridge_m;
   double x0 = 0, x1 = -1;
   for (size_t b = 0, i = 1; i <= inl.size(); ++i) {
     if (i < inl.size() && inl[i].x - inl[i - 1].x <= bridge) continue;
@@ -140,7 +140,7 @@ SideBoundary ransac(const std::vector<Vec2>& pts, int side, int degree, int min_
   const size_t m = static_cast<size_t>(degree) + 1;
   std::ostringstream why;
   if (pts.size() < std::max<size_t>(m, static_cast<size_t>(min_bins))) {
-    why << "too few " << (p.method == "thesis" ? "shapes" : "curb points") << " on the " << sideName(side)
+    why << "too few " << (p.method == Method::Thesis ? "shapes" : "curb points") << " on the " << sideName(side)
         << " (" << pts.size() << ")";
     out.reason = why.str();
     return out;

@@ -211,7 +211,7 @@ nlohmann::json runBoundsJob(const BoundsRequest& req) {
   jsonl.commit();
   if (!last_png.empty()) fs::copy_file(last_png, req.out_dir + "/top_view.png", fs::copy_options::overwrite_existing);
   const double n = static_cast<double>(std::max<size_t>(tot.frames, 1));
-  nlohmann::json s = {{"input", stream->describe()}, {"method", params.method}, {"frames", tot.frames},
+  nlohmann::json s = {{"input", stream->describe()}, {"method", toString(params.method)}, {"frames", tot.frames},
                       {"frames_without_pose", tot.no_pose}, {"ms_per_frame_mean", tot.ms_sum / n},
                       {"ms_per_frame_max", tot.ms_max}, {"left_found_rate", tot.left / n},
                       {"right_found_rate", tot.right / n}, {"both_found_rate", tot.both / n},

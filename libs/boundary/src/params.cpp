@@ -47,11 +47,28 @@ void require(bool ok, const std::string& section, const std::string& key, const 
 
 }  // namespace
 
+std::string toString(Method m) {
+  switch (m) {
+    case Method::Ransac: return "ransac";
+    case Method::Thesis: return "thesis";
+  }
+  return "unknown";
+}
+
+Method methodFromString(const std::string& name) {
+  for (Method m : {Method::Ransac, Method::Thesis})
+    if (name == toString(m)) return m;
+  throw std::invalid_argument("'" + name + "' is not one of ransac | thesis");
+}
+
 void Params::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& s,
                                 const std::string& ground_section) {
   std::vector<std::string> known{"method"};
-  method = readString(cfg, s, "method", method);
-  require(method == "ransac" || method == "thesis", s, "method", "'" + method + "' is not ransac|thesis");
+  try {
+    method = methodFromString(readString(cfg, s, "method", toString(method)));
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error("[" + s + "] method: " + e.what());
+  }
   for (auto& [k, v] : doubleFields(*this)) {
     *v = readDouble(cfg, s, k, *v);
     known.emplace_back(k);
@@ -77,7 +94,7 @@ void Params::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const 
 void Params::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& s,
                               const std::string& ground_section) const {
   Params copy = *this;
-  cfg.write(s, "method", method);
+  cfg.write(s, "method", toString(method));
   for (auto& [k, v] : doubleFields(copy)) cfg.write(s, k, *v);
   for (auto& [k, v] : intFields(copy)) cfg.write(s, k, *v);
   cfg.write(s, "hold_max_turn_deg", hold_max_turn_rad * 180.0 / M_PI);

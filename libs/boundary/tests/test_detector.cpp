@@ -124,7 +124,7 @@ TEST(Detector, MemoryFollowsTheVehicle) {
 
 TEST(Detector, ThesisBaselineRunsAndExplains) {
   Params p = defaults();
-  p.method = "thesis";
+  p.method = Method::Thesis;
   Road road;
   BoundaryDetector det(p);
   const auto f = det.process(castSweep(road), Eigen::Isometry3d::Identity(), 0.0);

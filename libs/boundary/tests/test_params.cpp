@@ -16,7 +16,7 @@ TEST(Params, ShippedInisLoad) {
   const auto thesis = roadslam::loadIniFile(std::string(ROADSLAM_SOURCE_DIR) + "/ini/bounds-thesis.ini");
   Params p;
   p.loadFromConfigFile(*thesis);
-  EXPECT_EQ(p.method, "thesis");
+  EXPECT_EQ(p.method, roadslam::boundary::Method::Thesis);
   // The rules against parked cars read as curbs (issue #8): off in bounds.ini, on in bounds-parking.ini.
   Params off, on;
   off.loadFromConfigFile(*roadslam::loadIniFile(std::string(ROADSLAM_SOURCE_DIR) + "/ini/bounds.ini"));
@@ -33,7 +33,7 @@ TEST(Params, ShippedInisLoad) {
 
 TEST(Params, SaveLoadRoundTrip) {
   Params a;
-  a.method = "thesis";
+  a.method = roadslam::boundary::Method::Thesis;
   a.curb_min_jump_m = 0.07;
   a.memory_frames = 4;
   a.ground.max_slope = 0.2;
@@ -41,7 +41,7 @@ TEST(Params, SaveLoadRoundTrip) {
   a.saveToConfigFile(mem);
   Params b;
   b.loadFromConfigFile(mem);
-  EXPECT_EQ(b.method, "thesis");
+  EXPECT_EQ(b.method, roadslam::boundary::Method::Thesis);
   EXPECT_DOUBLE_EQ(b.curb_min_jump_m, 0.07);
   EXPECT_EQ(b.memory_frames, 4);
   EXPECT_DOUBLE_EQ(b.ground.max_slope, 0.2);
@@ -59,5 +59,11 @@ TEST(Params, BadKeysAreNamed) {
   }
   mrpt::config::CConfigFileMemory m2;
   m2.write("boundary", "method", std::string("magic"));
-  EXPECT_THROW(p.loadFromConfigFile(m2), std::runtime_error);
+  try {
+    p.loadFromConfigFile(m2);
+    FAIL() << "unknown method accepted";
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();  // names the key, the value and every valid method
+    for (const char* w : {"method", "magic", "ransac", "thesis"}) EXPECT_NE(what.find(w), std::string::npos) << what;
+  }
 }

@@ -15,10 +15,17 @@ class CConfigFileBase;
 
 namespace roadslam::boundary {
 
+/// Boundary fit: `ransac` (curb points along the rings, RANSAC polynomial per side) or `thesis`
+/// (the MATLAB thesis baseline: clusters -> rectangles -> RANSAC line over their inner corners).
+enum class Method { Ransac, Thesis };
+
+/// The ini name of \p m (`ransac`, `thesis`).
+std::string toString(Method m);
+/// The method named \p name; throws std::invalid_argument listing the valid names for an unknown one.
+Method methodFromString(const std::string& name);
+
 struct Params {
-  /// Boundary fit: `ransac` (curb points along the rings, RANSAC polynomial per side) or `thesis`
-  /// (the MATLAB thesis baseline: clusters -> rectangles -> RANSAC line over their inner corners).
-  std::string method = "ransac";
+  Method method = Method::Ransac;  ///< ini key `method`: ransac | thesis
 
   // Curb detection: a low point whose 3x3-cell neighbourhood spans a curb height, next to ground,
   // with nothing taller in reach (the rings of a VLP-16 cross curbs ahead at grazing angles, so the

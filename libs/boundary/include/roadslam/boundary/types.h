@@ -25,7 +25,7 @@ enum class PointClass : uint8_t { Ground = 0, Curb = 1, Obstacle = 2, Other = 3 
 /// One side of the road.
 struct SideBoundary {
   bool found = false;
-  std::string reason;                   ///< why not found (or "ok")
+  std::string reason;                   ///< why not found, or "ok" / how found: text for outputs and summaries; code decides on `found`
   double confidence = 0;                ///< covered band fraction x inlier fraction [0..1]
   std::vector<double> coeffs;           ///< d = sum c_i s^i in the fit frame of BoundaryFrame (path_curvature, bend_s, bend_curvature; all 0 / no bend: y = sum c_i x^i, vehicle frame) [m, -, 1/m]
   std::vector<Vec2> polyline_vehicle;   ///< vertices in the vehicle frame [m]
