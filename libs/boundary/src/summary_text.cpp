@@ -16,8 +16,7 @@ std::string summaryText(const nlohmann::json& s, const std::string& out_dir) {
                                          100.0 * s.value("both_found_rate", 0.0)));
   lines.emplace_back("ms per frame", formatText("%.1f mean, %.1f max (detector only)", s.value("ms_per_frame_mean", 0.0),
                                                 s.value("ms_per_frame_max", 0.0)));
-  const size_t warnings = s.contains("warnings") ? s["warnings"].size() : 0;
-  lines.emplace_back("warnings", warnings == 0 ? "none" : std::to_string(warnings) + " (on stderr and in summary.json)");
+  lines.emplace_back("warnings", warningsValue(s.contains("warnings") ? s["warnings"].size() : 0));
   lines.emplace_back("outputs", out_dir + " (boundaries.jsonl, frames/, summary.json)");
   return alignedLines(lines);
 }

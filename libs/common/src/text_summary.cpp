@@ -32,4 +32,8 @@ std::string formatText(const char* fmt, ...) {
   return s;
 }
 
+std::string warningsValue(size_t count) {
+  return count == 0 ? "none" : std::to_string(count) + " (on stderr and in summary.json)";
+}
+
 }  // namespace roadslam

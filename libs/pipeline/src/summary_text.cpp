@@ -38,8 +38,7 @@ std::string summaryText(const nlohmann::json& s, const std::string& out_dir) {
     lines.emplace_back("CAN prior", formatText("%d priors used, %d missing", c.value("priors_used", 0),
                                                c.value("priors_missing", 0)));
   }
-  const size_t warnings = s.contains("warnings") ? s["warnings"].size() : 0;
-  lines.emplace_back("warnings", warnings == 0 ? "none" : std::to_string(warnings) + " (on stderr and in summary.json)");
+  lines.emplace_back("warnings", warningsValue(s.contains("warnings") ? s["warnings"].size() : 0));
   lines.emplace_back("outputs", out_dir + " (trajectory.tum, maps, frames.csv, summary.json)");
   return alignedLines(lines);
 }

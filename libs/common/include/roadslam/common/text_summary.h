@@ -15,5 +15,7 @@ std::string alignedLines(const SummaryLines& lines);
 
 /// printf-style formatting into a std::string (for the values of alignedLines).
 std::string formatText(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
+/// The "warnings" line's value for \p count warnings: "none", or where the person finds them.
+std::string warningsValue(size_t count);
 
 }  // namespace roadslam
