@@ -16,6 +16,7 @@
 #include "roadslam/mapping/map_outputs.h"
 #include "roadslam/mapping/mapper.h"
 #include "roadslam/pipeline/can_prior.h"
+#include "roadslam/pipeline/pipeline.h"
 #include "roadslam/sources/scan_source.h"
 #include "roadslam/velodyne/decoder_params.h"
 
@@ -77,29 +78,6 @@ nlohmann::json loopsJson(const mapping::Mapper& m) {
   return {{"accepted", acc}, {"rejected", rej}};
 }
 
-/// The OctoMap follows the graph: a new keyframe is queued, a loop closure rebuilds it at the new poses.
-void feedOctoMap(mapping::OctoMapWorker& octo, const mapping::Mapper& mapper, size_t keyframes_before, bool loop,
-                 double spacing_m) {
-  const auto& kfs = mapper.keyframes();
-  if (loop) {
-    octo.rebuild(mapping::octoMapItems(kfs, mapper.keyframePoses(), spacing_m));
-  } else if (kfs.size() > keyframes_before && mapping::takesOctoMap(kfs, kfs.size() - 1, spacing_m)) {
-    octo.push({kfs.back().points_lidar, mapper.graph().pose(kfs.size() - 1)});
-  }
-}
-
-bool converged(odometry::FrameStatus s) { return s == odometry::FrameStatus::Ok; }
-
-/// The wheel odometry learns its yaw-rate bias and speed scale from the LiDAR between two
-/// converged frames (a Degenerate frame's motion came partly from the wheels themselves).
-void calibrateCan(CanPriorStream& can, const std::vector<odometry::FrameResult>& frames) {
-  if (frames.size() < 2) return;
-  const auto& prev = frames[frames.size() - 2];
-  const auto& cur = frames.back();
-  if (!(converged(prev.status) || prev.status == odometry::FrameStatus::First) || !converged(cur.status)) return;
-  can.observeLidarMotion(prev.stamp_s, cur.stamp_s, prev.T_world_lidar.inverse() * cur.T_world_lidar);
-}
-
 }  // namespace
 
 std::string effectiveMapConfig(const mrpt::config::CConfigFileBase& cfg) {
@@ -114,47 +92,32 @@ MapOutcome runMapJob(const MapRequest& req) {
   params.load(*cfg);
   const auto unknown_keys = cfg->checkEntries(req.allow_unknown_keys);
   if (!req.can_log_path.empty() && req.vehicle_ini_path.empty()) throw std::runtime_error("--can needs --vehicle (the car's vehicle ini)");
-  auto stream = sources::openScanSource(req.input_path, *cfg, req.times_path);
-  // An input that gives no sweep at all is an error before any output exists.
-  std::optional<Scan> first = stream->next();
-  if (!first) {
-    const std::string err = stream->errorMessage();
-    throw std::runtime_error("input '" + req.input_path + "' gives no sweep" + (err.empty() ? "" : ": " + err));
-  }
+  auto source = openNonEmptySource(req.input_path, *cfg, req.times_path);
   prepareOutDir(req.out_dir);
   writeFileAtomically(req.out_dir + "/config_used.ini", params.used());
 
   MapOutcome out;
-  odometry::Odometry odo(params.odometry);
   mapping::Mapper mapper(params.mapper);
-  ProgressBar bar("roadslam-map", stream->sizeHint());
-  const auto t0 = std::chrono::steady_clock::now();
-  double ms_mapping = 0;
   std::unique_ptr<mapping::OctoMapWorker> octo;
   if (params.maps.octomap.enabled) octo = std::make_unique<mapping::OctoMapWorker>(params.maps.octomap);
   std::unique_ptr<CanPriorStream> can;
-  if (!req.can_log_path.empty()) {
-    can = std::make_unique<CanPriorStream>(req.can_log_path, req.vehicle_ini_path, *cfg);
-  }
+  if (!req.can_log_path.empty()) can = std::make_unique<CanPriorStream>(req.can_log_path, req.vehicle_ini_path, *cfg);
+  Stages stages;
+  auto odometry = std::make_unique<OdometryPoses>(params.odometry, std::move(can), false);
+  const OdometryPoses& odo = *odometry;
+  stages.poses = std::move(odometry);
+  stages.mapper = &mapper;
+  stages.octomap = octo.get();
+  stages.octomap_keyframe_spacing_m = params.maps.octomap.keyframe_spacing_m;
+  Pipeline pipe(std::move(source), std::move(stages));
+  const sources::ScanSource* stream = &pipe.source();
+  ProgressBar bar("roadslam-map", stream->sizeHint());
+  const auto t0 = std::chrono::steady_clock::now();
   while (!stopRequested()) {
     if (req.max_frames && out.frames.size() >= req.max_frames) break;
-    auto scan = first ? std::move(first) : stream->next();
-    first.reset();
-    if (!scan) break;
-    std::optional<odometry::MotionPrior> prior;
-    std::optional<mapping::WheelMotion> wheel;
-    if (can && !out.frames.empty()) {
-      const double t_prev = out.frames.back().stamp_s, t_curr = odo.poseTimeOf(*scan);
-      prior = can->between(t_prev, t_curr);
-      if (const auto T_b = can->baseMotion(t_prev, t_curr)) wheel = mapping::WheelMotion{*T_b, can->baseToLidar()};
-    }
-    out.frames.push_back(odo.process(std::move(*scan), prior));
-    if (can) calibrateCan(*can, out.frames);
-    const auto tm = std::chrono::steady_clock::now();
-    const size_t keyframes_before = mapper.keyframes().size();
-    const bool loop = mapper.addFrame(out.frames.back(), odo.lastFramePoints(), wheel);
-    if (octo) feedOctoMap(*octo, mapper, keyframes_before, loop, params.maps.octomap.keyframe_spacing_m);
-    ms_mapping += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - tm).count();
+    auto f = pipe.next();
+    if (!f) break;
+    out.frames.push_back(std::move(*f->pose.odometry));
     if (req.progress) bar.update(out.frames.size());
   }
   bar.finish();
@@ -184,7 +147,7 @@ MapOutcome runMapJob(const MapRequest& req) {
   out.summary["malformed_packets"] = st.malformed_packets;
   out.summary["partial_sweeps"] = st.partial_sweeps;
   out.summary["interrupted"] = out.interrupted;
-  if (can) {
+  if (const CanPriorStream* can = odo.can()) {
     out.summary["can"] = {{"input", can->describe()}, {"frames", can->framesRead()},
                           {"priors_used", can->priorsGiven()}, {"priors_missing", can->priorsMissing()},
                           {"calibration", can->calibrationJson()}};
@@ -194,7 +157,7 @@ MapOutcome runMapJob(const MapRequest& req) {
   out.summary["loop_candidates_rejected"] = loops["rejected"].size();
   out.summary["loops"] = loops;
   out.summary["can_edges"] = mapper.canEdges();
-  out.summary["ms_mapping_total"] = ms_mapping;
+  out.summary["ms_mapping_total"] = pipe.totals().maps;
   const auto ms = mapping::writeMaps(req.out_dir, mapper, {out.T_map_lidar.begin(), out.T_map_lidar.end()},
                                      params.maps, octo.get());
   out.summary["maps"] = {{"points", ms.points}, {"octomap_keyframes", ms.octomap_keyframes},

@@ -23,4 +23,12 @@ namespace roadslam::odometry {
 std::vector<Eigen::Vector3d> deskew(const Scan& scan, const Eigen::Isometry3d& delta_T_start_end,
                                     double sweep_duration_s, double reference_fraction = 0.0);
 
+/// Deskews \p scan in place between two known poses (a given trajectory, or the odometry's poses
+/// around a sweep): every point, fired at scan.stamp_s + t, moves into the lidar frame at the
+/// reference pose \p T_map_ref: p_ref = T_map_ref^-1 T_map_lidar(t) p, with T_map_lidar(t)
+/// interpolated (slerp) between \p T_map_start (t = 0) and \p T_map_end (t = \p duration_s).
+/// Rings and times are kept; a sweep without point times is left as it is.
+void deskewBetween(Scan& scan, const Eigen::Isometry3d& T_map_start, const Eigen::Isometry3d& T_map_end,
+                   double duration_s, const Eigen::Isometry3d& T_map_ref);
+
 }  // namespace roadslam::odometry

@@ -15,7 +15,7 @@
 namespace fs = std::filesystem;
 using namespace roadslam;
 
-using namespace roadslam::boundary::test;
+using namespace roadslam::pipeline::bounds_test;
 
 // Urban loop start (straight street, curbs both sides, trees, poles, oncoming cars), parking lanes
 // empty so both curbs are in view: the targets of the issue hold.
@@ -85,7 +85,7 @@ TEST(SimDrive, ParkedCarsHideTheRightCurbAndSaySo) {
   EXPECT_LE(r.m.lateral_error_mean_m, 0.10);
   EXPECT_LE(r.m.lateral_error_p95_m, 0.25);
 
-  const auto view = boundary::test::curbVisibility(drive, std::string(ROADSLAM_SOURCE_DIR) + "/ini/bounds.ini", -1);
+  const auto view = pipeline::bounds_test::curbVisibility(drive, std::string(ROADSLAM_SOURCE_DIR) + "/ini/bounds.ini", -1);
   size_t unexplained = 0, seen = 0, seen_found = 0, unseen = 0, unseen_ok = 0;
   std::ifstream f(r.out_dir + "/boundaries.jsonl");
   std::string line;

@@ -1,12 +1,12 @@
 // roadslam-bounds' summary for a person; summary.json (and --json) hold every field.
 #include <string>
 
-#include "roadslam/boundary/job.h"
+#include "roadslam/pipeline/bounds_job.h"
 #include "roadslam/common/text_summary.h"
 
-namespace roadslam::boundary {
+namespace roadslam::pipeline {
 
-std::string summaryText(const nlohmann::json& s, const std::string& out_dir) {
+std::string boundsSummaryText(const nlohmann::json& s, const std::string& out_dir) {
   SummaryLines lines;
   lines.emplace_back("input", s.value("input", std::string("?")));
   lines.emplace_back("mode", s.value("mode", std::string("?")) + ", poses from " + s.value("poses", std::string("?")));
@@ -21,4 +21,4 @@ std::string summaryText(const nlohmann::json& s, const std::string& out_dir) {
   return alignedLines(lines);
 }
 
-}  // namespace roadslam::boundary
+}  // namespace roadslam::pipeline

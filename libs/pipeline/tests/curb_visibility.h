@@ -13,13 +13,14 @@
 #include <unordered_map>
 #include <vector>
 
-#include "roadslam/boundary/poses.h"
+#include "roadslam/common/pose_interpolation.h"
+#include "roadslam/odometry/deskew.h"
 #include "roadslam/common/config.h"
 #include "roadslam/datasets/trajectory_io.h"
 #include "roadslam/eval/boundary_metrics.h"
 #include "roadslam/sources/scan_source.h"
 
-namespace roadslam::boundary::test {
+namespace roadslam::pipeline::bounds_test {
 
 struct CurbView {
   double stamp_s = 0;            ///< reference time of the sweep [s]
@@ -57,7 +58,7 @@ inline std::vector<SweepView> curbVisibilityBoth(const std::string& drive, const
     const auto b = interpolatePose(traj.stamps_s, traj.poses, scan->stamp_s + dur);
     const auto T = interpolatePose(traj.stamps_s, traj.poses, t_ref);
     if (!a || !b || !T) continue;
-    deskewBetween(*scan, *a, *b, dur, *T);
+    odometry::deskewBetween(*scan, *a, *b, dur, *T);
     const Eigen::Isometry3d T_lidar_map = T->inverse();
     const Eigen::Vector2d c = T->translation().head<2>();
     std::vector<std::vector<Eigen::Vector2d>> gt_v;
@@ -129,4 +130,4 @@ inline std::vector<CurbView> curbVisibility(const std::string& drive, const std:
   return out;
 }
 
-}  // namespace roadslam::boundary::test
+}  // namespace roadslam::pipeline::bounds_test

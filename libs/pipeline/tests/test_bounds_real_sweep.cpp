@@ -14,7 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "roadslam/boundary/detector.h"
-#include "roadslam/boundary/job.h"
+#include "roadslam/pipeline/bounds_job.h"
 #include "roadslam/common/config.h"
 #include "roadslam/sources/scan_source.h"
 
@@ -79,14 +79,14 @@ TEST(RealSweep, NoFloorInViewIsReportedNotGuessed) {
 TEST(RealSweep, AppJobWritesPicturesAndReasons) {
   for (const auto& path : {kVeloView, kMrpt}) {
     if (!fs::exists(path)) GTEST_SKIP() << "absent: " << path;
-    boundary::BoundsRequest req;
+    pipeline::BoundsRequest req;
     req.config_path = std::string(ROADSLAM_SOURCE_DIR) + "/ini/bounds.ini";
     req.input_path = path;
     req.out_dir = std::string(ROADSLAM_BINARY_DIR) + "/test_data/boundary_real_" + fs::path(path).stem().string();
     req.png_every = 1;
     req.max_frames = 6;
     req.progress = false;
-    const auto summary = boundary::runBoundsJob(req);
+    const auto summary = pipeline::runBoundsJob(req);
     EXPECT_GE(summary["frames"].get<int>(), 3) << path;
     EXPECT_TRUE(fs::exists(req.out_dir + "/top_view.png"));
     EXPECT_TRUE(fs::exists(req.out_dir + "/frames/000000.png"));

@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-namespace roadslam::boundary {
+namespace roadslam::pipeline {
 
 struct BoundsRequest {
   std::string config_path;      ///< ini with [boundary], [ground], [velodyne], [odometry], ...
@@ -38,6 +38,6 @@ nlohmann::json runBoundsJob(const BoundsRequest& req);
 
 /// runBoundsJob's summary for a person: aligned lines (input, mode, frames, found rates, ms per frame,
 /// outputs in \p out_dir). summary.json keeps every field.
-std::string summaryText(const nlohmann::json& summary, const std::string& out_dir);
+std::string boundsSummaryText(const nlohmann::json& summary, const std::string& out_dir);
 
-}  // namespace roadslam::boundary
+}  // namespace roadslam::pipeline

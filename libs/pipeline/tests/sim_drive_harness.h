@@ -11,12 +11,12 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "roadslam/boundary/job.h"
+#include "roadslam/pipeline/bounds_job.h"
 #include "roadslam/eval/boundary_metrics.h"
 #include "roadslam/sim/outputs.h"
 #include "roadslam/sim/simulator.h"
 
-namespace roadslam::boundary::test {
+namespace roadslam::pipeline::bounds_test {
 
 namespace fs = std::filesystem;
 
@@ -48,7 +48,7 @@ struct Mode {
 };
 
 inline Run runBounds(const std::string& drive, const std::string& ini, const std::string& tag, Mode mode = {}) {
-  boundary::BoundsRequest req;
+  pipeline::BoundsRequest req;
   req.config_path = std::string(ROADSLAM_SOURCE_DIR) + "/ini/" + ini;
   req.input_path = drive + "/velodyne.pcap";
   if (mode.gt_poses) req.trajectory_path = drive + "/gt_trajectory.tum";
@@ -58,7 +58,7 @@ inline Run runBounds(const std::string& drive, const std::string& ini, const std
   req.progress = false;
   Run r;
   r.out_dir = req.out_dir;
-  r.summary = boundary::runBoundsJob(req);
+  r.summary = pipeline::runBoundsJob(req);
   r.m = eval::evaluateBoundaryFiles(drive + "/gt_boundaries.json", drive + "/gt_trajectory.tum",
                                     req.out_dir + "/boundaries.jsonl");
   std::cout << tag << ": " << eval::toJson(r.m).dump() << "\n";
@@ -115,4 +115,4 @@ inline std::pair<int, int> verticesOnMovingCars(const std::string& drive, const 
 }
 
 
-}  // namespace roadslam::boundary::test
+}  // namespace roadslam::pipeline::bounds_test

@@ -15,7 +15,7 @@
 #include "sim_drive_harness.h"
 
 using namespace roadslam;
-using namespace roadslam::boundary::test;
+using namespace roadslam::pipeline::bounds_test;
 
 TEST(SimLoop, WholeUrbanLoopAsReached) {
   const auto drive = cachedDrive("urban_loop_full", "urban-loop.ini", 0.0, nullptr);

@@ -1,0 +1,92 @@
+#pragma once
+/// \file pipeline.h
+/// The one orchestrator of the chain: source -> poses (odometry, CAN prior; or a trajectory) ->
+/// deskew -> maps (keyframes, pose graph, loop closure, OctoMap) -> boundaries. A job builds the
+/// stages it needs and pulls sweeps through them one at a time, with each stage's wall time and each
+/// sweep's results; `roadslam-map`, `roadslam-bounds`, the viewer's "run while replaying" and the
+/// experiment runner all drive this one loop (docs/architecture.md).
+///
+/// The stages with state that outlives a pass (the mapper, the boundary detector, the OctoMap) are
+/// owned by the job and lent to the pipeline: a two-pass job runs two pipelines over one detector.
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "roadslam/boundary/detector.h"
+#include "roadslam/common/scan.h"
+#include "roadslam/pipeline/pose_stage.h"
+#include "roadslam/sources/scan_source.h"
+
+namespace roadslam::mapping {
+class Mapper;
+class OctoMapWorker;
+}  // namespace roadslam::mapping
+
+namespace roadslam::pipeline {
+
+/// Wall time of each stage for one sweep, or summed over a run [ms].
+struct StageTimes {
+  double source = 0;      ///< reading and decoding the sweep
+  double poses = 0;       ///< the pose stage (odometry: preprocessing, registration, local map)
+  double deskew = 0;      ///< deskewing the kept sweep into its reference pose (boundary stage only)
+  double maps = 0;        ///< keyframes, pose graph, loop closure, OctoMap queueing
+  double boundaries = 0;  ///< the boundary detector
+  StageTimes& operator+=(const StageTimes& o);
+};
+
+/// What the boundary stage does with a sweep: nothing, add its curbs to the whole-drive curb map
+/// (BoundaryDetector::accumulate, a first pass), or detect its boundaries.
+enum class BoundaryUse { None, Accumulate, Detect };
+
+struct Stages {
+  std::unique_ptr<PoseStage> poses;               ///< required
+  mapping::Mapper* mapper = nullptr;              ///< maps stage; needs OdometryPoses (points, results)
+  mapping::OctoMapWorker* octomap = nullptr;      ///< fed from the mapper's keyframes
+  double octomap_keyframe_spacing_m = 0;          ///< [octomap] keyframe_spacing_m
+  boundary::BoundaryDetector* boundaries = nullptr;
+  BoundaryUse boundary_use = BoundaryUse::Detect;
+};
+
+/// One sweep through the stages.
+struct PipelineFrame {
+  size_t index = 0;  ///< 0-based, every sweep the source gave
+  SweepPose pose;
+  /// The sweep, deskewed into pose.ref where the pose allows it; kept only when a boundary stage runs.
+  std::optional<Scan> scan;
+  bool loop_closed = false;  ///< the maps stage accepted a loop at this sweep (keyframe poses moved)
+  std::optional<boundary::BoundaryFrame> boundary;  ///< BoundaryUse::Detect and a pose
+  StageTimes ms;
+};
+
+class Pipeline {
+ public:
+  /// Throws std::invalid_argument when \p stages has no pose stage.
+  Pipeline(std::unique_ptr<sources::ScanSource> source, Stages stages);
+  ~Pipeline();
+
+  /// The next sweep through every stage; nullopt at the end of the source (or, live, when no sweep
+  /// came within the source's timeout: source().finished() tells them apart). Per-sweep problems come
+  /// back in the frame (no pose, a failed registration); only a broken invariant throws.
+  std::optional<PipelineFrame> next();
+
+  sources::ScanSource& source() { return *source_; }
+  const sources::ScanSource& source() const { return *source_; }
+  PoseStage& poses() { return *stages_.poses; }
+  const StageTimes& totals() const { return totals_; }  ///< summed over the frames so far
+  size_t frames() const { return frames_; }
+
+ private:
+  std::unique_ptr<sources::ScanSource> source_;
+  Stages stages_;
+  StageTimes totals_;
+  size_t frames_ = 0;
+};
+
+/// Opens the recording \p path (sources::openScanSource) and reads its first sweep: an input that
+/// gives none is an error ("input 'X' gives no sweep: <why>") before any output exists. The sweep
+/// read is handed out again by the returned source's first next().
+std::unique_ptr<sources::ScanSource> openNonEmptySource(const std::string& path, const mrpt::config::CConfigFileBase& cfg,
+                                                        const std::string& times_path = "");
+
+}  // namespace roadslam::pipeline

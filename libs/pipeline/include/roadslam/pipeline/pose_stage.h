@@ -1,0 +1,115 @@
+#pragma once
+/// \file pose_stage.h
+/// The pipeline's pose stage: a pose per sweep, from the odometry (with the CAN motion prior when a
+/// log is given), from a given trajectory, or replayed from an earlier pass over the same recording.
+/// The stages after it (maps, boundaries) see only a SweepPose and never know which one made it.
+///
+/// Frames: T_map_lidar (map = the first sweep's lidar frame for the odometry, the trajectory's own
+/// frame for a given one). Times [s] on the recording's clock.
+
+#include <Eigen/Geometry>
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "roadslam/common/scan.h"
+#include "roadslam/odometry/odometry.h"
+
+namespace mrpt::config {
+class CConfigFileBase;
+}
+
+namespace roadslam::pipeline {
+
+class CanPriorStream;
+
+/// A sweep's pose: the lidar at the sweep's start and end (the deskew's ends) and at its reference
+/// time t_ref (the frame the sweep is deskewed into), or why there is none.
+struct SweepPose {
+  double stamp_s = 0;  ///< the sweep's stamp (its first point) [s]
+  bool ok = false;
+  std::string why;     ///< when not ok: why there is no pose
+  Eigen::Isometry3d start = Eigen::Isometry3d::Identity(), end = Eigen::Isometry3d::Identity(),
+                    ref = Eigen::Isometry3d::Identity();  ///< T_map_lidar
+  double t_ref = 0, dur = 0;  ///< [s]
+  bool deskew = false;        ///< start/end are known: the sweep can be deskewed between them
+  /// The odometry's result when the odometry made the pose (frames.csv, the pose graph).
+  std::optional<odometry::FrameResult> odometry;
+  /// With it, the odometry's deskewed, preprocessed points (lidar frame, valid until the next sweep).
+  const std::vector<Eigen::Vector3d>* points_lidar = nullptr;
+  /// Vehicle base motion since the previous sweep from the CAN log (pose-graph CAN edges), with the
+  /// lidar mounting on the base.
+  std::optional<Eigen::Isometry3d> T_baseprev_basecurr;
+  Eigen::Isometry3d T_base_lidar = Eigen::Isometry3d::Identity();
+};
+
+/// Moves the points of \p scan into the frame of \p pose.ref (odometry::deskewBetween) when the pose
+/// allows it; returns whether it did.
+bool deskewToReference(Scan& scan, const SweepPose& pose);
+
+class PoseStage {
+ public:
+  virtual ~PoseStage() = default;
+  /// The pose of \p scan. Never throws on data problems: a sweep without a pose comes back with
+  /// ok = false and why. Stages that keep the scan afterwards must construct the stage so that it
+  /// leaves the scan untouched (OdometryPoses' keep_scans).
+  virtual SweepPose pose(Scan& scan) = 0;
+  /// "odometry", "odometry+can" or the trajectory's path: for the summaries.
+  virtual std::string describe() const = 0;
+};
+
+/// Poses from the odometry, with the CAN log's motion prior when one is given. Between two converged
+/// frames the wheel odometry learns its bias and scale from the LiDAR (CanPriorStream).
+class OdometryPoses : public PoseStage {
+ public:
+  /// \p keep_scans false: the sweep's points move into the odometry (nothing later needs them).
+  OdometryPoses(const odometry::Params& params, std::unique_ptr<CanPriorStream> can, bool keep_scans);
+  ~OdometryPoses() override;
+  SweepPose pose(Scan& scan) override;
+  std::string describe() const override;
+
+  const odometry::Odometry& odometry() const { return odo_; }
+  /// The CAN prior when a log was given, else nullptr.
+  const CanPriorStream* can() const { return can_.get(); }
+
+ private:
+  odometry::Odometry odo_;
+  std::unique_ptr<CanPriorStream> can_;
+  bool keep_scans_ = false;
+  std::optional<odometry::FrameResult> prev_;  ///< the previous frame's result (any status)
+  Eigen::Isometry3d T_prev_ = Eigen::Isometry3d::Identity();  ///< the last pose given (T_map_lidar)
+  bool have_prev_ = false;
+};
+
+/// Poses interpolated in a given trajectory (TUM file, T_map_lidar), at the sweep's first and last
+/// firing and mid-sweep. Throws naming the file when it cannot be read.
+class TrajectoryPoses : public PoseStage {
+ public:
+  explicit TrajectoryPoses(const std::string& tum_path);
+  SweepPose pose(Scan& scan) override;
+  std::string describe() const override { return path_; }
+
+ private:
+  std::string path_;
+  std::vector<double> stamps_s_;
+  std::vector<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>> poses_;
+};
+
+/// The poses of an earlier pass over the same recording, in order (a two-pass job's second pass).
+/// Throws when a sweep's stamp differs from the recorded one (the recording changed between passes).
+class RecordedPoses : public PoseStage {
+ public:
+  RecordedPoses(std::vector<SweepPose> poses, std::string input, std::string origin);
+  SweepPose pose(Scan& scan) override;
+  std::string describe() const override { return origin_; }
+  bool exhausted() const { return next_ >= poses_.size(); }
+
+ private:
+  std::vector<SweepPose> poses_;
+  std::string input_, origin_;
+  size_t next_ = 0;
+};
+
+}  // namespace roadslam::pipeline

@@ -1,0 +1,122 @@
+#include "roadslam/pipeline/pipeline.h"
+
+#include <chrono>
+#include <stdexcept>
+
+#include "roadslam/mapping/mapper.h"
+#include "roadslam/mapping/octo_worker.h"
+
+namespace roadslam::pipeline {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+
+/// A source whose first sweep was read ahead (openNonEmptySource); everything else is the source's.
+class PeekedSource : public sources::ScanSource {
+ public:
+  PeekedSource(std::unique_ptr<sources::ScanSource> src, Scan first) : src_(std::move(src)), first_(std::move(first)) {}
+  std::optional<Scan> next() override {
+    if (first_) {
+      std::optional<Scan> s = std::move(first_);
+      first_.reset();
+      return s;
+    }
+    return src_->next();
+  }
+  bool finished() const override { return !first_ && src_->finished(); }
+  std::vector<sources::TimedGpsFix> takeGpsFixes() override { return src_->takeGpsFixes(); }
+  std::string describe() const override { return src_->describe(); }
+  sources::ScanSourceStats stats() const override { return src_->stats(); }
+  size_t sizeHint() const override { return src_->sizeHint(); }
+  std::string errorMessage() const override { return src_->errorMessage(); }
+  std::vector<std::string> warnings() const override { return src_->warnings(); }
+
+ private:
+  std::unique_ptr<sources::ScanSource> src_;
+  std::optional<Scan> first_;
+};
+
+/// The OctoMap follows the graph: a new keyframe is queued, a loop closure rebuilds it at the new poses.
+void feedOctoMap(mapping::OctoMapWorker& octo, const mapping::Mapper& mapper, size_t keyframes_before, bool loop,
+                 double spacing_m) {
+  const auto& kfs = mapper.keyframes();
+  if (loop) {
+    octo.rebuild(mapping::octoMapItems(kfs, mapper.keyframePoses(), spacing_m));
+  } else if (kfs.size() > keyframes_before && mapping::takesOctoMap(kfs, kfs.size() - 1, spacing_m)) {
+    octo.push({kfs.back().points_lidar, mapper.graph().pose(kfs.size() - 1)});
+  }
+}
+
+}  // namespace
+
+StageTimes& StageTimes::operator+=(const StageTimes& o) {
+  source += o.source, poses += o.poses, deskew += o.deskew, maps += o.maps, boundaries += o.boundaries;
+  return *this;
+}
+
+Pipeline::Pipeline(std::unique_ptr<sources::ScanSource> source, Stages stages)
+    : source_(std::move(source)), stages_(std::move(stages)) {
+  if (!source_) throw std::invalid_argument("Pipeline: no source");
+  if (!stages_.poses) throw std::invalid_argument("Pipeline: no pose stage");
+}
+
+Pipeline::~Pipeline() = default;
+
+std::optional<PipelineFrame> Pipeline::next() {
+  PipelineFrame f;
+  auto t = Clock::now();
+  std::optional<Scan> scan = source_->next();
+  f.ms.source = msSince(t);
+  if (!scan) return std::nullopt;
+  f.index = frames_++;
+
+  t = Clock::now();
+  f.pose = stages_.poses->pose(*scan);
+  f.ms.poses = msSince(t);
+
+  if (stages_.mapper) {
+    if (!f.pose.odometry || !f.pose.points_lidar) throw std::logic_error("Pipeline: the maps stage needs the odometry's poses");
+    t = Clock::now();
+    std::optional<mapping::WheelMotion> wheel;
+    if (f.pose.T_baseprev_basecurr) wheel = mapping::WheelMotion{*f.pose.T_baseprev_basecurr, f.pose.T_base_lidar};
+    const size_t keyframes_before = stages_.mapper->keyframes().size();
+    f.loop_closed = stages_.mapper->addFrame(*f.pose.odometry, *f.pose.points_lidar, wheel);
+    if (stages_.octomap) {
+      feedOctoMap(*stages_.octomap, *stages_.mapper, keyframes_before, f.loop_closed, stages_.octomap_keyframe_spacing_m);
+    }
+    f.ms.maps = msSince(t);
+  }
+
+  if (stages_.boundaries && stages_.boundary_use != BoundaryUse::None) {
+    if (f.pose.ok) {
+      t = Clock::now();
+      deskewToReference(*scan, f.pose);
+      f.ms.deskew = msSince(t);
+      t = Clock::now();
+      if (stages_.boundary_use == BoundaryUse::Accumulate) {
+        stages_.boundaries->accumulate(*scan, f.pose.ref, f.pose.t_ref);
+      } else {
+        f.boundary = stages_.boundaries->process(*scan, f.pose.ref, f.pose.t_ref);
+      }
+      f.ms.boundaries = msSince(t);
+    }
+    f.scan = std::move(scan);
+  }
+  totals_ += f.ms;
+  return f;
+}
+
+std::unique_ptr<sources::ScanSource> openNonEmptySource(const std::string& path, const mrpt::config::CConfigFileBase& cfg,
+                                                        const std::string& times_path) {
+  auto src = sources::openScanSource(path, cfg, times_path);
+  std::optional<Scan> first = src->next();
+  if (!first) {
+    const std::string err = src->errorMessage();
+    throw std::runtime_error("input '" + path + "' gives no sweep" + (err.empty() ? "" : ": " + err));
+  }
+  return std::make_unique<PeekedSource>(std::move(src), std::move(*first));
+}
+
+}  // namespace roadslam::pipeline

@@ -1,0 +1,185 @@
+// The orchestrator's own contract: sweeps through the stages in order, a first sweep read ahead and
+// handed out again, poses from a trajectory (exact where it is linear), deskewing into the reference
+// pose (a static wall seen from a moving sensor lands in one place), a two-pass replay that notices a
+// changed recording, and the stage wiring errors.
+#include <gtest/gtest.h>
+#include <mrpt/config/CConfigFileMemory.h>
+
+#include <cmath>
+#include <deque>
+#include <filesystem>
+#include <fstream>
+
+#include "roadslam/datasets/trajectory_io.h"
+#include "roadslam/mapping/mapper.h"
+#include "roadslam/pipeline/pipeline.h"
+
+using namespace roadslam;
+namespace fs = std::filesystem;
+
+namespace {
+
+/// Sweeps from memory, a real ScanSource: the pipeline cannot tell it from a recording.
+class MemorySource : public sources::ScanSource {
+ public:
+  explicit MemorySource(std::deque<Scan> scans) : scans_(std::move(scans)) {}
+  std::optional<Scan> next() override {
+    if (scans_.empty()) return std::nullopt;
+    Scan s = std::move(scans_.front());
+    scans_.pop_front();
+    ++stats_.sweeps;
+    return s;
+  }
+  bool finished() const override { return scans_.empty(); }
+  std::string describe() const override { return "memory"; }
+  sources::ScanSourceStats stats() const override { return stats_; }
+
+ private:
+  std::deque<Scan> scans_;
+  sources::ScanSourceStats stats_;
+};
+
+constexpr double kSpeed = 10.0;   // [m/s] along x
+constexpr double kPeriod = 0.1;   // [s] per sweep
+constexpr double kWallX = 20.0;   // a wall across the road at x = 20 m (map frame)
+
+/// A sensor moving at kSpeed along x from t = 0 sees the wall: each point fired at time t lies at
+/// x = kWallX - kSpeed * (stamp + t) in the lidar frame of its own firing.
+Scan wallSweep(double stamp_s) {
+  Scan s;
+  s.stamp_s = stamp_s;
+  s.has_point_times = true;
+  for (int i = 0; i <= 100; ++i) {
+    ScanPoint p;
+    p.t = static_cast<float>(kPeriod * i / 100.0);
+    p.x = static_cast<float>(kWallX - kSpeed * (stamp_s + p.t));
+    p.y = static_cast<float>(-5.0 + 0.1 * i);
+    s.points.push_back(p);
+  }
+  return s;
+}
+
+std::string writeLinearTrajectory(double t_end_s) {
+  datasets::Trajectory traj;
+  for (double t = 0; t <= t_end_s + 1e-9; t += 0.05) {
+    traj.stamps_s.push_back(t);
+    traj.poses.push_back(Eigen::Isometry3d(Eigen::Translation3d(kSpeed * t, 0, 0)));
+  }
+  const std::string path = (fs::temp_directory_path() / "roadslam_test_pipeline_linear.tum").string();
+  datasets::writeTum(path, traj);
+  return path;
+}
+
+std::deque<Scan> wallSweeps(int n, double t0 = 0.0) {
+  std::deque<Scan> out;
+  for (int k = 0; k < n; ++k) out.push_back(wallSweep(t0 + k * kPeriod));
+  return out;
+}
+
+}  // namespace
+
+TEST(Pipeline, TrajectoryPosesAreExactOnALinearDriveAndDeskewPutsTheWallInOnePlace) {
+  const std::string tum = writeLinearTrajectory(1.0);
+  pipeline::Stages st;
+  st.poses = std::make_unique<pipeline::TrajectoryPoses>(tum);
+  boundary::BoundaryDetector det{boundary::Params{}};
+  st.boundaries = &det;
+  pipeline::Pipeline pipe(std::make_unique<MemorySource>(wallSweeps(5)), std::move(st));
+  size_t n = 0;
+  while (auto f = pipe.next()) {
+    EXPECT_EQ(f->index, n++);
+    ASSERT_TRUE(f->pose.ok) << f->pose.why;
+    // mid-sweep pose: x = v * (stamp + T/2)
+    EXPECT_NEAR(f->pose.t_ref, f->pose.stamp_s + 0.5 * kPeriod, 1e-6);
+    EXPECT_NEAR(f->pose.ref.translation().x(), kSpeed * f->pose.t_ref, 1e-6);
+    ASSERT_TRUE(f->scan);
+    // Deskewed into the mid-sweep frame, every wall point sits at kWallX - x_ref.
+    const double x_expected = kWallX - f->pose.ref.translation().x();
+    double worst = 0;
+    for (const auto& p : f->scan->points) worst = std::max(worst, std::abs(p.x - x_expected));
+    EXPECT_LT(worst, kSpeed * kPeriod / 200 + 1e-4) << "one 0.5 ms deskew bucket of motion at most";
+    ASSERT_TRUE(f->boundary);
+    EXPECT_GE(f->ms.boundaries, 0.0);
+  }
+  EXPECT_EQ(n, 5u);
+  EXPECT_EQ(pipe.frames(), 5u);
+  EXPECT_GE(pipe.totals().boundaries, 0.0);
+}
+
+TEST(Pipeline, ASweepOutsideTheTrajectoryHasNoPoseAndReachesNoStage) {
+  const std::string tum = writeLinearTrajectory(0.3);
+  pipeline::Stages st;
+  st.poses = std::make_unique<pipeline::TrajectoryPoses>(tum);
+  boundary::BoundaryDetector det{boundary::Params{}};
+  st.boundaries = &det;
+  pipeline::Pipeline pipe(std::make_unique<MemorySource>(wallSweeps(1, 5.0)), std::move(st));
+  const auto f = pipe.next();
+  ASSERT_TRUE(f);
+  EXPECT_FALSE(f->pose.ok);
+  EXPECT_EQ(f->pose.why, "no pose in the trajectory at this sweep");
+  EXPECT_FALSE(f->boundary);
+  EXPECT_FALSE(pipe.next());
+}
+
+TEST(Pipeline, RecordedPosesReplayInOrderAndNoticeAChangedRecording) {
+  std::vector<pipeline::SweepPose> rec(2);
+  rec[0].stamp_s = 0.0, rec[1].stamp_s = 0.1;
+  rec[0].ok = rec[1].ok = true;
+  pipeline::RecordedPoses poses(rec, "in.pcap", "odometry");
+  Scan a = wallSweep(0.0), b = wallSweep(0.2);
+  EXPECT_TRUE(poses.pose(a).ok);
+  try {
+    poses.pose(b);
+    FAIL() << "a sweep stamped 0.2 s where 0.1 s was recorded must be refused";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("'in.pcap' gave other sweeps on its second reading (sweep 1)"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Pipeline, StageWiringErrors) {
+  EXPECT_THROW(pipeline::Pipeline(std::make_unique<MemorySource>(wallSweeps(1)), pipeline::Stages{}), std::invalid_argument);
+  // The maps stage needs the odometry's results and points; a trajectory has neither.
+  pipeline::Stages st;
+  st.poses = std::make_unique<pipeline::TrajectoryPoses>(writeLinearTrajectory(1.0));
+  mapping::Mapper mapper{mapping::MapperParams{}};
+  st.mapper = &mapper;
+  pipeline::Pipeline pipe(std::make_unique<MemorySource>(wallSweeps(1)), std::move(st));
+  EXPECT_THROW(pipe.next(), std::logic_error);
+}
+
+TEST(Pipeline, OpenNonEmptySourceHandsOutTheFirstSweepAgain) {
+  const std::string pcap = std::string(ROADSLAM_SOURCE_DIR) + "/rawlogs/boxroom-vlp16.pcap";
+  mrpt::config::CConfigFileMemory cfg;
+  auto plain = sources::openScanSource(pcap, cfg);
+  auto peeked = pipeline::openNonEmptySource(pcap, cfg);
+  size_t n = 0;
+  while (true) {
+    const auto a = plain->next();
+    const auto b = peeked->next();
+    ASSERT_EQ(a.has_value(), b.has_value()) << "at sweep " << n;
+    if (!a) break;
+    EXPECT_EQ(a->stamp_s, b->stamp_s);
+    EXPECT_EQ(a->points.size(), b->points.size());
+    ++n;
+  }
+  EXPECT_GT(n, 1u);
+  EXPECT_EQ(plain->stats().sweeps, peeked->stats().sweeps);
+  EXPECT_EQ(peeked->describe(), plain->describe());
+}
+
+TEST(Pipeline, AnInputWithNoSweepIsAnErrorNamingIt) {
+  const fs::path empty = fs::temp_directory_path() / "roadslam_test_pipeline_empty.pcap";
+  {
+    std::ofstream f(empty, std::ios::binary);
+    // a valid pcap global header (LINKTYPE_ETHERNET) and no packet
+    const unsigned char hdr[24] = {0xd4, 0xc3, 0xb2, 0xa1, 2, 0, 4, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0xff, 0xff, 0, 0, 1, 0, 0, 0};
+    f.write(reinterpret_cast<const char*>(hdr), sizeof hdr);
+  }
+  mrpt::config::CConfigFileMemory cfg;
+  try {
+    pipeline::openNonEmptySource(empty.string(), cfg);
+    FAIL() << "an empty capture gives no sweep";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("input '" + empty.string() + "' gives no sweep"), std::string::npos) << e.what();
+  }
+}
