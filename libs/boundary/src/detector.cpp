@@ -322,7 +322,7 @@ BoundaryFrame BoundaryDetector::process(const Scan& scan, const Eigen::Isometry3
   }
 
   if (f.points == 0 || f.ground_points == 0) {
-    f.status = f.points == 0 ? "no_points" : "no_ground";
+    f.status = f.points == 0 ? FrameStatus::NoPoints : FrameStatus::NoGround;
     const std::string why = f.points == 0 ? "no points in the sweep" : "no ground found: heights above the road unknown";
     f.left.reason = f.right.reason = why;
   } else {

@@ -8,6 +8,16 @@
 #include "roadslam/common/atomic_file.h"
 
 namespace roadslam::boundary {
+
+const char* toString(FrameStatus s) {
+  switch (s) {
+    case FrameStatus::Ok: return "ok";
+    case FrameStatus::NoPoints: return "no_points";
+    case FrameStatus::NoGround: return "no_ground";
+  }
+  return "?";
+}
+
 namespace {
 
 nlohmann::json pts(const std::vector<Vec2>& v) {
@@ -35,7 +45,7 @@ nlohmann::json toJson(const BoundaryFrame& f, bool with_grid) {
   nlohmann::json j;
   j["index"] = f.index;
   j["stamp_s"] = f.stamp_s;
-  j["status"] = f.status;
+  j["status"] = toString(f.status);
   j["path_curvature"] = f.path_curvature;
   j["bend_s_m"] = f.bend_s;
   j["bend_curvature"] = f.bend_curvature;

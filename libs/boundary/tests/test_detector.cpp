@@ -42,7 +42,7 @@ TEST(Detector, StraightCurbsFoundAtTheirLines) {
   EXPECT_LT(maxLateralError(f.right, -3.5), 0.10);
   EXPECT_GE(f.left.polyline_vehicle.front().x, 5.0 - 1e-9);
   EXPECT_GT(f.left.confidence, 0.1);
-  EXPECT_EQ(f.status, "ok");
+  EXPECT_EQ(f.status, FrameStatus::Ok);
 }
 
 TEST(Detector, ParkedCarIsAnObstacleNotABoundary) {
@@ -97,14 +97,14 @@ TEST(Detector, SweepFullOfVehiclesSaysWhichSideAndWhy) {
 TEST(Detector, NoGroundAndNoPointsAreReported) {
   BoundaryDetector det(defaults());
   const auto empty = det.process(roadslam::Scan{}, Eigen::Isometry3d::Identity(), 0.0);
-  EXPECT_EQ(empty.status, "no_points");
+  EXPECT_EQ(empty.status, FrameStatus::NoPoints);
   EXPECT_EQ(empty.left.reason, "no points in the sweep");
   Road road;
   road.sensor_height = 8.0;  // the detector expects 1.9 m: nothing near its ground
   road.left_y.reset();
   road.right_y.reset();
   const auto f = det.process(castSweep(road), Eigen::Isometry3d::Identity(), 0.1);
-  EXPECT_EQ(f.status, "no_ground");
+  EXPECT_EQ(f.status, FrameStatus::NoGround);
   EXPECT_NE(f.right.reason.find("no ground"), std::string::npos);
 }
 

@@ -89,7 +89,7 @@ Odometry::~Odometry() = default;
 
 Eigen::Isometry3d Odometry::predict(const std::optional<MotionPrior>& prior) const {
   if (prior) return prior->T_prev_curr;
-  return delta_last_;
+  return track_.delta_last;
 }
 
 bool Odometry::isStandstill(const Eigen::Isometry3d& delta, const std::optional<MotionPrior>& prior) const {
@@ -121,9 +121,9 @@ void Odometry::judgeDegeneracy(const registration::RegistrationResult& r, const 
                                Eigen::Isometry3d& T_est, FrameResult& res) const {
   // Along the predicted motion the scans may measure nothing real while ring-pattern voxels and
   // the full 6x6 spectrum look healthy (a tunnel): the motion's own information decides too.
-  const Eigen::Vector3d motion = T_pred.translation() - T_world_last_.translation();
+  const Eigen::Vector3d motion = T_pred.translation() - track_.T_world_last.translation();
   const Eigen::Vector3d n = motion.normalized();
-  if (params_.matcher == Matcher::VoxelMap && motion_known_ && motion.norm() >= params_.standstill_translation_m) {
+  if (params_.matcher == Matcher::VoxelMap && track_.motion_known && motion.norm() >= params_.standstill_translation_m) {
     res.motion_information = surface.along(n);
   }
   // Constant velocity is only as good as the motion it repeats: without a prior it replaces the
@@ -131,7 +131,7 @@ void Odometry::judgeDegeneracy(const registration::RegistrationResult& r, const 
   // car stands or tracking fails. The simulated highway's standing start, whose first motion was
   // a few decimetres of noise, had carried that on (RTE 0.16 -> 2 %); its slow, open start
   // (0.001-0.01 along the motion) then lost 15 % RTE to constant velocity while accelerating.
-  const bool weak_motion = (prior || motion_seen_) &&
+  const bool weak_motion = (prior || track_.motion_seen) &&
                            res.motion_information < params_.motion_degeneracy_threshold;
   // The full spectrum's weak eigenvectors mix rotation with translation and fall below the
   // threshold on open roads too: only an external prior replaces them (constant velocity there
@@ -153,21 +153,21 @@ void Odometry::updateUp(const FrameResult& res) {
   // The world's up direction: every frame's structures rotated into the world frame and summed
   // (robustly around the current estimate), so early errors average out; the prior pulls each new
   // frame's tilt towards it. Once frames are many, a drifting pose moves it by 1/N only.
-  const double kernel = up_frames_ > 0 ? params_.gravity_kernel_rad : 0.0;
-  up_scatter_ += verticalScatter(vertical_, res.T_world_lidar.linear(), up_world_, kernel);
+  const double kernel = up_.frames > 0 ? params_.gravity_kernel_rad : 0.0;
+  up_.scatter += verticalScatter(frame_.vertical, res.T_world_lidar.linear(), up_.world, kernel);
   Eigen::Vector2d info;
-  const Eigen::Vector3d up = upFromScatter(up_scatter_, up_world_, &info);
+  const Eigen::Vector3d up = upFromScatter(up_.scatter, up_.world, &info);
   if (info.minCoeff() < params_.gravity_min_information) return;
-  up_world_ = up;
-  ++up_frames_;
+  up_.world = up;
+  ++up_.frames;
 }
 
 void Odometry::updateKeyframe(FrameResult& res) {
-  const Eigen::Isometry3d d = T_world_keyframe_.inverse() * res.T_world_lidar;
+  const Eigen::Isometry3d d = track_.T_world_keyframe.inverse() * res.T_world_lidar;
   if (res.status == FrameStatus::First || d.translation().norm() >= params_.keyframe_distance_m ||
       angleOf(d) >= params_.keyframe_angle_rad) {
     res.keyframe = true;
-    T_world_keyframe_ = res.T_world_lidar;
+    track_.T_world_keyframe = res.T_world_lidar;
   }
 }
 
@@ -197,11 +197,11 @@ registration::RegistrationResult Odometry::match(const std::vector<Eigen::Vector
     vp.max_correction_m = rp.max_correction_m;
     vp.degeneracy_threshold = params_.degeneracy_threshold;
     registration::GravityPrior g;
-    g.constraints = &vertical_;
-    g.up_map = up_world_;
+    g.constraints = &frame_.vertical;
+    g.up_map = up_.world;
     g.scale_m2 = params_.gravity_weight_m2;
     g.kernel_rad = params_.gravity_kernel_rad;
-    return registration::align(gmap_, source, T_pred, vp, usesGravityPrior(params_) && up_frames_ > 0 ? &g : nullptr,
+    return registration::align(gmap_, source, T_pred, vp, usesGravityPrior(params_) && up_.frames > 0 ? &g : nullptr,
                                surface);
   }
   if (target_stale_ && !map_.empty()) {
@@ -222,7 +222,7 @@ Eigen::Isometry3d Odometry::searchFirstMotion(const Scan& scan, const Eigen::Iso
   rp.ndt_levels = 3;
   rp.max_iterations = 40;
   rp.max_correction_m = 15.0;
-  const auto target_pts = registration::voxelDownsample(last_frame_points_, 0.5);
+  const auto target_pts = registration::voxelDownsample(frame_.points, 0.5);
   const auto source = registration::voxelDownsample(deskew(scan, Eigen::Isometry3d::Identity(), 1.0), 0.5);
   const registration::Target target(target_pts, rp);
   const auto r = registration::align(target, source, guess, rp);
@@ -235,8 +235,8 @@ Eigen::Isometry3d Odometry::searchFirstMotion(const Scan& scan, const Eigen::Iso
   const auto fine = registration::voxelDownsample(deskew(scan, Eigen::Isometry3d::Identity(), 1.0),
                                                   params_.registration_voxel_m);
   FrameResult scratch;
-  const auto from_guess = match(fine, T_world_last_ * guess, scratch);
-  const auto from_search = match(fine, T_world_last_ * r.T_target_source, scratch);
+  const auto from_guess = match(fine, track_.T_world_last * guess, scratch);
+  const auto from_search = match(fine, track_.T_world_last * r.T_target_source, scratch);
   // The better of the two, judged as the odometry judges a frame: converged, then the points it
   // explains, then their spread. Its motion also deskews the first sweep and this one.
   const auto better = [](const registration::RegistrationResult& a, const registration::RegistrationResult& b) {
@@ -245,18 +245,18 @@ Eigen::Isometry3d Odometry::searchFirstMotion(const Scan& scan, const Eigen::Iso
     return a.fitness <= b.fitness;
   };
   const auto& best = better(from_search, from_guess) ? from_search : from_guess;
-  return T_world_last_.inverse() * best.T_target_source;
+  return track_.T_world_last.inverse() * best.T_target_source;
 }
 
 void Odometry::redeskewFirstFrame(const Eigen::Isometry3d& delta_sweep) {
   // The first sweep went into the map as recorded (its motion was unknown); with the motion known it
   // is deskewed like every other sweep and the map built again from it.
   const double ref = first_scan_->has_point_times ? params_.deskew_reference : 0.0;
-  last_frame_points_ = deskew(*first_scan_, delta_sweep, params_.sweep_duration_s, ref);
+  frame_.points = deskew(*first_scan_, delta_sweep, params_.sweep_duration_s, ref);
   gmap_ = registration::GaussianVoxelMap(params_.map_voxel_m, params_.map_points_per_voxel, params_.map_radius_m, 7,
                                          params_.map_ring_lines_on_walls);
   map_.clear();
-  updateMap(T_world_last_);
+  updateMap(track_.T_world_last);
   first_scan_.reset();
 }
 
@@ -266,7 +266,7 @@ void Odometry::updateMap(const Eigen::Isometry3d& T_world_lidar) {
   // ring across the road never fills it alone.
   std::vector<Eigen::Vector3d> world;
   std::vector<uint8_t> ground;
-  firstPerVoxel(last_frame_points_, last_ground_, params_.map_insert_voxel_m, world, ground);
+  firstPerVoxel(frame_.points, frame_.ground, params_.map_insert_voxel_m, world, ground);
   dropFarGround(world, ground, params_.map_ground_max_range_m);
   for (auto& p : world) p = T_world_lidar * p;
   if (params_.matcher == Matcher::VoxelMap) {
@@ -280,6 +280,99 @@ void Odometry::updateMap(const Eigen::Isometry3d& T_world_lidar) {
   }
 }
 
+Odometry::Prediction Odometry::predictFrame(const Scan& scan, const std::optional<MotionPrior>& prior,
+                                            FrameResult& res) {
+  Prediction p;
+  // constant velocity: the last motion rescaled to this frame's time step
+  p.dt = track_.have_pose ? scan.stamp_s - track_.last_stamp_s : params_.sweep_duration_s;
+  p.delta = predict(prior);
+  if (!prior && track_.have_pose && p.dt > 0 && track_.last_dt_s > 0) p.delta = scaleMotion(p.delta, p.dt / track_.last_dt_s);
+  p.first_motion = track_.have_pose && !track_.motion_known;
+  if (p.first_motion && !prior && params_.first_motion_search) p.delta = searchFirstMotion(scan, p.delta, res);
+  p.T_world = track_.T_world_last * p.delta;
+  p.delta_sweep = scaleMotion(p.delta, p.dt > 0 && track_.have_pose ? params_.sweep_duration_s / p.dt : 1.0);
+  return p;
+}
+
+void Odometry::deskewFrame(Scan& scan, const Prediction& pred, FrameResult& res) {
+  if (params_.times_from_azimuth && !scan.has_point_times) {
+    timesFromAzimuth(scan, SweepTiming{params_.sweep_duration_s, SpinDirection::Clockwise, 180.0, StampReference::Start});
+  }
+  res.point_times = pointTimesName(scan);
+  res.deskewed = params_.deskew && scan.has_point_times;
+  if (!params_.deskew) scan.has_point_times = false;  // deskew() then keeps the points as they are
+  if (pred.first_motion && first_scan_ && params_.deskew) redeskewFirstFrame(pred.delta_sweep);
+  first_scan_.reset();
+  const double ref = scan.has_point_times ? params_.deskew_reference : 0.0;
+  res.stamp_s = poseTimeOf(scan);
+  frame_.points = deskew(scan, pred.delta_sweep, params_.sweep_duration_s, ref);
+  if (params_.ground_aware_map) frame_.ground = preprocess::segmentGround(scan.points, params_.preprocess.ground_seg);
+  if (usesGravityPrior(params_)) {
+    const Eigen::Vector3d up_guess = track_.have_pose ? Eigen::Vector3d(pred.T_world.linear().transpose() * up_.world)
+                                                      : Eigen::Vector3d::UnitZ();
+    frame_.vertical = findVerticalStructures(frame_.points, frame_.ground, up_guess, params_.vertical);
+    res.vertical_constraints = static_cast<int>(frame_.vertical.size());
+  }
+}
+
+bool Odometry::startTrack(const Scan& scan, size_t source_points, FrameResult& res) {
+  res.status = source_points == 0 ? FrameStatus::Empty : FrameStatus::First;
+  if (source_points == 0) return false;
+  res.T_world_lidar = Eigen::Isometry3d::Identity();
+  if (params_.first_motion_search && params_.deskew && scan.has_point_times) first_scan_ = scan;
+  return true;
+}
+
+void Odometry::registerFrame(const std::vector<Eigen::Vector3d>& source, const Eigen::Isometry3d& T_pred,
+                             const std::optional<MotionPrior>& prior, FrameResult& res) {
+  registration::SurfaceInformation surface;
+  const auto r = match(source, T_pred, res, &surface);
+  res.iterations = r.iterations;
+  res.inliers = r.inliers;
+  res.fitness_m = r.fitness;
+  res.information = r.information;
+  res.weak_directions = r.degeneracy.num_weak;
+  res.min_eigenvalue = r.degeneracy.eigenvalues(0);
+  Eigen::Isometry3d T_est = r.T_target_source;
+  const bool usable = r.converged || (r.status == registration::Status::MaxIterations &&
+                                      r.inliers >= params_.min_inlier_fraction * source.size());
+  if (!usable) {
+    res.status = source.empty() ? FrameStatus::Empty : FrameStatus::NotConverged;
+    res.reason = registration::toString(r.status) + (r.reason.empty() ? "" : ": " + r.reason);
+    T_est = T_pred;
+  } else {
+    judgeDegeneracy(r, surface, T_pred, prior, T_est, res);
+  }
+  const Eigen::Isometry3d delta = track_.T_world_last.inverse() * T_est;
+  if (res.status == FrameStatus::Ok && isStandstill(delta, prior)) {
+    res.status = FrameStatus::Standstill;
+    T_est = track_.T_world_last;
+  }
+  if (res.status == FrameStatus::Ok || res.status == FrameStatus::Degenerate) {
+    threshold_.update(T_pred.inverse() * T_est, delta);
+  }
+  res.T_world_lidar = T_est;
+  const bool tracking = res.status == FrameStatus::Ok || res.status == FrameStatus::Degenerate;
+  track_.motion_seen = prior || (tracking && track_.motion_seen) ||
+                       (res.status == FrameStatus::Ok && res.motion_information >= params_.motion_seen_threshold);
+}
+
+void Odometry::advance(FrameResult& res, const std::optional<MotionPrior>& prior, double dt, double stamp_s) {
+  if (track_.have_pose && dt > 0) {
+    track_.delta_last = track_.T_world_last.inverse() * res.T_world_lidar;
+    track_.last_dt_s = dt;
+  }
+  if (res.status == FrameStatus::Standstill) track_.delta_last = Eigen::Isometry3d::Identity();
+  if (res.status == FrameStatus::Ok || res.status == FrameStatus::Degenerate ||
+      res.status == FrameStatus::Standstill || (prior && track_.have_pose)) {
+    track_.motion_known = true;
+  }
+  track_.T_world_last = res.T_world_lidar;
+  track_.last_stamp_s = stamp_s;
+  track_.have_pose = true;
+  updateKeyframe(res);
+}
+
 FrameResult Odometry::process(Scan scan, const std::optional<MotionPrior>& given_prior) {
   const auto t0 = Clock::now();
   FrameResult res;
@@ -287,7 +380,7 @@ FrameResult Odometry::process(Scan scan, const std::optional<MotionPrior>& given
   const bool prior_bad = given_prior && !(given_prior->T_prev_curr.matrix().allFinite() &&
                                           std::isfinite(given_prior->speed_mps));
   const std::optional<MotionPrior> prior = prior_bad ? std::nullopt : given_prior;
-  res.index = frames_++;
+  res.index = track_.frames++;
   res.stamp_s = scan.stamp_s;
   res.points_in = static_cast<int>(scan.points.size());
   const auto report = chain_.process(scan);
@@ -296,101 +389,26 @@ FrameResult Odometry::process(Scan scan, const std::optional<MotionPrior>& given
     res.status = FrameStatus::Skipped;
     return res;
   }
-
-  // constant velocity: the last motion rescaled to this frame's time step
-  const double dt = have_pose_ ? scan.stamp_s - last_stamp_s_ : params_.sweep_duration_s;
-  Eigen::Isometry3d delta_pred = predict(prior);
-  if (!prior && have_pose_ && dt > 0 && last_dt_s_ > 0) delta_pred = scaleMotion(delta_pred, dt / last_dt_s_);
-  const bool first_motion = have_pose_ && !motion_known_;
-  if (first_motion && !prior && params_.first_motion_search) delta_pred = searchFirstMotion(scan, delta_pred, res);
-  const Eigen::Isometry3d T_pred = T_world_last_ * delta_pred;
-
-  if (params_.times_from_azimuth && !scan.has_point_times) {
-    timesFromAzimuth(scan, SweepTiming{params_.sweep_duration_s, SpinDirection::Clockwise, 180.0, StampReference::Start});
-  }
-  res.point_times = pointTimesName(scan);
-  res.deskewed = params_.deskew && scan.has_point_times;
-  const double sweep = params_.sweep_duration_s;
-  const Eigen::Isometry3d delta_sweep =
-      scaleMotion(delta_pred, dt > 0 && have_pose_ ? sweep / dt : 1.0);
-  if (!params_.deskew) scan.has_point_times = false;  // deskew() then keeps the points as they are
-  if (first_motion && first_scan_ && params_.deskew) redeskewFirstFrame(delta_sweep);
-  first_scan_.reset();
-  const double ref = scan.has_point_times ? params_.deskew_reference : 0.0;
-  res.stamp_s = poseTimeOf(scan);
-  last_frame_points_ = deskew(scan, delta_sweep, sweep, ref);
-  if (params_.ground_aware_map) last_ground_ = preprocess::segmentGround(scan.points, params_.preprocess.ground_seg);
-
-  if (usesGravityPrior(params_)) {
-    const Eigen::Vector3d up_guess = have_pose_ ? Eigen::Vector3d(T_pred.linear().transpose() * up_world_)
-                                                : Eigen::Vector3d::UnitZ();
-    vertical_ = findVerticalStructures(last_frame_points_, last_ground_, up_guess, params_.vertical);
-    res.vertical_constraints = static_cast<int>(vertical_.size());
-  }
+  const Prediction pred = predictFrame(scan, prior, res);
+  deskewFrame(scan, pred, res);
 
   const auto t_reg = Clock::now();
-  const auto source = registration::voxelDownsample(last_frame_points_, params_.registration_voxel_m);
+  const auto source = registration::voxelDownsample(frame_.points, params_.registration_voxel_m);
   res.points_registered = static_cast<int>(source.size());
-  if (!have_pose_) {
-    res.status = source.empty() ? FrameStatus::Empty : FrameStatus::First;
-    if (source.empty()) return res;
-    res.T_world_lidar = Eigen::Isometry3d::Identity();
-    if (params_.first_motion_search && params_.deskew && scan.has_point_times) first_scan_ = scan;
+  if (!track_.have_pose) {
+    if (!startTrack(scan, source.size(), res)) return res;
   } else {
-    registration::SurfaceInformation surface;
-    const auto r = match(source, T_pred, res, &surface);
-    res.iterations = r.iterations;
-    res.inliers = r.inliers;
-    res.fitness_m = r.fitness;
-    res.information = r.information;
-    res.weak_directions = r.degeneracy.num_weak;
-    res.min_eigenvalue = r.degeneracy.eigenvalues(0);
-    Eigen::Isometry3d T_est = r.T_target_source;
-    const bool usable = r.converged || (r.status == registration::Status::MaxIterations &&
-                                        r.inliers >= params_.min_inlier_fraction * source.size());
-    if (!usable) {
-      res.status = source.empty() ? FrameStatus::Empty : FrameStatus::NotConverged;
-      res.reason = registration::toString(r.status) + (r.reason.empty() ? "" : ": " + r.reason);
-      T_est = T_pred;
-    } else {
-      judgeDegeneracy(r, surface, T_pred, prior, T_est, res);
-    }
-    const Eigen::Isometry3d delta = T_world_last_.inverse() * T_est;
-    if (res.status == FrameStatus::Ok && isStandstill(delta, prior)) {
-      res.status = FrameStatus::Standstill;
-      T_est = T_world_last_;
-    }
-    if (res.status == FrameStatus::Ok || res.status == FrameStatus::Degenerate) {
-      threshold_.update(T_pred.inverse() * T_est, delta);
-    }
-    res.T_world_lidar = T_est;
-    const bool tracking = res.status == FrameStatus::Ok || res.status == FrameStatus::Degenerate;
-    motion_seen_ = prior || (tracking && motion_seen_) ||
-                   (res.status == FrameStatus::Ok && res.motion_information >= params_.motion_seen_threshold);
+    registerFrame(source, pred.T_world, prior, res);
   }
   res.ms_register = msSince(t_reg);
 
   if (usesGravityPrior(params_) && (res.status == FrameStatus::Ok || res.status == FrameStatus::First)) updateUp(res);
-
   const auto t_map = Clock::now();
-  const bool update_map = res.status == FrameStatus::Ok || res.status == FrameStatus::First ||
-                          res.status == FrameStatus::Degenerate;
-  if (update_map) updateMap(res.T_world_lidar);
+  if (res.status == FrameStatus::Ok || res.status == FrameStatus::First || res.status == FrameStatus::Degenerate) {
+    updateMap(res.T_world_lidar);
+  }
   res.ms_map = msSince(t_map);
-
-  if (have_pose_ && dt > 0) {
-    delta_last_ = T_world_last_.inverse() * res.T_world_lidar;
-    last_dt_s_ = dt;
-  }
-  if (res.status == FrameStatus::Standstill) delta_last_ = Eigen::Isometry3d::Identity();
-  if (res.status == FrameStatus::Ok || res.status == FrameStatus::Degenerate ||
-      res.status == FrameStatus::Standstill || (prior && have_pose_)) {
-    motion_known_ = true;
-  }
-  T_world_last_ = res.T_world_lidar;
-  last_stamp_s_ = scan.stamp_s;
-  have_pose_ = true;
-  updateKeyframe(res);
+  advance(res, prior, pred.dt, scan.stamp_s);
   if (prior_bad) res.reason = "motion prior not finite, ignored" + (res.reason.empty() ? "" : "; " + res.reason);
   res.ms_total = msSince(t0);
   return res;

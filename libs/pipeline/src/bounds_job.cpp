@@ -65,7 +65,7 @@ struct Totals {
   double ms_sum = 0, ms_max = 0;
   std::map<std::string, size_t> status, reasons;
   void add(const boundary::BoundaryFrame& f) {
-    ++frames, ++status[f.status];
+    ++frames, ++status[toString(f.status)];
     ms_sum += f.ms, ms_max = std::max(ms_max, f.ms);
     left += f.left.found, right += f.right.found, both += f.left.found && f.right.found;
     if (!f.left.found) ++reasons["left: " + f.left.reason.substr(0, f.left.reason.find(" ("))];

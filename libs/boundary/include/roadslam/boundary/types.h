@@ -56,12 +56,17 @@ struct CostGrid {
   static constexpr uint8_t kFree = 0, kUnknown = 128, kCurb = 200, kObstacle = 254;
 };
 
+/// What became of a sweep as a whole (the sides have their own found flag and reason).
+enum class FrameStatus { Ok, NoPoints, NoGround };
+/// "ok", "no_points", "no_ground" (boundaries.jsonl, summary.json).
+const char* toString(FrameStatus s);
+
 /// Result of one sweep.
 struct BoundaryFrame {
   size_t index = 0;
   double stamp_s = 0;                   ///< time of T_map_lidar [s]
   Eigen::Isometry3d T_map_lidar = Eigen::Isometry3d::Identity();
-  std::string status = "ok";            ///< "ok", "no_points", "no_ground"
+  FrameStatus status = FrameStatus::Ok;
   double path_curvature = 0;            ///< curvature of the driven path's arc, the fit frame up to bend_s (left turn > 0) [1/m]
   double bend_s = -1;                   ///< arc length where the fit frame bends to bend_curvature; < 0: no bend [m]
   double bend_curvature = 0;            ///< curvature of the fit frame beyond bend_s [1/m]

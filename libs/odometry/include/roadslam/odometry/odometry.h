@@ -199,7 +199,7 @@ class Odometry {
   const LocalMap& localMap() const { return map_; }
   const registration::GaussianVoxelMap& voxelMap() const { return gmap_; }
   /// Deskewed, preprocessed points of the last frame (lidar frame) [m] (for keyframe maps).
-  const std::vector<Eigen::Vector3d>& lastFramePoints() const { return last_frame_points_; }
+  const std::vector<Eigen::Vector3d>& lastFramePoints() const { return frame_.points; }
   const preprocess::PreprocessTotals& preprocessTotals() const { return chain_.totals(); }
 
  private:
@@ -228,23 +228,51 @@ class Odometry {
   registration::AdaptiveThreshold threshold_;
   std::unique_ptr<registration::Target> target_;
   bool target_stale_ = true;
-  size_t frames_ = 0;
-  bool have_pose_ = false;
-  bool motion_known_ = false;          ///< a frame after the first was registered (or a prior given)
-  /// the last frame's motion was measured by its scans (or given by a prior), or repeats one that was
-  bool motion_seen_ = false;
-  std::optional<Scan> first_scan_;     ///< the first sweep, preprocessed, until the motion is known
-  double last_stamp_s_ = 0;
-  double last_dt_s_ = 0;
-  Eigen::Isometry3d T_world_last_ = Eigen::Isometry3d::Identity();
-  Eigen::Isometry3d delta_last_ = Eigen::Isometry3d::Identity();  ///< T_prev_curr of the last frame
-  Eigen::Isometry3d T_world_keyframe_ = Eigen::Isometry3d::Identity();
-  std::vector<Eigen::Vector3d> last_frame_points_;
-  std::vector<uint8_t> last_ground_;  ///< ground labels of last_frame_points_ (when ground_aware_map)
-  std::vector<VerticalConstraint> vertical_;  ///< this frame's vertical structures (gravity prior)
-  Eigen::Vector3d up_world_ = Eigen::Vector3d::UnitZ();  ///< measured up direction, world frame
-  Eigen::Matrix3d up_scatter_ = Eigen::Matrix3d::Zero();  ///< verticalScatter summed over the frames
-  int up_frames_ = 0;                                    ///< frames since up_world_ is known
+  /// What the odometry knows of the vehicle's motion so far.
+  struct Track {
+    size_t frames = 0;           ///< frames processed, skipped ones included [-]
+    bool have_pose = false;      ///< a frame got a pose (the first one: identity)
+    bool motion_known = false;   ///< a frame after the first was registered (or a prior given)
+    /// the last frame's motion was measured by its scans (or given by a prior), or repeats one that was
+    bool motion_seen = false;
+    double last_stamp_s = 0;     ///< stamp of the last frame with a pose [s]
+    double last_dt_s = 0;        ///< time step of delta_last [s]
+    Eigen::Isometry3d T_world_last = Eigen::Isometry3d::Identity();
+    Eigen::Isometry3d delta_last = Eigen::Isometry3d::Identity();  ///< T_prev_curr of the last frame
+    Eigen::Isometry3d T_world_keyframe = Eigen::Isometry3d::Identity();
+  };
+  /// The world's up direction, measured from every converged frame's vertical structures.
+  struct UpEstimate {
+    Eigen::Vector3d world = Eigen::Vector3d::UnitZ();    ///< measured up direction, world frame
+    Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();   ///< verticalScatter summed over the frames
+    int frames = 0;                                      ///< frames since `world` is known
+  };
+  /// This frame's deskewed points and what was found in them.
+  struct FramePoints {
+    std::vector<Eigen::Vector3d> points;        ///< deskewed, preprocessed, lidar frame [m]
+    std::vector<uint8_t> ground;                ///< ground labels of points (when ground_aware_map)
+    std::vector<VerticalConstraint> vertical;   ///< vertical structures (gravity prior)
+  };
+  /// One frame's predicted motion.
+  struct Prediction {
+    double dt = 0;  ///< time since the last frame with a pose [s]
+    Eigen::Isometry3d delta = Eigen::Isometry3d::Identity();        ///< T_prev_curr predicted
+    Eigen::Isometry3d delta_sweep = Eigen::Isometry3d::Identity();  ///< motion over one sweep period
+    Eigen::Isometry3d T_world = Eigen::Isometry3d::Identity();      ///< T_world_lidar predicted
+    bool first_motion = false;  ///< the first frame after the first: its motion is unknown
+  };
+  Prediction predictFrame(const Scan& scan, const std::optional<MotionPrior>& prior, FrameResult& res);
+  void deskewFrame(Scan& scan, const Prediction& pred, FrameResult& res);
+  /// The first frame with points: identity pose. False when it has none (the frame is Empty).
+  bool startTrack(const Scan& scan, size_t source_points, FrameResult& res);
+  void registerFrame(const std::vector<Eigen::Vector3d>& source, const Eigen::Isometry3d& T_pred,
+                     const std::optional<MotionPrior>& prior, FrameResult& res);
+  void advance(FrameResult& res, const std::optional<MotionPrior>& prior, double dt, double stamp_s);
+
+  Track track_;
+  UpEstimate up_;
+  FramePoints frame_;
+  std::optional<Scan> first_scan_;  ///< the first sweep, preprocessed, until the motion is known
 };
 
 }  // namespace roadslam::odometry
