@@ -99,14 +99,14 @@ MapOutcome runMapJob(const MapRequest& req) {
   MapOutcome out;
   mapping::Mapper mapper(params.mapper);
   std::unique_ptr<mapping::OctoMapWorker> octo;
-  if (params.maps.octomap.enabled) octo = std::make_unique<mapping::OctoMapWorker>(params.maps.octomap);
+  if (req.maps && params.maps.octomap.enabled) octo = std::make_unique<mapping::OctoMapWorker>(params.maps.octomap);
   std::unique_ptr<CanPriorStream> can;
   if (!req.can_log_path.empty()) can = std::make_unique<CanPriorStream>(req.can_log_path, req.vehicle_ini_path, *cfg);
   Stages stages;
   auto odometry = std::make_unique<OdometryPoses>(params.odometry, std::move(can), false);
   const OdometryPoses& odo = *odometry;
   stages.poses = std::move(odometry);
-  stages.mapper = &mapper;
+  if (req.maps) stages.mapper = &mapper;
   stages.octomap = octo.get();
   stages.octomap_keyframe_spacing_m = params.maps.octomap.keyframe_spacing_m;
   Pipeline pipe(std::move(source), std::move(stages));
@@ -122,8 +122,10 @@ MapOutcome runMapJob(const MapRequest& req) {
   }
   bar.finish();
   out.interrupted = stopRequested();
-  const auto T_map_kf = mapper.keyframePoses();
-  for (const auto& f : out.frames) out.T_map_lidar.push_back(mapper.correctedPose(f, T_map_kf));
+  if (req.maps) {
+    const auto T_map_kf = mapper.keyframePoses();
+    for (const auto& f : out.frames) out.T_map_lidar.push_back(mapper.correctedPose(f, T_map_kf));
+  }
   out.summary = summarize(out.frames);
   out.summary["warnings"] = nlohmann::json::array();
   for (const auto& w : unknown_keys) out.summary["warnings"].push_back(w);
@@ -152,18 +154,22 @@ MapOutcome runMapJob(const MapRequest& req) {
                           {"priors_used", can->priorsGiven()}, {"priors_missing", can->priorsMissing()},
                           {"calibration", can->calibrationJson()}};
   }
-  const auto loops = loopsJson(mapper);
-  out.summary["loop_closures"] = loops["accepted"].size();
-  out.summary["loop_candidates_rejected"] = loops["rejected"].size();
-  out.summary["loops"] = loops;
-  out.summary["can_edges"] = mapper.canEdges();
-  out.summary["ms_mapping_total"] = pipe.totals().maps;
-  const auto ms = mapping::writeMaps(req.out_dir, mapper, {out.T_map_lidar.begin(), out.T_map_lidar.end()},
-                                     params.maps, octo.get());
-  out.summary["maps"] = {{"points", ms.points}, {"octomap_keyframes", ms.octomap_keyframes},
-                         {"octomap_leafs", ms.octomap_leafs}, {"octomap_ms_per_keyframe", ms.octomap_ms_per_keyframe},
-                         {"grid_occupied_cells", ms.grid_occupied}, {"grid_free_cells", ms.grid_free},
-                         {"ms_total", ms.ms_total}};
+  const StageTimes& ms_stages = pipe.totals();
+  out.summary["ms_by_stage_total"] = {{"source", ms_stages.source}, {"odometry", ms_stages.poses}, {"maps", ms_stages.maps}};
+  if (req.maps) {
+    const auto loops = loopsJson(mapper);
+    out.summary["loop_closures"] = loops["accepted"].size();
+    out.summary["loop_candidates_rejected"] = loops["rejected"].size();
+    out.summary["loops"] = loops;
+    out.summary["can_edges"] = mapper.canEdges();
+    out.summary["ms_mapping_total"] = pipe.totals().maps;
+    const auto ms = mapping::writeMaps(req.out_dir, mapper, {out.T_map_lidar.begin(), out.T_map_lidar.end()},
+                                       params.maps, octo.get());
+    out.summary["maps"] = {{"points", ms.points}, {"octomap_keyframes", ms.octomap_keyframes},
+                           {"octomap_leafs", ms.octomap_leafs}, {"octomap_ms_per_keyframe", ms.octomap_ms_per_keyframe},
+                           {"grid_occupied_cells", ms.grid_occupied}, {"grid_free_cells", ms.grid_free},
+                           {"ms_total", ms.ms_total}};
+  }
   out.summary["wall_time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   writeMapOutputs(req.out_dir, out.frames, out.T_map_lidar, out.summary);
   return out;

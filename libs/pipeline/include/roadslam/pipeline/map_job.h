@@ -30,6 +30,9 @@ struct MapRequest {
   std::string can_log_path;     ///< candump log of the same recording: wheel odometry prior (optional)
   std::string vehicle_ini_path; ///< the car's vehicle ini (DBC mapping), required with can_log_path
   bool progress = true;     ///< progress bar when stderr is a terminal
+  /// false: the odometry alone (no keyframe graph, loop closure or maps; trajectory.tum holds the
+  /// odometry's poses), for runs that score only the odometry (experiments).
+  bool maps = true;
   /// Keys or sections of the ini that no component reads are an error naming file and line
   /// (checked_config.h); with this they are warnings in the summary instead.
   bool allow_unknown_keys = false;
