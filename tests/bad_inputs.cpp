@@ -85,6 +85,10 @@ void makeFiles() {
   write(w / "bad-bool.ini", "[odometry]\ndeskew = maybe\n");
   write(w / "bounds-typo.ini", fileText(kSrc + "/ini/bounds.ini") + "\n[boundary]\ncurb_min_jmup_m = 0.1\n");
   write(w / "a-file", "x");
+  write(w / "exp-typo.ini", "[experiment]\nbase_config = " + kSrc + "/ini/default.ini\n[dataset.x]\ninput = " +
+                                (w / "truncated.pcap").string() + "\n[sweep]\nodometry.registration_voxel_sise_m = 1\n");
+  write(w / "exp-no-input.ini", "[experiment]\nbase_config = " + kSrc + "/ini/default.ini\n[dataset.x]\ninput = " +
+                                    (w / "nope.pcap").string() + "\n");
   // a long KITTI folder for the signal row: one sweep under 3000 names (hard links, no space)
   {
     std::string sweep;
@@ -178,6 +182,12 @@ const Row kTable[] = {
   {"bounds-input-missing", "roadslam-bounds --config {S}/ini/bounds.ini --input {W}/nope.pcap --out {O}", 1, "does not exist"},
   {"bounds-bad-trajectory","roadslam-bounds --config {S}/ini/bounds.ini --input {W}/truncated.pcap --trajectory {W}/three-columns.tum --out {O}", 1, "three-columns.tum"},
   {"bounds-truncated-pcap","roadslam-bounds --config {S}/ini/bounds.ini --input {W}/truncated.pcap --out {O} --quiet", 0, "input damaged"},
+  // roadslam-experiment
+  {"exp-typo-sweep-key",   "roadslam-experiment --config {W}/exp-typo.ini --out {O}", 1, "exp-typo.ini:6: unknown key 'odometry.registration_voxel_sise_m' in [sweep]: no component of a job reads it (nearest known: odometry.registration_voxel_m)"},
+  {"exp-dataset-missing",  "roadslam-experiment --config {W}/exp-no-input.ini --out {O}", 1, "exp-no-input.ini:4: [dataset.x] input"},
+  {"exp-bad-emit",         "roadslam-experiment --config {W}/exp-typo.ini --out {O} --emit sge", 105, "--emit"},
+  {"exp-collect-no-plan",  "roadslam-experiment collect {W}/empty-dir", 1, "not an experiment folder"},
+  {"exp-no-out",           "roadslam-experiment --config {W}/exp-typo.ini", 2, "--config and --out are required"},
   // roadslam-can
   {"can-decode-garbage",   "roadslam-can decode --dbc {S}/ini/vehicles/roadslam-sim.dbc {W}/garbage.log", 2, "3 of 3 lines unreadable (first at line 1"},
   {"can-decode-allowed",   "roadslam-can decode --dbc {S}/ini/vehicles/roadslam-sim.dbc {W}/garbage.log --max-bad-lines 3", 0, "3 bad log lines"},

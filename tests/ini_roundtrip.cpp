@@ -15,6 +15,7 @@
 #include "roadslam/boundary/params.h"
 #include "roadslam/common/config.h"
 #include "roadslam/datasets/kitti_scans.h"
+#include "roadslam/experiment/jobs.h"
 #include "roadslam/grabber/params.h"
 #include "roadslam/odometry/odometry.h"
 #include "roadslam/pipeline/map_job.h"
@@ -115,6 +116,7 @@ TEST(ShippedInis, EveryOneRoundTripsThroughTheComponentThatReadsIt) {
   ASSERT_GE(inis.size(), 27u) << "ini/ has fewer files than shipped: is ROADSLAM_SOURCE_DIR right?";
   size_t sim = 0, vehicles = 0;
   for (const auto& rel : inis) {
+    if (rel.rfind("experiments/", 0) == 0) continue;  // not a component's config: see below
     SCOPED_TRACE("ini/" + rel);
     const Reader read = readerOf(rel);
     ASSERT_TRUE(read) << "ini/" << rel << " has no reader in this test: add the component that loads it";
@@ -131,4 +133,22 @@ TEST(ShippedInis, EveryOneRoundTripsThroughTheComponentThatReadsIt) {
   }
   EXPECT_GE(sim, 9u);
   EXPECT_GE(vehicles, 6u);
+}
+
+// An experiment file is read by roadslam-experiment: every shipped one loads (its base configs, datasets
+// and sweep keys checked, file:line on a problem) and plans datasets x configurations jobs.
+TEST(ShippedInis, EveryExperimentLoadsAndPlans) {
+  size_t n = 0;
+  for (const auto& rel : shippedInis()) {
+    if (rel.rfind("experiments/", 0) != 0) continue;
+    SCOPED_TRACE("ini/" + rel);
+    experiment::ExperimentSpec spec;
+    ASSERT_NO_THROW(spec = experiment::loadExperiment(std::string(ROADSLAM_SOURCE_DIR) + "/ini/" + rel));
+    const auto configs = experiment::expandSweep(spec);
+    EXPECT_GE(configs.size(), 2u) << "an experiment compares at least two configurations";
+    const auto jobs = experiment::planJobs(spec, (fs::temp_directory_path() / "roadslam_plan_test").string());
+    EXPECT_EQ(jobs.size(), configs.size() * spec.datasets.size());
+    ++n;
+  }
+  EXPECT_GE(n, 3u) << "voxel-size, thesis-icp-vs-ndt, ground-removal";
 }
