@@ -31,6 +31,7 @@ ExperimentOutcome runExperiment(const ExperimentRequest& req) {
     todo.push_back(j);
   }
   writePlan(spec, jobs, req.out_dir);
+  if (!req.emit.empty() && req.pool.program.empty()) throw std::runtime_error("--emit needs the program's path");
   if (req.emit == "parallel") {
     out.emitted = emitParallel(todo, req.pool.program, req.out_dir);
     return out;
@@ -39,7 +40,9 @@ ExperimentOutcome runExperiment(const ExperimentRequest& req) {
     out.emitted = emitSlurm(todo, req.pool.program, req.out_dir, spec.name);
     return out;
   }
-  out.pool = runPool(todo, req.pool);
+  PoolOptions pool = req.pool;
+  if (req.fork_jobs) pool.program.clear();
+  out.pool = runPool(todo, pool);
   out.collected = collect(req.out_dir);
   return out;
 }

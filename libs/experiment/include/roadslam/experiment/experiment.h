@@ -14,7 +14,8 @@ namespace roadslam::experiment {
 struct ExperimentRequest {
   std::string config_path;   ///< EXP.ini
   std::string out_dir;
-  PoolOptions pool;          ///< program, jobs, job timeout, progress
+  PoolOptions pool;          ///< program (required with emit), jobs, job timeout, progress
+  bool fork_jobs = true;     ///< local pool: jobs in forked children (no exec) rather than `program run-job`
   bool force = false;        ///< rerun finished jobs too
   std::string emit;          ///< "" = run here; "parallel" or "slurm": write the job list / script only
 };
