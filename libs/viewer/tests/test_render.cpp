@@ -1,0 +1,166 @@
+// The viewer's scene rendered headless (CFBORender) on the bundled box-room capture: the same
+// picture twice, the trajectory's colour where the camera puts it, the sweep's points on screen,
+// and the replay's shortcuts moving through the recording.
+#include <gtest/gtest.h>
+
+#include <mrpt/img/CImage.h>
+#include <mrpt/opengl/COpenGLScene.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include "roadslam/sources/recording.h"
+#include "roadslam/viewer/render.h"
+#include "roadslam/viewer/replay.h"
+
+using namespace roadslam::viewer;
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path tempDir() {
+  const fs::path d = fs::temp_directory_path() / ("roadslam_viewer_" + std::to_string(getpid()));
+  fs::create_directories(d);
+  return d;
+}
+
+// The bundled box room (6 sweeps of a static VLP-16) as a rawlog, once per test binary.
+const std::string& boxroomRawlog() {
+  static const std::string path = [] {
+    const std::string p = (tempDir() / "boxroom.rawlog").string();
+    roadslam::sources::convertToRawlog(std::string(ROADSLAM_SOURCE_DIR) + "/rawlogs/boxroom-vlp16.pcap", p);
+    return p;
+  }();
+  return path;
+}
+
+std::string slurp(const std::string& p) {
+  std::ifstream f(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(f), {}};
+}
+
+struct Counts {
+  int magenta_left = 0, magenta_right = 0, coloured = 0;
+};
+
+// Trajectory pixels (exactly SceneColors::trajectory) on each side of the image centre, and pixels
+// that are neither background, text white nor grey (the jet-coloured sweep).
+Counts countPixels(const std::string& png) {
+  mrpt::img::CImage img;
+  EXPECT_TRUE(img.loadFromFile(png));
+  Counts c;
+  const int w = int(img.getWidth()), h = int(img.getHeight());
+  for (int y = 30; y < h; ++y)  // below the HUD line
+    for (int x = 0; x < w; ++x) {
+      const auto* px = img.ptr<uint8_t>(x, y);  // BGR
+      const int b = px[0], g = px[1], r = px[2];
+      if (r == 255 && g == 0 && b == 255) {  // the keyframe marker at the car (the centre) is 5 px wide
+        if (x < w / 2 - 8) ++c.magenta_left;
+        if (x > w / 2 + 8) ++c.magenta_right;
+      }
+      const int mx = std::max({r, g, b}), mn = std::min({r, g, b});
+      if (mx - mn > 60 && !(r > 200 && b > 200 && g < 60)) ++c.coloured;
+    }
+  return c;
+}
+
+}  // namespace
+
+TEST(ViewerRender, SameSceneGivesTheSamePictureWithTrajectoryAndSweep) {
+  ViewerInputs in;
+  in.recording = boxroomRawlog();
+  ViewerModel model(in);
+  ASSERT_GE(model.recording().size(), 6u);
+  // a frame result per sweep, streamed in as a live odometry would: the car drove 10 m along +x up
+  // to the box room (the sweeps are drawn at the last pose)
+  const double t0 = model.startTime();
+  for (int k = 0; k <= 20; ++k) {
+    FrameResult f;
+    f.stamp_s = t0 - 2.0 + 0.1 * k;
+    f.T_map_lidar.translation() = Eigen::Vector3d(-10.0 + 0.5 * k, 0, 0);
+    f.keyframe = k % 5 == 0;
+    model.appendFrame(f);
+  }
+  Replay replay(model);
+  replay.options().camera = CameraMode::TopDown;
+  replay.options().top_height_m = 40;
+  replay.seek(t0 + 0.25);
+  ASSERT_TRUE(replay.currentSweep()) << replay.lastError();
+  EXPECT_GT(replay.currentSweep()->points.size(), 10000u);  // both VLP-16 firings decoded
+
+  PngRenderer renderer(480, 360);
+  const std::string a = (tempDir() / "a.png").string(), b = (tempDir() / "b.png").string();
+  renderCurrent(replay, renderer, a);
+  renderCurrent(replay, renderer, b);
+  ASSERT_TRUE(fs::exists(a));
+  EXPECT_EQ(slurp(a), slurp(b)) << "the same scene must render to the same bytes";
+
+  // top-down, map north up: the path came from -x, i.e. from the left of the picture's centre
+  const Counts c = countPixels(a);
+  EXPECT_GT(c.magenta_left, 50);
+  EXPECT_EQ(c.magenta_right, 0);
+  EXPECT_GT(c.coloured, 2500) << "the sweep's points";
+
+  // without the sweep and the trajectory, neither is on screen (the counts above can fail)
+  replay.options().show_trajectory = replay.options().show_keyframes = false;
+  mrpt::opengl::COpenGLScene scene;
+  SceneState empty = replay.state();
+  empty.sweep = nullptr;
+  const CameraView view = buildScene(model, empty, replay.options(), scene);
+  const std::string e = (tempDir() / "empty.png").string();
+  renderer.render(scene, view, e);
+  const Counts ce = countPixels(e);
+  EXPECT_EQ(ce.magenta_left + ce.magenta_right, 0);
+  EXPECT_GT(c.coloured - ce.coloured, 2000) << "the sweep adds coloured pixels (the car's axes stay)";
+}
+
+TEST(ViewerReplay, ShortcutsStepPlayAndClamp) {
+  ViewerInputs in;
+  in.recording = boxroomRawlog();
+  ViewerModel model(in);
+  Replay replay(model);
+  const auto first = replay.currentObservation();
+  ASSERT_TRUE(first);
+  EXPECT_TRUE(replay.handleKey(*parseKey("right")));
+  const auto second = replay.currentObservation();
+  ASSERT_TRUE(second);
+  EXPECT_GT(*second, *first);
+  EXPECT_EQ(model.recording().className(*second), "CObservationVelodyneScan");
+  replay.handleKey(*parseKey("left"));
+  EXPECT_EQ(replay.currentObservation(), first);
+  replay.handleKey(*parseKey("end"));
+  EXPECT_DOUBLE_EQ(replay.time(), model.endTime());
+  replay.handleKey(*parseKey("home"));
+  EXPECT_DOUBLE_EQ(replay.time(), model.startTime());
+  for (int i = 0; i < 10; ++i) replay.handleKey(*parseKey("+"));
+  EXPECT_DOUBLE_EQ(replay.speed(), Replay::kMaxSpeed);
+  for (int i = 0; i < 10; ++i) replay.handleKey(*parseKey("-"));
+  EXPECT_DOUBLE_EQ(replay.speed(), Replay::kMinSpeed);
+  replay.setSpeed(2.0);
+  replay.handleKey(*parseKey("space"));
+  EXPECT_TRUE(replay.playing());
+  replay.advance(0.1);
+  EXPECT_NEAR(replay.time(), model.startTime() + 0.2, 1e-9);
+  replay.advance(100);
+  EXPECT_FALSE(replay.playing()) << "stops at the end";
+  replay.handleKey(*parseKey("c"));
+  EXPECT_EQ(replay.options().color_by, ColorBy::Intensity);
+  EXPECT_FALSE(parseKey("F13"));
+  const std::string d = replay.details(*second);
+  EXPECT_NE(d.find("rings       16"), std::string::npos) << d;
+  EXPECT_NE(d.find("VELODYNE"), std::string::npos) << d;
+}
+
+TEST(ViewerModel, MapFolderTimesOutsideTheRecordingAreNamed) {
+  const fs::path dir = tempDir() / "map_elsewhere";
+  fs::create_directories(dir);
+  std::ofstream(dir / "trajectory.tum") << "100.0 0 0 0 0 0 0 1\n100.1 1 0 0 0 0 0 1\n";
+  ViewerInputs in;
+  in.recording = boxroomRawlog();
+  in.map_dir = dir.string();
+  ViewerModel model(in);
+  ASSERT_EQ(model.frames().size(), 2u);
+  ASSERT_FALSE(model.warnings().empty());
+  EXPECT_NE(model.warnings().back().find("do not overlap the recording"), std::string::npos) << model.warnings().back();
+}
