@@ -63,6 +63,9 @@ std::vector<Eigen::Vector3f> readPlyPoints(const std::string& path, double voxel
 
 ViewerModel::ViewerModel(const ViewerInputs& in) : in_(in) {
   index_ = sources::RawlogIndex::open(in.recording, in.index);
+  if (index_->size() == 0)
+    throw std::runtime_error("recording '" + in.recording + "' holds no readable observation" +
+                             (index_->complete() ? std::string() : ": " + index_->stopMessage()));
   if (!index_->complete()) warnings_.push_back("recording damaged: " + index_->stopMessage());
   for (const auto& [cls, n] : index_->unknownClasses())
     warnings_.push_back("recording: " + std::to_string(n) + " observations of unknown class " + cls + " skipped");

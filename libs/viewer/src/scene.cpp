@@ -29,6 +29,7 @@ mrpt::opengl::CSetOfLines::Ptr polyline(const std::vector<Eigen::Vector3d>& pts,
     l->appendLine(pts.back().x(), pts.back().y(), pts.back().z(), pts[0].x(), pts[0].y(), pts[0].z());
   l->setColor_u8(rgb(c));
   l->setLineWidth(width);
+  l->enableAntiAliasing(false);  // exact colours: readers and tests find the overlays by colour
   return l;
 }
 

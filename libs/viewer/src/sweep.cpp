@@ -91,12 +91,14 @@ std::string describe(const mrpt::obs::CObservation& obs, const SweepPoints* s) {
   }
   const Eigen::Vector3d t = s->T_base_lidar.translation();
   const Eigen::Vector3d ypr = s->T_base_lidar.rotation().eulerAngles(2, 1, 0) * 180.0 / M_PI;
+  std::string cls = obs.GetRuntimeClass()->className;
+  cls = cls.substr(cls.rfind(':') == std::string::npos ? 0 : cls.rfind(':') + 1);
   char buf[640];
   std::snprintf(buf, sizeof buf,
                 "class       %s\nlabel       %s\ntime        %.6f s\nmodel       %s\npackets     %zu\n"
                 "points      %zu\nrings       %d\nreturns     %d\ntime span   %.1f ms\n"
                 "sensor pose x %.2f y %.2f z %.2f m, yaw %.1f pitch %.1f roll %.1f deg\n",
-                obs.GetRuntimeClass()->className, obs.sensorLabel.c_str(), s->stamp_s, s->model.c_str(),
+                cls.c_str(), obs.sensorLabel.c_str(), s->stamp_s, s->model.c_str(),
                 s->packets, s->points.size(), s->rings, s->returns, s->span_s * 1e3, t.x(), t.y(), t.z(),
                 ypr.x(), ypr.y(), ypr.z());
   return buf;

@@ -50,38 +50,69 @@ std::string rowText(const sources::RawlogIndex& idx, std::size_t i, double t0) {
   return buf;
 }
 
-// The window's pixels (the last frame drawn: the front buffer), written as a PNG.
-void screenshot(nanogui::Screen& screen, const std::string& path) {
+// The framebuffer's pixels (the whole window: scene and widgets) as a PNG.
+void writeFramebuffer(GLFWwindow* glfw, const std::string& path) {
   int w = 0, h = 0;
-  glfwGetFramebufferSize(screen.glfwWindow(), &w, &h);
-  std::vector<uint8_t> rgb(std::size_t(w) * h * 3);
-  glReadBuffer(GL_FRONT);
+  glfwGetFramebufferSize(glfw, &w, &h);
+  std::vector<uint8_t> rgb(std::size_t(w) * std::size_t(h) * 3);
+  glReadBuffer(GL_BACK);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glReadPixels(0, 0, w, h, GL_RGB, GL_UNSIGNED_BYTE, rgb.data());
   mrpt::img::CImage img(w, h, mrpt::img::CH_RGB);
   for (int y = 0; y < h; ++y)  // OpenGL rows go bottom-up
     for (int x = 0; x < w; ++x) {
-      const uint8_t* s = &rgb[(std::size_t(h - 1 - y) * w + x) * 3];
+      const uint8_t* src = &rgb[(std::size_t(h - 1 - y) * std::size_t(w) + std::size_t(x)) * 3];
       auto* d = img.ptr<uint8_t>(x, y);  // BGR
-      d[0] = s[2], d[1] = s[1], d[2] = s[0];
+      d[0] = src[2], d[1] = src[1], d[2] = src[0];
     }
   const std::string tmp = tempPathFor(path) + ".png";
   if (!img.saveToFile(tmp)) throw std::runtime_error("cannot write screenshot '" + path + "'");
   commitTempFile(tmp, path);
 }
 
+// CDisplayWindowGUI whose frame can be captured: nanogui::Screen::drawAll (clear, scene, widgets,
+// swap) with the back buffer read between the widgets and the swap.
+class CapturingWindow : public mrpt::gui::CDisplayWindowGUI {
+ public:
+  using CDisplayWindowGUI::CDisplayWindowGUI;
+  /// Captures the next frame drawn into \p path.
+  void requestShot(const std::string& path) { shot_path_ = path; shot_error_.clear(); }
+  bool shotPending() const { return !shot_path_.empty(); }
+  const std::string& shotError() const { return shot_error_; }
+
+  void drawAll() override {
+    glfwMakeContextCurrent(glfwWindow());
+    glClearColor(mBackground[0], mBackground[1], mBackground[2], mBackground[3]);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+    drawContents();
+    drawWidgets();
+    if (!shot_path_.empty()) {
+      try {
+        writeFramebuffer(glfwWindow(), shot_path_);
+      } catch (const std::exception& e) {
+        shot_error_ = e.what();
+      }
+      shot_path_.clear();
+    }
+    glfwSwapBuffers(glfwWindow());
+  }
+
+ private:
+  std::string shot_path_, shot_error_;
+};
+
 class ViewerWindow {
  public:
   ViewerWindow(Replay& replay, const WindowOptions& opt, std::ostream& out, std::ostream& err)
       : replay_(replay), out_(out), err_(err) {
     if (!opt.script.empty()) script_ = readScript(opt.script);
-    win_ = mrpt::gui::CDisplayWindowGUI::Create("roadslam-view: " + replay.model().inputs().recording,
-                                                unsigned(opt.width_px), unsigned(opt.height_px));
+    win_ = std::make_shared<CapturingWindow>("roadslam-view: " + replay.model().inputs().recording,
+                                             unsigned(opt.width_px), unsigned(opt.height_px));
     {
       std::lock_guard<std::mutex> lck(win_->background_scene_mtx);
       win_->background_scene = mrpt::opengl::COpenGLScene::Create();
     }
-    buildTimeline();
+    buildTimeline(opt.height_px);
     buildList(opt.width_px);
     buildHelp();
     win_->setKeyboardCallback([this](int key, int, int action, int) {
@@ -101,9 +132,9 @@ class ViewerWindow {
   int exitCode() const { return exit_code_; }
 
  private:
-  void buildTimeline() {
+  void buildTimeline(int height_px) {
     auto* w = new nanogui::Window(win_.get(), "Timeline");
-    w->setPosition({10, 10});
+    w->setPosition({10, std::max(40, height_px - 185)});  // bottom left: the scene's HUD line stays visible
     w->setLayout(new nanogui::GroupLayout(6, 4));
     auto* row = w->add<nanogui::Widget>();
     row->setLayout(new nanogui::BoxLayout(nanogui::Orientation::Horizontal, nanogui::Alignment::Middle, 0, 4));
@@ -144,7 +175,7 @@ class ViewerWindow {
 
   void buildList(int width_px) {
     auto* w = new nanogui::Window(win_.get(), "Observations");
-    w->setPosition({std::max(10, width_px - 470), 10});
+    w->setPosition({std::max(10, width_px - 470), 40});
     w->setLayout(new nanogui::GroupLayout(6, 2));
     const auto& idx = replay_.model().recording();
     w->add<nanogui::Label>(std::to_string(idx.size()) + " observations, " +
@@ -173,7 +204,7 @@ class ViewerWindow {
       help_->add<nanogui::Label>(keys)->setFontSize(18);
       help_->add<nanogui::Label>(what)->setFontSize(18);
     }
-    help_->setPosition({10, 220});
+    help_->setPosition({10, 40});
     help_->setVisible(false);
   }
 
@@ -260,11 +291,17 @@ class ViewerWindow {
       }
       if (c.verb == "screenshot") {
         if (frames_since_change_ < kFramesBeforeShot) return;  // let the change reach the screen
-        try {
-          screenshot(*win_, c.arg);
+        if (!shot_requested_) {
+          win_->requestShot(c.arg);
+          shot_requested_ = true;
+          return;
+        }
+        if (win_->shotPending()) return;  // the next frame takes it
+        shot_requested_ = false;
+        if (win_->shotError().empty()) {
           out_ << "screenshot " << c.arg << "\n";
-        } catch (const std::exception& e) {
-          err_ << "roadslam-view: " << e.what() << "\n";
+        } else {
+          err_ << "roadslam-view: " << win_->shotError() << "\n";
           exit_code_ = 1;
         }
       } else if (c.verb == "key") {
@@ -286,7 +323,8 @@ class ViewerWindow {
   Replay& replay_;
   std::ostream& out_;
   std::ostream& err_;
-  mrpt::gui::CDisplayWindowGUI::Ptr win_;
+  std::shared_ptr<CapturingWindow> win_;
+  bool shot_requested_ = false;
   nanogui::Button* play_ = nullptr;
   nanogui::Label *speed_ = nullptr, *time_ = nullptr, *details_ = nullptr;
   nanogui::Slider* slider_ = nullptr;

@@ -19,6 +19,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// The trajectory's magenta (SceneColors::trajectory), also where lines are blended with the
+// background: red and blue alike, no green. The jet colour map of the sweep never gives that hue.
+bool isTrajectoryHue(int r, int g, int b) { return r > 100 && b > 100 && g < 40 && std::abs(r - b) < 30; }
+
 fs::path tempDir() {
   const fs::path d = fs::temp_directory_path() / ("roadslam_viewer_" + std::to_string(getpid()));
   fs::create_directories(d);
@@ -55,12 +59,12 @@ Counts countPixels(const std::string& png) {
     for (int x = 0; x < w; ++x) {
       const auto* px = img.ptr<uint8_t>(x, y);  // BGR
       const int b = px[0], g = px[1], r = px[2];
-      if (r == 255 && g == 0 && b == 255) {  // the keyframe marker at the car (the centre) is 5 px wide
+      if (isTrajectoryHue(r, g, b)) {  // the keyframe marker at the car (the centre) is 5 px wide
         if (x < w / 2 - 8) ++c.magenta_left;
         if (x > w / 2 + 8) ++c.magenta_right;
       }
       const int mx = std::max({r, g, b}), mn = std::min({r, g, b});
-      if (mx - mn > 60 && !(r > 200 && b > 200 && g < 60)) ++c.coloured;
+      if (mx - mn > 60 && !isTrajectoryHue(r, g, b)) ++c.coloured;
     }
   return c;
 }
