@@ -154,6 +154,8 @@ TEST(RoadslamViewWindow, ScriptDrivesTheRealWindowUnderXvfb) {
   EXPECT_GT(count(a, 0, 0, 490, 540).magenta + count(b, 0, 0, 490, 540).magenta, 10);
   // the observation list (right panel) filled with rows of text
   EXPECT_GT(count(b, 500, 60, 960, 480).bright, 1500) << "observation rows";
+  // "select 3" shows observation 3's details: a GPS record (the box room has one after every sweep)
+  EXPECT_NE(count(b, 490, 420, 960, 540).bright, count(a, 490, 420, 960, 540).bright) << "details changed";
   // top view after "key v" changes the picture
   EXPECT_NE(slurp(s0), slurp(s1));
 }

@@ -208,9 +208,13 @@ class ViewerWindow {
     help_->setVisible(false);
   }
 
+  // A selected observation keeps its details until the time moves (the scene shows the sweep at
+  // its time; a GPS record selected shows its own details).
   void select(std::size_t i) {
-    selected_ = i;
     replay_.jumpToObservation(i);
+    pinned_ = i;
+    pinned_time_ = replay_.time();
+    selected_ = i;
     details_->setCaption(replay_.details(i));
     dirty_ = true;
   }
@@ -238,7 +242,8 @@ class ViewerWindow {
                   cur ? std::to_string(*cur).c_str() : "-", m.recording().size());
     time_->setCaption(tl);
     // the list: a page of rows around the current observation
-    const std::size_t n = m.recording().size(), c = cur.value_or(0);
+    if (pinned_ && replay_.time() != pinned_time_) pinned_.reset();
+    const std::size_t n = m.recording().size(), c = pinned_.value_or(cur.value_or(0));
     const std::size_t first = c > kListRows / 2 ? std::min(c - kListRows / 2, n > kListRows ? n - kListRows : 0) : 0;
     rows_index_.clear();
     for (int r = 0; r < kListRows; ++r) {
@@ -249,7 +254,7 @@ class ViewerWindow {
       rows_[std::size_t(r)]->setCaption(rowText(m.recording(), i, m.startTime()));
       rows_[std::size_t(r)]->setPushed(i == c);
     }
-    if (cur && (!selected_ || *selected_ != *cur)) {
+    if (!pinned_ && cur && (!selected_ || *selected_ != *cur)) {
       selected_ = cur;
       details_->setCaption(replay_.details(*cur));
     }
@@ -331,7 +336,8 @@ class ViewerWindow {
   nanogui::Window* help_ = nullptr;
   std::vector<nanogui::Button*> rows_;
   std::vector<std::size_t> rows_index_;
-  std::optional<std::size_t> selected_;
+  std::optional<std::size_t> selected_, pinned_;
+  double pinned_time_ = 0;
   std::string last_key_;
   bool dirty_ = false;
   int frames_since_change_ = 0;
