@@ -92,7 +92,7 @@ std::string kittiYard(const std::string& name, int n) {
 }
 
 const char* kPrograms[] = {"roadslam-bounds", "roadslam-can", "roadslam-eval", "roadslam-grab",
-                           "roadslam-map",    "roadslam-rawlog", "roadslam-sim"};
+                           "roadslam-map",    "roadslam-rawlog", "roadslam-sim",  "roadslam-view"};
 }  // namespace
 
 TEST(AppsCli, VersionNamesProgramVersionCommitAndBuildType) {
