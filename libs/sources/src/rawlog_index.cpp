@@ -191,6 +191,8 @@ void RawlogIndex::Impl::build(uint64_t span) {
         if (more) continue;
         if (!stream->damage().empty()) failure = "after a record of unknown class '" + *cls + "'";
         else break;
+      } else if (std::string(e.what()).find("Cannot read requested number of bytes") != std::string::npos) {
+        failure = "record cut short";  // MRPT wraps its CExceptionEOF from inside an object
       } else {
         failure = innermostMessage(e.what());
       }
