@@ -105,6 +105,28 @@ TEST(RoadslamViewApp, HeadlessRenderIsDeterministicAndSequenceWritesPictures) {
   EXPECT_EQ(std::distance(fs::directory_iterator(f.dir / "seq"), fs::directory_iterator{}), 3);
 }
 
+// The real outputs of roadslam-map and roadslam-bounds on the same recording load (their formats are
+// what the viewer parses: a change on either side fails here) and cover the recording's times.
+TEST(RoadslamViewApp, OpensRealMapAndBoundsFolders) {
+  const auto& f = fixture();
+  const std::string bin = fs::path(kBin).parent_path().string();
+  const fs::path map = f.dir / "real_map", bounds = f.dir / "real_bounds";
+  const std::string src = ROADSLAM_SOURCE_DIR;
+  ASSERT_EQ(std::system((bin + "/roadslam-map --config " + src + "/ini/default.ini --input " + f.rawlog.string() +
+                         " --out " + map.string() + " --quiet").c_str()), 0);
+  ASSERT_EQ(std::system((bin + "/roadslam-bounds --config " + src + "/ini/bounds.ini --input " + f.rawlog.string() +
+                         " --trajectory " + (map / "trajectory.tum").string() + " --out " + bounds.string() +
+                         " --png-every 0 --quiet").c_str()), 0);
+  const AppRun r = run(f.rawlog.string() + " --map " + map.string() + " --bounds " + bounds.string() + " --gt " +
+                       (map / "trajectory_odometry.tum").string() + " --size 320x240 --render " +
+                       (f.dir / "real.png").string() + " --at 0.3");
+  EXPECT_EQ(r.status, 0) << r.out;
+  EXPECT_EQ(r.out.find("warning"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(" 6 frames, 0 loops, "), std::string::npos) << r.out;  // the box room's 6 sweeps
+  EXPECT_NE(r.out.find(" 6 boundary sweeps, 6 ground-truth poses"), std::string::npos) << r.out;
+  EXPECT_TRUE(fs::exists(f.dir / "real.png"));
+}
+
 TEST(RoadslamViewApp, BadInputsExitWithOneLineNamingTheProblem) {
   const auto& f = fixture();
   const fs::path script = f.dir / "bad_script.txt";

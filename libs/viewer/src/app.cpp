@@ -17,16 +17,32 @@ std::pair<int, int> parseSize(const std::string& text) {
   return {w, h};
 }
 
+std::string summaryLine(const ViewerModel& m) {
+  const auto& idx = m.recording();
+  char buf[400];
+  std::snprintf(buf, sizeof buf,
+                "%s: %zu observations over %.1f s (index %s, %.0f ms); %zu frames, %zu loops, %zu map points, "
+                "%zu boundary sweeps, %zu ground-truth poses",
+                idx.path().c_str(), idx.size(), m.endTime() - m.startTime(),
+                idx.openInfo().from_cache ? "cached" : "built", idx.openInfo().seconds * 1e3, m.frames().size(),
+                m.loops().size(), m.mapPoints().size(), m.boundaries().size(), m.groundTruth().size());
+  return buf;
+}
+
 int runView(const ViewRequest& req, std::ostream& out, std::ostream& err) {
   const auto [w, h] = parseSize(req.size);
+  const bool headless = !req.render_png.empty() || !req.sequence_dir.empty();
+  const WindowOptions window{w, h, req.script};
+  if (!headless) checkWindowRequest(window);
   ViewerInputs in = req.inputs;
   if (req.no_index_cache) in.index.use_cache = in.index.write_cache = false;
   ViewerModel model(in);
   for (const auto& warning : model.warnings()) err << "roadslam-view: warning: " << warning << "\n";
+  out << summaryLine(model) << "\n";
   Replay replay(model);
   replay.options().color_by = req.color_by;
   replay.options().camera = req.camera;
-  if (!req.render_png.empty() || !req.sequence_dir.empty()) {
+  if (headless) {
     PngRenderer renderer(w, h);
     if (!req.render_png.empty()) {
       replay.seek(model.startTime() + req.at_s);
@@ -41,7 +57,7 @@ int runView(const ViewRequest& req, std::ostream& out, std::ostream& err) {
     if (!replay.lastError().empty()) err << "roadslam-view: warning: " << replay.lastError() << "\n";
     return 0;
   }
-  return runWindow(replay, WindowOptions{w, h, req.script}, out, err);
+  return runWindow(replay, window, out, err);
 }
 
 }  // namespace roadslam::viewer

@@ -381,12 +381,16 @@ std::vector<ScriptCommand> readScript(const std::string& path) {
   return out;
 }
 
-int runWindow(Replay& replay, const WindowOptions& options, std::ostream& out, std::ostream& err) {
-  if (!options.script.empty()) readScript(options.script);  // a bad script fails before any window
+void checkWindowRequest(const WindowOptions& options) {
+  if (!options.script.empty()) readScript(options.script);
   const char* display = std::getenv("DISPLAY");
   if ((!display || !*display) && !std::getenv("WAYLAND_DISPLAY"))
     throw std::runtime_error("no display ($DISPLAY is not set): run it on a desktop, under xvfb-run, or render "
                              "headless with --render OUT.png --at T");
+}
+
+int runWindow(Replay& replay, const WindowOptions& options, std::ostream& out, std::ostream& err) {
+  checkWindowRequest(options);
   nanogui::init();
   int code = 0;
   {

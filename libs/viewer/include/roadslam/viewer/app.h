@@ -27,6 +27,9 @@ struct ViewRequest {
 /// Parses "WxH" [pixels]; throws std::invalid_argument naming the text.
 std::pair<int, int> parseSize(const std::string& text);
 
+/// One line for a person: observations, duration, how the index was opened, and what the results hold.
+std::string summaryLine(const ViewerModel& model);
+
 /// Runs the request; returns the exit code (0 done, 1 a problem named on \p err).
 int runView(const ViewRequest& req, std::ostream& out, std::ostream& err);
 

@@ -32,6 +32,10 @@ struct ScriptCommand {
 /// Parses a command script; throws std::runtime_error naming file:line on an unknown command.
 std::vector<ScriptCommand> readScript(const std::string& path);
 
+/// Throws std::runtime_error when the window cannot run: a bad script (naming file:line) or no
+/// display. Called before anything is opened, so such a run fails at once.
+void checkWindowRequest(const WindowOptions& options);
+
 /// Opens the window and runs until it is closed (or the script quits); returns the exit code.
 int runWindow(Replay& replay, const WindowOptions& options, std::ostream& out, std::ostream& err);
 
