@@ -160,11 +160,21 @@ TEST(RoadslamViewWindow, ScriptDrivesTheRealWindowUnderXvfb) {
   const fs::path s0 = f.dir / "win0.png", s1 = f.dir / "win1.png", script = f.dir / "script.txt";
   std::ofstream(script) << "# start, step to the next sweep, top view, select observation 3\n"
                         << "wait 0.3\nscreenshot " << s0.string() << "\n"
-                        << "key right\nkey v\nkey h\nselect 3\nwait 0.2\nscreenshot " << s1.string() << "\nquit\n";
+                        << "key right\nkey v\nkey h\nselect 3\nwait 0.2\nscreenshot " << s1.string() << "\n"
+                        << "# play at 1/8 speed for 0.8 s: about 0.1 s of the recording\n"
+                        << "key home\nkey -\nkey -\nkey -\nkey space\nwait 0.8\nscreenshot " << (f.dir / "win2.png").string()
+                        << "\nquit\n";
   const AppRun r = run(f.rawlog.string() + " --map " + f.map.string() + " --size 960x540 --script " + script.string(),
                        "timeout 60 xvfb-run -a -s '-screen 0 1024x600x24' ");
   ASSERT_EQ(r.status, 0) << r.out;
-  EXPECT_NE(r.out.find("screenshot " + s1.string()), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("screenshot " + s0.string() + " t=0.000 obs=0"), std::string::npos) << r.out;
+  // observation 3 is a GPS record at 0.101 s: the scene shows the sweep before it, observation 2
+  EXPECT_NE(r.out.find("screenshot " + s1.string() + " t=0.101 obs=2"), std::string::npos) << r.out;
+  const auto at = r.out.find("win2.png t=");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  const double played = std::stod(r.out.substr(at + 11));
+  EXPECT_GT(played, 0.05) << "playing moved the time";
+  EXPECT_LT(played, 0.44) << "at 1/8 speed, not at the end (0.45 s) as at 1x";
   mrpt::img::CImage a, b;
   ASSERT_TRUE(a.loadFromFile(s0.string()));
   ASSERT_TRUE(b.loadFromFile(s1.string()));

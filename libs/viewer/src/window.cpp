@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdint>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -20,7 +21,7 @@ namespace roadslam::viewer {
 namespace {
 constexpr int kListRows = 16;        // rows of the observation list shown around the current one
 constexpr int kIdlePeriod_ms = 20;   // the GUI loop's idle period (playback tick)
-constexpr int kFramesBeforeShot = 3; // frames drawn after the last change before a screenshot
+constexpr int kFramesBeforeShot = 3; // ticks after the script's last key/select before a screenshot
 
 std::optional<Key> keyOf(int glfw_key) {
   switch (glfw_key) {
@@ -220,29 +221,30 @@ class ViewerWindow {
   }
 
   // Rebuilds the scene and the widgets when what they show changed.
+  // Updates the widgets; rebuilds the scene and the list only when what they show changed (the
+  // observation shown, the frames so far, the options), not on every tick of playback.
   void refresh(bool force) {
     const auto cur = replay_.currentObservation();
     const auto& o = replay_.options();
-    const std::string key = std::to_string(replay_.time()) + "|" + std::to_string(cur.value_or(0)) + "|" +
-                            toString(o.color_by) + toString(o.camera) + std::to_string(o.show_map) +
-                            std::to_string(o.show_boundaries);
+    const auto& m = replay_.model();
     help_->setVisible(replay_.helpShown());
     play_->setCaption(replay_.playing() ? "pause" : "play");
-    char sp[16];
-    std::snprintf(sp, sizeof sp, "%.1fx", replay_.speed());
-    speed_->setCaption(sp);
+    char text[160];
+    std::snprintf(text, sizeof text, "%.1fx", replay_.speed());
+    speed_->setCaption(text);
+    const double span = std::max(1e-9, m.endTime() - m.startTime());
+    slider_->setValue(float((replay_.time() - m.startTime()) / span));
+    std::snprintf(text, sizeof text, "t %.2f / %.2f s   observation %s / %zu", replay_.time() - m.startTime(), span,
+                  cur ? std::to_string(*cur).c_str() : "-", m.recording().size());
+    time_->setCaption(text);
+    if (pinned_ && replay_.time() != pinned_time_) pinned_.reset();
+    const std::string key = std::to_string(cur.value_or(SIZE_MAX)) + "|" + std::to_string(pinned_.value_or(SIZE_MAX)) +
+                            "|" + std::to_string(m.framesUpTo(replay_.time() + 0.06)) + "|" + toString(o.color_by) +
+                            toString(o.camera) + std::to_string(o.show_map) + std::to_string(o.show_boundaries);
     if (!force && key == last_key_ && !dirty_) return;
     last_key_ = key;
     dirty_ = false;
-    const auto& m = replay_.model();
-    const double span = std::max(1e-9, m.endTime() - m.startTime());
-    slider_->setValue(float((replay_.time() - m.startTime()) / span));
-    char tl[160];
-    std::snprintf(tl, sizeof tl, "t %.2f / %.2f s   observation %s / %zu", replay_.time() - m.startTime(), span,
-                  cur ? std::to_string(*cur).c_str() : "-", m.recording().size());
-    time_->setCaption(tl);
     // the list: a page of rows around the current observation
-    if (pinned_ && replay_.time() != pinned_time_) pinned_.reset();
     const std::size_t n = m.recording().size(), c = pinned_.value_or(cur.value_or(0));
     const std::size_t first = c > kListRows / 2 ? std::min(c - kListRows / 2, n > kListRows ? n - kListRows : 0) : 0;
     rows_index_.clear();
@@ -272,7 +274,6 @@ class ViewerWindow {
       cam.setZoomDistance(float(view.distance_m));
     }
     win_->performLayout();
-    frames_since_change_ = 0;
   }
 
   void tick() {
@@ -304,7 +305,11 @@ class ViewerWindow {
         if (win_->shotPending()) return;  // the next frame takes it
         shot_requested_ = false;
         if (win_->shotError().empty()) {
-          out_ << "screenshot " << c.arg << "\n";
+          const auto cur = replay_.currentObservation();
+          char at[96];
+          std::snprintf(at, sizeof at, " t=%.3f obs=%s", replay_.time() - replay_.model().startTime(),
+                        cur ? std::to_string(*cur).c_str() : "-");
+          out_ << "screenshot " << c.arg << at << "\n";
         } else {
           err_ << "roadslam-view: " << win_->shotError() << "\n";
           exit_code_ = 1;
@@ -312,9 +317,11 @@ class ViewerWindow {
       } else if (c.verb == "key") {
         replay_.handleKey(*parseKey(c.arg));
         refresh(false);
+        frames_since_change_ = 0;
       } else if (c.verb == "select") {
         select(std::stoul(c.arg));
         refresh(true);
+        frames_since_change_ = 0;
       } else if (c.verb == "quit") {
         win_->setVisible(false);
         nanogui::leave();
