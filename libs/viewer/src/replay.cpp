@@ -16,7 +16,8 @@ std::optional<Key> parseKey(const std::string& n) {
       {"space", Key::Space}, {"left", Key::Left}, {"right", Key::Right}, {"up", Key::Up},
       {"down", Key::Down},   {"home", Key::Home}, {"end", Key::End},     {"+", Key::Plus},
       {"plus", Key::Plus},   {"-", Key::Minus},   {"minus", Key::Minus}, {"c", Key::C},
-      {"v", Key::V},         {"h", Key::H},       {"m", Key::M},         {"b", Key::B}};
+      {"v", Key::V},         {"h", Key::H},       {"m", Key::M},         {"b", Key::B},
+      {"s", Key::S}};
   for (const auto& [name, key] : names)
     if (name == n) return key;
   return std::nullopt;
@@ -31,7 +32,7 @@ const std::vector<std::pair<std::string, std::string>>& shortcuts() {
       {"+ / -", "speed x2 / x0.5 (0.1x-10x)"},
       {"c", "colour: height, intensity, ring, time"},
       {"v", "camera: follow, top-down, orbit"},
-      {"m / b", "map / boundaries on-off"},
+      {"m / b / s", "map / boundaries / sweep on-off"},
       {"h", "this help"}};
   return s;
 }
@@ -98,6 +99,7 @@ bool Replay::handleKey(Key key) {
     case Key::V: options_.camera = CameraMode((int(options_.camera) + 1) % 3); return true;
     case Key::M: options_.show_map = !options_.show_map; return true;
     case Key::B: options_.show_boundaries = !options_.show_boundaries; return true;
+    case Key::S: options_.show_sweep = !options_.show_sweep; return true;
     case Key::H: help_ = !help_; return true;
   }
   return false;

@@ -150,7 +150,7 @@ CameraView buildScene(const ViewerModel& model, const SceneState& st, const Scen
       scene.insert(polyline(b->right, SceneColors::right, 4.f));
       scene.insert(polyline(b->free_space, SceneColors::free_space, 1.5f, true));
     }
-  if (st.sweep) {
+  if (st.sweep && o.show_sweep) {
     auto cloud = CPointCloudColoured::Create();
     cloud->reserve(st.sweep->points.size());
     const double z_lidar = T_map_lidar.translation().z();

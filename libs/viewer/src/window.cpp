@@ -39,6 +39,7 @@ std::optional<Key> keyOf(int glfw_key) {
     case GLFW_KEY_H: return Key::H;
     case GLFW_KEY_M: return Key::M;
     case GLFW_KEY_B: return Key::B;
+    case GLFW_KEY_S: return Key::S;
     default: return std::nullopt;
   }
 }
@@ -240,7 +241,8 @@ class ViewerWindow {
     if (pinned_ && replay_.time() != pinned_time_) pinned_.reset();
     const std::string key = std::to_string(cur.value_or(SIZE_MAX)) + "|" + std::to_string(pinned_.value_or(SIZE_MAX)) +
                             "|" + std::to_string(m.framesUpTo(replay_.time() + 0.06)) + "|" + toString(o.color_by) +
-                            toString(o.camera) + std::to_string(o.show_map) + std::to_string(o.show_boundaries);
+                            toString(o.camera) + std::to_string(o.show_map) + std::to_string(o.show_boundaries) +
+                            std::to_string(o.show_sweep);
     if (!force && key == last_key_ && !dirty_) return;
     last_key_ = key;
     dirty_ = false;

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <iterator>
 
+#include "roadslam/mapping/maps.h"
 #include "roadslam/sources/recording.h"
 #include "roadslam/viewer/render.h"
 #include "roadslam/viewer/replay.h"
@@ -167,4 +168,66 @@ TEST(ViewerModel, MapFolderTimesOutsideTheRecordingAreNamed) {
   ASSERT_EQ(model.frames().size(), 2u);
   ASSERT_FALSE(model.warnings().empty());
   EXPECT_NE(model.warnings().back().find("do not overlap the recording"), std::string::npos) << model.warnings().back();
+}
+
+// A map folder as roadslam-map writes it (trajectory.tum, frames.csv, summary.json loops, map.ply by
+// the mapping library's own writer): frames with status and keyframes, the loop edge between its two
+// frames, the point map decimated per voxel; the loop drawn in its colour once its time has come.
+TEST(ViewerModel, MapFolderLoopsKeyframesAndDecimatedPointMap) {
+  const fs::path dir = tempDir() / "map_loop";
+  fs::create_directories(dir);
+  ViewerInputs in;
+  in.recording = boxroomRawlog();
+  const double t0 = ViewerModel(in).startTime();
+  {  // a square drive of 4 frames back to the start: frame 3 closes a loop onto frame 0
+    std::ofstream tum(dir / "trajectory.tum");
+    tum.precision(17);
+    tum << "# t x y z qx qy qz qw\n";
+    const double xy[4][2] = {{0, 0}, {8, 0}, {8, 8}, {0.5, 0.5}};
+    for (int i = 0; i < 4; ++i) tum << t0 + 0.1 * i << " " << xy[i][0] << " " << xy[i][1] << " 0 0 0 0 1\n";
+    std::ofstream csv(dir / "frames.csv");
+    csv << "index,stamp_s,status,point_times,deskewed,keyframe,x_m\n";
+    for (int i = 0; i < 4; ++i) csv << i << "," << t0 + 0.1 * i << "," << (i == 2 ? "degenerate" : "ok") << ",sensor,1," << (i % 2 == 0) << ",0\n";
+    std::ofstream(dir / "summary.json")
+        << R"({"loops": {"accepted": [{"query_frame": 3, "match_frame": 0, "query_keyframe": 2, "match_keyframe": 0,
+              "fitness_m": 0.1, "overlap": 0.8, "correction_m": 0.2, "ms": 5, "reason": "accepted"}], "rejected": []}})";
+    std::vector<Eigen::Vector3f> pts;
+    for (int i = 0; i < 1000; ++i) pts.emplace_back(0.01f * float(i), 0.f, 0.f);  // 10 m of points 1 cm apart
+    roadslam::mapping::writePly((dir / "map.ply").string(), pts);
+  }
+  in.map_dir = dir.string();
+  in.map_voxel_m = 0.5;
+  ViewerModel model(in);
+  ASSERT_EQ(model.frames().size(), 4u);
+  EXPECT_EQ(model.frames()[2].status, "degenerate");
+  EXPECT_TRUE(model.frames()[0].keyframe);
+  EXPECT_FALSE(model.frames()[1].keyframe);
+  ASSERT_EQ(model.loops().size(), 1u);
+  EXPECT_EQ(model.loops()[0].query, Eigen::Vector3d(0.5, 0.5, 0));
+  EXPECT_EQ(model.loops()[0].match, Eigen::Vector3d(0, 0, 0));
+  EXPECT_NEAR(model.loops()[0].stamp_s, t0 + 0.3, 1e-6);
+  EXPECT_EQ(model.mapPoints().size(), 20u);  // 10 m at one point per 0.5 m voxel
+  EXPECT_TRUE(model.warnings().empty() || model.warnings()[0].find("overlap") == std::string::npos);
+
+  Replay replay(model);
+  replay.options().camera = CameraMode::TopDown;
+  replay.options().top_height_m = 20;
+  replay.options().show_sweep = false;  // the box room's walls are orange in the jet colour map
+  PngRenderer renderer(320, 240);
+  const auto loopPixels = [&](double t) {
+    replay.seek(t);
+    const std::string png = (tempDir() / "loop.png").string();
+    renderCurrent(replay, renderer, png);
+    mrpt::img::CImage img;
+    EXPECT_TRUE(img.loadFromFile(png));
+    int n = 0;
+    for (int y = 30; y < 240; ++y)
+      for (int x = 0; x < 320; ++x) {
+        const auto* px = img.ptr<uint8_t>(x, y);  // BGR; the loop is orange (255, 140, 0)
+        if (px[2] > 200 && px[1] > 90 && px[1] < 180 && px[0] < 40) ++n;
+      }
+    return n;
+  };
+  EXPECT_EQ(loopPixels(t0 + 0.15), 0) << "before the loop closed";
+  EXPECT_GT(loopPixels(t0 + 0.35), 0) << "after it";
 }

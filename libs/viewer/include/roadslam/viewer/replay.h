@@ -21,9 +21,9 @@ class CObservation;
 namespace roadslam::viewer {
 
 /// Shortcut keys, independent of the GUI toolkit.
-enum class Key { Space, Left, Right, Up, Down, Home, End, Plus, Minus, C, V, H, M, B };
+enum class Key { Space, Left, Right, Up, Down, Home, End, Plus, Minus, C, V, H, M, B, S };
 /// "space", "left", "right", "up", "down", "home", "end", "+"/"plus", "-"/"minus", "c", "v", "h",
-/// "m", "b"; nullopt for any other name.
+/// "m", "b", "s"; nullopt for any other name.
 std::optional<Key> parseKey(const std::string& name);
 /// The help overlay: one line per shortcut.
 const std::vector<std::pair<std::string, std::string>>& shortcuts();

@@ -31,7 +31,7 @@ CameraMode parseCameraMode(const std::string& s);
 struct SceneOptions {
   ColorBy color_by = ColorBy::Height;
   CameraMode camera = CameraMode::Follow;
-  bool show_map = true, show_trajectory = true, show_ground_truth = true, show_loops = true,
+  bool show_sweep = true, show_map = true, show_trajectory = true, show_ground_truth = true, show_loops = true,
        show_boundaries = true, show_keyframes = true;
   float sweep_point_px = 2.0f;     ///< point size of the current sweep [pixels]
   float map_point_px = 1.0f;       ///< point size of the map [pixels]
