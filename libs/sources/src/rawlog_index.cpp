@@ -19,7 +19,7 @@
 #include <stdexcept>
 
 #include "roadslam/common/atomic_file.h"
-#include "seekable_stream.h"
+#include "rawlog_index_impl.h"
 
 namespace roadslam::sources {
 
@@ -27,23 +27,6 @@ using detail::GzAccessPoint;
 using detail::SeekableStream;
 
 namespace {
-constexpr char kMagic[8] = {'R', 'S', 'R', 'L', 'I', 'D', 'X', '\n'};
-constexpr uint32_t kFormatVersion = 1;
-constexpr uint64_t kEndMarker = 0x454e44494458ULL;  // "XDIDNE"
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-struct FileStamp {
-  uint64_t size = 0;
-  int64_t mtime_ns = 0;
-  bool operator==(const FileStamp& o) const { return size == o.size && mtime_ns == o.mtime_ns; }
-};
-
-FileStamp stampOf(const std::string& path) {
-  struct stat st {};
-  if (::stat(path.c_str(), &st) != 0) throw std::runtime_error("rawlog '" + path + "' does not exist");
-  return {uint64_t(st.st_size), int64_t(st.st_mtim.tv_sec) * 1000000000LL + st.st_mtim.tv_nsec};
-}
-
 // MRPT nests exceptions; the innermost "Message:" line names the cause on one line.
 std::string innermostMessage(const std::string& what) {
   const auto at = what.rfind("Message:");
@@ -62,77 +45,16 @@ std::optional<std::string> unregisteredClass(const std::string& what) {
   return what.substr(q0 + 1, q1 - q0 - 1);
 }
 
-// Binary writer / bounds-checked reader of the sidecar (host byte order: the sidecar is a cache).
-struct Out {
-  std::string buf;
-  template <class T>
-  void put(const T& v) { buf.append(reinterpret_cast<const char*>(&v), sizeof v); }
-  void str(const std::string& s) {
-    put(uint32_t(s.size()));
-    buf += s;
-  }
-};
-struct In {
-  const std::string& buf;
-  std::size_t at = 0;
-  template <class T>
-  T get() {
-    if (at + sizeof(T) > buf.size()) throw std::runtime_error("sidecar cut short");
-    T v;
-    std::memcpy(&v, buf.data() + at, sizeof v);
-    at += sizeof v;
-    return v;
-  }
-  std::string str() {
-    const auto n = get<uint32_t>();
-    if (at + n > buf.size()) throw std::runtime_error("sidecar cut short");
-    std::string s = buf.substr(at, n);
-    at += n;
-    return s;
-  }
-};
 }  // namespace
 
-struct RawlogIndex::Impl {
-  std::string path;
-  FileStamp stamp;
-  RawlogOpenInfo info;
-  std::vector<RawlogEntry> entries;
-  std::vector<std::string> labels, classes;
-  std::map<std::string, uint16_t> label_ids, class_ids;
-  std::vector<uint32_t> by_time;  // entries with a finite stamp, in time order
-  bool complete = true, gzip = false;
-  std::string stop;
-  uint64_t uncompressed = 0;
-  std::unique_ptr<SeekableStream> stream;
+namespace detail {
+FileStamp stampOf(const std::string& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) throw std::runtime_error("rawlog '" + path + "' does not exist");
+  return {uint64_t(st.st_size), int64_t(st.st_mtim.tv_sec) * 1000000000LL + st.st_mtim.tv_nsec};
+}
 
-  uint16_t intern(std::vector<std::string>& names, std::map<std::string, uint16_t>& ids,
-                  const std::string& s) {
-    const auto it = ids.find(s);
-    if (it != ids.end()) return it->second;
-    if (names.size() >= 0xffff) return 0;
-    names.push_back(s);
-    return ids[s] = uint16_t(names.size() - 1);
-  }
-  void add(uint64_t offset, uint64_t size, int32_t sub, const mrpt::obs::CObservation* o,
-           const std::string& cls, bool known) {
-    RawlogEntry e;
-    e.offset = offset;
-    e.size = uint32_t(std::min<uint64_t>(size, 0xffffffffu));
-    e.sub = sub;
-    e.stamp_s = o && o->timestamp != INVALID_TIMESTAMP ? mrpt::Clock::toDouble(o->timestamp) : kNaN;
-    e.label = intern(labels, label_ids, o ? o->sensorLabel : std::string());
-    const auto colons = cls.rfind("::");  // "mrpt::obs::CObservationGPS" -> "CObservationGPS"
-    e.cls = intern(classes, class_ids, colons == std::string::npos ? cls : cls.substr(colons + 2));
-    e.known = known;
-    entries.push_back(e);
-  }
-  void build(uint64_t span);
-  bool resync(uint64_t from);
-  void finish();
-  std::string serialize() const;
-  bool deserialize(const std::string& buf, std::string& why);
-};
+}  // namespace detail
 
 // The next offset after \p from where a record of a registered class starts and reads; the stream
 // is left there. False at the end of the file (or damage) without one.
@@ -231,115 +153,13 @@ void RawlogIndex::Impl::finish() {
   });
 }
 
-std::string RawlogIndex::Impl::serialize() const {
-  Out o;
-  o.buf.append(kMagic, sizeof kMagic);
-  o.put(kFormatVersion);
-  o.put(stamp.size);
-  o.put(stamp.mtime_ns);
-  o.put(uint8_t(gzip));
-  o.put(uint8_t(complete));
-  o.put(uncompressed);
-  o.str(stop);
-  o.put(uint32_t(labels.size()));
-  for (const auto& s : labels) o.str(s);
-  o.put(uint32_t(classes.size()));
-  for (const auto& s : classes) o.str(s);
-  o.put(uint64_t(entries.size()));
-  for (const auto& e : entries) {
-    o.put(e.offset);
-    o.put(e.size);
-    o.put(e.sub);
-    o.put(e.stamp_s);
-    o.put(e.label);
-    o.put(e.cls);
-    o.put(uint8_t(e.known));
-  }
-  const auto& pts = stream->accessPoints();
-  o.put(uint64_t(pts.size()));
-  for (const auto& p : pts) {
-    o.put(p.out);
-    o.put(p.in);
-    o.put(p.bits);
-    o.put(uint32_t(p.window_z.size()));
-    o.buf.append(reinterpret_cast<const char*>(p.window_z.data()), p.window_z.size());
-  }
-  o.put(kEndMarker);
-  return o.buf;
-}
-
-bool RawlogIndex::Impl::deserialize(const std::string& buf, std::string& why) {
-  try {
-    if (buf.size() < sizeof kMagic || std::memcmp(buf.data(), kMagic, sizeof kMagic) != 0) {
-      why = "not a roadslam rawlog index";
-      return false;
-    }
-    In in{buf, sizeof kMagic};
-    if (in.get<uint32_t>() != kFormatVersion) {
-      why = "index format version differs";
-      return false;
-    }
-    FileStamp s;
-    s.size = in.get<uint64_t>();
-    s.mtime_ns = in.get<int64_t>();
-    if (!(s == stamp)) {
-      why = "stale (the rawlog's size or modification time changed)";
-      return false;
-    }
-    gzip = in.get<uint8_t>() != 0;
-    complete = in.get<uint8_t>() != 0;
-    uncompressed = in.get<uint64_t>();
-    stop = in.str();
-    labels.resize(in.get<uint32_t>());
-    for (auto& l : labels) l = in.str();
-    classes.resize(in.get<uint32_t>());
-    for (auto& c : classes) c = in.str();
-    const auto n = in.get<uint64_t>();
-    if (n > buf.size()) throw std::runtime_error("bad entry count");
-    entries.resize(n);
-    for (auto& e : entries) {
-      e.offset = in.get<uint64_t>();
-      e.size = in.get<uint32_t>();
-      e.sub = in.get<int32_t>();
-      e.stamp_s = in.get<double>();
-      e.label = in.get<uint16_t>();
-      e.cls = in.get<uint16_t>();
-      e.known = in.get<uint8_t>() != 0;
-      if (e.label >= std::max<std::size_t>(labels.size(), 1) || e.cls >= std::max<std::size_t>(classes.size(), 1))
-        throw std::runtime_error("bad name id");
-    }
-    const auto np = in.get<uint64_t>();
-    if (np > buf.size()) throw std::runtime_error("bad access point count");
-    std::vector<GzAccessPoint> pts(np);
-    for (auto& p : pts) {
-      p.out = in.get<uint64_t>();
-      p.in = in.get<uint64_t>();
-      p.bits = in.get<int32_t>();
-      const auto len = in.get<uint32_t>();
-      if (in.at + len > buf.size() || p.bits < 0 || p.bits > 7) throw std::runtime_error("bad access point");
-      p.window_z.assign(buf.begin() + long(in.at), buf.begin() + long(in.at + len));
-      in.at += len;
-    }
-    if (in.get<uint64_t>() != kEndMarker || in.at != buf.size()) throw std::runtime_error("no end marker");
-    stream = std::make_unique<SeekableStream>(path);
-    stream->setAccessPoints(std::move(pts));
-    return true;
-  } catch (const std::exception& e) {
-    why = std::string("unreadable (") + e.what() + ")";
-    entries.clear();
-    labels.clear();
-    classes.clear();
-    return false;
-  }
-}
-
 std::string RawlogIndex::sidecarPath(const std::string& rawlog_path) { return rawlog_path + ".idx"; }
 
 std::unique_ptr<RawlogIndex> RawlogIndex::open(const std::string& path, const RawlogIndexOptions& opt) {
   const auto t0 = std::chrono::steady_clock::now();
   auto impl = std::make_unique<Impl>();
   impl->path = path;
-  impl->stamp = stampOf(path);
+  impl->stamp = detail::stampOf(path);
   const std::string side = sidecarPath(path);
   bool loaded = false;
   if (opt.use_cache) {
@@ -423,7 +243,7 @@ std::shared_ptr<mrpt::obs::CObservation> RawlogIndex::load(std::size_t i) {
   const RawlogEntry& e = entry(i);
   const std::string where = impl_->path + ": observation " + std::to_string(i);
   if (!e.known) throw std::runtime_error(where + " is of class '" + className(i) + "', unknown to this build");
-  if (!(stampOf(impl_->path) == impl_->stamp)) throw std::runtime_error(impl_->path + " changed since it was indexed");
+  if (!(detail::stampOf(impl_->path) == impl_->stamp)) throw std::runtime_error(impl_->path + " changed since it was indexed");
   try {
     impl_->stream->Seek(int64_t(e.offset));
     const auto rec = mrpt::serialization::archiveFrom(*impl_->stream).ReadObject();
