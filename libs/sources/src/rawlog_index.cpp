@@ -176,6 +176,7 @@ std::unique_ptr<RawlogIndex> RawlogIndex::open(const std::string& path, const Ra
     impl->label_ids.clear();
     impl->classes.clear();
     impl->class_ids.clear();
+    if (opt.on_build) opt.on_build(path);
     impl->build(opt.span_bytes);
     if (opt.write_cache) {
       try {

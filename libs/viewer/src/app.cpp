@@ -36,6 +36,10 @@ int runView(const ViewRequest& req, std::ostream& out, std::ostream& err) {
   if (!headless) checkWindowRequest(window);
   ViewerInputs in = req.inputs;
   if (req.no_index_cache) in.index.use_cache = in.index.write_cache = false;
+  in.index.on_build = [&err, &req](const std::string& path) {
+    err << "roadslam-view: indexing " << path << " once"
+        << (req.no_index_cache ? "" : " (kept in " + sources::RawlogIndex::sidecarPath(path) + ")") << " ...\n";
+  };
   ViewerModel model(in);
   for (const auto& warning : model.warnings()) err << "roadslam-view: warning: " << warning << "\n";
   out << summaryLine(model) << "\n";

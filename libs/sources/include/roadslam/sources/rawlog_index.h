@@ -16,6 +16,7 @@
 /// Not thread-safe: load() moves the single read position.
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -43,6 +44,9 @@ struct RawlogIndexOptions {
   uint64_t span_bytes = 4u << 20;  ///< gzip: uncompressed bytes between access points [bytes]
   bool use_cache = true;           ///< read "<rawlog>.idx" when fresh
   bool write_cache = true;         ///< write it after building (atomically; a failure is a warning)
+  /// Called once when the index has to be built (reading the whole file: ~1 s per 100 MB of gzip
+  /// here), e.g. to tell the user; may be empty.
+  std::function<void(const std::string& rawlog_path)> on_build;
 };
 
 /// How open() went.
