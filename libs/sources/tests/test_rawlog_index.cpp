@@ -7,11 +7,15 @@
 #include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/io/CFileOutputStream.h>
 #include <mrpt/io/CMemoryStream.h>
+#include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CObservationGPS.h>
+#include <mrpt/obs/CRawlog.h>
+#include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/obs/CObservationVelodyneScan.h>
 #include <mrpt/serialization/CArchive.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -280,4 +284,40 @@ TEST(RawlogIndex, MissingFileIsNamed) {
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("/nonexistent/x.rawlog"), std::string::npos);
   }
+}
+
+TEST(RawlogIndex, SensoryFramesAndActionsAsMrptCRawlogWritesThem) {
+  // The "actions + sensory frames" layout: each observation of a frame is an entry of its own
+  // (same record offset, its position in the frame); an action is listed without a time.
+  const fs::path path = tempDir() / "sf.rawlog";
+  {
+    mrpt::obs::CRawlog rawlog;
+    for (int f = 0; f < 3; ++f) {
+      mrpt::obs::CActionCollection acts;
+      rawlog.insert(acts);
+      mrpt::obs::CSensoryFrame sf;
+      for (int k = 0; k < 2; ++k) {
+        auto g = mrpt::obs::CObservationGPS::Create();
+        g->sensorLabel = k == 0 ? "GPS_A" : "GPS_B";
+        g->timestamp = mrpt::Clock::fromDouble(kT0 + f + 0.25 * k);
+        sf.insert(g);
+      }
+      rawlog.insert(sf);
+    }
+    ASSERT_TRUE(rawlog.saveToRawLogFile(path.string()));
+  }
+  const auto idx = RawlogIndex::open(path.string());
+  ASSERT_EQ(idx->size(), 9u) << idx->stopMessage();  // per frame: the action, two observations
+  EXPECT_TRUE(idx->complete()) << idx->stopMessage();
+  EXPECT_EQ(idx->className(0), "CActionCollection");
+  EXPECT_FALSE(std::isfinite(idx->entry(0).stamp_s));
+  EXPECT_EQ(idx->load(0), nullptr) << "an action is no observation";
+  EXPECT_EQ(idx->entry(1).offset, idx->entry(2).offset);
+  EXPECT_EQ(idx->entry(2).sub, 1);
+  EXPECT_EQ(idx->label(8), "GPS_B");
+  const auto o = idx->load(8);
+  ASSERT_TRUE(o);
+  EXPECT_EQ(o->sensorLabel, "GPS_B");
+  EXPECT_NEAR(mrpt::Clock::toDouble(o->timestamp), kT0 + 2.25, 1e-6);
+  EXPECT_EQ(*idx->findAtTime(kT0 + 1.3), 5u);
 }
