@@ -106,6 +106,21 @@ void ViewerModel::appendFrame(const FrameResult& f) {
   frames_.insert(at, f);
 }
 
+void ViewerModel::postFrame(const FrameResult& f) {
+  std::lock_guard<std::mutex> lock(posted_mutex_);
+  posted_.push_back(f);
+}
+
+std::size_t ViewerModel::takePosted() {
+  std::vector<FrameResult> taken;
+  {
+    std::lock_guard<std::mutex> lock(posted_mutex_);
+    taken.swap(posted_);
+  }
+  for (const auto& f : taken) appendFrame(f);
+  return taken.size();
+}
+
 std::size_t ViewerModel::framesUpTo(double t_s) const {
   return std::size_t(std::upper_bound(frames_.begin(), frames_.end(), t_s,
                                       [](double t, const FrameResult& r) { return t < r.stamp_s; }) -

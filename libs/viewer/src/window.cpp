@@ -283,6 +283,7 @@ class ViewerWindow {
     const double dt = last_tick_ ? std::chrono::duration<double>(now - *last_tick_).count() : 0.0;
     last_tick_ = now;
     replay_.advance(dt);
+    if (replay_.model().takePosted() > 0) dirty_ = true;  // results streamed in by another thread
     refresh(false);
     ++frames_since_change_;
     runScript(now);

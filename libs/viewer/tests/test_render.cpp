@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <thread>
 
 #include "roadslam/mapping/maps.h"
 #include "roadslam/sources/recording.h"
@@ -230,4 +231,28 @@ TEST(ViewerModel, MapFolderLoopsKeyframesAndDecimatedPointMap) {
   };
   EXPECT_EQ(loopPixels(t0 + 0.15), 0) << "before the loop closed";
   EXPECT_GT(loopPixels(t0 + 0.35), 0) << "after it";
+}
+
+// Frame results streamed in from another thread (an odometry beside the replay) reach the model on
+// the drawing thread, in time order, and count as "so far" by their stamps.
+TEST(ViewerModel, FramesPostedFromAnotherThreadAreTakenInOrder) {
+  ViewerInputs in;
+  in.recording = boxroomRawlog();
+  ViewerModel model(in);
+  const double t0 = model.startTime();
+  std::thread producer([&] {
+    for (int k = 9; k >= 0; --k) {  // out of order on purpose
+      FrameResult f;
+      f.stamp_s = t0 + 0.05 * k;
+      f.T_map_lidar.translation().x() = k;
+      model.postFrame(f);
+    }
+  });
+  producer.join();
+  EXPECT_TRUE(model.frames().empty()) << "nothing before the drawing thread takes them";
+  EXPECT_EQ(model.takePosted(), 10u);
+  ASSERT_EQ(model.frames().size(), 10u);
+  for (std::size_t i = 0; i < 10; ++i) EXPECT_EQ(model.frames()[i].T_map_lidar.translation().x(), double(i));
+  EXPECT_EQ(model.framesUpTo(t0 + 0.12), 3u);
+  EXPECT_EQ(model.takePosted(), 0u);
 }

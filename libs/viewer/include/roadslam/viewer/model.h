@@ -13,6 +13,7 @@
 #include <Eigen/Geometry>
 
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -68,7 +69,13 @@ class ViewerModel {
   double endTime() const;
 
   /// Appends a frame result (stamps must not go back in time; an older one is inserted in order).
+  /// Not thread-safe: call it on the thread that draws (the window's loop), or use postFrame().
   void appendFrame(const FrameResult& f);
+  /// Thread-safe: queues a frame result from another thread (e.g. an odometry running beside the
+  /// replay); takePosted() moves the queue into frames() on the drawing thread.
+  void postFrame(const FrameResult& f);
+  /// Appends the posted frames; returns how many (the window calls it every tick).
+  std::size_t takePosted();
   const std::vector<FrameResult>& frames() const { return frames_; }
   /// Number of frames stamped at or before \p t_s (frames()[0 .. n) are "so far").
   std::size_t framesUpTo(double t_s) const;
@@ -92,6 +99,8 @@ class ViewerModel {
   std::unique_ptr<sources::RawlogIndex> index_;
   std::vector<std::string> warnings_;
   std::vector<FrameResult> frames_;
+  std::mutex posted_mutex_;
+  std::vector<FrameResult> posted_;
   std::vector<LoopEdge> loops_;
   std::vector<Eigen::Vector3f> map_points_;
   std::vector<double> gt_stamps_;
