@@ -92,7 +92,8 @@ std::string kittiYard(const std::string& name, int n) {
 }
 
 const char* kPrograms[] = {"roadslam-bounds", "roadslam-can",    "roadslam-eval", "roadslam-experiment",
-                           "roadslam-grab",   "roadslam-map",    "roadslam-rawlog", "roadslam-sim"};
+                           "roadslam-grab",   "roadslam-map",    "roadslam-rawlog", "roadslam-sim",
+                           "roadslam-view"};
 }  // namespace
 
 TEST(AppsCli, VersionNamesProgramVersionCommitAndBuildType) {

@@ -1,0 +1,193 @@
+// End-to-end: the roadslam-view binary on the bundled box room (as a rawlog) with a small map folder:
+// headless renders (deterministic, a sequence), bad inputs (one line, exit 1), and the real window
+// under Xvfb driven by a --script, asserting on its screenshots.
+#include <gtest/gtest.h>
+
+#include <mrpt/img/CImage.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+#include "roadslam/sources/rawlog_index.h"
+#include "roadslam/sources/recording.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// The trajectory's magenta (SceneColors::trajectory), also where lines are blended with the
+// background: red and blue alike, no green. The jet colour map of the sweep never gives that hue.
+bool isTrajectoryHue(int r, int g, int b) { return r > 100 && b > 100 && g < 40 && std::abs(r - b) < 30; }
+const std::string kBin = ROADSLAM_VIEW_BIN;
+
+struct AppRun {
+  int status = -1;
+  std::string out;
+};
+AppRun run(const std::string& args, const std::string& prefix = "") {
+  const std::string cmd = prefix + kBin + " " + args + " 2>&1 </dev/null";
+  FILE* p = popen(cmd.c_str(), "r");
+  std::string out;
+  char buf[4096];
+  std::size_t n;
+  while ((n = std::fread(buf, 1, sizeof(buf), p)) > 0) out.append(buf, n);
+  const int st = pclose(p);
+  return {WIFEXITED(st) ? WEXITSTATUS(st) : -1, out};
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(f), {}};
+}
+
+// The box room as a rawlog and a map folder whose trajectory drove 10 m along +x up to it.
+struct Fixture {
+  fs::path dir, rawlog, map;
+  Fixture() {
+    dir = fs::temp_directory_path() / ("roadslam_view_app_" + std::to_string(getpid()));
+    fs::create_directories(dir / "map");
+    rawlog = dir / "boxroom.rawlog";
+    map = dir / "map";
+    roadslam::sources::convertToRawlog(std::string(ROADSLAM_SOURCE_DIR) + "/rawlogs/boxroom-vlp16.pcap",
+                                       rawlog.string());
+    const double t0 = roadslam::sources::RawlogIndex::open(rawlog.string())->firstStamp();
+    std::ofstream tum(map / "trajectory.tum");
+    tum.precision(17);
+    for (int k = 0; k <= 20; ++k) tum << t0 - 2.0 + 0.1 * k << " " << -10.0 + 0.5 * k << " 0 0 0 0 0 1\n";
+  }
+};
+const Fixture& fixture() {
+  static const Fixture f;
+  return f;
+}
+
+struct Pixels {
+  int magenta = 0, coloured = 0, bright = 0;
+};
+// Counts in the rectangle [x0, x1) x [y0, y1): trajectory magenta, jet-coloured (sweep) and bright
+// grey (text) pixels.
+Pixels count(const mrpt::img::CImage& img, int x0, int y0, int x1, int y1) {
+  Pixels c;
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x < x1; ++x) {
+      const auto* px = img.ptr<uint8_t>(x, y);
+      const int b = px[0], g = px[1], r = px[2];
+      if (isTrajectoryHue(r, g, b)) ++c.magenta;
+      const int mx = std::max({r, g, b}), mn = std::min({r, g, b});
+      if (mx - mn > 60 && !isTrajectoryHue(r, g, b)) ++c.coloured;
+      if (mn > 170 && mx - mn < 20) ++c.bright;
+    }
+  return c;
+}
+}  // namespace
+
+TEST(RoadslamViewApp, HeadlessRenderIsDeterministicAndSequenceWritesPictures) {
+  const auto& f = fixture();
+  const fs::path a = f.dir / "a.png", b = f.dir / "b.png";
+  const std::string common = f.rawlog.string() + " --map " + f.map.string() + " --size 320x240 --camera top";
+  const AppRun ra = run(common + " --render " + a.string() + " --at 0.2");
+  ASSERT_EQ(ra.status, 0) << ra.out;
+  const AppRun rb = run(common + " --render " + b.string() + " --at 0.2");
+  ASSERT_EQ(rb.status, 0) << rb.out;
+  EXPECT_EQ(slurp(a), slurp(b));
+  mrpt::img::CImage img;
+  ASSERT_TRUE(img.loadFromFile(a.string()));
+  EXPECT_EQ(img.getWidth(), 320u);
+  EXPECT_GT(count(img, 0, 30, 150, 240).magenta, 20) << "the path comes from the left in the top view";
+  const AppRun rs = run(common + " --render-sequence " + (f.dir / "seq").string() + " --every 2");
+  ASSERT_EQ(rs.status, 0) << rs.out;
+  EXPECT_NE(rs.out.find(": 3 pictures"), std::string::npos) << rs.out;  // 6 sweeps, every 2nd
+  EXPECT_EQ(std::distance(fs::directory_iterator(f.dir / "seq"), fs::directory_iterator{}), 3);
+}
+
+// The real outputs of roadslam-map and roadslam-bounds on the same recording load (their formats are
+// what the viewer parses: a change on either side fails here) and cover the recording's times.
+TEST(RoadslamViewApp, OpensRealMapAndBoundsFolders) {
+  const auto& f = fixture();
+  const std::string bin = fs::path(kBin).parent_path().string();
+  const fs::path map = f.dir / "real_map", bounds = f.dir / "real_bounds";
+  const std::string src = ROADSLAM_SOURCE_DIR;
+  ASSERT_EQ(std::system((bin + "/roadslam-map --config " + src + "/ini/default.ini --input " + f.rawlog.string() +
+                         " --out " + map.string() + " --quiet").c_str()), 0);
+  ASSERT_EQ(std::system((bin + "/roadslam-bounds --config " + src + "/ini/bounds.ini --input " + f.rawlog.string() +
+                         " --trajectory " + (map / "trajectory.tum").string() + " --out " + bounds.string() +
+                         " --png-every 0 --quiet").c_str()), 0);
+  const AppRun r = run(f.rawlog.string() + " --map " + map.string() + " --bounds " + bounds.string() + " --gt " +
+                       (map / "trajectory_odometry.tum").string() + " --size 320x240 --render " +
+                       (f.dir / "real.png").string() + " --at 0.3");
+  EXPECT_EQ(r.status, 0) << r.out;
+  EXPECT_EQ(r.out.find("warning"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(" 6 frames, 0 loops, "), std::string::npos) << r.out;  // the box room's 6 sweeps
+  EXPECT_NE(r.out.find(" 6 boundary sweeps, 6 ground-truth poses"), std::string::npos) << r.out;
+  EXPECT_TRUE(fs::exists(f.dir / "real.png"));
+}
+
+TEST(RoadslamViewApp, BadInputsExitWithOneLineNamingTheProblem) {
+  const auto& f = fixture();
+  const fs::path script = f.dir / "bad_script.txt";
+  std::ofstream(script) << "wait 0.1\njump 3\n";
+  const fs::path noise = f.dir / "noise.rawlog";
+  {
+    std::ofstream n(noise, std::ios::binary);
+    for (int i = 0; i < 20000; ++i) n.put(char((i * 7919) % 251));
+  }
+  const struct {
+    std::string args, prefix, message;
+  } cases[] = {
+      {f.rawlog.string() + " --script " + script.string(), "", script.string() + ":2: unknown command 'jump'"},
+      {f.rawlog.string() + " --color purple --render x.png", "", "colour mode 'purple'"},
+      {f.rawlog.string(), "env -u DISPLAY -u WAYLAND_DISPLAY ", "no display"},
+      {noise.string() + " --render " + (f.dir / "n.png").string(), "", "holds no readable observation"},
+  };
+  for (const auto& c : cases) {
+    const AppRun r = run(c.args, c.prefix);
+    EXPECT_EQ(r.status, 1) << c.args << ": " << r.out;
+    EXPECT_NE(r.out.find(c.message), std::string::npos) << c.args << ": " << r.out;
+    EXPECT_EQ(r.out.rfind("roadslam-view: ", 0), 0u) << r.out;
+  }
+  EXPECT_FALSE(fs::exists(f.dir / "n.png"));
+}
+
+TEST(RoadslamViewWindow, ScriptDrivesTheRealWindowUnderXvfb) {
+  if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "xvfb-run is not installed (Debian package xvfb; scripts/setup.sh installs it)";
+  const auto& f = fixture();
+  const fs::path s0 = f.dir / "win0.png", s1 = f.dir / "win1.png", script = f.dir / "script.txt";
+  std::ofstream(script) << "# start, step to the next sweep, top view, select observation 3\n"
+                        << "wait 0.3\nscreenshot " << s0.string() << "\n"
+                        << "key right\nkey v\nkey h\nselect 3\nwait 0.2\nscreenshot " << s1.string() << "\n"
+                        << "# play at 1/8 speed for 0.8 s: about 0.1 s of the recording\n"
+                        << "key home\nkey -\nkey -\nkey -\nkey space\nwait 0.8\nscreenshot " << (f.dir / "win2.png").string()
+                        << "\nquit\n";
+  const AppRun r = run(f.rawlog.string() + " --map " + f.map.string() + " --size 960x540 --script " + script.string(),
+                       "timeout 60 xvfb-run -a -s '-screen 0 1024x600x24' ");
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("screenshot " + s0.string() + " t=0.000 obs=0"), std::string::npos) << r.out;
+  // observation 3 is a GPS record at 0.101 s: the scene shows the sweep before it, observation 2
+  EXPECT_NE(r.out.find("screenshot " + s1.string() + " t=0.101 obs=2"), std::string::npos) << r.out;
+  const auto at = r.out.find("win2.png t=");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  const double played = std::stod(r.out.substr(at + 11));
+  EXPECT_GT(played, 0.05) << "playing moved the time";
+  EXPECT_LT(played, 0.44) << "at 1/8 speed, not at the end (0.45 s) as at 1x";
+  mrpt::img::CImage a, b;
+  ASSERT_TRUE(a.loadFromFile(s0.string()));
+  ASSERT_TRUE(b.loadFromFile(s1.string()));
+  ASSERT_EQ(a.getWidth(), 960u);
+  ASSERT_EQ(a.getHeight(), 540u);
+  // the scene between the timeline (bottom left) and the list (right): the sweep's points
+  EXPECT_GT(count(a, 300, 40, 480, 350).coloured, 300) << "sweep points in the 3D view";
+  // the trajectory's colour in the window (the map folder's path up to the box room)
+  EXPECT_GT(count(a, 0, 0, 490, 540).magenta + count(b, 0, 0, 490, 540).magenta, 10);
+  // the observation list (right panel) filled with rows of text
+  EXPECT_GT(count(b, 500, 60, 960, 480).bright, 1500) << "observation rows";
+  // "select 3" shows observation 3's details: a GPS record (the box room has one after every sweep)
+  EXPECT_NE(count(b, 490, 420, 960, 540).bright, count(a, 490, 420, 960, 540).bright) << "details changed";
+  // top view after "key v" changes the picture
+  EXPECT_NE(slurp(s0), slurp(s1));
+}

@@ -1,0 +1,111 @@
+#pragma once
+/// \file rawlog_index.h
+/// Random access to an MRPT rawlog (observations format: a plain or gzip stream of serialized
+/// objects; also the sensory-frames format). The file is read once to build an index (per
+/// observation: uncompressed byte offset, size, time, sensor label, class name) that is cached in a
+/// sidecar file beside it, "<rawlog>.idx", stamped with the rawlog's size and modification time; a
+/// stale or unreadable sidecar is rebuilt. Observation i is then loaded by seeking to its offset:
+/// a gzip rawlog keeps zlib access points (zran.c) every `span` uncompressed bytes in the sidecar, so a
+/// seek decompresses at most `span` bytes.
+///
+/// Damage never throws: a truncated or corrupt rawlog is indexed up to the damage, and complete() is
+/// false with stopMessage() naming the observation index and byte where reading stopped. A record of
+/// a class this build does not know (not registered with MRPT) is listed with its class name and
+/// skipped by searching forward for the next record a registered class reads.
+///
+/// Not thread-safe: load() moves the single read position.
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace mrpt::obs {
+class CObservation;
+}
+
+namespace roadslam::sources {
+
+/// One observation of the rawlog.
+struct RawlogEntry {
+  uint64_t offset = 0;   ///< uncompressed byte offset of the record holding it [bytes]
+  uint32_t size = 0;     ///< uncompressed bytes of that record [bytes]
+  int32_t sub = -1;      ///< position inside a CSensoryFrame record; -1: the record is the observation
+  double stamp_s = 0;    ///< CObservation::timestamp [s, Unix epoch]; NaN when the record has none
+  uint16_t label = 0;    ///< index into RawlogIndex::labels() (sensorLabel)
+  uint16_t cls = 0;      ///< index into RawlogIndex::classNames()
+  bool known = true;     ///< false: a class this build cannot read (listed, skipped)
+};
+
+struct RawlogIndexOptions {
+  uint64_t span_bytes = 4u << 20;  ///< gzip: uncompressed bytes between access points [bytes]
+  bool use_cache = true;           ///< read "<rawlog>.idx" when fresh
+  bool write_cache = true;         ///< write it after building (atomically; a failure is a warning)
+  /// Called once when the index has to be built (reading the whole file: ~1 s per 100 MB of gzip
+  /// here), e.g. to tell the user; may be empty.
+  std::function<void(const std::string& rawlog_path)> on_build;
+};
+
+/// How open() went.
+struct RawlogOpenInfo {
+  bool from_cache = false;     ///< the sidecar was fresh and read
+  bool cache_written = false;  ///< the index was built and the sidecar written
+  std::string cache_note;      ///< why the sidecar was rebuilt or could not be written (empty: no note)
+  double seconds = 0;          ///< wall time of open() [s]
+};
+
+class RawlogIndex {
+ public:
+  /// Opens \p path (throws std::runtime_error naming it when it does not exist or cannot be read at
+  /// all) and indexes it, or reads its fresh sidecar.
+  static std::unique_ptr<RawlogIndex> open(const std::string& path, const RawlogIndexOptions& options = {});
+  ~RawlogIndex();
+
+  /// Sidecar path for \p rawlog_path: "<rawlog_path>.idx".
+  static std::string sidecarPath(const std::string& rawlog_path);
+
+  const std::string& path() const;
+  const RawlogOpenInfo& openInfo() const;
+  std::size_t size() const;
+  const RawlogEntry& entry(std::size_t i) const;
+  const std::vector<std::string>& labels() const;
+  const std::vector<std::string>& classNames() const;
+  const std::string& label(std::size_t i) const { return labels()[entry(i).label]; }
+  const std::string& className(std::size_t i) const { return classNames()[entry(i).cls]; }
+
+  /// False when reading stopped at damage (a truncated or corrupt file) before the end.
+  bool complete() const;
+  /// Where reading stopped and why, e.g. "stopped at observation 41 (uncompressed byte 3781234,
+  /// compressed byte 1203321): compressed stream cut short ..."; empty when complete.
+  const std::string& stopMessage() const;
+  /// Classes this build cannot read, with their number of records.
+  std::vector<std::pair<std::string, std::size_t>> unknownClasses() const;
+  bool gzip() const;
+  /// Uncompressed bytes indexed [bytes].
+  uint64_t uncompressedBytes() const;
+  /// gzip access points kept (0 for a plain file) [count].
+  std::size_t accessPoints() const;
+
+  /// First and last finite stamps [s]; both 0 for a rawlog without any.
+  double firstStamp() const;
+  double lastStamp() const;
+  /// The observation shown at time \p t_s: the last one (in time order) stamped at or before it,
+  /// else the first; nullopt when no observation has a stamp.
+  std::optional<std::size_t> findAtTime(double t_s) const;
+  /// Indices of the observations whose stamp lies in [t0_s, t1_s), in time order.
+  std::vector<std::size_t> findInRange(double t0_s, double t1_s) const;
+
+  /// Reads observation \p i from the file. Throws std::runtime_error naming the rawlog and the
+  /// index when it cannot be read (an unknown class, an I/O error, the file changed).
+  std::shared_ptr<mrpt::obs::CObservation> load(std::size_t i);
+
+ private:
+  struct Impl;
+  explicit RawlogIndex(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace roadslam::sources

@@ -1,0 +1,262 @@
+#include "roadslam/sources/rawlog_index.h"
+
+#include <mrpt/core/Clock.h>
+#include <mrpt/obs/CObservation.h>
+#include <mrpt/obs/CSensoryFrame.h>
+#include <mrpt/rtti/CObject.h>
+#include <mrpt/serialization/CArchive.h>
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <cctype>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+#include "roadslam/common/atomic_file.h"
+#include "rawlog_index_impl.h"
+
+namespace roadslam::sources {
+
+using detail::GzAccessPoint;
+using detail::SeekableStream;
+
+namespace {
+// MRPT nests exceptions; the innermost "Message:" line names the cause on one line.
+std::string innermostMessage(const std::string& what) {
+  const auto at = what.rfind("Message:");
+  if (at == std::string::npos) return what.substr(0, what.find('\n'));
+  std::string line = what.substr(at + 8, what.find('\n', at) - at - 8);
+  line.erase(0, line.find_first_not_of(' '));
+  return line;
+}
+
+// "Stored object has class 'X' which is not registered!" -> X
+std::optional<std::string> unregisteredClass(const std::string& what) {
+  const auto at = what.find("which is not registered");
+  if (at == std::string::npos) return std::nullopt;
+  const auto q1 = what.rfind('\'', at), q0 = q1 == 0 ? std::string::npos : what.rfind('\'', q1 - 1);
+  if (q0 == std::string::npos) return std::string("?");
+  return what.substr(q0 + 1, q1 - q0 - 1);
+}
+
+}  // namespace
+
+namespace detail {
+FileStamp stampOf(const std::string& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) throw std::runtime_error("rawlog '" + path + "' does not exist");
+  return {uint64_t(st.st_size), int64_t(st.st_mtim.tv_sec) * 1000000000LL + st.st_mtim.tv_nsec};
+}
+
+}  // namespace detail
+
+// The next offset after \p from where a record of a registered class starts and reads; the stream
+// is left there. False at the end of the file (or damage) without one.
+bool RawlogIndex::Impl::resync(uint64_t from) {
+  constexpr std::size_t kBlock = 1 << 16, kMaxName = 80;
+  std::vector<uint8_t> buf(kBlock + kMaxName + 1);
+  for (uint64_t base = from;;) {
+    stream->Seek(int64_t(base));
+    const std::size_t n = stream->Read(buf.data(), buf.size());
+    if (n == 0) return false;
+    for (std::size_t j = 0; j + 1 < n && j < kBlock; ++j) {
+      const uint8_t b = buf[j];
+      const std::size_t len = b & 0x7f;
+      if (!(b & 0x80) || len < 2 || len > kMaxName || j + 1 + len > n) continue;
+      const char* name = reinterpret_cast<const char*>(&buf[j + 1]);
+      if (!std::isalpha(static_cast<unsigned char>(name[0]))) continue;
+      if (!std::all_of(name, name + len, [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == ':'; }))
+        continue;
+      if (!mrpt::rtti::findRegisteredClass(std::string(name, len))) continue;
+      try {  // a candidate: it must read as a whole object
+        stream->Seek(int64_t(base + j));
+        mrpt::serialization::archiveFrom(*stream).ReadObject();
+        stream->Seek(int64_t(base + j));
+        return true;
+      } catch (const std::exception&) {
+        stream->Seek(int64_t(base + n));
+      }
+    }
+    if (n < buf.size()) return false;
+    base += kBlock;
+  }
+}
+
+void RawlogIndex::Impl::build(uint64_t span) {
+  stream = std::make_unique<SeekableStream>(path);
+  gzip = stream->gzip();
+  stream->recordAccessPoints(span);
+  auto arch = mrpt::serialization::archiveFrom(*stream);
+  for (;;) {
+    const uint64_t start = stream->getPosition();
+    const uint64_t zstart = stream->compressedPosition();
+    mrpt::serialization::CSerializable::Ptr rec;
+    std::string failure;
+    try {
+      rec = arch.ReadObject();
+    } catch (const mrpt::serialization::CExceptionEOF&) {
+      if (stream->getPosition() != start) failure = "record cut short";
+    } catch (const std::exception& e) {
+      if (const auto cls = unregisteredClass(e.what())) {
+        // listed and skipped: its size is the distance to the next readable record
+        const std::size_t at = entries.size();
+        add(start, 0, -1, nullptr, *cls, false);
+        const bool more = resync(start + 1);
+        const uint64_t next = more ? stream->getPosition() : stream->getPosition();
+        entries[at].size = uint32_t(std::min<uint64_t>(next - start, 0xffffffffu));
+        if (more) continue;
+        if (!stream->damage().empty()) failure = "after a record of unknown class '" + *cls + "'";
+        else break;
+      } else if (std::string(e.what()).find("Cannot read requested number of bytes") != std::string::npos) {
+        failure = "record cut short";  // MRPT wraps its CExceptionEOF from inside an object
+      } else {
+        failure = innermostMessage(e.what());
+      }
+    }
+    if (!rec && failure.empty() && stream->damage().empty()) break;  // clean end of file
+    if (!rec) {
+      complete = false;
+      std::ostringstream m;
+      m << "stopped at observation " << entries.size() << " (uncompressed byte " << start;
+      if (gzip) m << ", compressed byte " << zstart;
+      m << "): " << (failure.empty() ? std::string("end of data") : failure);
+      if (!stream->damage().empty()) m << "; " << stream->damage();
+      stop = m.str();
+      break;
+    }
+    const uint64_t size = stream->getPosition() - start;
+    if (auto sf = std::dynamic_pointer_cast<mrpt::obs::CSensoryFrame>(rec)) {
+      int32_t k = 0;
+      for (const auto& o : *sf) add(start, size, k++, o.get(), o->GetRuntimeClass()->className, true);
+      if (k == 0) add(start, size, -1, nullptr, "CSensoryFrame", true);
+    } else {
+      const auto* o = dynamic_cast<const mrpt::obs::CObservation*>(rec.get());
+      add(start, size, -1, o, rec->GetRuntimeClass()->className, true);
+    }
+  }
+  uncompressed = stream->getPosition();
+  stream->recordAccessPoints(0);
+}
+
+void RawlogIndex::Impl::finish() {
+  by_time.clear();
+  for (uint32_t i = 0; i < entries.size(); ++i)
+    if (std::isfinite(entries[i].stamp_s)) by_time.push_back(i);
+  std::stable_sort(by_time.begin(), by_time.end(), [&](uint32_t a, uint32_t b) {
+    return entries[a].stamp_s < entries[b].stamp_s;
+  });
+}
+
+std::string RawlogIndex::sidecarPath(const std::string& rawlog_path) { return rawlog_path + ".idx"; }
+
+std::unique_ptr<RawlogIndex> RawlogIndex::open(const std::string& path, const RawlogIndexOptions& opt) {
+  const auto t0 = std::chrono::steady_clock::now();
+  auto impl = std::make_unique<Impl>();
+  impl->path = path;
+  impl->stamp = detail::stampOf(path);
+  const std::string side = sidecarPath(path);
+  bool loaded = false;
+  if (opt.use_cache) {
+    std::ifstream f(side, std::ios::binary);
+    if (f) {
+      std::string buf((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+      std::string why;
+      loaded = impl->deserialize(buf, why);
+      if (!loaded) impl->info.cache_note = "index '" + side + "' " + why + ": rebuilt";
+    }
+  }
+  if (!loaded) {
+    impl->labels.clear();
+    impl->label_ids.clear();
+    impl->classes.clear();
+    impl->class_ids.clear();
+    if (opt.on_build) opt.on_build(path);
+    impl->build(opt.span_bytes);
+    if (opt.write_cache) {
+      try {
+        writeFileAtomically(side, impl->serialize());
+        impl->info.cache_written = true;
+      } catch (const std::exception& e) {
+        impl->info.cache_note = std::string("index not cached: ") + e.what();
+      }
+    }
+  }
+  impl->info.from_cache = loaded;
+  impl->finish();
+  impl->info.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return std::unique_ptr<RawlogIndex>(new RawlogIndex(std::move(impl)));
+}
+
+RawlogIndex::RawlogIndex(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+RawlogIndex::~RawlogIndex() = default;
+
+const std::string& RawlogIndex::path() const { return impl_->path; }
+const RawlogOpenInfo& RawlogIndex::openInfo() const { return impl_->info; }
+std::size_t RawlogIndex::size() const { return impl_->entries.size(); }
+const RawlogEntry& RawlogIndex::entry(std::size_t i) const { return impl_->entries.at(i); }
+const std::vector<std::string>& RawlogIndex::labels() const { return impl_->labels; }
+const std::vector<std::string>& RawlogIndex::classNames() const { return impl_->classes; }
+bool RawlogIndex::complete() const { return impl_->complete; }
+const std::string& RawlogIndex::stopMessage() const { return impl_->stop; }
+bool RawlogIndex::gzip() const { return impl_->gzip; }
+uint64_t RawlogIndex::uncompressedBytes() const { return impl_->uncompressed; }
+std::size_t RawlogIndex::accessPoints() const { return impl_->stream->accessPoints().size(); }
+
+std::vector<std::pair<std::string, std::size_t>> RawlogIndex::unknownClasses() const {
+  std::map<std::string, std::size_t> n;
+  for (const auto& e : impl_->entries)
+    if (!e.known) ++n[impl_->classes[e.cls]];
+  return {n.begin(), n.end()};
+}
+
+double RawlogIndex::firstStamp() const {
+  return impl_->by_time.empty() ? 0.0 : impl_->entries[impl_->by_time.front()].stamp_s;
+}
+double RawlogIndex::lastStamp() const {
+  return impl_->by_time.empty() ? 0.0 : impl_->entries[impl_->by_time.back()].stamp_s;
+}
+
+std::optional<std::size_t> RawlogIndex::findAtTime(double t_s) const {
+  const auto& bt = impl_->by_time;
+  if (bt.empty()) return std::nullopt;
+  const auto it = std::upper_bound(bt.begin(), bt.end(), t_s, [&](double t, uint32_t i) {
+    return t < impl_->entries[i].stamp_s;
+  });
+  return it == bt.begin() ? bt.front() : *(it - 1);
+}
+
+std::vector<std::size_t> RawlogIndex::findInRange(double t0_s, double t1_s) const {
+  const auto& bt = impl_->by_time;
+  auto lo = std::lower_bound(bt.begin(), bt.end(), t0_s,
+                             [&](uint32_t i, double t) { return impl_->entries[i].stamp_s < t; });
+  std::vector<std::size_t> out;
+  for (; lo != bt.end() && impl_->entries[*lo].stamp_s < t1_s; ++lo) out.push_back(*lo);
+  return out;
+}
+
+std::shared_ptr<mrpt::obs::CObservation> RawlogIndex::load(std::size_t i) {
+  const RawlogEntry& e = entry(i);
+  const std::string where = impl_->path + ": observation " + std::to_string(i);
+  if (!e.known) throw std::runtime_error(where + " is of class '" + className(i) + "', unknown to this build");
+  if (!(detail::stampOf(impl_->path) == impl_->stamp)) throw std::runtime_error(impl_->path + " changed since it was indexed");
+  try {
+    impl_->stream->Seek(int64_t(e.offset));
+    const auto rec = mrpt::serialization::archiveFrom(*impl_->stream).ReadObject();
+    if (e.sub >= 0) {
+      auto sf = std::dynamic_pointer_cast<mrpt::obs::CSensoryFrame>(rec);
+      if (!sf || std::size_t(e.sub) >= sf->size()) throw std::runtime_error("not the sensory frame indexed");
+      return sf->getObservationByIndex(std::size_t(e.sub));
+    }
+    return std::dynamic_pointer_cast<mrpt::obs::CObservation>(rec);
+  } catch (const std::exception& ex) {
+    throw std::runtime_error(where + " (byte " + std::to_string(e.offset) + "): " + innermostMessage(ex.what()));
+  }
+}
+
+}  // namespace roadslam::sources

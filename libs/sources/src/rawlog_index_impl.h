@@ -1,0 +1,72 @@
+#pragma once
+/// \file rawlog_index_impl.h (private to libs/sources)
+/// RawlogIndex's state, shared by rawlog_index.cpp (building, lookups, loading) and
+/// rawlog_index_sidecar.cpp (the "<rawlog>.idx" file).
+
+#include <mrpt/obs/CObservation.h>
+
+#include <cstdint>
+#include <limits>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "roadslam/sources/rawlog_index.h"
+#include "seekable_stream.h"
+
+namespace roadslam::sources {
+namespace detail {
+/// What identifies a version of the rawlog file: its size and modification time.
+struct FileStamp {
+  uint64_t size = 0;
+  int64_t mtime_ns = 0;
+  bool operator==(const FileStamp& o) const { return size == o.size && mtime_ns == o.mtime_ns; }
+};
+/// Throws std::runtime_error naming \p path when it does not exist.
+FileStamp stampOf(const std::string& path);
+}  // namespace detail
+
+struct RawlogIndex::Impl {
+  std::string path;
+  detail::FileStamp stamp;
+  RawlogOpenInfo info;
+  std::vector<RawlogEntry> entries;
+  std::vector<std::string> labels, classes;
+  std::map<std::string, uint16_t> label_ids, class_ids;
+  std::vector<uint32_t> by_time;  // entries with a finite stamp, in time order
+  bool complete = true, gzip = false;
+  std::string stop;
+  uint64_t uncompressed = 0;
+  std::unique_ptr<detail::SeekableStream> stream;
+
+  uint16_t intern(std::vector<std::string>& names, std::map<std::string, uint16_t>& ids,
+                  const std::string& s) {
+    const auto it = ids.find(s);
+    if (it != ids.end()) return it->second;
+    if (names.size() >= 0xffff) return 0;
+    names.push_back(s);
+    return ids[s] = uint16_t(names.size() - 1);
+  }
+  void add(uint64_t offset, uint64_t size, int32_t sub, const mrpt::obs::CObservation* o,
+           const std::string& cls, bool known) {
+    RawlogEntry e;
+    e.offset = offset;
+    e.size = uint32_t(std::min<uint64_t>(size, 0xffffffffu));
+    e.sub = sub;
+    e.stamp_s = o && o->timestamp != INVALID_TIMESTAMP ? mrpt::Clock::toDouble(o->timestamp)
+                                                         : std::numeric_limits<double>::quiet_NaN();
+    e.label = intern(labels, label_ids, o ? o->sensorLabel : std::string());
+    const auto colons = cls.rfind("::");  // "mrpt::obs::CObservationGPS" -> "CObservationGPS"
+    e.cls = intern(classes, class_ids, colons == std::string::npos ? cls : cls.substr(colons + 2));
+    e.known = known;
+    entries.push_back(e);
+  }
+  void build(uint64_t span);
+  bool resync(uint64_t from);
+  void finish();
+  std::string serialize() const;
+  bool deserialize(const std::string& buf, std::string& why);
+};
+
+}  // namespace roadslam::sources

@@ -1,0 +1,323 @@
+// RawlogIndex: the sidecar round trip and its staleness, random access equal to a sequential read
+// (gzip with many access points, multi-member gzip, plain files), truncated and corrupt files
+// indexed up to the damage, unknown classes listed and skipped.
+#include <gtest/gtest.h>
+
+#include <mrpt/io/CFileGZInputStream.h>
+#include <mrpt/io/CFileGZOutputStream.h>
+#include <mrpt/io/CFileOutputStream.h>
+#include <mrpt/io/CMemoryStream.h>
+#include <mrpt/obs/CActionCollection.h>
+#include <mrpt/obs/CObservationGPS.h>
+#include <mrpt/obs/CRawlog.h>
+#include <mrpt/obs/CSensoryFrame.h>
+#include <mrpt/obs/CObservationVelodyneScan.h>
+#include <mrpt/serialization/CArchive.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <thread>
+
+#include "roadslam/sources/rawlog_index.h"
+#include "roadslam/sources/rawlog_writer.h"
+#include "test_packets.h"
+
+using namespace roadslam::sources;
+using namespace roadslam::sources::test_support;
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path tempDir() {
+  const fs::path d = fs::temp_directory_path() / ("roadslam_rawlog_index_" + std::to_string(getpid()));
+  fs::create_directories(d);
+  return d;
+}
+
+constexpr double kT0 = 1453364282.0;
+
+// \p sweeps sweeps of \p packets packets with a GPS record after every one: 2 * sweeps observations.
+void writeRecording(const fs::path& path, int sweeps, int packets, uint32_t seed = 7) {
+  RawlogWriter w(path.string(), RawlogWriter::Params{});
+  uint32_t k = 0;
+  for (int s = 0; s < sweeps; ++s) {
+    std::vector<roadslam::velodyne::RawPacket> sweep;
+    for (int i = 0; i < packets; ++i, ++k) {
+      roadslam::velodyne::RawPacket p;
+      const uint32_t t_us = uint32_t(k * 1327);
+      p.stamp_s = kT0 + t_us * 1e-6;
+      p.payload = makeDataPacket(t_us, uint16_t(i * 36000 / packets), seed + k);
+      sweep.push_back(p);
+    }
+    w.writeSweep(sweep);
+    roadslam::velodyne::RawPacket g;
+    g.stamp_s = sweep.back().stamp_s;
+    g.payload = makePositionPacket(k * 1327, kAlmeriaRmc);
+    EXPECT_TRUE(w.writePosition(g));
+  }
+  w.close();
+}
+
+std::string bytesOf(const mrpt::serialization::CSerializable& o) {
+  mrpt::io::CMemoryStream m;
+  mrpt::serialization::archiveFrom(m) << o;
+  return std::string(static_cast<const char*>(m.getRawBufferData()), m.getTotalBytesCount());
+}
+
+// Every observation read front to back with MRPT's own gzip stream.
+std::vector<std::string> sequentialRead(const fs::path& path) {
+  std::vector<std::string> out;
+  mrpt::io::CFileGZInputStream in(path.string());
+  for (;;) {
+    try {
+      auto o = mrpt::serialization::archiveFrom(in).ReadObject();
+      out.push_back(bytesOf(*o));
+    } catch (const std::exception&) {
+      break;
+    }
+  }
+  return out;
+}
+
+RawlogIndexOptions smallSpan() {
+  RawlogIndexOptions o;
+  o.span_bytes = 200 * 1024;  // many access points on a few MB
+  return o;
+}
+
+}  // namespace
+
+TEST(RawlogIndex, IndexesEveryObservationWithTimeLabelAndClass) {
+  const fs::path path = tempDir() / "basic.rawlog";
+  writeRecording(path, 5, 20);
+  fs::remove(RawlogIndex::sidecarPath(path.string()));
+  const auto idx = RawlogIndex::open(path.string());
+  ASSERT_EQ(idx->size(), 10u);
+  EXPECT_TRUE(idx->complete()) << idx->stopMessage();
+  EXPECT_TRUE(idx->gzip());
+  EXPECT_FALSE(idx->openInfo().from_cache);
+  EXPECT_TRUE(idx->openInfo().cache_written);
+  for (std::size_t i = 0; i < idx->size(); ++i) {
+    EXPECT_EQ(idx->className(i), i % 2 ? "CObservationGPS" : "CObservationVelodyneScan");
+    EXPECT_EQ(idx->label(i), i % 2 ? "GPS" : "VELODYNE");
+    if (i > 0) {
+      EXPECT_GT(idx->entry(i).offset, idx->entry(i - 1).offset);
+      EXPECT_GE(idx->entry(i).stamp_s, idx->entry(i - 1).stamp_s);
+    }
+  }
+  EXPECT_EQ(idx->entry(0).offset, 0u);
+  EXPECT_NEAR(idx->firstStamp(), kT0, 1e-6);
+  EXPECT_EQ(idx->entry(1).offset + idx->entry(1).size, idx->entry(2).offset);
+  EXPECT_EQ(idx->entry(9).offset + idx->entry(9).size, idx->uncompressedBytes());
+  // time lookups: the last observation at or before the time
+  EXPECT_EQ(*idx->findAtTime(kT0 - 10), 0u);
+  EXPECT_EQ(*idx->findAtTime(idx->entry(4).stamp_s + 1e-4), 4u);
+  EXPECT_EQ(*idx->findAtTime(1e12), 9u);
+  EXPECT_TRUE(idx->unknownClasses().empty());
+}
+
+TEST(RawlogIndex, SidecarRoundTripAndStaleness) {
+  const fs::path path = tempDir() / "cache.rawlog";
+  writeRecording(path, 6, 30);
+  const std::string side = RawlogIndex::sidecarPath(path.string());
+  fs::remove(side);
+  const auto built = RawlogIndex::open(path.string(), smallSpan());
+  ASSERT_TRUE(fs::exists(side));
+  const auto cached = RawlogIndex::open(path.string(), smallSpan());
+  EXPECT_TRUE(cached->openInfo().from_cache) << cached->openInfo().cache_note;
+  ASSERT_EQ(cached->size(), built->size());
+  for (std::size_t i = 0; i < built->size(); ++i) {
+    EXPECT_EQ(cached->entry(i).offset, built->entry(i).offset);
+    EXPECT_EQ(cached->entry(i).size, built->entry(i).size);
+    EXPECT_EQ(cached->entry(i).stamp_s, built->entry(i).stamp_s);
+    EXPECT_EQ(cached->label(i), built->label(i));
+    EXPECT_EQ(cached->className(i), built->className(i));
+    EXPECT_EQ(bytesOf(*cached->load(i)), bytesOf(*built->load(i)));
+  }
+
+  // the rawlog rewritten (other size and time): the sidecar is stale and rebuilt
+  std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  writeRecording(path, 4, 30, 99);
+  const auto stale = RawlogIndex::open(path.string(), smallSpan());
+  EXPECT_FALSE(stale->openInfo().from_cache);
+  EXPECT_NE(stale->openInfo().cache_note.find("stale"), std::string::npos) << stale->openInfo().cache_note;
+  EXPECT_EQ(stale->size(), 8u);
+  EXPECT_TRUE(RawlogIndex::open(path.string())->openInfo().from_cache);
+
+  // a damaged sidecar is rebuilt, never trusted
+  {
+    std::string bytes;
+    {
+      std::ifstream f(side, std::ios::binary);
+      bytes.assign(std::istreambuf_iterator<char>(f), {});
+    }
+    std::ofstream f(side, std::ios::binary | std::ios::trunc);
+    f << bytes.substr(0, bytes.size() / 2);
+  }
+  const auto rebuilt = RawlogIndex::open(path.string());
+  EXPECT_FALSE(rebuilt->openInfo().from_cache);
+  EXPECT_NE(rebuilt->openInfo().cache_note.find("unreadable"), std::string::npos) << rebuilt->openInfo().cache_note;
+  EXPECT_EQ(rebuilt->size(), 8u);
+}
+
+TEST(RawlogIndex, RandomAccessEqualsSequentialRead) {
+  const fs::path path = tempDir() / "random.rawlog";
+  writeRecording(path, 40, 76);  // ~3.7 MB uncompressed: ~18 access points
+  fs::remove(RawlogIndex::sidecarPath(path.string()));
+  const auto seq = sequentialRead(path);
+  for (int pass = 0; pass < 2; ++pass) {  // built, then from the sidecar
+    const auto idx = RawlogIndex::open(path.string(), smallSpan());
+    EXPECT_EQ(idx->openInfo().from_cache, pass == 1);
+    ASSERT_EQ(idx->size(), seq.size());
+    EXPECT_GE(idx->accessPoints(), 10u);
+    std::vector<std::size_t> order(seq.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::shuffle(order.begin(), order.end(), std::mt19937(42 + pass));
+    for (const auto i : order) ASSERT_EQ(bytesOf(*idx->load(i)), seq[i]) << "observation " << i;
+  }
+}
+
+TEST(RawlogIndex, PlainAndMultiMemberGzipFiles) {
+  const fs::path dir = tempDir();
+  writeRecording(dir / "a.rawlog", 8, 40, 1);
+  writeRecording(dir / "b.rawlog", 8, 40, 2);
+  const auto a = sequentialRead(dir / "a.rawlog"), b = sequentialRead(dir / "b.rawlog");
+  {  // two gzip members back to back, as `cat a b` gives
+    std::ofstream out(dir / "ab.rawlog", std::ios::binary);
+    for (const char* n : {"a.rawlog", "b.rawlog"}) out << std::ifstream(dir / n, std::ios::binary).rdbuf();
+  }
+  {  // the same observations uncompressed
+    mrpt::io::CFileOutputStream out((dir / "plain.rawlog").string());
+    for (const auto* part : {&a, &b})
+      for (const auto& s : *part) out.Write(s.data(), s.size());
+  }
+  for (const char* name : {"ab.rawlog", "plain.rawlog"}) {
+    const auto idx = RawlogIndex::open((dir / name).string(), smallSpan());
+    ASSERT_EQ(idx->size(), a.size() + b.size()) << name << ": " << idx->stopMessage();
+    EXPECT_TRUE(idx->complete()) << idx->stopMessage();
+    EXPECT_EQ(idx->gzip(), std::string(name) == "ab.rawlog");
+    for (std::size_t i = idx->size(); i-- > 0;)
+      EXPECT_EQ(bytesOf(*idx->load(i)), i < a.size() ? a[i] : b[i - a.size()]) << name << " " << i;
+  }
+}
+
+TEST(RawlogIndex, TruncatedFileIsIndexedUpToTheDamage) {
+  const fs::path path = tempDir() / "truncated.rawlog";
+  writeRecording(path, 20, 76);
+  const auto full = sequentialRead(path);
+  fs::resize_file(path, fs::file_size(path) * 6 / 10);
+  const auto idx = RawlogIndex::open(path.string(), smallSpan());
+  EXPECT_FALSE(idx->complete());
+  ASSERT_GT(idx->size(), 5u);
+  ASSERT_LT(idx->size(), full.size());
+  const std::string& m = idx->stopMessage();
+  EXPECT_NE(m.find("stopped at observation " + std::to_string(idx->size())), std::string::npos) << m;
+  EXPECT_NE(m.find("compressed byte"), std::string::npos) << m;
+  EXPECT_NE(m.find("record cut short"), std::string::npos) << m;
+  for (std::size_t i = 0; i < idx->size(); ++i) EXPECT_EQ(bytesOf(*idx->load(i)), full[i]);
+  // the damage is cached too
+  const auto cached = RawlogIndex::open(path.string(), smallSpan());
+  EXPECT_TRUE(cached->openInfo().from_cache);
+  EXPECT_EQ(cached->stopMessage(), m);
+}
+
+TEST(RawlogIndex, CorruptCompressedDataStopsThereWithTheByte) {
+  const fs::path path = tempDir() / "corrupt.rawlog";
+  writeRecording(path, 20, 76);
+  const auto full = sequentialRead(path);
+  {
+    std::fstream f(path, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(std::streamoff(fs::file_size(path) / 2));
+    const std::string junk(4096, '\x5a');
+    f.write(junk.data(), std::streamsize(junk.size()));
+  }
+  const auto idx = RawlogIndex::open(path.string(), smallSpan());
+  EXPECT_FALSE(idx->complete());
+  EXPECT_LT(idx->size(), full.size());
+  EXPECT_NE(idx->stopMessage().find("stopped at observation"), std::string::npos) << idx->stopMessage();
+  for (std::size_t i = 0; i < idx->size(); ++i) EXPECT_EQ(bytesOf(*idx->load(i)), full[i]);
+}
+
+TEST(RawlogIndex, UnknownClassesAreListedAndSkipped) {
+  const fs::path path = tempDir() / "unknown.rawlog";
+  writeRecording(path, 3, 10);
+  const auto obs = sequentialRead(path);
+  {  // MRPT's object framing (0x80|name length, name, version, data, 0x88) of a class nobody registered
+    mrpt::io::CFileGZOutputStream out(path.string() + ".tmp");
+    const std::string name = "CObservationFromTheFuture";
+    std::string rec(1, char(0x80 | name.size()));
+    rec += name;
+    rec += char(0);
+    for (int i = 0; i < 300; ++i) rec += char(i * 7);
+    rec += char(0x88);
+    for (std::size_t i = 0; i < obs.size(); ++i) {
+      out.Write(obs[i].data(), obs[i].size());
+      if (i == 1 || i == 3) out.Write(rec.data(), rec.size());
+    }
+  }
+  fs::rename(path.string() + ".tmp", path);
+  const auto idx = RawlogIndex::open(path.string());
+  ASSERT_EQ(idx->size(), obs.size() + 2) << idx->stopMessage();
+  EXPECT_TRUE(idx->complete()) << idx->stopMessage();
+  const auto unknown = idx->unknownClasses();
+  ASSERT_EQ(unknown.size(), 1u);
+  EXPECT_EQ(unknown[0].first, "CObservationFromTheFuture");
+  EXPECT_EQ(unknown[0].second, 2u);
+  EXPECT_FALSE(idx->entry(2).known);
+  EXPECT_EQ(idx->entry(2).size, 1 + 25 + 1 + 300 + 1u);
+  EXPECT_THROW(idx->load(2), std::runtime_error);
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < idx->size(); ++i)
+    if (idx->entry(i).known) {
+      EXPECT_EQ(bytesOf(*idx->load(i)), obs[k++]);
+    }
+  EXPECT_EQ(k, obs.size());
+}
+
+TEST(RawlogIndex, MissingFileIsNamed) {
+  try {
+    RawlogIndex::open("/nonexistent/x.rawlog");
+    FAIL();
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/x.rawlog"), std::string::npos);
+  }
+}
+
+TEST(RawlogIndex, SensoryFramesAndActionsAsMrptCRawlogWritesThem) {
+  // The "actions + sensory frames" layout: each observation of a frame is an entry of its own
+  // (same record offset, its position in the frame); an action is listed without a time.
+  const fs::path path = tempDir() / "sf.rawlog";
+  {
+    mrpt::obs::CRawlog rawlog;
+    for (int f = 0; f < 3; ++f) {
+      mrpt::obs::CActionCollection acts;
+      rawlog.insert(acts);
+      mrpt::obs::CSensoryFrame sf;
+      for (int k = 0; k < 2; ++k) {
+        auto g = mrpt::obs::CObservationGPS::Create();
+        g->sensorLabel = k == 0 ? "GPS_A" : "GPS_B";
+        g->timestamp = mrpt::Clock::fromDouble(kT0 + f + 0.25 * k);
+        sf.insert(g);
+      }
+      rawlog.insert(sf);
+    }
+    ASSERT_TRUE(rawlog.saveToRawLogFile(path.string()));
+  }
+  const auto idx = RawlogIndex::open(path.string());
+  ASSERT_EQ(idx->size(), 9u) << idx->stopMessage();  // per frame: the action, two observations
+  EXPECT_TRUE(idx->complete()) << idx->stopMessage();
+  EXPECT_EQ(idx->className(0), "CActionCollection");
+  EXPECT_FALSE(std::isfinite(idx->entry(0).stamp_s));
+  EXPECT_EQ(idx->load(0), nullptr) << "an action is no observation";
+  EXPECT_EQ(idx->entry(1).offset, idx->entry(2).offset);
+  EXPECT_EQ(idx->entry(2).sub, 1);
+  EXPECT_EQ(idx->label(8), "GPS_B");
+  const auto o = idx->load(8);
+  ASSERT_TRUE(o);
+  EXPECT_EQ(o->sensorLabel, "GPS_B");
+  EXPECT_NEAR(mrpt::Clock::toDouble(o->timestamp), kT0 + 2.25, 1e-6);
+  EXPECT_EQ(*idx->findAtTime(kT0 + 1.3), 5u);
+}

@@ -1,0 +1,36 @@
+#pragma once
+/// \file app.h
+/// What `roadslam-view` does with its command line: open the model, then render headless
+/// (--render / --render-sequence) or open the window (optionally driven by a --script).
+
+#include <ostream>
+#include <string>
+
+#include "roadslam/viewer/model.h"
+#include "roadslam/viewer/scene.h"
+
+namespace roadslam::viewer {
+
+struct ViewRequest {
+  ViewerInputs inputs;
+  std::string render_png;    ///< --render: the PNG to write
+  double at_s = 0;           ///< --at: seconds from the start of the recording
+  std::string sequence_dir;  ///< --render-sequence
+  std::size_t every = 1;     ///< --every
+  std::string size = "1280x720";  ///< WxH [pixels]
+  ColorBy color_by = ColorBy::Height;
+  CameraMode camera = CameraMode::Follow;
+  std::string script;        ///< --script FILE (window)
+  bool no_index_cache = false;
+};
+
+/// Parses "WxH" [pixels]; throws std::invalid_argument naming the text.
+std::pair<int, int> parseSize(const std::string& text);
+
+/// One line for a person: observations, duration, how the index was opened, and what the results hold.
+std::string summaryLine(const ViewerModel& model);
+
+/// Runs the request; returns the exit code (0 done, 1 a problem named on \p err).
+int runView(const ViewRequest& req, std::ostream& out, std::ostream& err);
+
+}  // namespace roadslam::viewer

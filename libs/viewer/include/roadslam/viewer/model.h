@@ -1,0 +1,115 @@
+#pragma once
+/// \file model.h
+/// What the replay viewer shows: a recording (an MRPT rawlog, opened through sources::RawlogIndex)
+/// and, optionally, the results of the other programs over it: a `roadslam-map` output folder
+/// (trajectory.tum, frames.csv, summary.json loops, map.ply), a `roadslam-bounds` output folder
+/// (boundaries.jsonl) and a ground-truth TUM trajectory. All poses are T_map_lidar in the map frame
+/// [m]; times are the recording's clock [s].
+///
+/// Per-frame results are a stream: appendFrame() adds one while replaying (a live odometry), and
+/// what a map folder holds is loaded through the same call. Everything drawn "so far" is cut at the
+/// current time by the scene builder.
+
+#include <Eigen/Geometry>
+
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "roadslam/sources/rawlog_index.h"
+
+namespace roadslam::viewer {
+
+/// One processed sweep: the pose and status the odometry/mapping gave it.
+struct FrameResult {
+  double stamp_s = 0;                                  ///< sweep stamp (first firing) [s]
+  Eigen::Isometry3d T_map_lidar = Eigen::Isometry3d::Identity();
+  std::string status = "ok";                           ///< ok, standstill, degenerate, ...
+  bool keyframe = false;
+};
+
+/// An accepted loop closure between two frames (their lidar positions in the map frame [m]).
+struct LoopEdge {
+  double stamp_s = 0;  ///< time of the query (newer) frame [s]: drawn from then on
+  Eigen::Vector3d query = Eigen::Vector3d::Zero(), match = Eigen::Vector3d::Zero();
+};
+
+/// The boundaries `roadslam-bounds` found on one sweep (map frame [m]).
+struct BoundaryFrame {
+  double stamp_s = 0;
+  std::vector<Eigen::Vector3d> left, right;  ///< polylines of the left / right road boundary
+  std::vector<Eigen::Vector3d> free_space;   ///< free-space polygon (from the vehicle frame at z = 0 of the lidar)
+};
+
+struct ViewerInputs {
+  std::string recording;    ///< MRPT rawlog
+  std::string map_dir;      ///< roadslam-map output folder (optional)
+  std::string bounds_dir;   ///< roadslam-bounds output folder (optional)
+  std::string ground_truth; ///< TUM trajectory T_world_lidar (optional)
+  double map_voxel_m = 0.5; ///< the point map is decimated to one point per voxel of this size [m]
+  sources::RawlogIndexOptions index;
+};
+
+class ViewerModel {
+ public:
+  /// Opens everything named in \p in; throws std::runtime_error naming the file that cannot be read.
+  /// Soft problems (a damaged recording, results whose times miss the recording) go to warnings().
+  explicit ViewerModel(const ViewerInputs& in);
+  ~ViewerModel();
+
+  sources::RawlogIndex& recording() { return *index_; }
+  const sources::RawlogIndex& recording() const { return *index_; }
+  const ViewerInputs& inputs() const { return in_; }
+  const std::vector<std::string>& warnings() const { return warnings_; }
+
+  /// Time span shown on the timeline [s]: the recording's, or the frames' without stamps.
+  double startTime() const;
+  double endTime() const;
+
+  /// Appends a frame result (stamps must not go back in time; an older one is inserted in order).
+  /// Not thread-safe: call it on the thread that draws (the window's loop), or use postFrame().
+  void appendFrame(const FrameResult& f);
+  /// Thread-safe: queues a frame result from another thread (e.g. an odometry running beside the
+  /// replay); takePosted() moves the queue into frames() on the drawing thread.
+  void postFrame(const FrameResult& f);
+  /// Appends the posted frames; returns how many (the window calls it every tick).
+  std::size_t takePosted();
+  const std::vector<FrameResult>& frames() const { return frames_; }
+  /// Number of frames stamped at or before \p t_s (frames()[0 .. n) are "so far").
+  std::size_t framesUpTo(double t_s) const;
+  /// The frame within \p tolerance_s of \p t_s (the nearest), if any.
+  const FrameResult* frameNear(double t_s, double tolerance_s = 0.06) const;
+
+  const std::vector<LoopEdge>& loops() const { return loops_; }
+  const std::vector<Eigen::Vector3f>& mapPoints() const { return map_points_; }  ///< decimated, map frame
+  const std::vector<double>& groundTruthStamps() const { return gt_stamps_; }
+  const std::vector<Eigen::Vector3d>& groundTruth() const { return gt_positions_; }
+  const std::vector<BoundaryFrame>& boundaries() const { return bounds_; }
+  const BoundaryFrame* boundaryNear(double t_s, double tolerance_s = 0.06) const;
+
+ private:
+  void loadMapFolder(const std::string& dir);
+  void loadBounds(const std::string& dir);
+  void loadGroundTruth(const std::string& path);
+  void checkOverlap(const std::string& what, double t0, double t1);
+
+  ViewerInputs in_;
+  std::unique_ptr<sources::RawlogIndex> index_;
+  std::vector<std::string> warnings_;
+  std::vector<FrameResult> frames_;
+  std::mutex posted_mutex_;
+  std::vector<FrameResult> posted_;
+  std::vector<LoopEdge> loops_;
+  std::vector<Eigen::Vector3f> map_points_;
+  std::vector<double> gt_stamps_;
+  std::vector<Eigen::Vector3d> gt_positions_;
+  std::vector<BoundaryFrame> bounds_;
+};
+
+/// Reads a binary little-endian float x,y,z PLY (as roadslam-map writes map.ply), keeping one point
+/// per \p voxel_m cube (0: all). Throws naming the file when it is not such a PLY.
+std::vector<Eigen::Vector3f> readPlyPoints(const std::string& path, double voxel_m);
+
+}  // namespace roadslam::viewer

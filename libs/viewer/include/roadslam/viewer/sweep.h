@@ -1,0 +1,41 @@
+#pragma once
+/// \file sweep.h
+/// The points of one observation as the viewer draws them, and the text of its details panel.
+/// A CObservationVelodyneScan is decoded with our own decoder (both VLP-16 firings of every block,
+/// per-point time and ring; MRPT-NOTES.md: MRPT's generatePointCloud loses half the points);
+/// a CObservationPointCloud gives x, y, z (and intensity when its map is a CPointsMapXYZI).
+
+#include <Eigen/Geometry>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "roadslam/common/scan.h"
+
+namespace mrpt::obs {
+class CObservation;
+}
+
+namespace roadslam::viewer {
+
+struct SweepPoints {
+  double stamp_s = 0;            ///< the observation's timestamp [s]
+  std::vector<ScanPoint> points; ///< lidar frame [m]; t relative to the first firing [s]
+  Eigen::Isometry3d T_base_lidar = Eigen::Isometry3d::Identity();  ///< the observation's sensorPose
+  bool has_rings = false, has_times = false, has_intensity = false;
+  std::size_t packets = 0;       ///< Velodyne data packets [count]
+  int rings = 0;                 ///< distinct rings seen [count]
+  int returns = 1;               ///< returns per firing (2: dual) [count]
+  double span_s = 0;             ///< time from the first to the last point [s]
+  std::string model;             ///< sensor model ("VLP16", "HDL32", "point cloud")
+};
+
+/// The points of \p obs, or nullopt when it holds none (GPS, CAN, ...).
+std::optional<SweepPoints> sweepOf(const mrpt::obs::CObservation& obs);
+
+/// Details of \p obs for a person: for a sweep, points, rings, returns, time span and sensor pose;
+/// otherwise MRPT's own description (CObservation::getDescriptionAsText).
+std::string describe(const mrpt::obs::CObservation& obs, const SweepPoints* sweep);
+
+}  // namespace roadslam::viewer

@@ -1,0 +1,67 @@
+#include "roadslam/viewer/app.h"
+
+#include <cstdio>
+#include <stdexcept>
+
+#include "roadslam/viewer/render.h"
+#include "roadslam/viewer/replay.h"
+#include "roadslam/viewer/window.h"
+
+namespace roadslam::viewer {
+
+std::pair<int, int> parseSize(const std::string& text) {
+  int w = 0, h = 0;
+  char x = 0;
+  if (std::sscanf(text.c_str(), "%d%c%d", &w, &x, &h) != 3 || x != 'x' || w < 64 || h < 64 || w > 8192 || h > 8192)
+    throw std::invalid_argument("size '" + text + "': use WxH, 64-8192 pixels each (e.g. 1280x720)");
+  return {w, h};
+}
+
+std::string summaryLine(const ViewerModel& m) {
+  const auto& idx = m.recording();
+  char buf[400];
+  std::snprintf(buf, sizeof buf,
+                "%s: %zu observations over %.1f s (index %s, %.0f ms); %zu frames, %zu loops, %zu map points, "
+                "%zu boundary sweeps, %zu ground-truth poses",
+                idx.path().c_str(), idx.size(), m.endTime() - m.startTime(),
+                idx.openInfo().from_cache ? "cached" : "built", idx.openInfo().seconds * 1e3, m.frames().size(),
+                m.loops().size(), m.mapPoints().size(), m.boundaries().size(), m.groundTruth().size());
+  return buf;
+}
+
+int runView(const ViewRequest& req, std::ostream& out, std::ostream& err) {
+  const auto [w, h] = parseSize(req.size);
+  const bool headless = !req.render_png.empty() || !req.sequence_dir.empty();
+  const WindowOptions window{w, h, req.script};
+  if (!headless) checkWindowRequest(window);
+  ViewerInputs in = req.inputs;
+  if (req.no_index_cache) in.index.use_cache = in.index.write_cache = false;
+  in.index.on_build = [&err, &req](const std::string& path) {
+    err << "roadslam-view: indexing " << path << " once"
+        << (req.no_index_cache ? "" : " (kept in " + sources::RawlogIndex::sidecarPath(path) + ")") << " ...\n";
+  };
+  ViewerModel model(in);
+  for (const auto& warning : model.warnings()) err << "roadslam-view: warning: " << warning << "\n";
+  out << summaryLine(model) << "\n";
+  Replay replay(model);
+  replay.options().color_by = req.color_by;
+  replay.options().camera = req.camera;
+  if (headless) {
+    PngRenderer renderer(w, h);
+    if (!req.render_png.empty()) {
+      replay.seek(model.startTime() + req.at_s);
+      renderCurrent(replay, renderer, req.render_png);
+      out << req.render_png << ": t = " << req.at_s << " s, observation "
+          << (replay.currentObservation() ? std::to_string(*replay.currentObservation()) : "-") << "\n";
+    }
+    if (!req.sequence_dir.empty()) {
+      const auto n = renderSequence(replay, renderer, req.sequence_dir, req.every);
+      out << req.sequence_dir << ": " << n << " pictures\n";
+    }
+    if (!replay.lastError().empty()) err << "roadslam-view: warning: " << replay.lastError() << "\n";
+    return 0;
+  }
+  return runWindow(replay, window, out, err);
+}
+
+}  // namespace roadslam::viewer

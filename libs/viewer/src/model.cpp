@@ -1,0 +1,236 @@
+#include "roadslam/viewer/model.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <unordered_set>
+
+#include "roadslam/datasets/trajectory_io.h"
+
+namespace roadslam::viewer {
+namespace fs = std::filesystem;
+
+namespace {
+std::vector<std::string> splitCsv(const std::string& line) {
+  std::vector<std::string> out;
+  std::stringstream ss(line);
+  std::string cell;
+  while (std::getline(ss, cell, ',')) out.push_back(cell);
+  return out;
+}
+Eigen::Vector3d point3(const nlohmann::json& p) {
+  return {p.at(0).get<double>(), p.at(1).get<double>(), p.size() > 2 ? p.at(2).get<double>() : 0.0};
+}
+}  // namespace
+
+std::vector<Eigen::Vector3f> readPlyPoints(const std::string& path, double voxel_m) {
+  std::ifstream f(path, std::ios::binary);
+  if (!f) throw std::runtime_error("cannot open point map '" + path + "'");
+  std::string line;
+  std::size_t n = 0;
+  bool binary_le = false, xyz = false;
+  int props = 0;
+  while (std::getline(f, line) && line != "end_header") {
+    if (line.rfind("format binary_little_endian", 0) == 0) binary_le = true;
+    if (line.rfind("element vertex ", 0) == 0) n = std::stoul(line.substr(15));
+    if (line.rfind("property float ", 0) == 0) ++props;
+    if (line == "property float z") xyz = true;
+  }
+  if (!binary_le || !xyz || props != 3)
+    throw std::runtime_error("'" + path + "' is not a binary float x,y,z PLY (as roadslam-map writes)");
+  std::vector<float> raw(n * 3);
+  if (!f.read(reinterpret_cast<char*>(raw.data()), std::streamsize(raw.size() * sizeof(float))))
+    throw std::runtime_error("point map '" + path + "' is cut short");
+  std::vector<Eigen::Vector3f> out;
+  std::unordered_set<uint64_t> seen;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector3f p(raw[3 * i], raw[3 * i + 1], raw[3 * i + 2]);
+    if (!p.allFinite()) continue;
+    if (voxel_m > 0) {
+      const auto k = [&](float v) { return uint64_t(int64_t(std::floor(v / voxel_m)) & 0x1fffff); };
+      if (!seen.insert(k(p.x()) | k(p.y()) << 21 | k(p.z()) << 42).second) continue;
+    }
+    out.push_back(p);
+  }
+  return out;
+}
+
+ViewerModel::ViewerModel(const ViewerInputs& in) : in_(in) {
+  index_ = sources::RawlogIndex::open(in.recording, in.index);
+  if (index_->size() == 0)
+    throw std::runtime_error("recording '" + in.recording + "' holds no readable observation" +
+                             (index_->complete() ? std::string() : ": " + index_->stopMessage()));
+  if (!index_->complete()) warnings_.push_back("recording damaged: " + index_->stopMessage());
+  for (const auto& [cls, n] : index_->unknownClasses())
+    warnings_.push_back("recording: " + std::to_string(n) + " observations of unknown class " + cls + " skipped");
+  if (!index_->openInfo().cache_note.empty()) warnings_.push_back(index_->openInfo().cache_note);
+  if (!in.map_dir.empty()) loadMapFolder(in.map_dir);
+  if (!in.bounds_dir.empty()) loadBounds(in.bounds_dir);
+  if (!in.ground_truth.empty()) loadGroundTruth(in.ground_truth);
+}
+
+ViewerModel::~ViewerModel() = default;
+
+double ViewerModel::startTime() const {
+  if (index_->lastStamp() > 0) return index_->firstStamp();
+  return frames_.empty() ? 0.0 : frames_.front().stamp_s;
+}
+double ViewerModel::endTime() const {
+  if (index_->lastStamp() > 0) return index_->lastStamp();
+  return frames_.empty() ? 0.0 : frames_.back().stamp_s;
+}
+
+void ViewerModel::checkOverlap(const std::string& what, double t0, double t1) {
+  if (index_->lastStamp() <= 0) return;
+  if (t1 < index_->firstStamp() || t0 > index_->lastStamp()) {
+    char buf[200];
+    std::snprintf(buf, sizeof buf, " (%.3f-%.3f s) do not overlap the recording (%.3f-%.3f s)", t0, t1,
+                  index_->firstStamp(), index_->lastStamp());
+    warnings_.push_back(what + buf);
+  }
+}
+
+void ViewerModel::appendFrame(const FrameResult& f) {
+  if (frames_.empty() || frames_.back().stamp_s <= f.stamp_s) {
+    frames_.push_back(f);
+    return;
+  }
+  const auto at = std::upper_bound(frames_.begin(), frames_.end(), f.stamp_s,
+                                   [](double t, const FrameResult& r) { return t < r.stamp_s; });
+  frames_.insert(at, f);
+}
+
+void ViewerModel::postFrame(const FrameResult& f) {
+  std::lock_guard<std::mutex> lock(posted_mutex_);
+  posted_.push_back(f);
+}
+
+std::size_t ViewerModel::takePosted() {
+  std::vector<FrameResult> taken;
+  {
+    std::lock_guard<std::mutex> lock(posted_mutex_);
+    taken.swap(posted_);
+  }
+  for (const auto& f : taken) appendFrame(f);
+  return taken.size();
+}
+
+std::size_t ViewerModel::framesUpTo(double t_s) const {
+  return std::size_t(std::upper_bound(frames_.begin(), frames_.end(), t_s,
+                                      [](double t, const FrameResult& r) { return t < r.stamp_s; }) -
+                     frames_.begin());
+}
+
+namespace {
+template <class V, class Stamp>
+const typename V::value_type* nearest(const V& v, double t_s, double tol_s, Stamp stamp) {
+  const auto it = std::lower_bound(v.begin(), v.end(), t_s,
+                                   [&](const auto& r, double t) { return stamp(r) < t; });
+  const typename V::value_type* best = nullptr;
+  double best_dt = tol_s;
+  for (auto c : {it, it == v.begin() ? it : it - 1}) {
+    if (c == v.end()) continue;
+    const double dt = std::abs(stamp(*c) - t_s);
+    if (dt <= best_dt) best = &*c, best_dt = dt;
+  }
+  return best;
+}
+}  // namespace
+
+const FrameResult* ViewerModel::frameNear(double t_s, double tol_s) const {
+  return nearest(frames_, t_s, tol_s, [](const FrameResult& r) { return r.stamp_s; });
+}
+const BoundaryFrame* ViewerModel::boundaryNear(double t_s, double tol_s) const {
+  return nearest(bounds_, t_s, tol_s, [](const BoundaryFrame& r) { return r.stamp_s; });
+}
+
+void ViewerModel::loadMapFolder(const std::string& dir) {
+  const std::string tum = dir + "/trajectory.tum";
+  if (!fs::exists(tum)) throw std::runtime_error("map folder '" + dir + "' has no trajectory.tum");
+  const auto traj = datasets::readTum(tum);
+  // frames.csv: index,stamp_s,status,point_times,deskewed,keyframe,... (one row per trajectory pose)
+  std::vector<std::vector<std::string>> rows;
+  if (std::ifstream csv(dir + "/frames.csv"); csv) {
+    std::string line;
+    std::getline(csv, line);
+    while (std::getline(csv, line)) rows.push_back(splitCsv(line));
+  }
+  for (std::size_t i = 0; i < traj.poses.size(); ++i) {
+    FrameResult f;
+    f.stamp_s = traj.stamps_s.at(i);
+    f.T_map_lidar = traj.poses[i];
+    if (i < rows.size() && rows[i].size() > 5) {
+      f.status = rows[i][2];
+      f.keyframe = rows[i][5] == "1";
+    }
+    appendFrame(f);
+  }
+  if (!traj.stamps_s.empty()) checkOverlap("map folder '" + dir + "' times", traj.stamps_s.front(), traj.stamps_s.back());
+  if (std::ifstream js(dir + "/summary.json"); js) {
+    try {
+      const auto j = nlohmann::json::parse(js);
+      if (j.contains("loops"))
+        for (const auto& l : j["loops"]["accepted"]) {
+          const auto q = l.at("query_frame").get<std::size_t>(), m = l.at("match_frame").get<std::size_t>();
+          if (q >= traj.poses.size() || m >= traj.poses.size()) continue;
+          loops_.push_back({traj.stamps_s[q], traj.poses[q].translation(), traj.poses[m].translation()});
+        }
+    } catch (const std::exception& e) {
+      throw std::runtime_error("cannot read '" + dir + "/summary.json': " + e.what());
+    }
+  }
+  if (fs::exists(dir + "/map.ply")) map_points_ = readPlyPoints(dir + "/map.ply", in_.map_voxel_m);
+}
+
+void ViewerModel::loadBounds(const std::string& dir) {
+  const std::string path = dir + "/boundaries.jsonl";
+  std::ifstream f(path);
+  if (!f) throw std::runtime_error("bounds folder '" + dir + "' has no boundaries.jsonl");
+  std::string line;
+  for (int n = 1; std::getline(f, line); ++n) {
+    if (line.empty()) continue;
+    try {
+      const auto j = nlohmann::json::parse(line);
+      BoundaryFrame b;
+      b.stamp_s = j.at("stamp_s").get<double>();
+      for (const auto& p : j["left"]["polyline_map"]) b.left.push_back(point3(p));
+      for (const auto& p : j["right"]["polyline_map"]) b.right.push_back(point3(p));
+      const auto& T = j.at("T_map_lidar");
+      Eigen::Matrix4d M;
+      for (int r = 0; r < 4; ++r)
+        for (int c = 0; c < 4; ++c) M(r, c) = T.at(std::size_t(r * 4 + c)).get<double>();
+      const Eigen::Isometry3d T_map_lidar(M);
+      for (const auto& p : j["free_space"]) b.free_space.push_back(T_map_lidar * point3(p));
+      bounds_.push_back(std::move(b));
+    } catch (const std::exception& e) {
+      throw std::runtime_error(path + ":" + std::to_string(n) + ": " + e.what());
+    }
+  }
+  std::sort(bounds_.begin(), bounds_.end(), [](const auto& a, const auto& b) { return a.stamp_s < b.stamp_s; });
+  if (!bounds_.empty()) checkOverlap("bounds folder '" + dir + "' times", bounds_.front().stamp_s, bounds_.back().stamp_s);
+}
+
+// Ground truth is in its own world frame: it is drawn anchored to the estimated trajectory at the
+// first estimated frame it covers (T_map_gt = T_map_lidar(t) * T_gt_lidar(t)^-1), or as is without one.
+void ViewerModel::loadGroundTruth(const std::string& path) {
+  const auto gt = datasets::readTum(path);
+  if (gt.poses.empty()) return;
+  checkOverlap("ground truth '" + path + "' times", gt.stamps_s.front(), gt.stamps_s.back());
+  Eigen::Isometry3d T_map_gt = Eigen::Isometry3d::Identity();
+  for (const auto& f : frames_) {
+    const auto it = std::lower_bound(gt.stamps_s.begin(), gt.stamps_s.end(), f.stamp_s - 0.06);
+    if (it == gt.stamps_s.end() || std::abs(*it - f.stamp_s) > 0.06) continue;
+    T_map_gt = f.T_map_lidar * gt.poses[std::size_t(it - gt.stamps_s.begin())].inverse();
+    break;
+  }
+  gt_stamps_ = gt.stamps_s;
+  for (const auto& T : gt.poses) gt_positions_.push_back((T_map_gt * T).translation());
+}
+
+}  // namespace roadslam::viewer

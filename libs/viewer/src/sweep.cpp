@@ -1,0 +1,107 @@
+#include "roadslam/viewer/sweep.h"
+
+#include <mrpt/core/Clock.h>
+#include <mrpt/maps/CPointsMapXYZI.h>
+#include <mrpt/obs/CObservationPointCloud.h>
+#include <mrpt/obs/CObservationVelodyneScan.h>
+
+#include <algorithm>
+#include <bitset>
+#include <cstdio>
+#include <sstream>
+
+#include "roadslam/velodyne/decoder.h"
+
+namespace roadslam::viewer {
+
+namespace {
+Eigen::Isometry3d toIsometry(const mrpt::poses::CPose3D& p) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.matrix() = p.getHomogeneousMatrixVal<mrpt::math::CMatrixDouble44>().asEigen();
+  return T;
+}
+
+std::optional<SweepPoints> velodyneSweep(const mrpt::obs::CObservationVelodyneScan& v) {
+  SweepPoints s;
+  s.stamp_s = mrpt::Clock::toDouble(v.timestamp);
+  s.T_base_lidar = toIsometry(v.sensorPose);
+  s.packets = v.scan_packets.size();
+  velodyne::DecoderParams dp;  // the calibration's laser count names the model (some VLP-16 report 0x21)
+  const auto lasers = v.calibration.laser_corrections.size();
+  dp.model = lasers == 16 ? velodyne::Model::VLP16 : lasers == 32 ? velodyne::Model::HDL32 : velodyne::Model::Unknown;
+  const velodyne::Decoder decoder(dp);
+  s.points.reserve(v.scan_packets.size() * 384);
+  std::vector<ScanPoint> pkt;
+  double t_first = 0;
+  bool first = true;
+  std::bitset<64> rings;
+  for (const auto& raw : v.scan_packets) {
+    pkt.clear();
+    const auto* b = reinterpret_cast<const uint8_t*>(&raw);
+    velodyne::PacketInfo info;
+    if (decoder.decode(b, velodyne::kDataPacketSize, pkt, &info) != velodyne::DecodeStatus::Ok) continue;
+    double t_pkt = info.timestamp_us * 1e-6;
+    if (first) t_first = t_pkt, first = false, s.model = velodyne::modelName(info.model);
+    if (t_pkt < t_first - 1800) t_pkt += 3600;  // the sensor's counter wraps at the hour
+    if (info.mode == velodyne::ReturnMode::Dual) s.returns = 2;
+    for (auto& p : pkt) {
+      p.t = float(p.t + (t_pkt - t_first));
+      rings.set(std::min<uint16_t>(p.ring, 63));
+      s.points.push_back(p);
+    }
+  }
+  for (const auto& p : s.points) s.span_s = std::max(s.span_s, double(p.t));
+  s.has_rings = s.has_times = s.has_intensity = true;
+  s.rings = int(rings.count());
+  return s;
+}
+
+std::optional<SweepPoints> cloudSweep(const mrpt::obs::CObservationPointCloud& c) {
+  if (!c.pointcloud) return std::nullopt;
+  SweepPoints s;
+  s.stamp_s = mrpt::Clock::toDouble(c.timestamp);
+  s.T_base_lidar = toIsometry(c.sensorPose);
+  s.model = "point cloud";
+  const auto& xs = c.pointcloud->getPointsBufferRef_x();
+  const auto& ys = c.pointcloud->getPointsBufferRef_y();
+  const auto& zs = c.pointcloud->getPointsBufferRef_z();
+  const auto* xyzi = dynamic_cast<const mrpt::maps::CPointsMapXYZI*>(c.pointcloud.get());
+  s.has_intensity = xyzi != nullptr;
+  for (std::size_t i = 0; i < xs.size(); ++i) {
+    ScanPoint p;
+    p.x = xs[i], p.y = ys[i], p.z = zs[i];
+    if (xyzi) p.intensity = xyzi->getPointIntensity(i);
+    s.points.push_back(p);
+  }
+  return s;
+}
+}  // namespace
+
+std::optional<SweepPoints> sweepOf(const mrpt::obs::CObservation& obs) {
+  if (const auto* v = dynamic_cast<const mrpt::obs::CObservationVelodyneScan*>(&obs)) return velodyneSweep(*v);
+  if (const auto* c = dynamic_cast<const mrpt::obs::CObservationPointCloud*>(&obs)) return cloudSweep(*c);
+  return std::nullopt;
+}
+
+std::string describe(const mrpt::obs::CObservation& obs, const SweepPoints* s) {
+  if (!s) {
+    std::ostringstream os;
+    obs.getDescriptionAsText(os);
+    return os.str();
+  }
+  const Eigen::Vector3d t = s->T_base_lidar.translation();
+  const Eigen::Vector3d ypr = s->T_base_lidar.rotation().eulerAngles(2, 1, 0) * 180.0 / M_PI;
+  std::string cls = obs.GetRuntimeClass()->className;
+  cls = cls.substr(cls.rfind(':') == std::string::npos ? 0 : cls.rfind(':') + 1);
+  char buf[640];
+  std::snprintf(buf, sizeof buf,
+                "class       %s\nlabel       %s\ntime        %.6f s\nmodel       %s\npackets     %zu\n"
+                "points      %zu\nrings       %d\nreturns     %d\ntime span   %.1f ms\n"
+                "sensor pose x %.2f y %.2f z %.2f m, yaw %.1f pitch %.1f roll %.1f deg\n",
+                cls.c_str(), obs.sensorLabel.c_str(), s->stamp_s, s->model.c_str(),
+                s->packets, s->points.size(), s->rings, s->returns, s->span_s * 1e3, t.x(), t.y(), t.z(),
+                ypr.x(), ypr.y(), ypr.z());
+  return buf;
+}
+
+}  // namespace roadslam::viewer
