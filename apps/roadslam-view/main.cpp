@@ -24,6 +24,8 @@ int main(int argc, char** argv) {
   app.add_option("--camera", camera, "camera: follow, top, orbit");
   app.add_option("--script", req.script, "window: run these commands (key X, wait S, screenshot PATH, quit)")
       ->check(CLI::ExistingFile);
+  app.add_option("--run-slam", req.run_slam_ini, "run the odometry of this config (e.g. ini/default.ini) while replaying")
+      ->check(CLI::ExistingFile);
   app.add_flag("--no-index-cache", req.no_index_cache, "rebuild the rawlog index and do not write REC.idx");
   CLI11_PARSE(app, argc, argv);
   try {

@@ -127,6 +127,22 @@ TEST(RoadslamViewApp, OpensRealMapAndBoundsFolders) {
   EXPECT_TRUE(fs::exists(f.dir / "real.png"));
 }
 
+// --run-slam: the pipeline's odometry over the replayed recording posts one frame per sweep, as many
+// as roadslam-map gives on the same recording and config; a config with a typo stops before it runs.
+TEST(RoadslamViewApp, RunSlamPostsTheOdometrysFrames) {
+  const auto& f = fixture();
+  const std::string src = ROADSLAM_SOURCE_DIR;
+  const AppRun r = run(f.rawlog.string() + " --run-slam " + src + "/ini/default.ini --size 320x240 --render-sequence " +
+                       (f.dir / "slam_seq").string() + " --every 3");
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("odometry (--run-slam): 6 sweeps, 6 frames posted"), std::string::npos) << r.out;
+  const fs::path typo = f.dir / "typo.ini";
+  std::ofstream(typo) << "[odometry]\nregistration_voxel_sise_m = 1\n";
+  const AppRun bad = run(f.rawlog.string() + " --run-slam " + typo.string() + " --render " + (f.dir / "x.png").string());
+  EXPECT_EQ(bad.status, 1);
+  EXPECT_NE(bad.out.find(typo.string() + ":2: unknown key 'registration_voxel_sise_m' in [odometry]"), std::string::npos) << bad.out;
+}
+
 TEST(RoadslamViewApp, BadInputsExitWithOneLineNamingTheProblem) {
   const auto& f = fixture();
   const fs::path script = f.dir / "bad_script.txt";

@@ -13,7 +13,6 @@
 #include "roadslam/common/stop_signal.h"
 #include "roadslam/datasets/kitti_scans.h"
 #include "roadslam/odometry/odometry.h"
-#include "roadslam/pipeline/can_prior.h"
 #include "roadslam/pipeline/pipeline.h"
 #include "roadslam/velodyne/decoder_params.h"
 
@@ -28,7 +27,7 @@ bool enough(const BoundsRequest& req, size_t sweeps) { return stopRequested() ||
 /// the detector needs them whole).
 std::unique_ptr<PoseStage> poseStage(const BoundsRequest& req, const odometry::Params& op) {
   if (!req.trajectory_path.empty()) return std::make_unique<TrajectoryPoses>(req.trajectory_path);
-  return std::make_unique<OdometryPoses>(op, nullptr, true);
+  return std::make_unique<OdometryPoses>(op, true);
 }
 
 struct Drive {

@@ -30,6 +30,8 @@ bool deskewToReference(Scan& scan, const SweepPose& pose) {
 OdometryPoses::OdometryPoses(const odometry::Params& params, std::unique_ptr<CanPriorStream> can, bool keep_scans)
     : odo_(params), can_(std::move(can)), keep_scans_(keep_scans) {}
 
+OdometryPoses::OdometryPoses(const odometry::Params& params, bool keep_scans) : OdometryPoses(params, nullptr, keep_scans) {}
+
 OdometryPoses::~OdometryPoses() = default;
 
 std::string OdometryPoses::describe() const { return can_ ? "odometry+can" : "odometry"; }

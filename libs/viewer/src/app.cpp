@@ -1,8 +1,10 @@
 #include "roadslam/viewer/app.h"
 
 #include <cstdio>
+#include <memory>
 #include <stdexcept>
 
+#include "roadslam/viewer/live_slam.h"
 #include "roadslam/viewer/render.h"
 #include "roadslam/viewer/replay.h"
 #include "roadslam/viewer/window.h"
@@ -43,22 +45,36 @@ int runView(const ViewRequest& req, std::ostream& out, std::ostream& err) {
   ViewerModel model(in);
   for (const auto& warning : model.warnings()) err << "roadslam-view: warning: " << warning << "\n";
   out << summaryLine(model) << "\n";
+  std::unique_ptr<LiveSlam> slam;
+  if (!req.run_slam_ini.empty()) slam = std::make_unique<LiveSlam>(req.run_slam_ini, in.recording, model);
   Replay replay(model);
   replay.options().color_by = req.color_by;
   replay.options().camera = req.camera;
   if (headless) {
     PngRenderer renderer(w, h);
     if (!req.render_png.empty()) {
+      if (slam) {
+        slam->waitUntil(model.startTime() + req.at_s);
+        model.takePosted();
+      }
       replay.seek(model.startTime() + req.at_s);
       renderCurrent(replay, renderer, req.render_png);
       out << req.render_png << ": t = " << req.at_s << " s, observation "
           << (replay.currentObservation() ? std::to_string(*replay.currentObservation()) : "-") << "\n";
     }
     if (!req.sequence_dir.empty()) {
+      if (slam) {
+        slam->waitUntil(1e300);  // the whole recording
+        model.takePosted();
+      }
       const auto n = renderSequence(replay, renderer, req.sequence_dir, req.every);
       out << req.sequence_dir << ": " << n << " pictures\n";
     }
     if (!replay.lastError().empty()) err << "roadslam-view: warning: " << replay.lastError() << "\n";
+    if (slam) {
+      out << "odometry (--run-slam): " << slam->frames() << " sweeps, " << model.frames().size() << " frames posted\n";
+      if (!slam->error().empty()) err << "roadslam-view: warning: the odometry stopped: " << slam->error() << "\n";
+    }
     return 0;
   }
   return runWindow(replay, window, out, err);

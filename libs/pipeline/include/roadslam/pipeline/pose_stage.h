@@ -66,6 +66,8 @@ class OdometryPoses : public PoseStage {
  public:
   /// \p keep_scans false: the sweep's points move into the odometry (nothing later needs them).
   OdometryPoses(const odometry::Params& params, std::unique_ptr<CanPriorStream> can, bool keep_scans);
+  /// Without a CAN prior.
+  OdometryPoses(const odometry::Params& params, bool keep_scans);
   ~OdometryPoses() override;
   SweepPose pose(Scan& scan) override;
   std::string describe() const override;

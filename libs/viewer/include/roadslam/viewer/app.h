@@ -21,6 +21,7 @@ struct ViewRequest {
   ColorBy color_by = ColorBy::Height;
   CameraMode camera = CameraMode::Follow;
   std::string script;        ///< --script FILE (window)
+  std::string run_slam_ini;  ///< --run-slam INI: the odometry runs over the recording while it replays
   bool no_index_cache = false;
 };
 

@@ -1,0 +1,48 @@
+#pragma once
+/// \file live_slam.h
+/// `roadslam-view --run-slam INI`: the pipeline's odometry over the recording being replayed, on a
+/// thread of its own, each sweep's pose and status posted into the model as it comes (the window
+/// draws what the replay time has reached). A user watches a config at work on their own drive.
+
+#include <atomic>
+#include <mutex>
+#include <string>
+#include <thread>
+
+#include "roadslam/viewer/model.h"
+
+namespace roadslam::viewer {
+
+class LiveSlam {
+ public:
+  /// Checks \p config_ini (unknown keys: an error with file and line) and opens the recording
+  /// before returning; throws std::runtime_error naming the file on a problem. Then runs on a thread.
+  LiveSlam(const std::string& config_ini, const std::string& recording, ViewerModel& model);
+  /// Stops the odometry between two sweeps and joins.
+  ~LiveSlam();
+  LiveSlam(const LiveSlam&) = delete;
+  LiveSlam& operator=(const LiveSlam&) = delete;
+
+  /// Blocks until a frame stamped at or after \p t_s was posted, or the recording ended (headless
+  /// renders of a time).
+  void waitUntil(double t_s);
+  bool done() const { return done_; }
+  std::size_t frames() const { return frames_; }
+  /// The problem that stopped the odometry, if one did (empty otherwise).
+  std::string error() const;
+
+ private:
+  struct Impl;
+  void run(Impl& impl);
+
+  ViewerModel& model_;
+  std::unique_ptr<Impl> impl_;
+  std::atomic<bool> stop_{false}, done_{false};
+  std::atomic<std::size_t> frames_{0};
+  std::atomic<double> last_stamp_s_{0.0};
+  mutable std::mutex error_mutex_;
+  std::string error_;
+  std::thread thread_;
+};
+
+}  // namespace roadslam::viewer
