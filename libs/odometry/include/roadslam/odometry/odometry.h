@@ -205,7 +205,7 @@ class Odometry {
  private:
   Eigen::Isometry3d predict(const std::optional<MotionPrior>& prior) const;
   void applyPriorOnWeakDirections(const Eigen::Matrix<double, 6, Eigen::Dynamic>& weak, double lever_m,
-                                  const Eigen::Isometry3d& T_pred, Eigen::Isometry3d& T_est) const;
+                                  const Eigen::Isometry3d& T_pred, Eigen::Isometry3d& T_est, bool about_sensor) const;
   /// Marks \p res degenerate and puts the prediction into \p T_est along the directions the scans
   /// leave unmeasured (weak_directions.h), reducing res.information there.
   void judgeDegeneracy(const registration::RegistrationResult& r, const registration::SurfaceInformation& surface,
