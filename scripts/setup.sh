@@ -12,7 +12,7 @@ PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev
   nlohmann-json3-dev libcli11-dev libfmt-dev zstd libzstd-dev zlib1g-dev
   python3-can python3-canmatrix python3-numpy can-utils tcpdump
-  chromium parallel slurm-wlm munge
+  chromium parallel slurm-wlm munge ffmpeg
   libgl-dev xvfb xauth   # roadslam-view: OpenGL (window screenshots); its window test runs under xvfb-run
 )
 

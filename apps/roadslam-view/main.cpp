@@ -10,7 +10,7 @@ int main(int argc, char** argv) {
   roadslam::viewer::ViewRequest req;
   std::string color = "height", camera = "follow";
   roadslam::addVersionFlag(app, "roadslam-view");
-  app.add_option("recording", req.inputs.recording, "MRPT rawlog (observations or sensory-frames format)")
+  app.add_option("recording", req.inputs.recording, "MRPT rawlog (observations or sensory-frames format) or Velodyne pcap")
       ->required()->check(CLI::ExistingFile);
   app.add_option("--map", req.inputs.map_dir, "roadslam-map output folder")->check(CLI::ExistingDirectory);
   app.add_option("--bounds", req.inputs.bounds_dir, "roadslam-bounds output folder")->check(CLI::ExistingDirectory);
@@ -19,6 +19,8 @@ int main(int argc, char** argv) {
   app.add_option("--at", req.at_s, "time for --render, seconds from the start of the recording");
   app.add_option("--render-sequence", req.sequence_dir, "render every --every-th sweep into DIR/NNNNNN.png and exit");
   app.add_option("--every", req.every, "with --render-sequence: one PNG per N sweeps")->check(CLI::PositiveNumber);
+  app.add_option("--video", req.video, "encode the --every-th sweeps into this MP4 through ffmpeg and exit");
+  app.add_option("--fps", req.fps, "with --video: frames per second")->check(CLI::PositiveNumber);
   app.add_option("--size", req.size, "picture / window size WxH in pixels (e.g. 1280x720)");
   app.add_option("--color", color, "sweep colour: height, intensity, ring, time");
   app.add_option("--camera", camera, "camera: follow, top, orbit");

@@ -143,6 +143,44 @@ TEST(RoadslamViewApp, RunSlamPostsTheOdometrysFrames) {
   EXPECT_NE(bad.out.find(typo.string() + ":2: unknown key 'registration_voxel_sise_m' in [odometry]"), std::string::npos) << bad.out;
 }
 
+// A pcap opens directly: converted once into "<pcap>.rawlog" beside it (the same observations as
+// roadslam-rawlog's conversion), reused while fresh. --video encodes the sequence through ffmpeg.
+TEST(RoadslamViewApp, OpensAPcapAndWritesAVideo) {
+  const auto& f = fixture();
+  const fs::path pcap = f.dir / "boxroom.pcap";
+  fs::copy_file(std::string(ROADSLAM_SOURCE_DIR) + "/rawlogs/boxroom-vlp16.pcap", pcap, fs::copy_options::overwrite_existing);
+  fs::remove(pcap.string() + ".rawlog");
+  const AppRun first = run(pcap.string() + " --size 320x240 --render " + (f.dir / "pcap.png").string());
+  ASSERT_EQ(first.status, 0) << first.out;
+  EXPECT_NE(first.out.find("converting " + pcap.string()), std::string::npos) << first.out;
+  const AppRun viaRawlog = run(f.rawlog.string() + " --size 320x240 --render " + (f.dir / "rawlog.png").string());
+  const auto observations = [](const std::string& out) {
+    const auto end = out.find(" observations over");
+    const auto start = out.rfind(' ', end - 1) + 1;
+    return end == std::string::npos ? std::string("?") : out.substr(start, end - start);
+  };
+  EXPECT_EQ(observations(first.out), observations(viaRawlog.out)) << first.out << viaRawlog.out;
+  const AppRun second = run(pcap.string() + " --size 320x240 --render " + (f.dir / "pcap.png").string());
+  EXPECT_EQ(second.out.find("converting"), std::string::npos) << "the conversion is kept: " << second.out;
+
+  const fs::path mp4 = f.dir / "boxroom.mp4";
+  const AppRun v = run(f.rawlog.string() + " --size 320x240 --video " + mp4.string() + " --every 2");
+  if (std::system("command -v ffmpeg > /dev/null 2>&1") != 0) {
+    EXPECT_EQ(v.status, 1);
+    EXPECT_NE(v.out.find("--video needs ffmpeg"), std::string::npos) << v.out;
+    return;
+  }
+  ASSERT_EQ(v.status, 0) << v.out;
+  EXPECT_NE(v.out.find(": 3 frames at 10 per second"), std::string::npos) << v.out;
+  const std::string probe = "ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames "
+                            "-of csv=p=0 " + mp4.string();
+  FILE* p = popen(probe.c_str(), "r");
+  int frames = 0;
+  ASSERT_EQ(std::fscanf(p, "%d", &frames), 1);
+  pclose(p);
+  EXPECT_EQ(frames, 3) << "ffprobe counts the encoded frames";
+}
+
 TEST(RoadslamViewApp, BadInputsExitWithOneLineNamingTheProblem) {
   const auto& f = fixture();
   const fs::path script = f.dir / "bad_script.txt";

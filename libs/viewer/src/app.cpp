@@ -1,9 +1,14 @@
 #include "roadslam/viewer/app.h"
 
+#include <unistd.h>
+
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 #include <memory>
 #include <stdexcept>
 
+#include "roadslam/sources/recording.h"
 #include "roadslam/viewer/live_slam.h"
 #include "roadslam/viewer/render.h"
 #include "roadslam/viewer/replay.h"
@@ -31,12 +36,44 @@ std::string summaryLine(const ViewerModel& m) {
   return buf;
 }
 
+std::string recordingToOpen(const std::string& path, std::ostream& err) {
+  namespace fs = std::filesystem;
+  const std::string ext = fs::path(path).extension().string();
+  if (ext != ".pcap" && ext != ".pcapng") return path;
+  std::string out = path + ".rawlog";
+  std::error_code ec;
+  const bool fresh = fs::exists(out) && fs::last_write_time(out, ec) >= fs::last_write_time(path, ec);
+  if (fresh) return out;
+  if (access(fs::path(path).parent_path().empty() ? "." : fs::path(path).parent_path().c_str(), W_OK) != 0) {
+    out = (fs::temp_directory_path() / (fs::path(path).filename().string() + ".rawlog")).string();
+    if (fs::exists(out) && fs::last_write_time(out, ec) >= fs::last_write_time(path, ec)) return out;
+  }
+  err << "roadslam-view: converting " << path << " into " << out << " once ...\n";
+  const auto s = sources::convertToRawlog(path, out);
+  if (s.observations == 0) throw std::runtime_error("'" + path + "' holds no Velodyne sweep");
+  return out;
+}
+
+void encodeVideo(const std::string& png_dir, const std::string& mp4, double fps) {
+  if (std::system("command -v ffmpeg > /dev/null 2>&1") != 0) {
+    throw std::runtime_error("--video needs ffmpeg (Debian: apt install ffmpeg); --render-sequence DIR writes the "
+                             "pictures without it");
+  }
+  char rate[32];
+  std::snprintf(rate, sizeof rate, "%g", fps);
+  const std::string cmd = "ffmpeg -y -loglevel error -framerate " + std::string(rate) + " -pattern_type glob -i '" +
+                          png_dir + "/*.png' -c:v libx264 -pix_fmt yuv420p -vf 'pad=ceil(iw/2)*2:ceil(ih/2)*2' '" + mp4 +
+                          "' < /dev/null";
+  if (std::system(cmd.c_str()) != 0) throw std::runtime_error("ffmpeg could not write '" + mp4 + "' (" + cmd + ")");
+}
+
 int runView(const ViewRequest& req, std::ostream& out, std::ostream& err) {
   const auto [w, h] = parseSize(req.size);
-  const bool headless = !req.render_png.empty() || !req.sequence_dir.empty();
+  const bool headless = !req.render_png.empty() || !req.sequence_dir.empty() || !req.video.empty();
   const WindowOptions window{w, h, req.script};
   if (!headless) checkWindowRequest(window);
   ViewerInputs in = req.inputs;
+  in.recording = recordingToOpen(in.recording, err);
   if (req.no_index_cache) in.index.use_cache = in.index.write_cache = false;
   in.index.on_build = [&err, &req](const std::string& path) {
     err << "roadslam-view: indexing " << path << " once"
@@ -62,13 +99,21 @@ int runView(const ViewRequest& req, std::ostream& out, std::ostream& err) {
       out << req.render_png << ": t = " << req.at_s << " s, observation "
           << (replay.currentObservation() ? std::to_string(*replay.currentObservation()) : "-") << "\n";
     }
-    if (!req.sequence_dir.empty()) {
+    const std::string sequence_dir = !req.sequence_dir.empty() || req.video.empty()
+                                         ? req.sequence_dir
+                                         : (std::filesystem::temp_directory_path() / ("roadslam_view_video_" + std::to_string(getpid()))).string();
+    if (!sequence_dir.empty()) {
       if (slam) {
         slam->waitUntil(1e300);  // the whole recording
         model.takePosted();
       }
-      const auto n = renderSequence(replay, renderer, req.sequence_dir, req.every);
-      out << req.sequence_dir << ": " << n << " pictures\n";
+      const auto n = renderSequence(replay, renderer, sequence_dir, req.every);
+      if (!req.sequence_dir.empty()) out << req.sequence_dir << ": " << n << " pictures\n";
+      if (!req.video.empty()) {
+        encodeVideo(sequence_dir, req.video, req.fps);
+        if (req.sequence_dir.empty()) std::filesystem::remove_all(sequence_dir);
+        out << req.video << ": " << n << " frames at " << req.fps << " per second\n";
+      }
     }
     if (!replay.lastError().empty()) err << "roadslam-view: warning: " << replay.lastError() << "\n";
     if (slam) {

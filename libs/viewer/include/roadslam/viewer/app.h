@@ -21,6 +21,8 @@ struct ViewRequest {
   ColorBy color_by = ColorBy::Height;
   CameraMode camera = CameraMode::Follow;
   std::string script;        ///< --script FILE (window)
+  std::string video;         ///< --video OUT.mp4: the --render-sequence pictures through ffmpeg
+  double fps = 10;           ///< --fps of the video [1/s]
   std::string run_slam_ini;  ///< --run-slam INI: the odometry runs over the recording while it replays
   bool no_index_cache = false;
 };
@@ -30,6 +32,15 @@ std::pair<int, int> parseSize(const std::string& text);
 
 /// One line for a person: observations, duration, how the index was opened, and what the results hold.
 std::string summaryLine(const ViewerModel& model);
+
+/// The rawlog to open for \p path: a rawlog as it is; a Velodyne pcap converted once into
+/// "<pcap>.rawlog" beside it (again when the pcap is newer), or into the temp folder when its
+/// folder is not writable. Throws naming the file when the conversion fails.
+std::string recordingToOpen(const std::string& path, std::ostream& err);
+
+/// Encodes DIR/NNNNNN.png (sorted) into \p mp4 at \p fps with ffmpeg (H.264, yuv420p); throws with a
+/// clear message when ffmpeg is not installed or fails.
+void encodeVideo(const std::string& png_dir, const std::string& mp4, double fps);
 
 /// Runs the request; returns the exit code (0 done, 1 a problem named on \p err).
 int runView(const ViewRequest& req, std::ostream& out, std::ostream& err);
