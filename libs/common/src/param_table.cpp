@@ -25,6 +25,12 @@ ParamTable ParamTable::lister() { return ParamTable(Mode::List, nullptr, nullptr
 
 void ParamTable::num(const std::string& key, double& v) { scaled(key, v, 1.0); }  // x / 1 * 1 == x
 
+void ParamTable::num(const std::string& key, std::int64_t& v) {
+  keys_.push_back(key);
+  if (mode_ == Mode::Load) v = static_cast<std::int64_t>(readDouble(*in_, section_, key, static_cast<double>(v)));
+  if (mode_ == Mode::Save) out_->write(section_, key, std::to_string(v));
+}
+
 void ParamTable::integer(const std::string& key, int& v) {
   keys_.push_back(key);
   if (mode_ == Mode::Load) v = readInt(*in_, section_, key, v);

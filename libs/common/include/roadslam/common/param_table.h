@@ -18,6 +18,7 @@
 #include <mrpt/config/CConfigFileBase.h>
 
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -80,6 +81,8 @@ class ParamTable {
     integer(key, i);
     if (loading()) v = static_cast<I>(i);
   }
+  /// A 64-bit count (a Unix time [s]): read as a number, written exactly (std::to_string, not "%e").
+  void num(const std::string& key, std::int64_t& v);
   /// A number in another unit in the ini: the ini value times \p si_per_unit is the field [SI].
   void scaled(const std::string& key, double& v, double si_per_unit);
   /// An angle: degrees in the ini ("_deg" key), radians in the field.
