@@ -130,6 +130,20 @@ TEST(ParamTable, AliasIsReadAndBothIsAnError) {
             std::string::npos);
 }
 
+TEST(ParamTable, A64BitCountIsSavedExactly) {
+  struct Clock {
+    std::int64_t start_epoch_s = 1700000000123;
+    void fields(ParamTable& t) { t.num("start_epoch_s", start_epoch_s); }
+  } c;
+  mrpt::config::CConfigFileMemory out;
+  saveFields(c, out, "clock");
+  EXPECT_NE(out.getContent().find("start_epoch_s = 1700000000123"), std::string::npos) << out.getContent();
+  Clock d;
+  d.start_epoch_s = 0;
+  loadFields(d, mrpt::config::CConfigFileMemory(out.getContent()), "clock");
+  EXPECT_EQ(d.start_epoch_s, 1700000000123);
+}
+
 TEST(ParamTable, NameTableGoesBothWays) {
   EXPECT_EQ(nameOf(shapeNames(), Shape::Round), "round");
   EXPECT_EQ(valueOf(shapeNames(), "flat", "shape"), Shape::Flat);

@@ -72,8 +72,8 @@ class ParamTable {
   /// A table that only collects the keys (keys()).
   static ParamTable lister();
 
-  /// A number with its unit in the key (SI): "max_range_m". Integers of any width are read and
-  /// written as int, as the components always did.
+  /// A number with its unit in the key (SI): "max_range_m". Integer fields (int, size_t, uint16_t,
+  /// the uint64_t seeds) are read and written as int, as the components always did.
   void num(const std::string& key, double& v);
   template <class I, std::enable_if_t<std::is_integral_v<I> && !std::is_same_v<I, bool>, int> = 0>
   void num(const std::string& key, I& v) {
