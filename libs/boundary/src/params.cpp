@@ -2,84 +2,97 @@
 
 #include <mrpt/config/CConfigFileBase.h>
 
-#include <cmath>
 #include <stdexcept>
-#include <utility>
-#include <vector>
 
 #include "roadslam/common/config.h"
+#include "roadslam/common/param_table.h"
 
 namespace roadslam::boundary {
 namespace {
-
-// Ini key = field name (all SI), so one table serves load, save and the unknown-key check.
-template <class P>
-auto doubleFields(P& p) {
-  return std::vector<std::pair<const char*, decltype(&p.curb_min_jump_m)>>{
-      {"curb_min_jump_m", &p.curb_min_jump_m}, {"curb_max_jump_m", &p.curb_max_jump_m},
-      {"curb_cell_m", &p.curb_cell_m}, {"curb_face_margin", &p.curb_face_margin}, {"max_heading", &p.max_heading}, {"max_curvature", &p.max_curvature},
-      {"curb_max_range_m", &p.curb_max_range_m}, {"curb_min_range_m", &p.curb_min_range_m}, {"curb_veto_range_m", &p.curb_veto_range_m}, {"tall_cell_m", &p.tall_cell_m},
-      {"tall_height_m", &p.tall_height_m},
-      {"tall_max_height_m", &p.tall_max_height_m}, {"obstacle_min_height_m", &p.obstacle_min_height_m},
-      {"obstacle_max_height_m", &p.obstacle_max_height_m}, {"cluster_cell_m", &p.cluster_cell_m},
-      {"roi_range_m", &p.roi_range_m}, {"band_min_x_m", &p.band_min_x_m},
-      {"band_max_x_m", &p.band_max_x_m}, {"fit_min_x_m", &p.fit_min_x_m},
-      {"fit_max_x_m", &p.fit_max_x_m}, {"min_lateral_m", &p.min_lateral_m},
-      {"max_lateral_m", &p.max_lateral_m}, {"ransac_inlier_m", &p.ransac_inlier_m},
-      {"bin_m", &p.bin_m}, {"curb_map_cell_m", &p.curb_map_cell_m}, {"curb_map_radius_m", &p.curb_map_radius_m},
-      {"max_extrapolation_m", &p.max_extrapolation_m}, {"max_bridge_m", &p.max_bridge_m}, {"track_gate_m", &p.track_gate_m}, {"hold_decay", &p.hold_decay}, {"parallel_max_spread_m", &p.parallel_max_spread_m}, {"path_min_length_m", &p.path_min_length_m}, {"bend_max_curvature", &p.bend_max_curvature}, {"bend_step_m", &p.bend_step_m}, {"inner_curb_share", &p.inner_curb_share}, {"parallel_width_gate_m", &p.parallel_width_gate_m}, {"width_jump_m", &p.width_jump_m}, {"polyline_step_m", &p.polyline_step_m}, {"path_step_m", &p.path_step_m},
-      {"grid_resolution_m", &p.grid_resolution_m}, {"grid_size_m", &p.grid_size_m}};
-}
-template <class P>
-auto intFields(P& p) {
-  return std::vector<std::pair<const char*, decltype(&p.min_bins)>>{
-      {"cluster_min_points", &p.cluster_min_points}, {"curb_clearance_cells", &p.curb_clearance_cells}, {"curb_level_cells", &p.curb_level_cells}, {"curb_veto_cells", &p.curb_veto_cells},
-      {"curb_reach_cells", &p.curb_reach_cells}, {"freespace_sectors", &p.freespace_sectors},
-      {"poly_degree", &p.poly_degree}, {"ransac_iterations", &p.ransac_iterations},
-      {"ransac_seed", &p.ransac_seed}, {"min_bins", &p.min_bins}, {"min_band_bins", &p.min_band_bins},
-      {"memory_frames", &p.memory_frames}, {"curb_min_sightings", &p.curb_min_sightings}, {"whole_drive_min_sightings", &p.whole_drive_min_sightings}, {"max_hold_frames", &p.max_hold_frames}, {"path_curvature_frames", &p.path_curvature_frames},
-      {"bend_curvature_steps", &p.bend_curvature_steps}, {"bend_margin_bins", &p.bend_margin_bins}};
-}
 
 void require(bool ok, const std::string& section, const std::string& key, const std::string& what) {
   if (!ok) throw std::runtime_error("[" + section + "] " + key + ": " + what);
 }
 
-}  // namespace
-
-std::string toString(Method m) {
-  switch (m) {
-    case Method::Ransac: return "ransac";
-    case Method::Thesis: return "thesis";
-  }
-  return "unknown";
+const NameTable<Method>& methodNames() {
+  static const NameTable<Method> t{{Method::Ransac, "ransac"}, {Method::Thesis, "thesis"}};
+  return t;
 }
 
-Method methodFromString(const std::string& name) {
-  for (Method m : {Method::Ransac, Method::Thesis})
-    if (name == toString(m)) return m;
-  throw std::invalid_argument("'" + name + "' is not one of ransac | thesis");
+}  // namespace
+
+std::string toString(Method m) { return nameOf(methodNames(), m); }
+Method methodFromString(const std::string& name) { return valueOf(methodNames(), name, "method"); }
+
+// Ini key = field name (all SI) but for hold_max_turn_deg.
+void Params::fields(ParamTable& t) {
+  t.choice("method", method, methodNames());
+  t.num("curb_min_jump_m", curb_min_jump_m);
+  t.num("curb_max_jump_m", curb_max_jump_m);
+  t.num("curb_cell_m", curb_cell_m);
+  t.num("curb_face_margin", curb_face_margin);
+  t.num("max_heading", max_heading);
+  t.num("max_curvature", max_curvature);
+  t.num("curb_max_range_m", curb_max_range_m);
+  t.num("curb_min_range_m", curb_min_range_m);
+  t.num("curb_veto_range_m", curb_veto_range_m);
+  t.num("tall_cell_m", tall_cell_m);
+  t.num("tall_height_m", tall_height_m);
+  t.num("tall_max_height_m", tall_max_height_m);
+  t.num("obstacle_min_height_m", obstacle_min_height_m);
+  t.num("obstacle_max_height_m", obstacle_max_height_m);
+  t.num("cluster_cell_m", cluster_cell_m);
+  t.num("roi_range_m", roi_range_m);
+  t.num("band_min_x_m", band_min_x_m);
+  t.num("band_max_x_m", band_max_x_m);
+  t.num("fit_min_x_m", fit_min_x_m);
+  t.num("fit_max_x_m", fit_max_x_m);
+  t.num("min_lateral_m", min_lateral_m);
+  t.num("max_lateral_m", max_lateral_m);
+  t.num("ransac_inlier_m", ransac_inlier_m);
+  t.num("bin_m", bin_m);
+  t.num("curb_map_cell_m", curb_map_cell_m);
+  t.num("curb_map_radius_m", curb_map_radius_m);
+  t.num("max_extrapolation_m", max_extrapolation_m);
+  t.num("max_bridge_m", max_bridge_m);
+  t.num("track_gate_m", track_gate_m);
+  t.num("hold_decay", hold_decay);
+  t.num("parallel_max_spread_m", parallel_max_spread_m);
+  t.num("path_min_length_m", path_min_length_m);
+  t.num("bend_max_curvature", bend_max_curvature);
+  t.num("bend_step_m", bend_step_m);
+  t.num("inner_curb_share", inner_curb_share);
+  t.num("parallel_width_gate_m", parallel_width_gate_m);
+  t.num("width_jump_m", width_jump_m);
+  t.num("polyline_step_m", polyline_step_m);
+  t.num("path_step_m", path_step_m);
+  t.num("grid_resolution_m", grid_resolution_m);
+  t.num("grid_size_m", grid_size_m);
+  t.num("cluster_min_points", cluster_min_points);
+  t.num("curb_clearance_cells", curb_clearance_cells);
+  t.num("curb_level_cells", curb_level_cells);
+  t.num("curb_veto_cells", curb_veto_cells);
+  t.num("curb_reach_cells", curb_reach_cells);
+  t.num("freespace_sectors", freespace_sectors);
+  t.num("poly_degree", poly_degree);
+  t.num("ransac_iterations", ransac_iterations);
+  t.num("ransac_seed", ransac_seed);
+  t.num("min_bins", min_bins);
+  t.num("min_band_bins", min_band_bins);
+  t.num("memory_frames", memory_frames);
+  t.num("curb_min_sightings", curb_min_sightings);
+  t.num("whole_drive_min_sightings", whole_drive_min_sightings);
+  t.num("max_hold_frames", max_hold_frames);
+  t.num("path_curvature_frames", path_curvature_frames);
+  t.num("bend_curvature_steps", bend_curvature_steps);
+  t.num("bend_margin_bins", bend_margin_bins);
+  t.angle("hold_max_turn_deg", hold_max_turn_rad);
 }
 
 void Params::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& s,
                                 const std::string& ground_section) {
-  std::vector<std::string> known{"method"};
-  try {
-    method = methodFromString(readString(cfg, s, "method", toString(method)));
-  } catch (const std::invalid_argument& e) {
-    throw std::runtime_error("[" + s + "] method: " + e.what());
-  }
-  for (auto& [k, v] : doubleFields(*this)) {
-    *v = readDouble(cfg, s, k, *v);
-    known.emplace_back(k);
-  }
-  for (auto& [k, v] : intFields(*this)) {
-    *v = readInt(cfg, s, k, *v);
-    known.emplace_back(k);
-  }
-  hold_max_turn_rad = readDouble(cfg, s, "hold_max_turn_deg", hold_max_turn_rad * 180.0 / M_PI) * M_PI / 180.0;
-  known.emplace_back("hold_max_turn_deg");
-  rejectUnknownKeys(cfg, s, known);
+  loadFields(*this, cfg, s);
+  rejectUnknownKeys(cfg, s, fieldKeys<Params>());
   require(curb_min_jump_m > 0 && curb_max_jump_m > curb_min_jump_m, s, "curb_max_jump_m",
           "needs 0 < curb_min_jump_m < curb_max_jump_m");
   require(band_max_x_m > band_min_x_m, s, "band_max_x_m", "must exceed band_min_x_m");
@@ -93,11 +106,7 @@ void Params::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const 
 
 void Params::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& s,
                               const std::string& ground_section) const {
-  Params copy = *this;
-  cfg.write(s, "method", toString(method));
-  for (auto& [k, v] : doubleFields(copy)) cfg.write(s, k, *v);
-  for (auto& [k, v] : intFields(copy)) cfg.write(s, k, *v);
-  cfg.write(s, "hold_max_turn_deg", hold_max_turn_rad * 180.0 / M_PI);
+  saveFields(*this, cfg, s);
   ground.saveToConfigFile(cfg, ground_section);
 }
 

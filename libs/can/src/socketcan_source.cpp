@@ -3,6 +3,7 @@
 
 #include <roadslam/can/socketcan_source.h>
 #include <roadslam/common/config.h>
+#include <roadslam/common/param_table.h>
 
 #include <mrpt/config/CConfigFileBase.h>
 
@@ -108,34 +109,36 @@ std::vector<CanFilter> parseFilters(const std::string& text) {
   return out;
 }
 
-void SocketCanParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& s) {
-  interface = readString(cfg, s, "interface", interface);
-  const std::string f = readString(cfg, s, "filters", "");
-  try {
-    filters = parseFilters(f);
-  } catch (const std::exception& e) {
-    throw std::runtime_error("[" + s + "] filters: " + e.what());
-  }
-  error_frames = readBool(cfg, s, "error_frames", error_frames);
-  fd = readBool(cfg, s, "fd", fd);
-  receive_buffer_bytes = readInt(cfg, s, "receive_buffer_bytes", receive_buffer_bytes);
-  reopen_interval_ms = readInt(cfg, s, "reopen_interval_ms", reopen_interval_ms);
-}
-
-void SocketCanParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& s) const {
-  std::ostringstream f;
+void SocketCanParams::fields(ParamTable& t) {
+  t.text("interface", interface);
+  std::ostringstream f;  // the filter list as text: "123:7FF,~12345678:1FFFFFFF"
   for (std::size_t i = 0; i < filters.size(); ++i) {
     char buf[32];
     std::snprintf(buf, sizeof(buf), filters[i].extended ? "%s%08X:%X" : "%s%03X:%X", filters[i].invert ? "~" : "",
                   filters[i].id, filters[i].mask);
     f << (i ? "," : "") << buf;
   }
-  cfg.write(s, "interface", interface);
-  cfg.write(s, "filters", f.str());
-  cfg.write(s, "error_frames", error_frames);
-  cfg.write(s, "fd", fd);
-  cfg.write(s, "receive_buffer_bytes", receive_buffer_bytes);
-  cfg.write(s, "reopen_interval_ms", reopen_interval_ms);
+  std::string text = f.str();
+  t.text("filters", text);
+  if (t.loading()) {
+    try {
+      filters = parseFilters(text);
+    } catch (const std::exception& e) {
+      throw std::runtime_error("[" + t.section() + "] filters: " + e.what());
+    }
+  }
+  t.flag("error_frames", error_frames);
+  t.flag("fd", fd);
+  t.num("receive_buffer_bytes", receive_buffer_bytes);
+  t.num("reopen_interval_ms", reopen_interval_ms);
+}
+
+void SocketCanParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& s) {
+  loadFields(*this, cfg, s);
+}
+
+void SocketCanParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& s) const {
+  saveFields(*this, cfg, s);
 }
 
 SocketCanSource::SocketCanSource(const SocketCanParams& params) : params_(params), owned_by_params_(true) {

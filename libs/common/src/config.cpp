@@ -10,13 +10,16 @@
 #include <stdexcept>
 
 namespace roadslam {
+std::string configSource(const mrpt::config::CConfigFileBase& cfg) {
+  if (auto f = dynamic_cast<const mrpt::config::CConfigFile*>(&cfg)) return f->getAssociatedFile() + ": ";
+  if (auto f = dynamic_cast<const CheckedConfig*>(&cfg)) return f->path() + ": ";
+  return "";
+}
+
 namespace {
 std::string where(const mrpt::config::CConfigFileBase& cfg, const std::string& section,
                   const std::string& key) {
-  std::string src;
-  if (auto f = dynamic_cast<const mrpt::config::CConfigFile*>(&cfg)) src = f->getAssociatedFile() + ": ";
-  if (auto f = dynamic_cast<const CheckedConfig*>(&cfg)) src = f->path() + ": ";
-  return src + "[" + section + "] " + key;
+  return configSource(cfg) + "[" + section + "] " + key;
 }
 std::string raw(const mrpt::config::CConfigFileBase& cfg, const std::string& section,
                 const std::string& key) {

@@ -31,23 +31,35 @@ void timesFromAzimuth(Scan& scan, const SweepTiming& timing) {
   scan.times_from_azimuth = true;
 }
 
-std::string toString(SpinDirection d) { return d == SpinDirection::Clockwise ? "clockwise" : "counterclockwise"; }
-
-std::string toString(StampReference r) {
-  return r == StampReference::Start ? "start" : r == StampReference::Middle ? "middle" : "end";
+const NameTable<SpinDirection>& spinDirectionNames() {
+  static const NameTable<SpinDirection> t{{SpinDirection::Clockwise, "clockwise"},
+                                          {SpinDirection::CounterClockwise, "counterclockwise"}};
+  return t;
 }
 
+const NameTable<StampReference>& stampReferenceNames() {
+  static const NameTable<StampReference> t{
+      {StampReference::Start, "start"}, {StampReference::Middle, "middle"}, {StampReference::End, "end"}};
+  return t;
+}
+
+std::string toString(SpinDirection d) { return nameOf(spinDirectionNames(), d); }
+std::string toString(StampReference r) { return nameOf(stampReferenceNames(), r); }
+
 SpinDirection spinDirectionFromString(const std::string& s, const std::string& where) {
-  if (s == "clockwise") return SpinDirection::Clockwise;
-  if (s == "counterclockwise") return SpinDirection::CounterClockwise;
-  throw std::runtime_error(where + " = '" + s + "': expected clockwise or counterclockwise");
+  try {
+    return valueOf(spinDirectionNames(), s, where);
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(e.what());
+  }
 }
 
 StampReference stampReferenceFromString(const std::string& s, const std::string& where) {
-  if (s == "start") return StampReference::Start;
-  if (s == "middle") return StampReference::Middle;
-  if (s == "end") return StampReference::End;
-  throw std::runtime_error(where + " = '" + s + "': expected start, middle or end");
+  try {
+    return valueOf(stampReferenceNames(), s, where);
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(e.what());
+  }
 }
 
 const char* pointTimesName(const Scan& scan) {

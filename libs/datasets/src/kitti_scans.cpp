@@ -3,6 +3,7 @@
 #include "line_parsing.h"
 #include "roadslam/common/atomic_file.h"
 #include "roadslam/common/config.h"
+#include "roadslam/common/param_table.h"
 
 #include <algorithm>
 #include <cmath>
@@ -80,23 +81,24 @@ void writeKittiBin(const std::string& path, const Scan& scan) {
   writeFileAtomically(path, bytes);
 }
 
+void KittiParams::fields(ParamTable& t) {
+  t.flag("times_from_azimuth", times_from_azimuth);
+  t.num("sweep_period_s", timing.period_s);
+  t.choice("spin", timing.spin, spinDirectionNames());
+  t.num("cut_azimuth_deg", timing.cut_azimuth_deg);
+  t.choice("stamp_reference", timing.stamp_reference, stampReferenceNames());
+}
+
+// elevation_correction_deg is converted by hand beside the table: x * M_PI / 180 rounds differently
+// from ParamTable::angle's x * (M_PI / 180) for the shipped 0.22, and the KITTI figures must not move.
 void KittiParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, const std::string& s) {
-  times_from_azimuth = readBool(c, s, "times_from_azimuth", times_from_azimuth);
-  timing.period_s = readDouble(c, s, "sweep_period_s", timing.period_s);
-  timing.spin = spinDirectionFromString(readString(c, s, "spin", toString(timing.spin)), "[" + s + "] spin");
-  timing.cut_azimuth_deg = readDouble(c, s, "cut_azimuth_deg", timing.cut_azimuth_deg);
-  timing.stamp_reference = stampReferenceFromString(
-      readString(c, s, "stamp_reference", toString(timing.stamp_reference)), "[" + s + "] stamp_reference");
+  loadFields(*this, c, s);
   elevation_correction_rad = readDouble(c, s, "elevation_correction_deg", elevation_correction_rad * 180.0 / M_PI) * M_PI / 180.0;
   if (!(timing.period_s > 0)) throw std::runtime_error("[" + s + "] sweep_period_s must be positive");
 }
 
 void KittiParams::saveToConfigFile(mrpt::config::CConfigFileBase& c, const std::string& s) const {
-  c.write(s, "times_from_azimuth", times_from_azimuth);
-  c.write(s, "sweep_period_s", timing.period_s);
-  c.write(s, "spin", toString(timing.spin));
-  c.write(s, "cut_azimuth_deg", timing.cut_azimuth_deg);
-  c.write(s, "stamp_reference", toString(timing.stamp_reference));
+  saveFields(*this, c, s);
   c.write(s, "elevation_correction_deg", elevation_correction_rad * 180.0 / M_PI);
 }
 

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "roadslam/common/config.h"
+#include "roadslam/common/param_table.h"
 
 namespace roadslam::grabber {
 namespace {
@@ -30,24 +31,29 @@ void rejectUnknown(const mrpt::config::CConfigFileBase& cfg, const std::string& 
   rejectUnknownKeys(cfg, sec, known);
 }
 
-const std::vector<std::string> kSensorKeys = {
-    "data_port", "position_port", "model", "bind_address", "source_filter", "rcvbuf_bytes",
-    "batch_size", "poll_timeout_ms", "packet_period_us", "sensor_label", "gps_label",
-    "calibration_file", "min_range_m", "max_range_m", "x_m", "y_m", "z_m", "yaw_deg", "pitch_deg",
-    "roll_deg", "silent_after_ms", "lock_first_sender"};
-const std::vector<std::string> kCanKeys = {
-    "source", "interface", "filters", "error_frames", "fd", "receive_buffer_bytes",
-    "reopen_interval_ms", "candump_file", "candump_realtime", "restamp", "vehicle_ini", "data_root",
-    "silent_after_ms"};
-const std::vector<std::string> kGrabKeys = {
-    "sensors", "can", "queue_capacity", "can_queue_capacity", "rotate_size_mb", "rotate_period_s",
-    "flush_period_ms", "reorder_window_ms", "compression_level", "pcap_sidecar", "candump_sidecar",
-    "status_period_ms", "file_prefix"};
+const NameTable<CanParams::Source>& canSourceNames() {
+  using S = CanParams::Source;
+  static const NameTable<S> t{{S::None, "none"}, {S::SocketCan, "socketcan"}, {S::Candump, "candump"}};
+  return t;
+}
+
+/// The keys of a section read by several tables.
+std::vector<std::string> joined(std::vector<std::vector<std::string>> parts) {
+  std::vector<std::string> out;
+  for (const auto& p : parts) out.insert(out.end(), p.begin(), p.end());
+  return out;
+}
 
 }  // namespace
 
+void SensorParams::fields(ParamTable& t) {
+  t.scaled("silent_after_ms", silent_after_s, unit::kMs);
+  t.flag("lock_first_sender", lock_first_sender);
+}
+
 void SensorParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& sec) {
-  rejectUnknown(cfg, sec, kSensorKeys);
+  rejectUnknown(cfg, sec, joined({fieldKeys<sources::UdpReceiver::Params>(), fieldKeys<sources::RawlogWriter::Params>(),
+                                  fieldKeys<SensorParams>()}));
   section = sec;
   udp.loadFromConfigFile(cfg, sec);
   scan.sensor_label = sec;
@@ -56,61 +62,55 @@ void SensorParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, 
   // One "model" key serves both: the receiver's gap counter (auto|vlp16|hdl32) and MRPT's
   // default calibration name (VLP16|HDL32).
   scan.model = udp.ports.model == velodyne::Model::HDL32 ? "HDL32" : "VLP16";
-  silent_after_s = readDouble(cfg, sec, "silent_after_ms", silent_after_s * 1e3) * 1e-3;
+  loadFields(*this, cfg, sec);
   if (silent_after_s <= 0) throw std::runtime_error("[" + sec + "] silent_after_ms: must be > 0");
-  lock_first_sender = readBool(cfg, sec, "lock_first_sender", lock_first_sender);
 }
 
 void SensorParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg) const {
   udp.saveToConfigFile(cfg, section);
   scan.saveToConfigFile(cfg, section);
-  cfg.write(section, "silent_after_ms", silent_after_s * 1e3);
-  cfg.write(section, "lock_first_sender", lock_first_sender);
+  saveFields(*this, cfg, section);
+}
+
+void CanParams::fields(ParamTable& t) {
+  t.choice("source", source, canSourceNames());
+  socketcan.fields(t);
+  t.text("candump_file", candump_file);
+  t.flag("candump_realtime", candump_realtime);
+  t.flag("restamp", restamp);
+  t.text("vehicle_ini", vehicle_ini);
+  t.text("data_root", data_root);
+  t.scaled("silent_after_ms", silent_after_s, unit::kMs);
 }
 
 void CanParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& sec) {
-  rejectUnknown(cfg, sec, kCanKeys);
-  const std::string s = readString(cfg, sec, "source", "none");
-  if (s == "none") source = Source::None;
-  else if (s == "socketcan") source = Source::SocketCan;
-  else if (s == "candump") source = Source::Candump;
-  else throw std::runtime_error("[" + sec + "] source: expected none, socketcan or candump, got '" + s + "'");
-  socketcan.loadFromConfigFile(cfg, sec);
-  candump_file = readString(cfg, sec, "candump_file", candump_file);
-  candump_realtime = readBool(cfg, sec, "candump_realtime", candump_realtime);
-  restamp = readBool(cfg, sec, "restamp", restamp);
-  vehicle_ini = readString(cfg, sec, "vehicle_ini", vehicle_ini);
-  data_root = readString(cfg, sec, "data_root", data_root);
-  silent_after_s = readDouble(cfg, sec, "silent_after_ms", silent_after_s * 1e3) * 1e-3;
+  rejectUnknown(cfg, sec, fieldKeys<CanParams>());
+  loadFields(*this, cfg, sec);
   if (silent_after_s <= 0) throw std::runtime_error("[" + sec + "] silent_after_ms: must be > 0");
   if (source == Source::Candump && candump_file.empty())
     throw std::runtime_error("[" + sec + "] candump_file: required when source = candump");
 }
 
 void CanParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& sec) const {
-  const char* names[] = {"none", "socketcan", "candump"};
-  cfg.write(sec, "source", std::string(names[static_cast<int>(source)]));
-  socketcan.saveToConfigFile(cfg, sec);
-  cfg.write(sec, "candump_file", candump_file);
-  cfg.write(sec, "candump_realtime", candump_realtime);
-  cfg.write(sec, "restamp", restamp);
-  cfg.write(sec, "vehicle_ini", vehicle_ini);
-  cfg.write(sec, "data_root", data_root);
-  cfg.write(sec, "silent_after_ms", silent_after_s * 1e3);
+  saveFields(*this, cfg, sec);
+}
+
+void WriterParams::fields(ParamTable& t) {
+  t.num("queue_capacity", queue_capacity);
+  t.num("can_queue_capacity", can_queue_capacity);
+  t.scaled("rotate_size_mb", rotate_size_bytes, unit::kMb);
+  t.num("rotate_period_s", rotate_period_s);
+  t.scaled("flush_period_ms", flush_period_s, unit::kMs);
+  t.scaled("reorder_window_ms", reorder_window_s, unit::kMs);
+  t.num("compression_level", compression_level);
+  t.flag("pcap_sidecar", pcap_sidecar);
+  t.flag("candump_sidecar", candump_sidecar);
+  t.scaled("status_period_ms", status_period_s, unit::kMs);
+  t.text("file_prefix", file_prefix);
 }
 
 void WriterParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& s) {
-  queue_capacity = std::size_t(readInt(cfg, s, "queue_capacity", int(queue_capacity)));
-  can_queue_capacity = std::size_t(readInt(cfg, s, "can_queue_capacity", int(can_queue_capacity)));
-  rotate_size_bytes = readDouble(cfg, s, "rotate_size_mb", rotate_size_bytes / 1e6) * 1e6;
-  rotate_period_s = readDouble(cfg, s, "rotate_period_s", rotate_period_s);
-  flush_period_s = readDouble(cfg, s, "flush_period_ms", flush_period_s * 1e3) * 1e-3;
-  reorder_window_s = readDouble(cfg, s, "reorder_window_ms", reorder_window_s * 1e3) * 1e-3;
-  compression_level = readInt(cfg, s, "compression_level", compression_level);
-  pcap_sidecar = readBool(cfg, s, "pcap_sidecar", pcap_sidecar);
-  candump_sidecar = readBool(cfg, s, "candump_sidecar", candump_sidecar);
-  status_period_s = readDouble(cfg, s, "status_period_ms", status_period_s * 1e3) * 1e-3;
-  file_prefix = readString(cfg, s, "file_prefix", file_prefix);
+  loadFields(*this, cfg, s);
   if (queue_capacity < 1 || can_queue_capacity < 1)
     throw std::runtime_error("[" + s + "] queue_capacity / can_queue_capacity: must be >= 1");
   if (flush_period_s <= 0 || status_period_s <= 0)
@@ -121,21 +121,11 @@ void WriterParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, 
 }
 
 void WriterParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& s) const {
-  cfg.write(s, "queue_capacity", int(queue_capacity));
-  cfg.write(s, "can_queue_capacity", int(can_queue_capacity));
-  cfg.write(s, "rotate_size_mb", rotate_size_bytes / 1e6);
-  cfg.write(s, "rotate_period_s", rotate_period_s);
-  cfg.write(s, "flush_period_ms", flush_period_s * 1e3);
-  cfg.write(s, "reorder_window_ms", reorder_window_s * 1e3);
-  cfg.write(s, "compression_level", compression_level);
-  cfg.write(s, "pcap_sidecar", pcap_sidecar);
-  cfg.write(s, "candump_sidecar", candump_sidecar);
-  cfg.write(s, "status_period_ms", status_period_s * 1e3);
-  cfg.write(s, "file_prefix", file_prefix);
+  saveFields(*this, cfg, s);
 }
 
 void GrabParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg) {
-  rejectUnknown(cfg, "grab", kGrabKeys);
+  rejectUnknown(cfg, "grab", joined({{"sensors", "can"}, fieldKeys<WriterParams>()}));
   writer.loadFromConfigFile(cfg, "grab");
   const auto names = splitList(readString(cfg, "grab", "sensors", ""));
   if (names.empty()) throw std::runtime_error("[grab] sensors: at least one sensor section is required");

@@ -10,33 +10,32 @@
 
 #include "roadslam/common/atomic_file.h"
 #include "roadslam/common/config.h"
+#include "roadslam/common/param_table.h"
 #include "ini_keys.h"
 #include "roadslam/mapping/maps.h"
 
 namespace roadslam::mapping {
 
+void GridParams::fields(ParamTable& t) {
+  t.num("resolution_m", resolution_m);
+  t.num("lidar_height_m", lidar_height_m);
+  t.num("ground_tolerance_m", ground_tolerance_m);
+  t.num("min_height_m", min_height_m);
+  t.num("max_height_m", max_height_m);
+  t.num("max_range_m", max_range_m);
+  t.num("margin_m", margin_m);
+}
+
 void GridParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& s) {
-  resolution_m = readDouble(cfg, s, "resolution_m", resolution_m);
-  lidar_height_m = readDouble(cfg, s, "lidar_height_m", lidar_height_m);
-  ground_tolerance_m = readDouble(cfg, s, "ground_tolerance_m", ground_tolerance_m);
-  min_height_m = readDouble(cfg, s, "min_height_m", min_height_m);
-  max_height_m = readDouble(cfg, s, "max_height_m", max_height_m);
-  max_range_m = readDouble(cfg, s, "max_range_m", max_range_m);
-  margin_m = readDouble(cfg, s, "margin_m", margin_m);
-  rejectUnknownKeys(cfg, s, {"resolution_m", "lidar_height_m", "ground_tolerance_m", "min_height_m", "max_height_m", "max_range_m", "margin_m"});
+  loadFields(*this, cfg, s);
+  rejectUnknownKeys(cfg, s, fieldKeys<GridParams>());
   if (resolution_m <= 0 || max_height_m <= min_height_m || max_range_m <= 0 || margin_m < 0) {
     throw std::runtime_error("[" + s + "]: need resolution_m > 0, max_height_m > min_height_m, max_range_m > 0");
   }
 }
 
 void GridParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& s) const {
-  cfg.write(s, "resolution_m", resolution_m);
-  cfg.write(s, "lidar_height_m", lidar_height_m);
-  cfg.write(s, "ground_tolerance_m", ground_tolerance_m);
-  cfg.write(s, "min_height_m", min_height_m);
-  cfg.write(s, "max_height_m", max_height_m);
-  cfg.write(s, "max_range_m", max_range_m);
-  cfg.write(s, "margin_m", margin_m);
+  saveFields(*this, cfg, s);
 }
 
 Grid2D buildGrid(const std::vector<Keyframe>& kfs, const PoseVector& T_map_kf, const GridParams& p) {

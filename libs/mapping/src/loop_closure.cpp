@@ -6,13 +6,12 @@
 #include <stdexcept>
 
 #include "roadslam/common/config.h"
+#include "roadslam/common/param_table.h"
 #include "ini_keys.h"
 #include "roadslam/registration/registration.h"
 
 namespace roadslam::mapping {
 namespace {
-
-constexpr double kDeg = M_PI / 180.0;
 
 double angleOf(const Eigen::Isometry3d& T) { return Eigen::AngleAxisd(T.rotation()).angle(); }
 
@@ -42,29 +41,32 @@ LoopClosureParams::LoopClosureParams() {
   fine.max_correction_m = 3.0;
 }
 
+void LoopClosureParams::fields(ParamTable& t) {
+  t.flag("enabled", enabled);
+  t.num("search_radius_m", search_radius_m);
+  t.num("search_height_m", search_height_m);
+  t.flag("level_guess", level_guess);
+  t.num("min_travel_m", min_travel_m);
+  t.num("check_every_m", check_every_m);
+  t.num("max_candidates", max_candidates);
+  t.num("query_keyframes", query_keyframes);
+  t.num("target_half_width", target_half_width);
+  t.num("source_voxel_m", source_voxel_m);
+  t.num("target_voxel_m", target_voxel_m);
+  t.num("max_fitness_m", max_fitness_m);
+  t.num("min_overlap", min_overlap);
+  t.num("consistency_abs_m", consistency_abs_m);
+  t.num("consistency_ratio", consistency_ratio);
+  t.angle("consistency_rot_deg", consistency_rot_rad);
+  t.scaled("consistency_rot_deg_per_100m", consistency_rot_rad_per_m, unit::kDeg / 100);  // [deg/100 m] in the ini
+  t.num("max_loop_residual_m", max_loop_residual_m);
+  t.num("information_scale", information_scale);
+  t.num("skip_after_loop_m", skip_after_loop_m);
+}
+
 void LoopClosureParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& s) {
-  enabled = readBool(cfg, s, "enabled", enabled);
-  search_radius_m = readDouble(cfg, s, "search_radius_m", search_radius_m);
-  search_height_m = readDouble(cfg, s, "search_height_m", search_height_m);
-  level_guess = readBool(cfg, s, "level_guess", level_guess);
-  min_travel_m = readDouble(cfg, s, "min_travel_m", min_travel_m);
-  check_every_m = readDouble(cfg, s, "check_every_m", check_every_m);
-  max_candidates = readInt(cfg, s, "max_candidates", max_candidates);
-  query_keyframes = readInt(cfg, s, "query_keyframes", query_keyframes);
-  target_half_width = readInt(cfg, s, "target_half_width", target_half_width);
-  source_voxel_m = readDouble(cfg, s, "source_voxel_m", source_voxel_m);
-  target_voxel_m = readDouble(cfg, s, "target_voxel_m", target_voxel_m);
-  max_fitness_m = readDouble(cfg, s, "max_fitness_m", max_fitness_m);
-  min_overlap = readDouble(cfg, s, "min_overlap", min_overlap);
-  consistency_abs_m = readDouble(cfg, s, "consistency_abs_m", consistency_abs_m);
-  consistency_ratio = readDouble(cfg, s, "consistency_ratio", consistency_ratio);
-  consistency_rot_rad = readDouble(cfg, s, "consistency_rot_deg", consistency_rot_rad / kDeg) * kDeg;
-  consistency_rot_rad_per_m =
-      readDouble(cfg, s, "consistency_rot_deg_per_100m", consistency_rot_rad_per_m / kDeg * 100) * kDeg / 100;
-  max_loop_residual_m = readDouble(cfg, s, "max_loop_residual_m", max_loop_residual_m);
-  information_scale = readDouble(cfg, s, "information_scale", information_scale);
-  skip_after_loop_m = readDouble(cfg, s, "skip_after_loop_m", skip_after_loop_m);
-  rejectUnknownKeys(cfg, s, {"enabled", "search_radius_m", "search_height_m", "level_guess", "min_travel_m", "check_every_m", "max_candidates", "query_keyframes", "target_half_width", "source_voxel_m", "target_voxel_m", "max_fitness_m", "min_overlap", "consistency_abs_m", "consistency_ratio", "consistency_rot_deg", "consistency_rot_deg_per_100m", "max_loop_residual_m", "information_scale", "skip_after_loop_m"});
+  loadFields(*this, cfg, s);
+  rejectUnknownKeys(cfg, s, fieldKeys<LoopClosureParams>());
   if (search_radius_m <= 0 || check_every_m <= 0 || max_candidates < 1 || query_keyframes < 1 ||
       target_half_width < 0 || source_voxel_m <= 0 || target_voxel_m <= 0 || information_scale <= 0) {
     throw std::runtime_error("[" + s + "]: search_radius_m, check_every_m, max_candidates, query_keyframes, "
@@ -75,26 +77,7 @@ void LoopClosureParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& 
 }
 
 void LoopClosureParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& s) const {
-  cfg.write(s, "enabled", enabled);
-  cfg.write(s, "search_radius_m", search_radius_m);
-  cfg.write(s, "search_height_m", search_height_m);
-  cfg.write(s, "level_guess", level_guess);
-  cfg.write(s, "min_travel_m", min_travel_m);
-  cfg.write(s, "check_every_m", check_every_m);
-  cfg.write(s, "max_candidates", max_candidates);
-  cfg.write(s, "query_keyframes", query_keyframes);
-  cfg.write(s, "target_half_width", target_half_width);
-  cfg.write(s, "source_voxel_m", source_voxel_m);
-  cfg.write(s, "target_voxel_m", target_voxel_m);
-  cfg.write(s, "max_fitness_m", max_fitness_m);
-  cfg.write(s, "min_overlap", min_overlap);
-  cfg.write(s, "consistency_abs_m", consistency_abs_m);
-  cfg.write(s, "consistency_ratio", consistency_ratio);
-  cfg.write(s, "consistency_rot_deg", consistency_rot_rad / kDeg);
-  cfg.write(s, "consistency_rot_deg_per_100m", consistency_rot_rad_per_m / kDeg * 100);
-  cfg.write(s, "max_loop_residual_m", max_loop_residual_m);
-  cfg.write(s, "information_scale", information_scale);
-  cfg.write(s, "skip_after_loop_m", skip_after_loop_m);
+  saveFields(*this, cfg, s);
   coarse.saveToConfigFile(cfg, s + "_coarse");
   fine.saveToConfigFile(cfg, s + "_fine");
 }

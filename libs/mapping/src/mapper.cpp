@@ -4,6 +4,7 @@
 
 #include "roadslam/common/voxel_hash.h"
 #include "roadslam/common/config.h"
+#include "roadslam/common/param_table.h"
 #include "ini_keys.h"
 
 namespace roadslam::mapping {
@@ -21,16 +22,20 @@ std::vector<Eigen::Vector3f> downsample(const std::vector<Eigen::Vector3d>& pts,
 
 }  // namespace
 
+void MapperParams::fields(ParamTable& t) {
+  t.num("keyframe_voxel_m", keyframe_voxel_m);
+}
+
 void MapperParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& s) {
-  keyframe_voxel_m = readDouble(cfg, s, "keyframe_voxel_m", keyframe_voxel_m);
-  rejectUnknownKeys(cfg, s, {"keyframe_voxel_m"});
+  loadFields(*this, cfg, s);
+  rejectUnknownKeys(cfg, s, fieldKeys<MapperParams>());
   if (keyframe_voxel_m <= 0) throw std::runtime_error("[" + s + "] keyframe_voxel_m must be > 0");
   graph.loadFromConfigFile(cfg, "pose_graph");
   loop.loadFromConfigFile(cfg, "loop_closure");
 }
 
 void MapperParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& s) const {
-  cfg.write(s, "keyframe_voxel_m", keyframe_voxel_m);
+  saveFields(*this, cfg, s);
   graph.saveToConfigFile(cfg, "pose_graph");
   loop.saveToConfigFile(cfg, "loop_closure");
 }

@@ -9,6 +9,7 @@
 
 #include "roadslam/common/atomic_file.h"
 #include "roadslam/common/config.h"
+#include "roadslam/common/param_table.h"
 #include "ini_keys.h"
 #include "octo_grid.h"
 
@@ -36,18 +37,22 @@ octomap::point3d toPoint(const Eigen::Vector3d& v) {
 
 }  // namespace
 
+void OctoMapParams::fields(ParamTable& t) {
+  t.flag("enabled", enabled);
+  t.num("resolution_m", resolution_m);
+  t.num("max_range_m", max_range_m);
+  t.num("free_max_range_m", free_max_range_m);
+  t.num("prob_hit", prob_hit);
+  t.num("prob_miss", prob_miss);
+  t.num("clamp_min", clamp_min);
+  t.num("clamp_max", clamp_max);
+  t.flag("write_ot", write_ot);
+  t.num("keyframe_spacing_m", keyframe_spacing_m);
+}
+
 void OctoMapParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& s) {
-  enabled = readBool(cfg, s, "enabled", enabled);
-  resolution_m = readDouble(cfg, s, "resolution_m", resolution_m);
-  max_range_m = readDouble(cfg, s, "max_range_m", max_range_m);
-  free_max_range_m = readDouble(cfg, s, "free_max_range_m", free_max_range_m);
-  prob_hit = readDouble(cfg, s, "prob_hit", prob_hit);
-  prob_miss = readDouble(cfg, s, "prob_miss", prob_miss);
-  clamp_min = readDouble(cfg, s, "clamp_min", clamp_min);
-  clamp_max = readDouble(cfg, s, "clamp_max", clamp_max);
-  write_ot = readBool(cfg, s, "write_ot", write_ot);
-  keyframe_spacing_m = readDouble(cfg, s, "keyframe_spacing_m", keyframe_spacing_m);
-  rejectUnknownKeys(cfg, s, {"enabled", "resolution_m", "max_range_m", "free_max_range_m", "prob_hit", "prob_miss", "clamp_min", "clamp_max", "write_ot", "keyframe_spacing_m"});
+  loadFields(*this, cfg, s);
+  rejectUnknownKeys(cfg, s, fieldKeys<OctoMapParams>());
   if (resolution_m <= 0 || max_range_m <= 0 || free_max_range_m < 0 || prob_hit <= 0.5 || prob_hit >= 1 ||
       prob_miss <= 0 || prob_miss >= 0.5 || clamp_min <= 0 || clamp_max >= 1 || clamp_min >= clamp_max) {
     throw std::runtime_error("[" + s + "]: need resolution_m, max_range_m > 0, 0.5 < prob_hit < 1, "
@@ -56,16 +61,7 @@ void OctoMapParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
 }
 
 void OctoMapParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& s) const {
-  cfg.write(s, "enabled", enabled);
-  cfg.write(s, "resolution_m", resolution_m);
-  cfg.write(s, "max_range_m", max_range_m);
-  cfg.write(s, "free_max_range_m", free_max_range_m);
-  cfg.write(s, "prob_hit", prob_hit);
-  cfg.write(s, "prob_miss", prob_miss);
-  cfg.write(s, "clamp_min", clamp_min);
-  cfg.write(s, "clamp_max", clamp_max);
-  cfg.write(s, "write_ot", write_ot);
-  cfg.write(s, "keyframe_spacing_m", keyframe_spacing_m);
+  saveFields(*this, cfg, s);
 }
 
 OctoMapBuilder::OctoMapBuilder(OctoMapParams params) : p_(params) { clear(); }

@@ -5,6 +5,7 @@
 #include "roadslam/common/atomic_file.h"
 #include "roadslam/common/voxel_hash.h"
 #include "roadslam/common/config.h"
+#include "roadslam/common/param_table.h"
 #include "ini_keys.h"
 #include "roadslam/mapping/maps.h"
 
@@ -21,13 +22,17 @@ void writeBinaryFile(const std::string& path, const std::string& header, const s
 
 }  // namespace
 
+void PointMapParams::fields(ParamTable& t) {
+  t.num("voxel_m", voxel_m);
+}
+
 void PointMapParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& s) {
-  voxel_m = readDouble(cfg, s, "voxel_m", voxel_m);
-  rejectUnknownKeys(cfg, s, {"voxel_m"});
+  loadFields(*this, cfg, s);
+  rejectUnknownKeys(cfg, s, fieldKeys<PointMapParams>());
   if (voxel_m <= 0) throw std::runtime_error("[" + s + "] voxel_m must be > 0");
 }
 void PointMapParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& s) const {
-  cfg.write(s, "voxel_m", voxel_m);
+  saveFields(*this, cfg, s);
 }
 
 std::vector<Eigen::Vector3f> buildPointMap(const std::vector<Keyframe>& kfs, const PoseVector& T_map_kf, double voxel_m) {

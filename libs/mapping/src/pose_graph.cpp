@@ -10,6 +10,7 @@
 
 #include "roadslam/common/atomic_file.h"
 #include "roadslam/common/config.h"
+#include "roadslam/common/param_table.h"
 #include "ini_keys.h"
 
 namespace roadslam::mapping {
@@ -61,23 +62,25 @@ Eigen::Matrix3d isotropicBlock(const Eigen::Matrix3d& B, double weak_ratio) {
 
 }  // namespace
 
+void PoseGraphParams::fields(ParamTable& t) {
+  t.num("max_iterations", max_iterations);
+  t.flag("use_registration_information", use_registration_information);
+  t.flag("isotropic_information", isotropic_information);
+  t.num("isotropic_weak_ratio", isotropic_weak_ratio);
+  t.num("odometry_information_scale", odometry_information_scale);
+  t.num("odometry_sigma_t_m", odometry_sigma_t_m);
+  t.angle("odometry_sigma_r_deg", odometry_sigma_r_rad);
+  t.flag("can_edges", can_edges);
+  t.num("can_sigma_t_m", can_sigma_t_m);
+  t.num("can_sigma_t_per_m", can_sigma_t_per_m);
+  t.angle("can_sigma_yaw_deg", can_sigma_yaw_rad);
+  t.angle("can_sigma_yaw_deg_per_m", can_sigma_yaw_rad_per_m);
+  t.num("can_weak_information", can_weak_information);
+}
+
 void PoseGraphParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& s) {
-  max_iterations = readInt(cfg, s, "max_iterations", max_iterations);
-  use_registration_information = readBool(cfg, s, "use_registration_information", use_registration_information);
-  isotropic_information = readBool(cfg, s, "isotropic_information", isotropic_information);
-  isotropic_weak_ratio = readDouble(cfg, s, "isotropic_weak_ratio", isotropic_weak_ratio);
-  odometry_information_scale = readDouble(cfg, s, "odometry_information_scale", odometry_information_scale);
-  odometry_sigma_t_m = readDouble(cfg, s, "odometry_sigma_t_m", odometry_sigma_t_m);
-  odometry_sigma_r_rad = readDouble(cfg, s, "odometry_sigma_r_deg", odometry_sigma_r_rad * 180 / M_PI) * M_PI / 180;
-  can_edges = readBool(cfg, s, "can_edges", can_edges);
-  can_sigma_t_m = readDouble(cfg, s, "can_sigma_t_m", can_sigma_t_m);
-  can_sigma_t_per_m = readDouble(cfg, s, "can_sigma_t_per_m", can_sigma_t_per_m);
-  can_sigma_yaw_rad = readDouble(cfg, s, "can_sigma_yaw_deg", can_sigma_yaw_rad * 180 / M_PI) * M_PI / 180;
-  can_sigma_yaw_rad_per_m =
-      readDouble(cfg, s, "can_sigma_yaw_deg_per_m", can_sigma_yaw_rad_per_m * 180 / M_PI) * M_PI / 180;
-  can_weak_information = readDouble(cfg, s, "can_weak_information", can_weak_information);
-  rejectUnknownKeys(cfg, s, {"max_iterations", "use_registration_information", "isotropic_information", "isotropic_weak_ratio", "odometry_information_scale", "odometry_sigma_t_m", "odometry_sigma_r_deg",
-                             "can_edges", "can_sigma_t_m", "can_sigma_t_per_m", "can_sigma_yaw_deg", "can_sigma_yaw_deg_per_m", "can_weak_information"});
+  loadFields(*this, cfg, s);
+  rejectUnknownKeys(cfg, s, fieldKeys<PoseGraphParams>());
   if (max_iterations < 1 || odometry_sigma_t_m <= 0 || odometry_sigma_r_rad <= 0 || odometry_information_scale <= 0) {
     throw std::runtime_error("[" + s + "]: max_iterations, odometry_sigma_* and odometry_information_scale must be > 0");
   }
@@ -88,19 +91,7 @@ void PoseGraphParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cf
 }
 
 void PoseGraphParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& s) const {
-  cfg.write(s, "max_iterations", max_iterations);
-  cfg.write(s, "use_registration_information", use_registration_information);
-  cfg.write(s, "isotropic_information", isotropic_information);
-  cfg.write(s, "isotropic_weak_ratio", isotropic_weak_ratio);
-  cfg.write(s, "odometry_information_scale", odometry_information_scale);
-  cfg.write(s, "odometry_sigma_t_m", odometry_sigma_t_m);
-  cfg.write(s, "odometry_sigma_r_deg", odometry_sigma_r_rad * 180 / M_PI);
-  cfg.write(s, "can_edges", can_edges);
-  cfg.write(s, "can_sigma_t_m", can_sigma_t_m);
-  cfg.write(s, "can_sigma_t_per_m", can_sigma_t_per_m);
-  cfg.write(s, "can_sigma_yaw_deg", can_sigma_yaw_rad * 180 / M_PI);
-  cfg.write(s, "can_sigma_yaw_deg_per_m", can_sigma_yaw_rad_per_m * 180 / M_PI);
-  cfg.write(s, "can_weak_information", can_weak_information);
+  saveFields(*this, cfg, s);
 }
 
 struct PoseGraph::Impl {

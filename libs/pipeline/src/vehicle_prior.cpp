@@ -6,11 +6,10 @@
 #include <cmath>
 
 #include "roadslam/common/config.h"
+#include "roadslam/common/param_table.h"
 
 namespace roadslam::pipeline {
 namespace {
-constexpr double kDeg = M_PI / 180;
-
 double wrapPi(double a) { return std::atan2(std::sin(a), std::cos(a)); }
 
 Eigen::Isometry3d planar(double x, double y, double yaw) {
@@ -21,21 +20,30 @@ Eigen::Isometry3d planar(double x, double y, double yaw) {
 }
 }  // namespace
 
+// The mounting pose T_base_lidar as six keys: lidar_x_m, lidar_y_m, lidar_z_m [m] and the ZYX Euler
+// angles lidar_yaw_deg, lidar_pitch_deg, lidar_roll_deg [deg].
+void VehiclePriorParams::fields(ParamTable& t) {
+  Eigen::Vector3d xyz = T_base_lidar.translation();
+  Eigen::Vector3d ypr = T_base_lidar.linear().eulerAngles(2, 1, 0);
+  t.num("lidar_x_m", xyz.x());
+  t.num("lidar_y_m", xyz.y());
+  t.num("lidar_z_m", xyz.z());
+  t.angle("lidar_yaw_deg", ypr(0));
+  t.angle("lidar_pitch_deg", ypr(1));
+  t.angle("lidar_roll_deg", ypr(2));
+  if (t.loading()) {
+    T_base_lidar = Eigen::Isometry3d::Identity();
+    T_base_lidar.linear() = (Eigen::AngleAxisd(ypr(0), Eigen::Vector3d::UnitZ()) *
+                             Eigen::AngleAxisd(ypr(1), Eigen::Vector3d::UnitY()) *
+                             Eigen::AngleAxisd(ypr(2), Eigen::Vector3d::UnitX())).toRotationMatrix();
+    T_base_lidar.translation() = xyz;
+  }
+  t.num("max_extrapolation_s", max_extrapolation_s);
+  t.num("history_s", history_s);
+}
+
 void VehiclePriorParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& s) {
-  const Eigen::Vector3d t(readDouble(cfg, s, "lidar_x_m", T_base_lidar.translation().x()),
-                          readDouble(cfg, s, "lidar_y_m", T_base_lidar.translation().y()),
-                          readDouble(cfg, s, "lidar_z_m", T_base_lidar.translation().z()));
-  const Eigen::Vector3d ypr = T_base_lidar.linear().eulerAngles(2, 1, 0);
-  const double yaw = readDouble(cfg, s, "lidar_yaw_deg", ypr(0) / kDeg) * kDeg;
-  const double pitch = readDouble(cfg, s, "lidar_pitch_deg", ypr(1) / kDeg) * kDeg;
-  const double roll = readDouble(cfg, s, "lidar_roll_deg", ypr(2) / kDeg) * kDeg;
-  T_base_lidar = Eigen::Isometry3d::Identity();
-  T_base_lidar.linear() = (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
-                           Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
-                           Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX())).toRotationMatrix();
-  T_base_lidar.translation() = t;
-  max_extrapolation_s = readDouble(cfg, s, "max_extrapolation_s", max_extrapolation_s);
-  history_s = readDouble(cfg, s, "history_s", history_s);
+  loadFields(*this, cfg, s);
   if (max_extrapolation_s < 0) throw std::runtime_error("[" + s + "] max_extrapolation_s must be >= 0");
   if (history_s <= 0) throw std::runtime_error("[" + s + "] history_s must be > 0");
   dead_reckoning.loadFromConfigFile(cfg, s);
@@ -43,16 +51,7 @@ void VehiclePriorParams::loadFromConfigFile(const mrpt::config::CConfigFileBase&
 }
 
 void VehiclePriorParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& s) const {
-  const Eigen::Vector3d& t = T_base_lidar.translation();
-  const Eigen::Vector3d ypr = T_base_lidar.linear().eulerAngles(2, 1, 0);
-  cfg.write(s, "lidar_x_m", t.x());
-  cfg.write(s, "lidar_y_m", t.y());
-  cfg.write(s, "lidar_z_m", t.z());
-  cfg.write(s, "lidar_yaw_deg", ypr(0) / kDeg);
-  cfg.write(s, "lidar_pitch_deg", ypr(1) / kDeg);
-  cfg.write(s, "lidar_roll_deg", ypr(2) / kDeg);
-  cfg.write(s, "max_extrapolation_s", max_extrapolation_s);
-  cfg.write(s, "history_s", history_s);
+  saveFields(*this, cfg, s);
   dead_reckoning.saveToConfigFile(cfg, s);
   calibration.saveToConfigFile(cfg, s);
 }

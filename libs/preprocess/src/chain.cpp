@@ -1,6 +1,7 @@
 #include "roadslam/preprocess/chain.h"
 
 #include "param_utils.h"
+#include "roadslam/common/param_table.h"
 
 #include <algorithm>
 #include <chrono>
@@ -24,18 +25,17 @@ std::vector<std::string> splitList(const std::string& s) {
   return out;
 }
 
+/// Every key of the section: the chain's own (with the thesis alias skipF), then each filter's table.
 const std::vector<std::string>& knownKeys() {
-  static const std::vector<std::string> keys{
-      "filters", "keep_every_n_frames", "skipF", "ego_radius_m", "rad", "min_range_m", "max_range_m",
-      "roi_half_x_m", "xL", "roi_half_y_m", "yL", "roi_min_z_m", "roi_max_z_m",
-      "ransac_max_distance_m", "maxD", "ransac_max_angle_deg", "maxAngD", "ransac_iterations",
-      "ransac_eval_points", "ransac_seed", "ransac_up", "seg_sectors", "seg_bin_length_m",
-      "seg_max_range_m", "seg_sensor_height_m", "seg_max_start_height_m", "seg_max_slope",
-      "seg_max_fit_error_m", "seg_max_step_m", "seg_max_dist_to_line_m", "seg_max_gap_m", "seg_max_bridge_m", "seg_max_slope_change",
-      "seg_max_dist_to_line_tall_m", "seg_tall_cell_height_m", "seg_parked_car_rules",
-      "seg_level_start_behind_structure",
-      "random_keep_fraction", "downS", "random_seed", "voxel_size_m", "voxel_mode", "sor_k",
-      "sor_std_mul"};
+  static const std::vector<std::string> keys = [] {
+    std::vector<std::string> k{"filters"};
+    for (const auto& part : {fieldKeys<PreprocessParams>(), fieldKeys<EgoParams>(), fieldKeys<RangeParams>(),
+                             fieldKeys<RoiParams>(), fieldKeys<RansacGroundParams>(), std::vector<std::string>{"ransac_up"},
+                             fieldKeys<GroundSegParams>(), fieldKeys<RandomDownsampleParams>(), fieldKeys<VoxelParams>(),
+                             fieldKeys<SorParams>()})
+      k.insert(k.end(), part.begin(), part.end());
+    return k;
+  }();
   return keys;
 }
 }  // namespace
@@ -46,6 +46,9 @@ const std::vector<std::string>& knownFilterNames() {
   return names;
 }
 
+// The filter list (`filters`, a comma list) is read and written by hand beside the table.
+void PreprocessParams::fields(ParamTable& t) { t.numOrAlias("keep_every_n_frames", "skipF", keep_every_n_frames); }
+
 void PreprocessParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& s) {
   const std::string list = readString(cfg, s, "filters", "");
   if (!list.empty()) filters = splitList(list);
@@ -54,7 +57,7 @@ void PreprocessParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& c
     detail::require(std::find(names.begin(), names.end(), f) != names.end(), s, "filters",
                     "unknown filter '" + f + "'");
   }
-  keep_every_n_frames = detail::readIntAlias(cfg, s, "keep_every_n_frames", "skipF", keep_every_n_frames);
+  loadFields(*this, cfg, s);
   detail::require(keep_every_n_frames >= 1, s, "keep_every_n_frames", "must be >= 1");
   ego.loadFromConfigFile(cfg, s);
   range.loadFromConfigFile(cfg, s);
@@ -71,7 +74,7 @@ void PreprocessParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, cons
   std::string list;
   for (const auto& f : filters) list += (list.empty() ? "" : ",") + f;
   cfg.write(s, "filters", list);
-  cfg.write(s, "keep_every_n_frames", keep_every_n_frames);
+  saveFields(*this, cfg, s);
   ego.saveToConfigFile(cfg, s);
   range.saveToConfigFile(cfg, s);
   roi.saveToConfigFile(cfg, s);

@@ -1,6 +1,7 @@
 #include "roadslam/preprocess/crop_filters.h"
 
 #include "param_utils.h"
+#include "roadslam/common/param_table.h"
 
 #include <algorithm>
 #include <cmath>
@@ -43,38 +44,46 @@ size_t removeOutsideRoi(std::vector<ScanPoint>& pts, const RoiParams& prm) {
   });
 }
 
+void EgoParams::fields(ParamTable& t) {
+  t.numOrAlias("ego_radius_m", "rad", radius_m);
+}
+
 void EgoParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& s) {
-  radius_m = detail::readDoubleAlias(cfg, s, "ego_radius_m", "rad", radius_m);
+  loadFields(*this, cfg, s);
   detail::require(radius_m >= 0, s, "ego_radius_m", "must be >= 0");
 }
 void EgoParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& s) const {
-  cfg.write(s, "ego_radius_m", radius_m);
+  saveFields(*this, cfg, s);
+}
+
+void RangeParams::fields(ParamTable& t) {
+  t.num("min_range_m", min_range_m);
+  t.num("max_range_m", max_range_m);
 }
 
 void RangeParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& s) {
-  min_range_m = readDouble(cfg, s, "min_range_m", min_range_m);
-  max_range_m = readDouble(cfg, s, "max_range_m", max_range_m);
+  loadFields(*this, cfg, s);
   detail::require(min_range_m >= 0 && max_range_m > min_range_m, s, "min_range_m/max_range_m",
                   "need 0 <= min < max");
 }
 void RangeParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& s) const {
-  cfg.write(s, "min_range_m", min_range_m);
-  cfg.write(s, "max_range_m", max_range_m);
+  saveFields(*this, cfg, s);
+}
+
+void RoiParams::fields(ParamTable& t) {
+  t.numOrAlias("roi_half_x_m", "xL", half_x_m);
+  t.numOrAlias("roi_half_y_m", "yL", half_y_m);
+  t.num("roi_min_z_m", min_z_m);
+  t.num("roi_max_z_m", max_z_m);
 }
 
 void RoiParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& s) {
-  half_x_m = detail::readDoubleAlias(cfg, s, "roi_half_x_m", "xL", half_x_m);
-  half_y_m = detail::readDoubleAlias(cfg, s, "roi_half_y_m", "yL", half_y_m);
-  min_z_m = readDouble(cfg, s, "roi_min_z_m", min_z_m);
-  max_z_m = readDouble(cfg, s, "roi_max_z_m", max_z_m);
+  loadFields(*this, cfg, s);
   detail::require(half_x_m > 0 && half_y_m > 0, s, "roi_half_x_m/roi_half_y_m", "must be > 0");
   detail::require(min_z_m < max_z_m, s, "roi_min_z_m/roi_max_z_m", "need min < max");
 }
 void RoiParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& s) const {
-  cfg.write(s, "roi_half_x_m", half_x_m);
-  cfg.write(s, "roi_half_y_m", half_y_m);
-  cfg.write(s, "roi_min_z_m", min_z_m);
-  cfg.write(s, "roi_max_z_m", max_z_m);
+  saveFields(*this, cfg, s);
 }
 
 }  // namespace roadslam::preprocess

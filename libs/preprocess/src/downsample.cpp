@@ -2,6 +2,7 @@
 
 #include "param_utils.h"
 #include "rng.h"
+#include "roadslam/common/param_table.h"
 
 #include <algorithm>
 #include <cmath>
@@ -152,27 +153,38 @@ size_t voxelDownsample(std::vector<ScanPoint>& pts, const VoxelParams& prm) {
   return n - voxels.size();
 }
 
+void RandomDownsampleParams::fields(ParamTable& t) {
+  t.numOrAlias("random_keep_fraction", "downS", keep_fraction);
+  t.num("random_seed", seed);
+}
+
 void RandomDownsampleParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
                                                 const std::string& s) {
-  keep_fraction = detail::readDoubleAlias(cfg, s, "random_keep_fraction", "downS", keep_fraction);
-  seed = static_cast<uint64_t>(readInt(cfg, s, "random_seed", static_cast<int>(seed)));
+  loadFields(*this, cfg, s);
   detail::require(keep_fraction > 0 && keep_fraction <= 1, s, "random_keep_fraction", "must be in (0, 1]");
 }
 void RandomDownsampleParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& s) const {
-  cfg.write(s, "random_keep_fraction", keep_fraction);
-  cfg.write(s, "random_seed", static_cast<int>(seed));
+  saveFields(*this, cfg, s);
+}
+
+namespace {
+const NameTable<VoxelParams::Mode>& voxelModeNames() {
+  static const NameTable<VoxelParams::Mode> t{{VoxelParams::Mode::Centroid, "centroid"}, {VoxelParams::Mode::First, "first"}};
+  return t;
+}
+}  // namespace
+
+void VoxelParams::fields(ParamTable& t) {
+  t.num("voxel_size_m", voxel_size_m);
+  t.choice("voxel_mode", mode, voxelModeNames());
 }
 
 void VoxelParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& s) {
-  voxel_size_m = readDouble(cfg, s, "voxel_size_m", voxel_size_m);
-  const std::string m = readString(cfg, s, "voxel_mode", mode == Mode::Centroid ? "centroid" : "first");
-  detail::require(m == "centroid" || m == "first", s, "voxel_mode", "'" + m + "' is not centroid|first");
-  mode = m == "centroid" ? Mode::Centroid : Mode::First;
+  loadFields(*this, cfg, s);
   detail::require(voxel_size_m >= 0.01, s, "voxel_size_m", "must be >= 0.01");
 }
 void VoxelParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& s) const {
-  cfg.write(s, "voxel_size_m", voxel_size_m);
-  cfg.write(s, "voxel_mode", std::string(mode == Mode::Centroid ? "centroid" : "first"));
+  saveFields(*this, cfg, s);
 }
 
 }  // namespace roadslam::preprocess

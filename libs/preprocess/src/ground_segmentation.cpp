@@ -1,6 +1,7 @@
 #include "roadslam/preprocess/ground_segmentation.h"
 
 #include "param_utils.h"
+#include "roadslam/common/param_table.h"
 
 #include <algorithm>
 #include <cmath>
@@ -307,24 +308,27 @@ size_t removeGroundLinefit(std::vector<ScanPoint>& pts, const GroundSegParams& p
   return removed;
 }
 
+void GroundSegParams::fields(ParamTable& t) {
+  t.num("seg_sectors", num_sectors);
+  t.num("seg_bin_length_m", bin_length_m);
+  t.num("seg_max_range_m", max_range_m);
+  t.num("seg_sensor_height_m", sensor_height_m);
+  t.num("seg_max_start_height_m", max_start_height_m);
+  t.num("seg_max_slope", max_slope);
+  t.num("seg_max_fit_error_m", max_fit_error_m);
+  t.num("seg_max_step_m", max_step_m);
+  t.num("seg_max_dist_to_line_m", max_dist_to_line_m);
+  t.num("seg_max_gap_m", max_gap_m);
+  t.num("seg_max_bridge_m", max_bridge_m);
+  t.num("seg_max_slope_change", max_slope_change);
+  t.num("seg_max_dist_to_line_tall_m", max_dist_to_line_tall_m);
+  t.num("seg_tall_cell_height_m", tall_cell_height_m);
+  t.flag("seg_parked_car_rules", parked_car_rules);
+  t.flag("seg_level_start_behind_structure", level_start_behind_structure);
+}
+
 void GroundSegParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& s) {
-  num_sectors = readInt(cfg, s, "seg_sectors", num_sectors);
-  bin_length_m = readDouble(cfg, s, "seg_bin_length_m", bin_length_m);
-  max_range_m = readDouble(cfg, s, "seg_max_range_m", max_range_m);
-  sensor_height_m = readDouble(cfg, s, "seg_sensor_height_m", sensor_height_m);
-  max_start_height_m = readDouble(cfg, s, "seg_max_start_height_m", max_start_height_m);
-  max_slope = readDouble(cfg, s, "seg_max_slope", max_slope);
-  max_fit_error_m = readDouble(cfg, s, "seg_max_fit_error_m", max_fit_error_m);
-  max_step_m = readDouble(cfg, s, "seg_max_step_m", max_step_m);
-  max_dist_to_line_m = readDouble(cfg, s, "seg_max_dist_to_line_m", max_dist_to_line_m);
-  max_gap_m = readDouble(cfg, s, "seg_max_gap_m", max_gap_m);
-  max_bridge_m = readDouble(cfg, s, "seg_max_bridge_m", max_bridge_m);
-  max_slope_change = readDouble(cfg, s, "seg_max_slope_change", max_slope_change);
-  max_dist_to_line_tall_m = readDouble(cfg, s, "seg_max_dist_to_line_tall_m", max_dist_to_line_tall_m);
-  tall_cell_height_m = readDouble(cfg, s, "seg_tall_cell_height_m", tall_cell_height_m);
-  parked_car_rules = readBool(cfg, s, "seg_parked_car_rules", parked_car_rules);
-  level_start_behind_structure =
-      readBool(cfg, s, "seg_level_start_behind_structure", level_start_behind_structure);
+  loadFields(*this, cfg, s);
   detail::require(num_sectors >= 1 && num_sectors <= 3600, s, "seg_sectors", "must be in [1, 3600]");
   detail::require(bin_length_m > 0 && max_range_m > bin_length_m, s, "seg_bin_length_m/seg_max_range_m",
                   "need 0 < bin length < max range");
@@ -334,22 +338,7 @@ void GroundSegParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cf
 }
 
 void GroundSegParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& s) const {
-  cfg.write(s, "seg_sectors", num_sectors);
-  cfg.write(s, "seg_bin_length_m", bin_length_m);
-  cfg.write(s, "seg_max_range_m", max_range_m);
-  cfg.write(s, "seg_sensor_height_m", sensor_height_m);
-  cfg.write(s, "seg_max_start_height_m", max_start_height_m);
-  cfg.write(s, "seg_max_slope", max_slope);
-  cfg.write(s, "seg_max_fit_error_m", max_fit_error_m);
-  cfg.write(s, "seg_max_step_m", max_step_m);
-  cfg.write(s, "seg_max_dist_to_line_m", max_dist_to_line_m);
-  cfg.write(s, "seg_max_gap_m", max_gap_m);
-  cfg.write(s, "seg_max_bridge_m", max_bridge_m);
-  cfg.write(s, "seg_max_slope_change", max_slope_change);
-  cfg.write(s, "seg_max_dist_to_line_tall_m", max_dist_to_line_tall_m);
-  cfg.write(s, "seg_tall_cell_height_m", tall_cell_height_m);
-  cfg.write(s, "seg_parked_car_rules", parked_car_rules);
-  cfg.write(s, "seg_level_start_behind_structure", level_start_behind_structure);
+  saveFields(*this, cfg, s);
 }
 
 }  // namespace roadslam::preprocess

@@ -1,5 +1,6 @@
 #include "param_utils.h"
 #include "roadslam/preprocess/downsample.h"
+#include "roadslam/common/param_table.h"
 
 #include <nanoflann.hpp>
 
@@ -52,15 +53,18 @@ size_t removeStatisticalOutliers(std::vector<ScanPoint>& pts, const SorParams& p
   return n - w;
 }
 
+void SorParams::fields(ParamTable& t) {
+  t.num("sor_k", k);
+  t.num("sor_std_mul", std_mul);
+}
+
 void SorParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& s) {
-  k = readInt(cfg, s, "sor_k", k);
-  std_mul = readDouble(cfg, s, "sor_std_mul", std_mul);
+  loadFields(*this, cfg, s);
   detail::require(k >= 1 && k <= 100, s, "sor_k", "must be in [1, 100]");
   detail::require(std_mul > 0, s, "sor_std_mul", "must be > 0");
 }
 void SorParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& s) const {
-  cfg.write(s, "sor_k", k);
-  cfg.write(s, "sor_std_mul", std_mul);
+  saveFields(*this, cfg, s);
 }
 
 }  // namespace roadslam::preprocess

@@ -2,6 +2,7 @@
 
 #include "param_utils.h"
 #include "rng.h"
+#include "roadslam/common/param_table.h"
 
 #include <Eigen/Eigenvalues>
 
@@ -10,7 +11,6 @@
 
 namespace roadslam::preprocess {
 namespace {
-constexpr double kDegToRad = M_PI / 180.0;
 
 Eigen::Vector3d vec(const ScanPoint& p) { return {p.x, p.y, p.z}; }
 
@@ -114,14 +114,17 @@ size_t removeGroundRansac(std::vector<ScanPoint>& pts, const RansacGroundParams&
   return fit.found ? removeLabelled(pts, labelPlaneInliers(pts, fit, prm.max_distance_m)) : 0;
 }
 
+void RansacGroundParams::fields(ParamTable& t) {
+  t.numOrAlias("ransac_max_distance_m", "maxD", max_distance_m);
+  t.numOrAlias("ransac_max_angle_deg", "maxAngD", max_angle_rad, unit::kDeg);
+  t.num("ransac_iterations", iterations);
+  t.num("ransac_eval_points", max_eval_points);
+  t.num("ransac_seed", seed);
+}
+
 void RansacGroundParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
                                             const std::string& s) {
-  max_distance_m = detail::readDoubleAlias(cfg, s, "ransac_max_distance_m", "maxD", max_distance_m);
-  max_angle_rad = kDegToRad * detail::readDoubleAlias(cfg, s, "ransac_max_angle_deg", "maxAngD",
-                                                      max_angle_rad / kDegToRad);
-  iterations = readInt(cfg, s, "ransac_iterations", iterations);
-  max_eval_points = readInt(cfg, s, "ransac_eval_points", max_eval_points);
-  seed = static_cast<uint64_t>(readInt(cfg, s, "ransac_seed", static_cast<int>(seed)));
+  loadFields(*this, cfg, s);
   const std::string up_s = readString(cfg, s, "ransac_up", "");
   if (!up_s.empty()) {
     std::istringstream ss(up_s);
@@ -138,11 +141,7 @@ void RansacGroundParams::loadFromConfigFile(const mrpt::config::CConfigFileBase&
 }
 
 void RansacGroundParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& s) const {
-  cfg.write(s, "ransac_max_distance_m", max_distance_m);
-  cfg.write(s, "ransac_max_angle_deg", max_angle_rad / kDegToRad);
-  cfg.write(s, "ransac_iterations", iterations);
-  cfg.write(s, "ransac_eval_points", max_eval_points);
-  cfg.write(s, "ransac_seed", static_cast<int>(seed));
+  saveFields(*this, cfg, s);
   std::ostringstream ss;
   ss << up.x() << ' ' << up.y() << ' ' << up.z();
   cfg.write(s, "ransac_up", ss.str());

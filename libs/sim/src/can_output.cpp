@@ -10,6 +10,7 @@
 #include "roadslam/can/dbc.h"
 #include "roadslam/can/encoder.h"
 #include "roadslam/common/config.h"
+#include "roadslam/common/param_table.h"
 #include "roadslam/sim/simulator.h"
 
 namespace roadslam::sim {
@@ -46,23 +47,24 @@ struct Measured {
 
 std::string CanParams::dbcPath() const { return dbc.empty() ? std::string(ROADSLAM_SIM_DBC) : dbc; }
 
-std::vector<std::string> CanParams::keys() {
-  return {"enabled", "dbc", "interface", "yaw_rate_bias_deg_s", "yaw_rate_noise_deg_s", "wheel_speed_scale_error",
-          "wheel_speed_noise_kmh", "accel_noise_mps2", "steering_noise_deg", "wheelbase_m", "steering_ratio"};
+std::vector<std::string> CanParams::keys() { return fieldKeys<CanParams>(); }
+
+void CanParams::fields(ParamTable& t) {
+  t.flag("enabled", enabled);
+  t.text("dbc", dbc);
+  t.text("interface", interface);
+  t.angle("yaw_rate_bias_deg_s", yaw_rate_bias_radps);
+  t.angle("yaw_rate_noise_deg_s", yaw_rate_noise_radps);
+  t.num("wheel_speed_scale_error", wheel_speed_scale_error);
+  t.scaled("wheel_speed_noise_kmh", wheel_speed_noise_mps, unit::kKmh);
+  t.num("accel_noise_mps2", accel_noise_mps2);
+  t.angle("steering_noise_deg", steering_noise_rad);
+  t.num("wheelbase_m", wheelbase_m);
+  t.num("steering_ratio", steering_ratio);
 }
 
 void CanParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section) {
-  enabled = readBool(cfg, section, "enabled", enabled);
-  dbc = readString(cfg, section, "dbc", dbc);
-  interface = readString(cfg, section, "interface", interface);
-  yaw_rate_bias_radps = readDouble(cfg, section, "yaw_rate_bias_deg_s", yaw_rate_bias_radps / kDeg) * kDeg;
-  yaw_rate_noise_radps = readDouble(cfg, section, "yaw_rate_noise_deg_s", yaw_rate_noise_radps / kDeg) * kDeg;
-  wheel_speed_scale_error = readDouble(cfg, section, "wheel_speed_scale_error", wheel_speed_scale_error);
-  wheel_speed_noise_mps = readDouble(cfg, section, "wheel_speed_noise_kmh", wheel_speed_noise_mps / kKmh) * kKmh;
-  accel_noise_mps2 = readDouble(cfg, section, "accel_noise_mps2", accel_noise_mps2);
-  steering_noise_rad = readDouble(cfg, section, "steering_noise_deg", steering_noise_rad / kDeg) * kDeg;
-  wheelbase_m = readDouble(cfg, section, "wheelbase_m", wheelbase_m);
-  steering_ratio = readDouble(cfg, section, "steering_ratio", steering_ratio);
+  loadFields(*this, cfg, section);
   if (yaw_rate_noise_radps < 0 || wheel_speed_noise_mps < 0 || accel_noise_mps2 < 0 || steering_noise_rad < 0)
     throw std::runtime_error("[" + section + "] noise sigmas must be >= 0");
   if (wheelbase_m <= 0 || steering_ratio <= 0)
@@ -70,17 +72,7 @@ void CanParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, con
 }
 
 void CanParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& section) const {
-  cfg.write(section, "enabled", enabled);
-  cfg.write(section, "dbc", dbc);
-  cfg.write(section, "interface", interface);
-  cfg.write(section, "yaw_rate_bias_deg_s", yaw_rate_bias_radps / kDeg);
-  cfg.write(section, "yaw_rate_noise_deg_s", yaw_rate_noise_radps / kDeg);
-  cfg.write(section, "wheel_speed_scale_error", wheel_speed_scale_error);
-  cfg.write(section, "wheel_speed_noise_kmh", wheel_speed_noise_mps / kKmh);
-  cfg.write(section, "accel_noise_mps2", accel_noise_mps2);
-  cfg.write(section, "steering_noise_deg", steering_noise_rad / kDeg);
-  cfg.write(section, "wheelbase_m", wheelbase_m);
-  cfg.write(section, "steering_ratio", steering_ratio);
+  saveFields(*this, cfg, section);
 }
 
 std::vector<can::CanFrame> simulateCan(const Simulator& sim, double duration_s) {

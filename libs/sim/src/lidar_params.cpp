@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "roadslam/common/config.h"
+#include "roadslam/common/param_table.h"
 #include "roadslam/sim/lidar.h"
 
 namespace roadslam::sim {
@@ -16,12 +17,16 @@ namespace roadslam::sim {
   X(beam_divergence_mrad) X(mixed_pixel_prob) X(mixed_pixel_min_gap_m) X(calib_elevation_std_deg) \
   X(calib_azimuth_std_deg) X(calib_range_std_m) X(calib_elevation_bias_deg)
 
+void LidarParams::fields(ParamTable& t) {
+#define RS_FIELD(k) t.num(#k, k);
+  RS_LIDAR_KEYS(RS_FIELD)
+#undef RS_FIELD
+  t.text("model", model);
+  t.num("footprint_rays", footprint_rays);
+}
+
 void LidarParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, const std::string& s) {
-#define RS_LOAD(k) k = readDouble(c, s, #k, k);
-  RS_LIDAR_KEYS(RS_LOAD)
-#undef RS_LOAD
-  model = readString(c, s, "model", model);
-  footprint_rays = readInt(c, s, "footprint_rays", footprint_rays);
+  loadFields(*this, c, s);
   if (model != "vlp16" && model != "hdl64")
     throw std::runtime_error("[" + s + "] model: '" + model + "' is not vlp16|hdl64");
   if (azimuth_resolution_deg < 0.05 || azimuth_resolution_deg > 0.5)
@@ -44,18 +49,10 @@ void LidarParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, con
 }
 
 void LidarParams::saveToConfigFile(mrpt::config::CConfigFileBase& c, const std::string& s) const {
-#define RS_SAVE(k) c.write(s, #k, k);
-  RS_LIDAR_KEYS(RS_SAVE)
-#undef RS_SAVE
-  c.write(s, "model", model);
-  c.write(s, "footprint_rays", footprint_rays);
+  saveFields(*this, c, s);
 }
 
-std::vector<std::string> LidarParams::keys() {
-#define RS_NAME(k) #k,
-  return {RS_LIDAR_KEYS(RS_NAME) "model", "footprint_rays"};
-#undef RS_NAME
-}
+std::vector<std::string> LidarParams::keys() { return fieldKeys<LidarParams>(); }
 
 Vec3 Pose3::rotate(const Vec3& v) const {
   return {R[0] * v.x + R[1] * v.y + R[2] * v.z, R[3] * v.x + R[4] * v.y + R[5] * v.z,

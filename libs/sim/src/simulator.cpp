@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "roadslam/common/config.h"
+#include "roadslam/common/param_table.h"
 #include "roadslam/velodyne/encoder.h"
 
 namespace roadslam::sim {
@@ -20,28 +21,32 @@ void rejectUnknown(const mrpt::config::CConfigFileBase& cfg, const std::string& 
 }
 }  // namespace
 
+void ScenarioParams::fields(ParamTable& t) {
+  t.text("name", name);
+  int seed_value = static_cast<int>(seed);
+  t.num("seed", seed_value);
+  if (t.loading() && seed_value < 0) throw std::runtime_error("[scenario] seed must be >= 0");
+  seed = static_cast<uint64_t>(seed_value);
+  t.num("duration_s", duration_s);
+  t.num("start_epoch_s", start_epoch_s);
+  t.flag("position_packets", position_packets);
+  t.num("origin_lat_deg", origin_lat_deg);
+  t.num("origin_lon_deg", origin_lon_deg);
+}
+
 void ScenarioParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg) {
   std::vector<std::string> sections;
   cfg.getAllSections(sections);
   for (const auto& s : sections)
     if (s != "scenario" && s != "world" && s != "trajectory" && s != "lidar" && s != "can")
       throw std::runtime_error("unknown section [" + s + "] (expected scenario, world, trajectory, lidar, can)");
-  rejectUnknown(cfg, "scenario", {"name", "seed", "duration_s", "start_epoch_s", "position_packets",
-                                  "origin_lat_deg", "origin_lon_deg"});
+  rejectUnknown(cfg, "scenario", fieldKeys<ScenarioParams>());
   rejectUnknown(cfg, "world", WorldParams::keys());
   rejectUnknown(cfg, "trajectory", TrajectoryParams::keys());
   rejectUnknown(cfg, "lidar", LidarParams::keys());
   rejectUnknown(cfg, "can", CanParams::keys());
-  name = readString(cfg, "scenario", "name", name);
-  const int s = readInt(cfg, "scenario", "seed", static_cast<int>(seed));
-  if (s < 0) throw std::runtime_error("[scenario] seed must be >= 0");
-  seed = static_cast<uint64_t>(s);
-  duration_s = readDouble(cfg, "scenario", "duration_s", duration_s);
+  loadFields(*this, cfg, "scenario");
   if (duration_s < 0) throw std::runtime_error("[scenario] duration_s must be >= 0");
-  start_epoch_s = static_cast<int64_t>(readDouble(cfg, "scenario", "start_epoch_s", static_cast<double>(start_epoch_s)));
-  position_packets = readBool(cfg, "scenario", "position_packets", position_packets);
-  origin_lat_deg = readDouble(cfg, "scenario", "origin_lat_deg", origin_lat_deg);
-  origin_lon_deg = readDouble(cfg, "scenario", "origin_lon_deg", origin_lon_deg);
   world.loadFromConfigFile(cfg, "world");
   trajectory.loadFromConfigFile(cfg, "trajectory");
   lidar.loadFromConfigFile(cfg, "lidar");
@@ -49,13 +54,7 @@ void ScenarioParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg
 }
 
 void ScenarioParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg) const {
-  cfg.write("scenario", "name", name);
-  cfg.write("scenario", "seed", static_cast<int>(seed));
-  cfg.write("scenario", "duration_s", duration_s);
-  cfg.write("scenario", "start_epoch_s", std::to_string(start_epoch_s));  // exact, not %e
-  cfg.write("scenario", "position_packets", position_packets);
-  cfg.write("scenario", "origin_lat_deg", origin_lat_deg);
-  cfg.write("scenario", "origin_lon_deg", origin_lon_deg);
+  saveFields(*this, cfg, "scenario");
   world.saveToConfigFile(cfg, "world");
   trajectory.saveToConfigFile(cfg, "trajectory");
   lidar.saveToConfigFile(cfg, "lidar");

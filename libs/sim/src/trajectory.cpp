@@ -7,21 +7,26 @@
 #include <stdexcept>
 
 #include "roadslam/common/config.h"
+#include "roadslam/common/param_table.h"
 
 namespace roadslam::sim {
 
+void TrajectoryParams::fields(ParamTable& t) {
+  t.num("max_speed_kmh", max_speed_kmh);
+  t.num("accel_mps2", accel_mps2);
+  t.num("decel_mps2", decel_mps2);
+  t.num("lateral_accel_mps2", lateral_accel_mps2);
+  t.num("start_standing_s", start_standing_s);
+  t.num("end_standing_s", end_standing_s);
+  t.num("laps", laps);
+  t.num("track_width_m", track_width_m);
+  t.num("wheelbase_m", wheelbase_m);
+  t.num("k_pitch_deg_per_mps2", k_pitch_deg_per_mps2);
+  t.num("k_roll_deg_per_mps2", k_roll_deg_per_mps2);
+}
+
 void TrajectoryParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, const std::string& s) {
-  max_speed_kmh = readDouble(c, s, "max_speed_kmh", max_speed_kmh);
-  accel_mps2 = readDouble(c, s, "accel_mps2", accel_mps2);
-  decel_mps2 = readDouble(c, s, "decel_mps2", decel_mps2);
-  lateral_accel_mps2 = readDouble(c, s, "lateral_accel_mps2", lateral_accel_mps2);
-  start_standing_s = readDouble(c, s, "start_standing_s", start_standing_s);
-  end_standing_s = readDouble(c, s, "end_standing_s", end_standing_s);
-  laps = readInt(c, s, "laps", laps);
-  track_width_m = readDouble(c, s, "track_width_m", track_width_m);
-  wheelbase_m = readDouble(c, s, "wheelbase_m", wheelbase_m);
-  k_pitch_deg_per_mps2 = readDouble(c, s, "k_pitch_deg_per_mps2", k_pitch_deg_per_mps2);
-  k_roll_deg_per_mps2 = readDouble(c, s, "k_roll_deg_per_mps2", k_roll_deg_per_mps2);
+  loadFields(*this, c, s);
   if (track_width_m <= 0 || wheelbase_m <= 0 || std::abs(k_pitch_deg_per_mps2) > 2 || std::abs(k_roll_deg_per_mps2) > 2)
     throw std::runtime_error("[" + s + "] track_width_m, wheelbase_m must be > 0, |k_pitch_deg_per_mps2|, "
                              "|k_roll_deg_per_mps2| <= 2");
@@ -31,24 +36,10 @@ void TrajectoryParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& c
 }
 
 void TrajectoryParams::saveToConfigFile(mrpt::config::CConfigFileBase& c, const std::string& s) const {
-  c.write(s, "max_speed_kmh", max_speed_kmh);
-  c.write(s, "accel_mps2", accel_mps2);
-  c.write(s, "decel_mps2", decel_mps2);
-  c.write(s, "lateral_accel_mps2", lateral_accel_mps2);
-  c.write(s, "start_standing_s", start_standing_s);
-  c.write(s, "end_standing_s", end_standing_s);
-  c.write(s, "laps", laps);
-  c.write(s, "track_width_m", track_width_m);
-  c.write(s, "wheelbase_m", wheelbase_m);
-  c.write(s, "k_pitch_deg_per_mps2", k_pitch_deg_per_mps2);
-  c.write(s, "k_roll_deg_per_mps2", k_roll_deg_per_mps2);
+  saveFields(*this, c, s);
 }
 
-std::vector<std::string> TrajectoryParams::keys() {
-  return {"max_speed_kmh", "accel_mps2", "decel_mps2", "lateral_accel_mps2", "start_standing_s",
-          "end_standing_s", "laps", "track_width_m", "wheelbase_m", "k_pitch_deg_per_mps2",
-          "k_roll_deg_per_mps2"};
-}
+std::vector<std::string> TrajectoryParams::keys() { return fieldKeys<TrajectoryParams>(); }
 
 namespace {
 /// Speed at each dense route point [m/s]: the curvature limit v^2 |k| <= a_lat, then a forward pass

@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "roadslam/common/config.h"
+#include "roadslam/common/param_table.h"
 #include "roadslam/sim/world_builder.h"
 
 namespace roadslam::sim {
@@ -16,13 +17,17 @@ namespace roadslam::sim {
   X(road_cross_slope) X(road_roughness_m) X(road_roughness_wavelength_m) X(hedge_prob) X(hedge_height_m)
 #define RS_INTS(X) X(streets) X(lanes_per_side) X(moving_cars) X(canopy_lobes)
 
+void WorldParams::fields(ParamTable& t) {
+#define RS_FIELD(k) t.num(#k, k);
+  RS_DOUBLES(RS_FIELD)
+  RS_INTS(RS_FIELD)
+#undef RS_FIELD
+  t.text("layout", layout);
+}
+
 void WorldParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
                                      const std::string& s) {
-#define RS_LOAD_D(k) k = readDouble(cfg, s, #k, k);
-#define RS_LOAD_I(k) k = readInt(cfg, s, #k, k);
-  RS_DOUBLES(RS_LOAD_D)
-  RS_INTS(RS_LOAD_I)
-  layout = readString(cfg, s, "layout", layout);
+  loadFields(*this, cfg, s);
   if (layout != "loop" && layout != "straight" && layout != "grid")
     throw std::runtime_error("[" + s + "] layout: '" + layout + "' is not loop|straight|grid");
   if (length_m <= 0 || width_m <= 0 || lane_width_m <= 0 || grid_cell_m <= 0 || streets < 1 ||
@@ -44,15 +49,9 @@ void WorldParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
 }
 
 void WorldParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& s) const {
-#define RS_SAVE(k) cfg.write(s, #k, k);
-  RS_DOUBLES(RS_SAVE)
-  RS_INTS(RS_SAVE)
-  cfg.write(s, "layout", layout);
+  saveFields(*this, cfg, s);
 }
 
-std::vector<std::string> WorldParams::keys() {
-#define RS_NAME(k) #k,
-  return {RS_DOUBLES(RS_NAME) RS_INTS(RS_NAME) "layout"};
-}
+std::vector<std::string> WorldParams::keys() { return fieldKeys<WorldParams>(); }
 
 }  // namespace roadslam::sim

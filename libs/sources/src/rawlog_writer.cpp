@@ -15,6 +15,7 @@
 
 #include "roadslam/common/atomic_file.h"
 #include "roadslam/common/config.h"
+#include "roadslam/common/param_table.h"
 #include "roadslam/velodyne/position.h"
 
 namespace roadslam::sources {
@@ -23,40 +24,29 @@ using mrpt::obs::CObservationVelodyneScan;
 static_assert(sizeof(CObservationVelodyneScan::TVelodyneRawPacket) == velodyne::kDataPacketSize,
               "MRPT's packed packet struct must match the 1206-byte UDP payload");
 
-namespace {
-constexpr double kDeg = M_PI / 180.0;
+void RawlogWriter::Params::fields(ParamTable& t) {
+  t.text("sensor_label", sensor_label);
+  t.text("gps_label", gps_label);
+  t.text("model", model);
+  t.text("calibration_file", calibration_file);
+  t.num("min_range_m", min_range_m);
+  t.num("max_range_m", max_range_m);
+  t.num("x_m", x_m);
+  t.num("y_m", y_m);
+  t.num("z_m", z_m);
+  t.angle("yaw_deg", yaw_rad);
+  t.angle("pitch_deg", pitch_rad);
+  t.angle("roll_deg", roll_rad);
 }
 
 void RawlogWriter::Params::loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
                                               const std::string& s) {
-  sensor_label = readString(c, s, "sensor_label", sensor_label);
-  gps_label = readString(c, s, "gps_label", gps_label);
-  model = readString(c, s, "model", model);
-  calibration_file = readString(c, s, "calibration_file", calibration_file);
-  min_range_m = readDouble(c, s, "min_range_m", min_range_m);
-  max_range_m = readDouble(c, s, "max_range_m", max_range_m);
-  x_m = readDouble(c, s, "x_m", x_m);
-  y_m = readDouble(c, s, "y_m", y_m);
-  z_m = readDouble(c, s, "z_m", z_m);
-  yaw_rad = readDouble(c, s, "yaw_deg", yaw_rad / kDeg) * kDeg;
-  pitch_rad = readDouble(c, s, "pitch_deg", pitch_rad / kDeg) * kDeg;
-  roll_rad = readDouble(c, s, "roll_deg", roll_rad / kDeg) * kDeg;
+  loadFields(*this, c, s);
 }
 
 void RawlogWriter::Params::saveToConfigFile(mrpt::config::CConfigFileBase& c,
                                             const std::string& s) const {
-  c.write(s, "sensor_label", sensor_label);
-  c.write(s, "gps_label", gps_label);
-  c.write(s, "model", model);
-  c.write(s, "calibration_file", calibration_file);
-  c.write(s, "min_range_m", min_range_m);
-  c.write(s, "max_range_m", max_range_m);
-  c.write(s, "x_m", x_m);
-  c.write(s, "y_m", y_m);
-  c.write(s, "z_m", z_m);
-  c.write(s, "yaw_deg", yaw_rad / kDeg);
-  c.write(s, "pitch_deg", pitch_rad / kDeg);
-  c.write(s, "roll_deg", roll_rad / kDeg);
+  saveFields(*this, c, s);
 }
 
 struct RawlogWriter::Impl {

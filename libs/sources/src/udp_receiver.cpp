@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "roadslam/common/config.h"
+#include "roadslam/common/param_table.h"
 #include "roadslam/velodyne/decoder_params.h"
 
 namespace roadslam::sources {
@@ -56,35 +57,34 @@ int openSocket(uint32_t bind_ip, uint16_t port, int rcvbuf, int& granted, uint16
 
 }  // namespace
 
+void UdpReceiver::Params::fields(ParamTable& t) {
+  t.num("data_port", ports.data_port);
+  t.num("position_port", ports.position_port);
+  std::string model = velodyne::modelName(ports.model);  // parseModel also takes "VLP-16", ...
+  t.text("model", model);
+  if (t.loading()) {
+    try {
+      ports.model = velodyne::parseModel(model);
+    } catch (const std::exception&) {
+      throw std::runtime_error("[" + t.section() + "] model: expected auto, vlp16 or hdl32, got '" + model + "'");
+    }
+  }
+  t.text("bind_address", bind_address);
+  t.text("source_filter", source_filter);
+  t.num("rcvbuf_bytes", rcvbuf_bytes);
+  t.num("batch_size", batch_size);
+  t.scaled("poll_timeout_ms", poll_timeout_s, unit::kMs);
+  t.scaled("packet_period_us", packet_period_s, unit::kUs);
+}
+
 void UdpReceiver::Params::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
                                              const std::string& s) {
-  ports.data_port = uint16_t(readInt(cfg, s, "data_port", ports.data_port));
-  ports.position_port = uint16_t(readInt(cfg, s, "position_port", ports.position_port));
-  const std::string model = readString(cfg, s, "model", velodyne::modelName(ports.model));
-  try {
-    ports.model = velodyne::parseModel(model);
-  } catch (const std::exception&) {
-    throw std::runtime_error("[" + s + "] model: expected auto, vlp16 or hdl32, got '" + model + "'");
-  }
-  bind_address = readString(cfg, s, "bind_address", bind_address);
-  source_filter = readString(cfg, s, "source_filter", source_filter);
-  rcvbuf_bytes = readInt(cfg, s, "rcvbuf_bytes", rcvbuf_bytes);
-  batch_size = readInt(cfg, s, "batch_size", batch_size);
-  poll_timeout_s = readDouble(cfg, s, "poll_timeout_ms", poll_timeout_s * 1e3) * 1e-3;
-  packet_period_s = readDouble(cfg, s, "packet_period_us", packet_period_s * 1e6) * 1e-6;
+  loadFields(*this, cfg, s);
 }
 
 void UdpReceiver::Params::saveToConfigFile(mrpt::config::CConfigFileBase& cfg,
                                            const std::string& s) const {
-  cfg.write(s, "data_port", int(ports.data_port));
-  cfg.write(s, "position_port", int(ports.position_port));
-  cfg.write(s, "model", velodyne::modelName(ports.model));
-  cfg.write(s, "bind_address", bind_address);
-  cfg.write(s, "source_filter", source_filter);
-  cfg.write(s, "rcvbuf_bytes", rcvbuf_bytes);
-  cfg.write(s, "batch_size", batch_size);
-  cfg.write(s, "poll_timeout_ms", poll_timeout_s * 1e3);
-  cfg.write(s, "packet_period_us", packet_period_s * 1e6);
+  saveFields(*this, cfg, s);
 }
 
 UdpReceiver::UdpReceiver(const Params& p) : params_(p), gaps_(p.packet_period_s, p.ports.model) {

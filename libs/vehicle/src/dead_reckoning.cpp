@@ -1,4 +1,5 @@
 #include <roadslam/common/config.h>
+#include <roadslam/common/param_table.h>
 #include <roadslam/vehicle/dead_reckoning.h>
 
 #include <mrpt/config/CConfigFileBase.h>
@@ -7,38 +8,30 @@
 #include <stdexcept>
 
 namespace roadslam::vehicle {
+
 namespace {
-constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
+const NameTable<DeadReckoningParams::YawSource>& yawSourceNames() {
+  using Y = DeadReckoningParams::YawSource;
+  static const NameTable<Y> t{{Y::kAuto, "auto"}, {Y::kYawRate, "yaw_rate"}, {Y::kSteering, "steering"}, {Y::kWheels, "wheels"}};
+  return t;
+}
+}  // namespace
+
+void DeadReckoningParams::fields(ParamTable& t) {
+  t.choice("yaw_source", yaw_source, yawSourceNames());
+  t.num("speed_scale", speed_scale);
+  t.angle("yaw_rate_bias_deg_s", yaw_rate_bias_radps);
+  t.num("standstill_speed_mps", standstill_speed_mps);
+  t.num("standstill_min_s", standstill_min_s);
+  t.num("max_step_s", max_step_s);
 }
 
 void DeadReckoningParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& s) {
-  const std::string src = readString(cfg, s, "yaw_source", "auto");
-  if (src == "auto") {
-    yaw_source = YawSource::kAuto;
-  } else if (src == "yaw_rate") {
-    yaw_source = YawSource::kYawRate;
-  } else if (src == "steering") {
-    yaw_source = YawSource::kSteering;
-  } else if (src == "wheels") {
-    yaw_source = YawSource::kWheels;
-  } else {
-    throw std::runtime_error("[" + s + "] yaw_source = '" + src + "' (expected auto|yaw_rate|steering|wheels)");
-  }
-  speed_scale = readDouble(cfg, s, "speed_scale", speed_scale);
-  yaw_rate_bias_radps = readDouble(cfg, s, "yaw_rate_bias_deg_s", yaw_rate_bias_radps / kDegToRad) * kDegToRad;
-  standstill_speed_mps = readDouble(cfg, s, "standstill_speed_mps", standstill_speed_mps);
-  standstill_min_s = readDouble(cfg, s, "standstill_min_s", standstill_min_s);
-  max_step_s = readDouble(cfg, s, "max_step_s", max_step_s);
+  loadFields(*this, cfg, s);
 }
 
 void DeadReckoningParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& s) const {
-  static const char* kNames[] = {"auto", "yaw_rate", "steering", "wheels"};
-  cfg.write(s, "yaw_source", std::string(kNames[static_cast<int>(yaw_source)]));
-  cfg.write(s, "speed_scale", speed_scale);
-  cfg.write(s, "yaw_rate_bias_deg_s", yaw_rate_bias_radps / kDegToRad);
-  cfg.write(s, "standstill_speed_mps", standstill_speed_mps);
-  cfg.write(s, "standstill_min_s", standstill_min_s);
-  cfg.write(s, "max_step_s", max_step_s);
+  saveFields(*this, cfg, s);
 }
 
 DeadReckoning::DeadReckoning(const DeadReckoningParams& params, const VehicleParams& vehicle)

@@ -6,22 +6,23 @@
 #include <stdexcept>
 
 #include "roadslam/common/config.h"
+#include "roadslam/common/param_table.h"
 
 namespace roadslam::vehicle {
-namespace {
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
+void OnlineCalibrationParams::fields(ParamTable& t) {
+  t.flag("online_calibration", enabled);
+  t.num("calibration_window_s", window_s);
+  t.num("calibration_min_bias_time_s", min_bias_time_s);
+  t.num("calibration_min_scale_distance_m", min_scale_distance_m);
+  t.num("calibration_min_speed_mps", min_speed_mps);
+  t.angle("calibration_max_yaw_rate_deg_s", max_yaw_rate_radps);
+  t.angle("calibration_gate_yaw_rate_deg_s", gate_yaw_rate_radps);
+  t.num("calibration_gate_scale", gate_scale);
+  t.num("calibration_max_interval_s", max_interval_s);
 }
 
 void OnlineCalibrationParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& s) {
-  enabled = readBool(cfg, s, "online_calibration", enabled);
-  window_s = readDouble(cfg, s, "calibration_window_s", window_s);
-  min_bias_time_s = readDouble(cfg, s, "calibration_min_bias_time_s", min_bias_time_s);
-  min_scale_distance_m = readDouble(cfg, s, "calibration_min_scale_distance_m", min_scale_distance_m);
-  min_speed_mps = readDouble(cfg, s, "calibration_min_speed_mps", min_speed_mps);
-  max_yaw_rate_radps = readDouble(cfg, s, "calibration_max_yaw_rate_deg_s", max_yaw_rate_radps / kDeg) * kDeg;
-  gate_yaw_rate_radps = readDouble(cfg, s, "calibration_gate_yaw_rate_deg_s", gate_yaw_rate_radps / kDeg) * kDeg;
-  gate_scale = readDouble(cfg, s, "calibration_gate_scale", gate_scale);
-  max_interval_s = readDouble(cfg, s, "calibration_max_interval_s", max_interval_s);
+  loadFields(*this, cfg, s);
   if (window_s <= 0 || max_interval_s <= 0 || gate_yaw_rate_radps <= 0 || gate_scale <= 0 || max_yaw_rate_radps <= 0) {
     throw std::runtime_error("[" + s + "] calibration_window_s, calibration_max_interval_s, calibration_gate_* and "
                              "calibration_max_yaw_rate_deg_s must be > 0");
@@ -32,15 +33,7 @@ void OnlineCalibrationParams::loadFromConfigFile(const mrpt::config::CConfigFile
 }
 
 void OnlineCalibrationParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& s) const {
-  cfg.write(s, "online_calibration", enabled);
-  cfg.write(s, "calibration_window_s", window_s);
-  cfg.write(s, "calibration_min_bias_time_s", min_bias_time_s);
-  cfg.write(s, "calibration_min_scale_distance_m", min_scale_distance_m);
-  cfg.write(s, "calibration_min_speed_mps", min_speed_mps);
-  cfg.write(s, "calibration_max_yaw_rate_deg_s", max_yaw_rate_radps / kDeg);
-  cfg.write(s, "calibration_gate_yaw_rate_deg_s", gate_yaw_rate_radps / kDeg);
-  cfg.write(s, "calibration_gate_scale", gate_scale);
-  cfg.write(s, "calibration_max_interval_s", max_interval_s);
+  saveFields(*this, cfg, s);
 }
 
 void OnlineCalibrator::push(std::deque<Sum>& q, Sum& total, const Sum& s) const {

@@ -1,4 +1,5 @@
 #include <roadslam/common/config.h>
+#include <roadslam/common/param_table.h>
 #include <roadslam/vehicle/params.h>
 
 #include <mrpt/config/CConfigFileBase.h>
@@ -48,17 +49,21 @@ std::vector<double> VehicleParams::reverseValues() const {
   return out;
 }
 
+void VehicleParams::fields(ParamTable& t) {
+  t.text("name", name);
+  t.text("dbc", dbc);
+  t.text("data_root", data_root);
+  t.text("interface", interface);
+  t.num("wheelbase_m", wheelbase_m);
+  t.num("track_width_m", track_width_m);
+  t.num("steering_ratio", steering_ratio);
+  t.text("reverse_gear_values", reverse_gear_values);
+}
+
 void VehicleParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& s) {
-  name = readString(cfg, s, "name", name);
-  dbc = readString(cfg, s, "dbc", dbc);
-  data_root = readString(cfg, s, "data_root", data_root);
-  interface = readString(cfg, s, "interface", interface);
-  wheelbase_m = readDouble(cfg, s, "wheelbase_m", wheelbase_m);
-  track_width_m = readDouble(cfg, s, "track_width_m", track_width_m);
-  steering_ratio = readDouble(cfg, s, "steering_ratio", steering_ratio);
-  reverse_gear_values = readString(cfg, s, "reverse_gear_values", reverse_gear_values);
-  std::vector<std::string> known = {"name", "dbc", "data_root", "interface", "wheelbase_m", "track_width_m",
-                                    "steering_ratio", "reverse_gear_values"};
+  loadFields(*this, cfg, s);
+  // The signal mapping of each quantity (five keys, saved only when mapped) is read by hand beside the table.
+  std::vector<std::string> known = fieldKeys<VehicleParams>();
   for (int i = 0; i < kQuantityCount; ++i) {
     SignalMapping& m = map[static_cast<std::size_t>(i)];
     const std::string k = quantityKey(static_cast<Quantity>(i));
@@ -82,14 +87,7 @@ void VehicleParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
 }
 
 void VehicleParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& s) const {
-  cfg.write(s, "name", name);
-  cfg.write(s, "dbc", dbc);
-  cfg.write(s, "data_root", data_root);
-  cfg.write(s, "interface", interface);
-  cfg.write(s, "wheelbase_m", wheelbase_m);
-  cfg.write(s, "track_width_m", track_width_m);
-  cfg.write(s, "steering_ratio", steering_ratio);
-  cfg.write(s, "reverse_gear_values", reverse_gear_values);
+  saveFields(*this, cfg, s);
   for (int i = 0; i < kQuantityCount; ++i) {
     const SignalMapping& m = map[static_cast<std::size_t>(i)];
     if (!m.present()) continue;

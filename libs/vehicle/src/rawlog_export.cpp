@@ -1,6 +1,7 @@
 #include <roadslam/can/candump.h>
 #include <roadslam/common/atomic_file.h>
 #include <roadslam/common/config.h>
+#include <roadslam/common/param_table.h>
 #include <roadslam/vehicle/rawlog_export.h>
 
 #include <mrpt/config/CConfigFileBase.h>
@@ -16,18 +17,19 @@
 
 namespace roadslam::vehicle {
 
+void RawlogExportParams::fields(ParamTable& t) {
+  t.text("odometry_label", odometry_label);
+  t.text("imu_label", imu_label);
+  t.text("gps_label", gps_label);
+  t.flag("write_sidecar", write_sidecar);
+}
+
 void RawlogExportParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& s) {
-  odometry_label = readString(cfg, s, "odometry_label", odometry_label);
-  imu_label = readString(cfg, s, "imu_label", imu_label);
-  gps_label = readString(cfg, s, "gps_label", gps_label);
-  write_sidecar = readBool(cfg, s, "write_sidecar", write_sidecar);
+  loadFields(*this, cfg, s);
 }
 
 void RawlogExportParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& s) const {
-  cfg.write(s, "odometry_label", odometry_label);
-  cfg.write(s, "imu_label", imu_label);
-  cfg.write(s, "gps_label", gps_label);
-  cfg.write(s, "write_sidecar", write_sidecar);
+  saveFields(*this, cfg, s);
 }
 
 std::string sidecarPath(const std::string& rawlog_path) {

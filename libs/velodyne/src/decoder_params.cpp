@@ -6,11 +6,10 @@
 #include <stdexcept>
 
 #include "roadslam/common/config.h"
+#include "roadslam/common/param_table.h"
 
 namespace roadslam::velodyne {
 namespace {
-
-constexpr double kDegToRad = M_PI / 180.0;
 
 [[noreturn]] void badValue(const std::string& section, const std::string& key,
                            const std::string& value) {
@@ -34,6 +33,30 @@ std::string modelName(Model model) {
   }
 }
 
+namespace {
+const NameTable<DualReturns>& dualReturnsNames() {
+  static const NameTable<DualReturns> t{
+      {DualReturns::Both, "both"}, {DualReturns::Strongest, "strongest"}, {DualReturns::Last, "last"}};
+  return t;
+}
+const NameTable<StampSource>& stampSourceNames() {
+  static const NameTable<StampSource> t{{StampSource::Capture, "capture"}, {StampSource::Sensor, "sensor"}};
+  return t;
+}
+}  // namespace
+
+// `model` (first key, with the aliases parseModel accepts) is read and written by hand beside the table.
+void DecoderParams::fields(ParamTable& t) {
+  t.text("calibration_file", calibration_file);
+  t.num("min_range_m", min_range_m);
+  t.num("max_range_m", max_range_m);
+  t.choice("dual_returns", dual_returns, dualReturnsNames());
+  t.flag("drop_dual_duplicates", drop_dual_duplicates);
+  t.flag("intra_block_azimuth", intra_block_azimuth);
+  t.angle("cut_azimuth_deg", cut_azimuth_rad);
+  t.choice("stamp_source", stamp_source, stampSourceNames());
+}
+
 void DecoderParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
                                        const std::string& section) {
   const std::string m = readString(cfg, section, "model", modelName(model));
@@ -42,42 +65,16 @@ void DecoderParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
   } catch (const std::invalid_argument&) {
     badValue(section, "model", m);
   }
-  calibration_file = readString(cfg, section, "calibration_file", calibration_file);
-  min_range_m = readDouble(cfg, section, "min_range_m", min_range_m);
-  max_range_m = readDouble(cfg, section, "max_range_m", max_range_m);
+  loadFields(*this, cfg, section);
   if (!(min_range_m >= 0) || !(max_range_m > min_range_m))
     badValue(section, "min_range_m/max_range_m",
              std::to_string(min_range_m) + "/" + std::to_string(max_range_m));
-  const std::string d = readString(cfg, section, "dual_returns", "both");
-  if (d == "both") dual_returns = DualReturns::Both;
-  else if (d == "strongest") dual_returns = DualReturns::Strongest;
-  else if (d == "last") dual_returns = DualReturns::Last;
-  else badValue(section, "dual_returns", d);
-  drop_dual_duplicates = readBool(cfg, section, "drop_dual_duplicates", drop_dual_duplicates);
-  intra_block_azimuth = readBool(cfg, section, "intra_block_azimuth", intra_block_azimuth);
-  cut_azimuth_rad =
-      readDouble(cfg, section, "cut_azimuth_deg", cut_azimuth_rad / kDegToRad) * kDegToRad;
-  const std::string s = readString(cfg, section, "stamp_source", "capture");
-  if (s == "capture") stamp_source = StampSource::Capture;
-  else if (s == "sensor") stamp_source = StampSource::Sensor;
-  else badValue(section, "stamp_source", s);
 }
 
 void DecoderParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg,
                                      const std::string& section) const {
   cfg.write(section, "model", modelName(model));
-  cfg.write(section, "calibration_file", calibration_file);
-  cfg.write(section, "min_range_m", min_range_m);
-  cfg.write(section, "max_range_m", max_range_m);
-  cfg.write(section, "dual_returns",
-            std::string(dual_returns == DualReturns::Both        ? "both"
-                        : dual_returns == DualReturns::Strongest ? "strongest"
-                                                                 : "last"));
-  cfg.write(section, "drop_dual_duplicates", drop_dual_duplicates);
-  cfg.write(section, "intra_block_azimuth", intra_block_azimuth);
-  cfg.write(section, "cut_azimuth_deg", cut_azimuth_rad / kDegToRad);
-  cfg.write(section, "stamp_source",
-            std::string(stamp_source == StampSource::Capture ? "capture" : "sensor"));
+  saveFields(*this, cfg, section);
 }
 
 }  // namespace roadslam::velodyne

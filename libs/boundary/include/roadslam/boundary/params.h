@@ -13,6 +13,10 @@ namespace mrpt::config {
 class CConfigFileBase;
 }
 
+namespace roadslam {
+class ParamTable;
+}
+
 namespace roadslam::boundary {
 
 /// Boundary fit: `ransac` (curb points along the rings, RANSAC polynomial per side) or `thesis`
@@ -128,6 +132,8 @@ struct Params {
 
   preprocess::GroundSegParams ground;   ///< ground labelling (section [ground], keys seg_*)
 
+  /// The ini keys, one line each (common/param_table.h): load, save and the known keys.
+  void fields(ParamTable& t);
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section = "boundary",
                           const std::string& ground_section = "ground");
   void saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& section = "boundary",

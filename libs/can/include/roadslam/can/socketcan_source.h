@@ -16,6 +16,10 @@ namespace mrpt::config {
 class CConfigFileBase;
 }
 
+namespace roadslam {
+class ParamTable;
+}
+
 namespace roadslam::can {
 
 /// Receive filter: a frame passes when (id & mask) == (filter id & mask) (CAN_RAW_FILTER).
@@ -34,6 +38,8 @@ struct SocketCanParams {
   int receive_buffer_bytes = 0;    ///< SO_RCVBUF, 0 = kernel default [bytes]
   int reopen_interval_ms = 1000;   ///< retry period while the interface is down [ms]
 
+  /// The ini keys, one line each (common/param_table.h): load, save and the known keys.
+  void fields(ParamTable& t);
   /// Keys: interface, filters ("id:mask" hex, comma separated, "~" prefix inverts, 8-digit ids
   /// are 29-bit), error_frames, fd, receive_buffer_bytes, reopen_interval_ms.
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section);

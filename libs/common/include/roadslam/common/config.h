@@ -16,6 +16,10 @@ namespace roadslam {
 /// It records the keys read, so a job can report the ones no component knows (checked_config.h).
 std::unique_ptr<CheckedConfig> loadIniFile(const std::string& path);
 
+/// "file: " when \p cfg was read from a file (CConfigFile or CheckedConfig), else "": the start of an
+/// error message about one of its keys.
+std::string configSource(const mrpt::config::CConfigFileBase& cfg);
+
 /// Reads a double; throws naming section/key (and the source) when the value is not a number.
 double readDouble(const mrpt::config::CConfigFileBase& cfg, const std::string& section,
                   const std::string& key, double default_value);

@@ -9,6 +9,7 @@
 
 #include <string>
 
+#include "roadslam/common/param_table.h"
 #include "roadslam/common/scan.h"
 
 namespace mrpt::config {
@@ -41,7 +42,10 @@ struct SweepTiming {
 /// scan.stamp_s from the source's reference to the first firing (Scan::stamp_s's meaning).
 void timesFromAzimuth(Scan& scan, const SweepTiming& timing);
 
-/// "clockwise" / "counterclockwise", "start" / "middle" / "end"; parse errors name the key.
+/// "clockwise" / "counterclockwise", "start" / "middle" / "end" (one name table each, for
+/// ParamTable::choice); parse errors name the key.
+const NameTable<SpinDirection>& spinDirectionNames();
+const NameTable<StampReference>& stampReferenceNames();
 std::string toString(SpinDirection d);
 std::string toString(StampReference r);
 SpinDirection spinDirectionFromString(const std::string& s, const std::string& where);

@@ -11,6 +11,10 @@
 #include <string>
 #include <vector>
 
+namespace roadslam {
+class ParamTable;
+}
+
 namespace roadslam::datasets {
 
 /// Reads one KITTI .bin sweep. Reflectance [0..1] is stored in ScanPoint::intensity unchanged.
@@ -33,6 +37,8 @@ struct KittiParams {
   /// the road looks like a cone around the sensor, and an odometry on it drifts in pitch and height.
   double elevation_correction_rad = 0.22 * M_PI / 180.0;
 
+  /// The ini keys, one line each (common/param_table.h): load, save and the known keys.
+  void fields(ParamTable& t);
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section = "kitti");
   void saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& section = "kitti") const;
 };

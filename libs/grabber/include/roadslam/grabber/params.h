@@ -23,6 +23,10 @@ namespace mrpt::config {
 class CConfigFileBase;
 }
 
+namespace roadslam {
+class ParamTable;
+}
+
 namespace roadslam::grabber {
 
 /// One LiDAR: where it listens and how its sweeps are labelled and mounted.
@@ -35,6 +39,8 @@ struct SensorParams {
   /// sender (a second sensor on the same port) are counted as foreign and not recorded.
   bool lock_first_sender = true;
 
+  /// The ini keys, one line each (common/param_table.h): load, save and the known keys.
+  void fields(ParamTable& t);
   /// Reads the UdpReceiver keys, the RawlogWriter keys and silent_after_ms (-> s).
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& sec);
   void saveToConfigFile(mrpt::config::CConfigFileBase& cfg) const;
@@ -52,6 +58,8 @@ struct CanParams {
   std::string data_root;            ///< root for the vehicle ini's DBC path; empty = the ini's own
   double silent_after_s = 1.0;      ///< watchdog: no frame for this long = bus silent [s] (ini: silent_after_ms)
 
+  /// The ini keys, one line each (common/param_table.h): load, save and the known keys.
+  void fields(ParamTable& t);
   /// Keys: source (none|socketcan|candump), the SocketCanParams keys, candump_file,
   /// candump_realtime, restamp, vehicle_ini, data_root.
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& sec);
@@ -72,6 +80,8 @@ struct WriterParams {
   double status_period_s = 1.0;       ///< status line / summary.json refresh [s]
   std::string file_prefix = "grab";   ///< segments are <prefix>_000.rawlog, _001 ...
 
+  /// The ini keys, one line each (common/param_table.h): load, save and the known keys.
+  void fields(ParamTable& t);
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& sec);
   void saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& sec) const;
 };

@@ -22,6 +22,10 @@
 #include "roadslam/mapping/pose_graph.h"
 #include "roadslam/registration/params.h"
 
+namespace roadslam {
+class ParamTable;
+}
+
 namespace roadslam::mapping {
 
 /// A keyframe: its odometry pose and its (downsampled) points in its own lidar frame.
@@ -60,6 +64,8 @@ struct LoopClosureParams {
   registration::Params fine;         ///< point-to-plane ICP by default
 
   LoopClosureParams();
+  /// The ini keys, one line each (common/param_table.h): load, save and the known keys.
+  void fields(ParamTable& t);
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section = "loop_closure");
   void saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& section = "loop_closure") const;
 };

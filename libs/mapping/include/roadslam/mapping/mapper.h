@@ -14,6 +14,10 @@
 #include "roadslam/mapping/pose_graph.h"
 #include "roadslam/odometry/odometry.h"
 
+namespace roadslam {
+class ParamTable;
+}
+
 namespace roadslam::mapping {
 
 /// Ini section [mapping] plus [pose_graph] and [loop_closure].
@@ -22,6 +26,8 @@ struct MapperParams {
   PoseGraphParams graph;
   LoopClosureParams loop;
 
+  /// The ini keys, one line each (common/param_table.h): load, save and the known keys.
+  void fields(ParamTable& t);
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section = "mapping");
   void saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& section = "mapping") const;
 };

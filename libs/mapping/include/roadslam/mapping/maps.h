@@ -14,11 +14,17 @@
 
 #include "roadslam/mapping/loop_closure.h"
 
+namespace roadslam {
+class ParamTable;
+}
+
 namespace roadslam::mapping {
 
 /// Ini section [point_map].
 struct PointMapParams {
   double voxel_m = 0.2;  ///< one point per voxel [m]
+  /// The ini keys, one line each (common/param_table.h): load, save and the known keys.
+  void fields(ParamTable& t);
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section = "point_map");
   void saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& section = "point_map") const;
 };
@@ -32,6 +38,8 @@ struct GridParams {
   double max_height_m = 2.5;         ///< ... to [m]
   double max_range_m = 40.0;         ///< points farther from their keyframe are not projected [m]
   double margin_m = 5.0;             ///< border around the data [m]
+  /// The ini keys, one line each (common/param_table.h): load, save and the known keys.
+  void fields(ParamTable& t);
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section = "grid");
   void saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& section = "grid") const;
 };

@@ -23,6 +23,10 @@ class CConfigFileBase;
 namespace octomap {
 class OcTree;
 }
+namespace roadslam {
+class ParamTable;
+}
+
 namespace roadslam::mapping::detail {
 class VoxelGrid;
 }
@@ -42,6 +46,8 @@ struct OctoMapParams {
   bool write_ot = false;          ///< also write map.ot (full probabilities) beside map.bt
   double keyframe_spacing_m = 10.0;  ///< keyframes inserted into the run's map are this far apart [m]
 
+  /// The ini keys, one line each (common/param_table.h): load, save and the known keys.
+  void fields(ParamTable& t);
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section = "octomap");
   void saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& section = "octomap") const;
 };

@@ -19,6 +19,10 @@ namespace mrpt::config {
 class CConfigFileBase;
 }
 
+namespace roadslam {
+class ParamTable;
+}
+
 namespace roadslam::mapping {
 
 using Matrix6d = Eigen::Matrix<double, 6, 6>;
@@ -51,6 +55,8 @@ struct PoseGraphParams {
   double can_sigma_yaw_rad_per_m = 0.0005; ///< k of yaw [rad/m]; ini can_sigma_yaw_deg_per_m
   double can_weak_information = 1e-4;     ///< information of base z, roll, pitch [1/m^2, 1/rad^2]
 
+  /// The ini keys, one line each (common/param_table.h): load, save and the known keys.
+  void fields(ParamTable& t);
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section = "pose_graph");
   void saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& section = "pose_graph") const;
 };

@@ -27,6 +27,9 @@
 namespace mrpt::config {
 class CConfigFileBase;
 }
+namespace roadslam {
+class ParamTable;
+}
 
 namespace roadslam::odometry {
 
@@ -125,6 +128,8 @@ struct Params {
   preprocess::PreprocessParams preprocess;
   registration::Params registration;
 
+  /// The [odometry] keys, one line each (common/param_table.h): load, save and the known keys.
+  void fields(ParamTable& t);
   /// Reads [odometry] keys from \p section plus the [preprocess] and [registration] sections.
   /// Throws naming section/key on malformed values.
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section = "odometry",

@@ -30,6 +30,10 @@ namespace mrpt::config {
 class CConfigFileBase;
 }
 
+namespace roadslam {
+class ParamTable;
+}
+
 namespace roadslam::pipeline {
 
 struct VehiclePriorParams {
@@ -43,6 +47,8 @@ struct VehiclePriorParams {
   vehicle::DeadReckoningParams dead_reckoning;  ///< same section: yaw_source, speed_scale, yaw_rate_bias_deg_s, ...
   vehicle::OnlineCalibrationParams calibration; ///< same section: online_calibration, calibration_* keys
 
+  /// The ini keys, one line each (common/param_table.h): load, save and the known keys.
+  void fields(ParamTable& t);
   /// Throws naming the section and key on a bad value.
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section);
   void saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& section) const;

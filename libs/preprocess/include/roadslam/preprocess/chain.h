@@ -29,6 +29,10 @@
 #include <string>
 #include <vector>
 
+namespace roadslam {
+class ParamTable;
+}
+
 namespace roadslam::preprocess {
 
 struct PreprocessParams {
@@ -46,6 +50,8 @@ struct PreprocessParams {
   /// caller to report.
   std::vector<std::string> unknown_keys;
 
+  /// The ini keys, one line each (common/param_table.h): load, save and the known keys.
+  void fields(ParamTable& t);
   /// Throws naming section/key on a malformed value, an unknown filter name or a key set twice
   /// (SI name and thesis alias).
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section);

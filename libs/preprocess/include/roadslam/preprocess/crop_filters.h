@@ -13,6 +13,10 @@ namespace mrpt::config {
 class CConfigFileBase;
 }
 
+namespace roadslam {
+class ParamTable;
+}
+
 namespace roadslam::preprocess {
 
 /// Drops points with a NaN or infinite coordinate. Returns the count removed.
@@ -21,6 +25,8 @@ size_t removeNonFinite(std::vector<ScanPoint>& pts);
 /// Removes returns from the car itself: every point within a horizontal radius of the sensor.
 struct EgoParams {
   double radius_m = 2.5;  ///< horizontal (x,y) radius around the lidar origin [m]; ini `ego_radius_m`, thesis `rad`
+  /// The ini keys, one line each (common/param_table.h): load, save and the known keys.
+  void fields(ParamTable& t);
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section);
   void saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& section) const;
 };
@@ -31,6 +37,8 @@ size_t removeEgo(std::vector<ScanPoint>& pts, const EgoParams& p);
 struct RangeParams {
   double min_range_m = 1.0;    ///< [m]; ini `min_range_m`
   double max_range_m = 100.0;  ///< [m]; ini `max_range_m`
+  /// The ini keys, one line each (common/param_table.h): load, save and the known keys.
+  void fields(ParamTable& t);
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section);
   void saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& section) const;
 };
@@ -43,6 +51,8 @@ struct RoiParams {
   double half_y_m = 20.0;  ///< half width along y (left) [m]; ini `roi_half_y_m`, thesis `yL`
   double min_z_m = -5.0;   ///< lowest z kept [m]; ini `roi_min_z_m`
   double max_z_m = 5.0;    ///< highest z kept [m]; ini `roi_max_z_m`
+  /// The ini keys, one line each (common/param_table.h): load, save and the known keys.
+  void fields(ParamTable& t);
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section);
   void saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& section) const;
 };

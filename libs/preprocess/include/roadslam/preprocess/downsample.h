@@ -12,6 +12,10 @@ namespace mrpt::config {
 class CConfigFileBase;
 }
 
+namespace roadslam {
+class ParamTable;
+}
+
 namespace roadslam::preprocess {
 
 /// Keeps exactly round(keep_fraction * n) points chosen uniformly at random, in their original order
@@ -19,6 +23,8 @@ namespace roadslam::preprocess {
 struct RandomDownsampleParams {
   double keep_fraction = 0.5;  ///< fraction of points kept, (0, 1] [-]; ini `random_keep_fraction`, thesis `downS`
   uint64_t seed = 1;           ///< random seed [-]; ini `random_seed` (advanced per frame by the chain)
+  /// The ini keys, one line each (common/param_table.h): load, save and the known keys.
+  void fields(ParamTable& t);
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section);
   void saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& section) const;
 };
@@ -32,6 +38,8 @@ struct VoxelParams {
   enum class Mode { Centroid, First };
   double voxel_size_m = 0.25;  ///< voxel edge [m]; ini `voxel_size_m`
   Mode mode = Mode::Centroid; ///< ini `voxel_mode` = centroid | first
+  /// The ini keys, one line each (common/param_table.h): load, save and the known keys.
+  void fields(ParamTable& t);
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section);
   void saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& section) const;
 };
@@ -49,6 +57,8 @@ VoxelKey voxelOf(const ScanPoint& pt, double voxel_size_m);
 struct SorParams {
   int k = 10;            ///< neighbours [-]; ini `sor_k`
   double std_mul = 2.0;  ///< threshold in standard deviations [-]; ini `sor_std_mul`
+  /// The ini keys, one line each (common/param_table.h): load, save and the known keys.
+  void fields(ParamTable& t);
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section);
   void saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& section) const;
 };

@@ -19,6 +19,10 @@ namespace mrpt::config {
 class CConfigFileBase;
 }
 
+namespace roadslam {
+class ParamTable;
+}
+
 namespace roadslam::preprocess {
 
 struct GroundSegParams {
@@ -47,6 +51,8 @@ struct GroundSegParams {
   /// sector): a bonnet seen over a parked car's end is no road. Off: with it and parked_car_rules
   /// the odometry's parking-lot RTE rose 0.088 -> 1.41 % [-]; ini `seg_level_start_behind_structure`
   bool level_start_behind_structure = false;
+  /// The ini keys, one line each (common/param_table.h): load, save and the known keys.
+  void fields(ParamTable& t);
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section);
   void saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& section) const;
 };

@@ -18,6 +18,10 @@ namespace mrpt::config {
 class CConfigFileBase;
 }
 
+namespace roadslam {
+class ParamTable;
+}
+
 namespace roadslam::preprocess {
 
 struct RansacGroundParams {
@@ -27,6 +31,8 @@ struct RansacGroundParams {
   int iterations = 100;               ///< hypotheses drawn [-]; ini `ransac_iterations`
   int max_eval_points = 2000;         ///< points sampled to score a hypothesis [-]; ini `ransac_eval_points`
   uint64_t seed = 42;                 ///< random seed [-]; ini `ransac_seed`
+  /// The ini keys, one line each (common/param_table.h): load, save and the known keys.
+  void fields(ParamTable& t);
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section);
   void saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& section) const;
 };

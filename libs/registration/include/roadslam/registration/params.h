@@ -10,6 +10,10 @@ namespace mrpt::config {
 class CConfigFileBase;
 }
 
+namespace roadslam {
+class ParamTable;
+}
+
 namespace roadslam::registration {
 
 /// Registration algorithm. Ini values: icp_point_to_point | icp_point_to_plane | ndt.
@@ -51,6 +55,8 @@ struct Params {
   double degeneracy_threshold = 0.02;          ///< normalized Hessian eigenvalue below => weak direction [-]
   double degeneracy_lever_m = 1.0;             ///< rotation scaling of the degeneracy analysis [m]
 
+  /// The ini keys, one line each (common/param_table.h): load, save and the known keys.
+  void fields(ParamTable& t);
   /// Reads every key of \p section; missing keys keep their default, malformed ones throw naming the key.
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section);
   void saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& section) const;

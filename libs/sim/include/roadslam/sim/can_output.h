@@ -18,6 +18,10 @@ namespace mrpt::config {
 class CConfigFileBase;
 }
 
+namespace roadslam {
+class ParamTable;
+}
+
 namespace roadslam::sim {
 
 class Simulator;
@@ -38,6 +42,8 @@ struct CanParams {
 
   /// DBC path actually used (dbc, or the shipped one).
   std::string dbcPath() const;
+  /// The ini keys, one line each (common/param_table.h): load, save and the known keys.
+  void fields(ParamTable& t);
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section);
   void saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& section) const;
   static std::vector<std::string> keys();

@@ -24,6 +24,10 @@ namespace mrpt::config {
 class CConfigFileBase;
 }
 
+namespace roadslam {
+class ParamTable;
+}
+
 namespace roadslam::sim {
 
 struct LidarParams {
@@ -61,6 +65,8 @@ struct LidarParams {
   /// Lasers of the model [-]: 16 or 64.
   int lasers() const { return hdl64() ? 64 : 16; }
 
+  /// The ini keys, one line each (common/param_table.h): load, save and the known keys.
+  void fields(ParamTable& t);
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section);
   void saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& section) const;
   static std::vector<std::string> keys();

@@ -21,6 +21,10 @@ namespace mrpt::config {
 class CConfigFileBase;
 }
 
+namespace roadslam {
+class ParamTable;
+}
+
 namespace roadslam::sim {
 
 /// Everything a scenario ini holds: sections [scenario], [world], [trajectory], [lidar], [can].
@@ -36,6 +40,8 @@ struct ScenarioParams {
   LidarParams lidar;
   CanParams can;
 
+  /// The ini keys, one line each (common/param_table.h): load, save and the known keys.
+  void fields(ParamTable& t);
   /// Loads every section; throws naming the file, section and key on a bad value or an unknown key.
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg);
   void saveToConfigFile(mrpt::config::CConfigFileBase& cfg) const;

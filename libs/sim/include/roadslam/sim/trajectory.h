@@ -14,6 +14,10 @@ namespace mrpt::config {
 class CConfigFileBase;
 }
 
+namespace roadslam {
+class ParamTable;
+}
+
 namespace roadslam::sim {
 
 struct TrajectoryParams {
@@ -33,6 +37,8 @@ struct TrajectoryParams {
   double k_roll_deg_per_mps2 = 0;
 
   double max_speed_mps() const { return max_speed_kmh / 3.6; }
+  /// The ini keys, one line each (common/param_table.h): load, save and the known keys.
+  void fields(ParamTable& t);
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section);
   void saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& section) const;
   static std::vector<std::string> keys();

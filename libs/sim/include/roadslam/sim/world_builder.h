@@ -13,6 +13,10 @@ namespace mrpt::config {
 class CConfigFileBase;
 }
 
+namespace roadslam {
+class ParamTable;
+}
+
 namespace roadslam::sim {
 
 /// Layout and content of the world. Section keys equal the field names.
@@ -54,6 +58,8 @@ struct WorldParams {
   double margin_m = 110;            ///< ground extends this far beyond the content (> max range) [m]
 
   double moving_car_speed_mps() const { return moving_car_speed_kmh / 3.6; }
+  /// The ini keys, one line each (common/param_table.h): load, save and the known keys.
+  void fields(ParamTable& t);
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section);
   void saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& section) const;
   static std::vector<std::string> keys();

@@ -22,6 +22,10 @@ namespace mrpt::config {
 class CConfigFileBase;
 }
 
+namespace roadslam {
+class ParamTable;
+}
+
 namespace roadslam::sources {
 
 class RawlogWriter {
@@ -36,6 +40,8 @@ class RawlogWriter {
     double x_m = 0, y_m = 0, z_m = 0;       ///< T_base_lidar translation [m]
     double yaw_rad = 0, pitch_rad = 0, roll_rad = 0;  ///< T_base_lidar rotation [rad]
 
+    /// The ini keys, one line each (common/param_table.h): load, save and the known keys.
+    void fields(ParamTable& t);
     /// Keys equal the field names, angles as yaw_deg/pitch_deg/roll_deg (converted to rad).
     void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section);
     void saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& section) const;

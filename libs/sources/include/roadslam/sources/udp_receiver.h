@@ -16,6 +16,10 @@ namespace mrpt::config {
 class CConfigFileBase;
 }
 
+namespace roadslam {
+class ParamTable;
+}
+
 namespace roadslam::sources {
 
 class UdpReceiver : public PacketSource {
@@ -29,6 +33,8 @@ class UdpReceiver : public PacketSource {
     double poll_timeout_s = 0.1;   ///< next() returns nullopt after this long without data [s]
     double packet_period_s = 0;    ///< expected data packet step for gap counting [s], 0 = from mode
 
+    /// The ini keys, one line each (common/param_table.h): load, save and the known keys.
+    void fields(ParamTable& t);
     /// Keys: data_port, position_port, model (auto|vlp16|hdl32), bind_address, source_filter, rcvbuf_bytes, batch_size,
     /// poll_timeout_ms (converted to s), packet_period_us (converted to s).
     void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section);

@@ -15,6 +15,10 @@ namespace mrpt::config {
 class CConfigFileBase;
 }
 
+namespace roadslam {
+class ParamTable;
+}
+
 namespace roadslam::vehicle {
 
 /// Pose of the vehicle body in the odometry frame at time t, and the velocities used to reach it.
@@ -41,6 +45,8 @@ struct DeadReckoningParams {
   double standstill_min_s = 1.0;      ///< standstill time before the bias estimate is used [s]
   double max_step_s = 0.5;            ///< longer gaps between speed updates are not integrated [s]
 
+  /// The ini keys, one line each (common/param_table.h): load, save and the known keys.
+  void fields(ParamTable& t);
   /// Keys: yaw_source (auto|yaw_rate|steering|wheels), speed_scale, yaw_rate_bias_deg_s,
   /// standstill_speed_mps, standstill_min_s, max_step_s. Throws naming the key.
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section);

@@ -19,6 +19,10 @@ namespace mrpt::config {
 class CConfigFileBase;
 }
 
+namespace roadslam {
+class ParamTable;
+}
+
 namespace roadslam::vehicle {
 
 struct OnlineCalibrationParams {
@@ -36,6 +40,8 @@ struct OnlineCalibrationParams {
   double gate_scale = 0.05;              ///< ... or whose distance ratio is farther than this from the estimate [-]
   double max_interval_s = 0.5;           ///< longer intervals are not used [s]
 
+  /// The ini keys, one line each (common/param_table.h): load, save and the known keys.
+  void fields(ParamTable& t);
   /// Keys (prefixed "calibration_", except online_calibration): window_s, min_bias_time_s,
   /// min_scale_distance_m, min_speed_mps, max_yaw_rate_deg_s, gate_yaw_rate_deg_s, gate_scale,
   /// max_interval_s. Throws naming the section and key on a bad value.

@@ -18,6 +18,10 @@ namespace mrpt::config {
 class CConfigFileBase;
 }
 
+namespace roadslam {
+class ParamTable;
+}
+
 namespace roadslam::vehicle {
 
 /// The quantities a car may report. Frames: vehicle body, x forward, y left, z up (ISO 8855).
@@ -66,6 +70,8 @@ struct VehicleParams {
   std::string dbcPath() const;
   std::vector<double> reverseValues() const;
 
+  /// The ini keys, one line each (common/param_table.h): load, save and the known keys.
+  void fields(ParamTable& t);
   /// Throws std::runtime_error naming the section/key on a bad value or unknown unit.
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section);
   void saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& section) const;

@@ -18,6 +18,10 @@ namespace mrpt::config {
 class CConfigFileBase;
 }
 
+namespace roadslam {
+class ParamTable;
+}
+
 namespace roadslam::vehicle {
 
 struct RawlogExportParams {
@@ -26,6 +30,8 @@ struct RawlogExportParams {
   std::string gps_label = "CAN_GPS";            ///< sensorLabel of CObservationGPS
   bool write_sidecar = true;                    ///< also write the candump sidecar
 
+  /// The ini keys, one line each (common/param_table.h): load, save and the known keys.
+  void fields(ParamTable& t);
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section);
   void saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& section) const;
 };

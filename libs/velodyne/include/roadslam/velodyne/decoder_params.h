@@ -22,6 +22,10 @@ namespace mrpt::config {
 class CConfigFileBase;
 }
 
+namespace roadslam {
+class ParamTable;
+}
+
 namespace roadslam::velodyne {
 
 enum class DualReturns { Both, Strongest, Last };
@@ -38,6 +42,8 @@ struct DecoderParams {
   double cut_azimuth_rad = 0.0;      ///< [rad], ini key cut_azimuth_deg
   StampSource stamp_source = StampSource::Capture;
 
+  /// The ini keys, one line each (common/param_table.h): load, save and the known keys.
+  void fields(ParamTable& t);
   /// Throws std::runtime_error naming section/key on malformed or unknown values.
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section);
   void saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& section) const;
