@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <set>
 #include <sstream>
 
@@ -93,6 +94,30 @@ std::string errorOf(const ExperimentRequest& r) {
   return "";
 }
 
+/// The 2-configuration experiment run here and emitted for \p engine ("parallel", "slurm"), the
+/// emitted file run by \p run_emitted, collected: the metrics must equal the local pool's.
+void expectEmittedEqualsLocal(const std::string& name, const std::string& engine,
+                              const std::function<int(const std::string&)>& run_emitted) {
+  const std::string dir = freshDir(name);
+  const std::string exp = writeExp(dir, "[sweep]\nodometry.registration_voxel_m = 0.75, 1.0\n");
+  const auto local = runExperiment(request(exp, dir + "/local"));
+  auto emit = request(exp, dir + "/emitted");
+  emit.emit = engine;
+  const auto e = runExperiment(emit);
+  ASSERT_EQ(e.emitted, dir + (engine == "slurm" ? "/emitted/slurm.sbatch" : "/emitted/jobs.txt"));
+  ASSERT_EQ(run_emitted(e.emitted), 0);
+  const auto c = collect(dir + "/emitted");
+  ASSERT_EQ(c.ok, 2u);
+  for (size_t i = 0; i < 2; ++i) {
+    const auto& a = local.collected.results["jobs"][i];
+    const auto& b = c.results["jobs"][i];
+    EXPECT_EQ(a["params"], b["params"]);
+    for (const char* m : {"rte_percent", "ate_m", "rre_deg_per_100m", "frames", "failed_frames"}) {
+      EXPECT_EQ(a["metrics"][m], b["metrics"][m]) << m;
+    }
+  }
+}
+
 }  // namespace
 
 TEST(Experiment, JobsEqualTheMapJobRunAloneAndRerunsSkipThem) {
@@ -157,24 +182,8 @@ TEST(Experiment, AFailingJobAndAHangingJobAreRecordedAndTheOthersGoOn) {
 
 TEST(Experiment, GnuParallelOnTheEmittedListGivesTheInProcessResults) {
   if (std::system("command -v parallel > /dev/null 2>&1") != 0) GTEST_SKIP() << "GNU parallel is not installed (Debian: parallel)";
-  const std::string dir = freshDir("parallel");
-  const std::string exp = writeExp(dir, "[sweep]\nodometry.registration_voxel_m = 0.75, 1.0\n");
-  const auto local = runExperiment(request(exp, dir + "/local"));
-  auto emit = request(exp, dir + "/emitted");
-  emit.emit = "parallel";
-  const auto e = runExperiment(emit);
-  ASSERT_EQ(e.emitted, dir + "/emitted/jobs.txt");
-  ASSERT_EQ(std::system(("parallel --will-cite -j 2 < " + e.emitted).c_str()), 0);
-  const auto c = collect(dir + "/emitted");
-  ASSERT_EQ(c.ok, 2u);
-  for (size_t i = 0; i < 2; ++i) {
-    const auto& a = local.collected.results["jobs"][i];
-    const auto& b = c.results["jobs"][i];
-    EXPECT_EQ(a["params"], b["params"]);
-    for (const char* m : {"rte_percent", "ate_m", "rre_deg_per_100m", "frames", "failed_frames"}) {
-      EXPECT_EQ(a["metrics"][m], b["metrics"][m]) << m;
-    }
-  }
+  expectEmittedEqualsLocal("parallel", "parallel",
+                           [](const std::string& list) { return std::system(("parallel --will-cite -j 2 < " + list).c_str()); });
 }
 
 TEST(Experiment, BadExperimentsStopBeforeAnyJobNamingFileAndLine) {
@@ -254,20 +263,7 @@ TEST(Experiment, SlurmArrayOnAOneNodeClusterGivesTheInProcessResults) {
     std::string cmd;
     ~Stop() { (void)std::system(cmd.c_str()); }
   } stop{kSrc + "/scripts/slurm_localhost.sh stop " + state};
-  const std::string dir = freshDir("slurm");
-  const std::string exp = writeExp(dir, "[sweep]\nodometry.registration_voxel_m = 0.75, 1.0\n");
-  const auto local = runExperiment(request(exp, dir + "/local"));
-  auto emit = request(exp, dir + "/emitted");
-  emit.emit = "slurm";
-  const auto e = runExperiment(emit);
-  ASSERT_EQ(e.emitted, dir + "/emitted/slurm.sbatch");
-  ASSERT_EQ(std::system(("SLURM_CONF=" + conf + " sbatch --wait --quiet " + e.emitted).c_str()), 0);
-  const auto c = collect(dir + "/emitted");
-  ASSERT_EQ(c.ok, 2u);
-  for (size_t i = 0; i < 2; ++i) {
-    const auto& a = local.collected.results["jobs"][i];
-    const auto& b = c.results["jobs"][i];
-    EXPECT_EQ(a["params"], b["params"]);
-    for (const char* m : {"rte_percent", "ate_m", "rre_deg_per_100m", "frames"}) EXPECT_EQ(a["metrics"][m], b["metrics"][m]) << m;
-  }
+  expectEmittedEqualsLocal("slurm", "slurm", [&conf](const std::string& script) {
+    return std::system(("SLURM_CONF=" + conf + " sbatch --wait --quiet " + script).c_str());
+  });
 }
