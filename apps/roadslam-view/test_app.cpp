@@ -136,6 +136,24 @@ TEST(RoadslamViewApp, RunSlamPostsTheOdometrysFrames) {
                        (f.dir / "slam_seq").string() + " --every 3");
   ASSERT_EQ(r.status, 0) << r.out;
   EXPECT_NE(r.out.find("odometry (--run-slam): 6 sweeps, 6 frames posted"), std::string::npos) << r.out;
+  // the strip of the odometry's figures under the view: its ms-per-frame yellow, only with frames
+  const auto yellow = [](const fs::path& png) {
+    mrpt::img::CImage img;
+    if (!img.loadFromFile(png.string())) return -1;
+    int n = 0;
+    for (int y = static_cast<int>(img.getHeight()) * 4 / 5; y < static_cast<int>(img.getHeight()); ++y)
+      for (int x = 0; x < static_cast<int>(img.getWidth()); ++x) {
+        const auto* p = img.ptr<uint8_t>(x, y);  // BGR
+        n += p[2] > 120 && p[1] > 90 && p[0] < 60 && p[2] > p[1];  // yellow, scaled and blended
+      }
+    return n;
+  };
+  const fs::path with = f.dir / "slam_at.png", without = f.dir / "no_slam_at.png";
+  ASSERT_EQ(run(f.rawlog.string() + " --run-slam " + src + "/ini/default.ini --size 640x360 --render " + with.string() +
+                " --at 0.3").status, 0);
+  ASSERT_EQ(run(f.rawlog.string() + " --size 640x360 --render " + without.string() + " --at 0.3").status, 0);
+  EXPECT_GT(yellow(with), 5) << "ms per frame plotted";
+  EXPECT_EQ(yellow(without), 0) << "no frames, no strip";
   const fs::path typo = f.dir / "typo.ini";
   std::ofstream(typo) << "[odometry]\nregistration_voxel_sise_m = 1\n";
   const AppRun bad = run(f.rawlog.string() + " --run-slam " + typo.string() + " --render " + (f.dir / "x.png").string());

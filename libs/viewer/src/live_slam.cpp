@@ -46,6 +46,8 @@ void LiveSlam::run(Impl& impl) {
       out.T_map_lidar = r.T_world_lidar;
       out.status = odometry::toString(r.status);
       out.keyframe = r.keyframe;
+      out.ms = r.ms_total;
+      out.inliers = r.inliers;
       if (r.status != odometry::FrameStatus::Skipped) model_.postFrame(out);
       last_stamp_s_ = r.stamp_s;
       ++frames_;

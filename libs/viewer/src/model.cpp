@@ -7,6 +7,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 #include <unordered_set>
@@ -156,11 +157,21 @@ void ViewerModel::loadMapFolder(const std::string& dir) {
   const auto traj = datasets::readTum(tum);
   // frames.csv: index,stamp_s,status,point_times,deskewed,keyframe,... (one row per trajectory pose)
   std::vector<std::vector<std::string>> rows;
+  std::map<std::string, std::size_t> col;  // frames.csv's columns by name
   if (std::ifstream csv(dir + "/frames.csv"); csv) {
     std::string line;
     std::getline(csv, line);
+    const auto header = splitCsv(line);
+    for (std::size_t c = 0; c < header.size(); ++c) col[header[c]] = c;
     while (std::getline(csv, line)) rows.push_back(splitCsv(line));
   }
+  const auto number = [&col](const std::vector<std::string>& row, const char* name) {
+    const auto it = col.find(name);
+    if (it == col.end() || it->second >= row.size()) return std::nan("");
+    char* end = nullptr;
+    const double v = std::strtod(row[it->second].c_str(), &end);
+    return end == row[it->second].c_str() ? std::nan("") : v;
+  };
   for (std::size_t i = 0; i < traj.poses.size(); ++i) {
     FrameResult f;
     f.stamp_s = traj.stamps_s.at(i);
@@ -168,6 +179,8 @@ void ViewerModel::loadMapFolder(const std::string& dir) {
     if (i < rows.size() && rows[i].size() > 5) {
       f.status = rows[i][2];
       f.keyframe = rows[i][5] == "1";
+      f.ms = number(rows[i], "ms_total");
+      f.inliers = number(rows[i], "inliers");
     }
     appendFrame(f);
   }

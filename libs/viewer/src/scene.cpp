@@ -1,5 +1,7 @@
 #include "roadslam/viewer/scene.h"
 
+#include "roadslam/viewer/plots.h"
+
 #include <mrpt/img/color_maps.h>
 #include <mrpt/opengl/COpenGLScene.h>
 #include <mrpt/opengl/CPointCloud.h>
@@ -174,6 +176,13 @@ CameraView buildScene(const ViewerModel& model, const SceneState& st, const Scen
   cam.setElevationDegrees(float(view.elevation_deg));
   cam.setZoomDistance(float(view.distance_m));
 
+  if (o.plots && hasFramePlots(model)) {
+    // the strip under the view: the odometry's figures over time, a cursor at the replay's time
+    auto strip = scene.createViewport("plots");
+    strip->setViewportPosition(0.0, 0.0, 1.0, 0.2);
+    strip->setCustomBackgroundColor(mrpt::img::TColorf(15 / 255.f, 15 / 255.f, 20 / 255.f));
+    strip->setImageView(framePlots(model, st.t_s, 1280, 144));  // the strip of a 16:9 view
+  }
   if (o.hud) {
     char line[256];
     const double t_rel = st.t_s - model.startTime();

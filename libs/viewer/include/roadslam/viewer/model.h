@@ -12,6 +12,7 @@
 
 #include <Eigen/Geometry>
 
+#include <cmath>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -28,6 +29,8 @@ struct FrameResult {
   Eigen::Isometry3d T_map_lidar = Eigen::Isometry3d::Identity();
   std::string status = "ok";                           ///< ok, standstill, degenerate, ...
   bool keyframe = false;
+  double ms = std::nan("");       ///< the odometry's wall time for the sweep (frames.csv ms_total) [ms]
+  double inliers = std::nan("");  ///< registration inliers [-]
 };
 
 /// An accepted loop closure between two frames (their lidar positions in the map frame [m]).

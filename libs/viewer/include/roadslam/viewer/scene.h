@@ -46,6 +46,7 @@ struct SceneOptions {
   double orbit_elevation_deg = 35;
   double orbit_distance_m = 60;
   bool hud = true;                 ///< a text line with time, observation and colour mode
+  bool plots = true;               ///< the strip of per-frame odometry figures under the view (plots.h)
 };
 
 /// Colours of the overlays (RGB 0-255), fixed so tests and readers can find them in a picture.

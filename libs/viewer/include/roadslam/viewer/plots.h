@@ -1,0 +1,28 @@
+#pragma once
+/// \file plots.h
+/// The strip of plots under the 3D view: the odometry's per-frame figures over the recording's time
+/// (ms per frame, registration inliers; frames that failed or were degenerate marked on top) with a
+/// cursor at the replay's time. Drawn into an image (the same in the window and headless renders).
+
+#include <mrpt/img/CImage.h>
+
+#include "roadslam/viewer/model.h"
+
+namespace roadslam::viewer {
+
+/// Colours of the strip (RGB), fixed so tests can find them.
+struct PlotColors {
+  static constexpr unsigned char ms[3] = {255, 210, 0};       // ms per frame: yellow
+  static constexpr unsigned char inliers[3] = {0, 200, 255};  // inliers: cyan
+  static constexpr unsigned char failed[3] = {255, 40, 40};   // not converged / empty frames
+  static constexpr unsigned char degenerate[3] = {255, 140, 0};
+  static constexpr unsigned char cursor[3] = {255, 255, 255};
+};
+
+/// True when the model's frames carry figures to plot (a map folder's frames.csv, --run-slam).
+bool hasFramePlots(const ViewerModel& model);
+
+/// The strip, \p width x \p height pixels, for replay time \p t_s.
+mrpt::img::CImage framePlots(const ViewerModel& model, double t_s, int width, int height);
+
+}  // namespace roadslam::viewer
