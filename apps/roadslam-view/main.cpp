@@ -15,6 +15,9 @@ int main(int argc, char** argv) {
   app.add_option("--map", req.inputs.map_dir, "roadslam-map output folder")->check(CLI::ExistingDirectory);
   app.add_option("--bounds", req.inputs.bounds_dir, "roadslam-bounds output folder")->check(CLI::ExistingDirectory);
   app.add_option("--gt", req.inputs.ground_truth, "ground-truth trajectory (TUM)")->check(CLI::ExistingFile);
+  app.add_option("--can", req.inputs.can_log, "candump log of the same drive: speed and yaw rate plotted under the view")
+      ->check(CLI::ExistingFile);
+  app.add_option("--vehicle", req.inputs.vehicle_ini, "the car's vehicle ini (ini/vehicles/...), with --can")->check(CLI::ExistingFile);
   app.add_option("--render", req.render_png, "render the scene at --at into this PNG (no window) and exit");
   app.add_option("--at", req.at_s, "time for --render, seconds from the start of the recording");
   app.add_option("--render-sequence", req.sequence_dir, "render every --every-th sweep into DIR/NNNNNN.png and exit");

@@ -6,11 +6,13 @@
 #include <mrpt/img/CImage.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <sstream>
 #include <string>
 
 #include "roadslam/sources/rawlog_index.h"
@@ -197,6 +199,48 @@ TEST(RoadslamViewApp, OpensAPcapAndWritesAVideo) {
   ASSERT_EQ(std::fscanf(p, "%d", &frames), 1);
   pclose(p);
   EXPECT_EQ(frames, 3) << "ffprobe counts the encoded frames";
+}
+
+// --can with the car's vehicle ini: the simulator's CAN log decoded with its DBC, speed and yaw rate
+// plotted under the view; the top speed against the simulator's own vehicle ground truth.
+TEST(RoadslamViewApp, CanSignalsOfTheDriveArePlotted) {
+  const auto& f = fixture();
+  const std::string bin = fs::path(kBin).parent_path().string(), src = ROADSLAM_SOURCE_DIR;
+  const fs::path sim = f.dir / "sim4";
+  ASSERT_EQ(std::system((bin + "/roadslam-sim --scenario " + src + "/ini/sim/urban-loop.ini --duration 4 --out " +
+                         sim.string() + " > /dev/null 2>&1").c_str()), 0);
+  double v_gt = 0;
+  {
+    std::ifstream csv(sim / "gt_vehicle.csv");
+    std::string line;
+    std::getline(csv, line);  // t,x,y,z,yaw_rad,pitch_rad,roll_rad,speed_mps,...
+    while (std::getline(csv, line)) {
+      std::stringstream ss(line);
+      std::string cell;
+      for (int c = 0; c <= 7 && std::getline(ss, cell, ','); ++c)
+        if (c == 7) v_gt = std::max(v_gt, std::stod(cell));
+    }
+  }
+  const fs::path png = f.dir / "can.png";
+  const AppRun r = run((sim / "velodyne.pcap").string() + " --can " + (sim / "can.log").string() + " --vehicle " + src +
+                       "/ini/vehicles/roadslam-sim.ini --size 640x360 --render " + png.string() + " --at 3");
+  ASSERT_EQ(r.status, 0) << r.out;
+  const auto at = r.out.find("CAN: ");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  std::size_t samples = 0;
+  double span = 0, v = 0;
+  ASSERT_EQ(std::sscanf(r.out.c_str() + at, "CAN: %zu samples over %lf s, speed up to %lf m/s", &samples, &span, &v), 3) << r.out;
+  EXPECT_NEAR(static_cast<double>(samples), 80.0, 5.0) << "4 s at 20 Hz";
+  EXPECT_NEAR(v, v_gt, 0.05 * v_gt + 0.2) << "the simulator writes a wheel-speed scale error of a few per cent";
+  mrpt::img::CImage img;
+  ASSERT_TRUE(img.loadFromFile(png.string()));
+  int green = 0;
+  for (int y = static_cast<int>(img.getHeight()) * 4 / 5; y < static_cast<int>(img.getHeight()); ++y)
+    for (int x = 0; x < static_cast<int>(img.getWidth()); ++x) {
+      const auto* p = img.ptr<uint8_t>(x, y);  // BGR
+      green += p[1] > 150 && p[0] < 120 && p[2] < 120;
+    }
+  EXPECT_GT(green, 10) << "the speed curve";
 }
 
 TEST(RoadslamViewApp, BadInputsExitWithOneLineNamingTheProblem) {

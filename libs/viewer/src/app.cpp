@@ -2,6 +2,8 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -29,10 +31,10 @@ std::string summaryLine(const ViewerModel& m) {
   char buf[400];
   std::snprintf(buf, sizeof buf,
                 "%s: %zu observations over %.1f s (index %s, %.0f ms); %zu frames, %zu loops, %zu map points, "
-                "%zu boundary sweeps, %zu ground-truth poses",
+                "%zu boundary sweeps, %zu ground-truth poses, %zu CAN samples",
                 idx.path().c_str(), idx.size(), m.endTime() - m.startTime(),
                 idx.openInfo().from_cache ? "cached" : "built", idx.openInfo().seconds * 1e3, m.frames().size(),
-                m.loops().size(), m.mapPoints().size(), m.boundaries().size(), m.groundTruth().size());
+                m.loops().size(), m.mapPoints().size(), m.boundaries().size(), m.groundTruth().size(), m.can().size());
   return buf;
 }
 
@@ -82,6 +84,14 @@ int runView(const ViewRequest& req, std::ostream& out, std::ostream& err) {
   ViewerModel model(in);
   for (const auto& warning : model.warnings()) err << "roadslam-view: warning: " << warning << "\n";
   out << summaryLine(model) << "\n";
+  if (!model.can().empty()) {
+    double v_max = 0;
+    for (const auto& c : model.can()) v_max = std::isfinite(c.speed_mps) ? std::max(v_max, c.speed_mps) : v_max;
+    char line[160];
+    std::snprintf(line, sizeof line, "CAN: %zu samples over %.1f s, speed up to %.2f m/s", model.can().size(),
+                  model.can().back().t_s - model.can().front().t_s, v_max);
+    out << line << "\n";
+  }
   std::unique_ptr<LiveSlam> slam;
   if (!req.run_slam_ini.empty()) slam = std::make_unique<LiveSlam>(req.run_slam_ini, in.recording, model);
   Replay replay(model);

@@ -1,5 +1,9 @@
 #include "roadslam/viewer/model.h"
 
+#include "roadslam/can/candump.h"
+#include "roadslam/vehicle/params.h"
+#include "roadslam/vehicle/vehicle_state.h"
+
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -74,6 +78,7 @@ ViewerModel::ViewerModel(const ViewerInputs& in) : in_(in) {
   if (!in.map_dir.empty()) loadMapFolder(in.map_dir);
   if (!in.bounds_dir.empty()) loadBounds(in.bounds_dir);
   if (!in.ground_truth.empty()) loadGroundTruth(in.ground_truth);
+  if (!in.can_log.empty()) loadCan(in.can_log, in.vehicle_ini);
 }
 
 ViewerModel::~ViewerModel() = default;
@@ -149,6 +154,32 @@ const FrameResult* ViewerModel::frameNear(double t_s, double tol_s) const {
 }
 const BoundaryFrame* ViewerModel::boundaryNear(double t_s, double tol_s) const {
   return nearest(bounds_, t_s, tol_s, [](const BoundaryFrame& r) { return r.stamp_s; });
+}
+
+void ViewerModel::loadCan(const std::string& log, const std::string& vehicle_ini) {
+  if (vehicle_ini.empty()) throw std::runtime_error("--can needs --vehicle (the car's vehicle ini)");
+  vehicle::VehicleDecoder decoder(vehicle::loadVehicleIni(vehicle_ini));
+  can::CandumpReader reader(log);
+  vehicle::VehicleState state;
+  can::CanFrame frame;
+  double last = -1e300;
+  while (reader.next(frame)) {
+    if (!decoder.process(frame, state)) continue;
+    const double t = static_cast<double>(frame.t_us) * 1e-6;
+    if (t - last < 0.05) continue;  // 20 Hz is plenty for a plot, and bounds the memory of long logs
+    last = t;
+    CanSample c;
+    c.t_s = t;
+    const bool wheels = state.has(vehicle::Quantity::kWheelFL) || state.has(vehicle::Quantity::kVehicleSpeed);
+    if (wheels) c.speed_mps = state.speed();
+    if (state.has(vehicle::Quantity::kYawRate)) c.yaw_rate_rad_s = state.value(vehicle::Quantity::kYawRate);
+    if (state.has(vehicle::Quantity::kSteeringAngle)) c.steering_rad = state.value(vehicle::Quantity::kSteeringAngle);
+    can_.push_back(c);
+  }
+  const auto& st = reader.stats();
+  if (st.bad > 0) warnings_.push_back("CAN log '" + log + "': " + std::to_string(st.bad) + " of " + std::to_string(st.lines) + " lines unreadable, skipped");
+  if (can_.empty()) warnings_.push_back("CAN log '" + log + "': no frame the vehicle ini '" + vehicle_ini + "' decodes");
+  else checkOverlap("CAN log '" + log + "' times", can_.front().t_s, can_.back().t_s);
 }
 
 void ViewerModel::loadMapFolder(const std::string& dir) {

@@ -46,11 +46,21 @@ struct BoundaryFrame {
   std::vector<Eigen::Vector3d> free_space;   ///< free-space polygon (from the vehicle frame at z = 0 of the lidar)
 };
 
+/// The car's CAN signals at one instant, decoded with its vehicle ini (NaN: not reported).
+struct CanSample {
+  double t_s = 0;                    ///< [s]
+  double speed_mps = std::nan("");   ///< wheel speeds' mean, else vehicle speed [m/s]
+  double yaw_rate_rad_s = std::nan("");
+  double steering_rad = std::nan("");
+};
+
 struct ViewerInputs {
   std::string recording;    ///< MRPT rawlog
   std::string map_dir;      ///< roadslam-map output folder (optional)
   std::string bounds_dir;   ///< roadslam-bounds output folder (optional)
   std::string ground_truth; ///< TUM trajectory T_world_lidar (optional)
+  std::string can_log;      ///< candump -l log of the same drive (optional), with vehicle_ini
+  std::string vehicle_ini;  ///< the car's vehicle ini (ini/vehicles/...): its DBC and signal mapping
   double map_voxel_m = 0.5; ///< the point map is decimated to one point per voxel of this size [m]
   sources::RawlogIndexOptions index;
 };
@@ -91,11 +101,14 @@ class ViewerModel {
   const std::vector<Eigen::Vector3d>& groundTruth() const { return gt_positions_; }
   const std::vector<BoundaryFrame>& boundaries() const { return bounds_; }
   const BoundaryFrame* boundaryNear(double t_s, double tolerance_s = 0.06) const;
+  /// CAN signals every 50 ms (the latest values then), when a log was given.
+  const std::vector<CanSample>& can() const { return can_; }
 
  private:
   void loadMapFolder(const std::string& dir);
   void loadBounds(const std::string& dir);
   void loadGroundTruth(const std::string& path);
+  void loadCan(const std::string& log, const std::string& vehicle_ini);
   void checkOverlap(const std::string& what, double t0, double t1);
 
   ViewerInputs in_;
@@ -109,6 +122,7 @@ class ViewerModel {
   std::vector<double> gt_stamps_;
   std::vector<Eigen::Vector3d> gt_positions_;
   std::vector<BoundaryFrame> bounds_;
+  std::vector<CanSample> can_;
 };
 
 /// Reads a binary little-endian float x,y,z PLY (as roadslam-map writes map.ply), keeping one point

@@ -1,8 +1,8 @@
 #pragma once
 /// \file plots.h
 /// The strip of plots under the 3D view: the odometry's per-frame figures over the recording's time
-/// (ms per frame, registration inliers; frames that failed or were degenerate marked on top) with a
-/// cursor at the replay's time. Drawn into an image (the same in the window and headless renders).
+/// (ms per frame, registration inliers; frames that failed or were degenerate marked on top) and the
+/// car's CAN speed and yaw rate, with a cursor at the replay's time. Drawn into an image (the same in the window and headless renders).
 
 #include <mrpt/img/CImage.h>
 
@@ -17,9 +17,12 @@ struct PlotColors {
   static constexpr unsigned char failed[3] = {255, 40, 40};   // not converged / empty frames
   static constexpr unsigned char degenerate[3] = {255, 140, 0};
   static constexpr unsigned char cursor[3] = {255, 255, 255};
+  static constexpr unsigned char speed[3] = {80, 230, 80};        // CAN speed: green
+  static constexpr unsigned char yaw_rate[3] = {210, 130, 255};   // CAN yaw rate: violet, 0 mid-height
 };
 
-/// True when the model's frames carry figures to plot (a map folder's frames.csv, --run-slam).
+/// True when the model has something to plot: frames with figures (a map folder's frames.csv,
+/// --run-slam) or CAN signals (--can).
 bool hasFramePlots(const ViewerModel& model);
 
 /// The strip, \p width x \p height pixels, for replay time \p t_s.
