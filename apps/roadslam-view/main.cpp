@@ -10,8 +10,8 @@ int main(int argc, char** argv) {
   roadslam::viewer::ViewRequest req;
   std::string color = "height", camera = "follow";
   roadslam::addVersionFlag(app, "roadslam-view");
-  app.add_option("recording", req.inputs.recording, "MRPT rawlog (observations or sensory-frames format) or Velodyne pcap")
-      ->required()->check(CLI::ExistingFile);
+  app.add_option("recording", req.inputs.recording, "MRPT rawlog (observations or sensory-frames format), Velodyne pcap or KITTI .bin folder")
+      ->required()->check(CLI::ExistingPath);
   app.add_option("--map", req.inputs.map_dir, "roadslam-map output folder")->check(CLI::ExistingDirectory);
   app.add_option("--bounds", req.inputs.bounds_dir, "roadslam-bounds output folder")->check(CLI::ExistingDirectory);
   app.add_option("--gt", req.inputs.ground_truth, "ground-truth trajectory (TUM)")->check(CLI::ExistingFile);

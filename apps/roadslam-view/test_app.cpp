@@ -7,6 +7,7 @@
 #include <sys/wait.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -15,6 +16,7 @@
 #include <sstream>
 #include <string>
 
+#include "roadslam/datasets/kitti_scans.h"
 #include "roadslam/sources/rawlog_index.h"
 #include "roadslam/sources/recording.h"
 
@@ -199,6 +201,35 @@ TEST(RoadslamViewApp, OpensAPcapAndWritesAVideo) {
   ASSERT_EQ(std::fscanf(p, "%d", &frames), 1);
   pclose(p);
   EXPECT_EQ(frames, 3) << "ffprobe counts the encoded frames";
+}
+
+// A KITTI folder opens directly: its .bin sweeps as point-cloud observations, one per file, stamped
+// from its times.txt.
+TEST(RoadslamViewApp, OpensAKittiFolder) {
+  const auto& f = fixture();
+  const fs::path kitti = f.dir / "kitti" / "velodyne_points" / "data";
+  fs::create_directories(kitti);
+  std::ofstream times(f.dir / "kitti" / "velodyne_points" / "times.txt");
+  for (int k = 0; k < 3; ++k) {
+    roadslam::Scan s;
+    for (int i = 0; i < 2000; ++i) {
+      roadslam::ScanPoint p;
+      const double a = i * 0.00314;
+      p.x = static_cast<float>(10 * std::cos(a)), p.y = static_cast<float>(10 * std::sin(a)), p.z = -1.7f;
+      p.intensity = 0.5f;
+      s.points.push_back(p);
+    }
+    char name[32];
+    std::snprintf(name, sizeof name, "%010d.bin", k);
+    roadslam::datasets::writeKittiBin((kitti / name).string(), s);
+    times << 100.0 + k << "\n";
+  }
+  times.close();
+  const AppRun r = run(kitti.string() + " --size 320x240 --render " + (f.dir / "kitti.png").string() + " --at 1");
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("converting the KITTI folder"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(": 3 observations over 2.0 s"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("observation 1"), std::string::npos) << r.out;
 }
 
 // --can with the car's vehicle ini: the simulator's CAN log decoded with its DBC, speed and yaw rate

@@ -1,5 +1,10 @@
 #include "roadslam/viewer/app.h"
 
+#include <mrpt/config/CConfigFileMemory.h>
+#include <mrpt/io/CFileGZOutputStream.h>
+#include <mrpt/maps/CPointsMapXYZI.h>
+#include <mrpt/obs/CObservationPointCloud.h>
+#include <mrpt/serialization/CArchive.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -11,6 +16,7 @@
 #include <stdexcept>
 
 #include "roadslam/sources/recording.h"
+#include "roadslam/sources/scan_source.h"
 #include "roadslam/viewer/live_slam.h"
 #include "roadslam/viewer/render.h"
 #include "roadslam/viewer/replay.h"
@@ -38,8 +44,52 @@ std::string summaryLine(const ViewerModel& m) {
   return buf;
 }
 
+namespace {
+
+/// A KITTI folder of NNNNNN.bin sweeps as an MRPT rawlog of CObservationPointCloud (x, y, z,
+/// intensity; stamped as datasets::KittiParams times them: times.txt, else the nominal rate).
+void kittiToRawlog(const std::string& folder, const std::string& out) {
+  mrpt::config::CConfigFileMemory no_ini;
+  auto src = sources::openScanSource(folder, no_ini);
+  const std::string tmp = out + ".part";
+  {
+    mrpt::io::CFileGZOutputStream f(tmp);
+    if (!f.fileOpenCorrectly()) throw std::runtime_error("cannot write '" + tmp + "'");
+    auto ar = mrpt::serialization::archiveFrom(f);
+    while (auto scan = src->next()) {
+      auto obs = mrpt::obs::CObservationPointCloud::Create();
+      obs->sensorLabel = "KITTI";
+      obs->timestamp = mrpt::Clock::fromDouble(scan->stamp_s);
+      auto pts = mrpt::maps::CPointsMapXYZI::Create();
+      pts->reserve(scan->points.size());
+      for (const auto& q : scan->points) {
+        pts->insertPointFast(q.x, q.y, q.z);
+        pts->setPointIntensity(pts->size() - 1, q.intensity);
+      }
+      obs->pointcloud = pts;
+      ar << *obs;
+    }
+  }
+  if (!src->errorMessage().empty()) throw std::runtime_error(src->errorMessage());
+  std::filesystem::rename(tmp, out);
+}
+
+}  // namespace
+
 std::string recordingToOpen(const std::string& path, std::ostream& err) {
   namespace fs = std::filesystem;
+  if (fs::is_directory(path)) {
+    const std::string folder = fs::path(path).lexically_normal().string();
+    std::string out = (folder.back() == '/' ? folder.substr(0, folder.size() - 1) : folder) + ".rawlog";
+    if (access(fs::path(out).parent_path().c_str(), W_OK) != 0) {
+      out = (fs::temp_directory_path() / (fs::path(out).filename().string())).string();
+    }
+    std::error_code ec;
+    if (fs::exists(out) && fs::last_write_time(out, ec) >= fs::last_write_time(path, ec)) return out;
+    err << "roadslam-view: converting the KITTI folder " << path << " into " << out << " once ...\n";
+    kittiToRawlog(path, out);
+    return out;
+  }
   const std::string ext = fs::path(path).extension().string();
   if (ext != ".pcap" && ext != ".pcapng") return path;
   std::string out = path + ".rawlog";
