@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   app.add_option("--map", req.inputs.map_dir, "roadslam-map output folder")->check(CLI::ExistingDirectory);
   app.add_option("--bounds", req.inputs.bounds_dir, "roadslam-bounds output folder")->check(CLI::ExistingDirectory);
   app.add_option("--gt", req.inputs.ground_truth, "ground-truth trajectory (TUM)")->check(CLI::ExistingFile);
+  app.add_flag("--octomap", req.inputs.octomap, "draw the map folder's OctoMap (map.bt) occupied voxels instead of its point map");
   app.add_option("--can", req.inputs.can_log, "candump log of the same drive: speed and yaw rate plotted under the view")
       ->check(CLI::ExistingFile);
   app.add_option("--vehicle", req.inputs.vehicle_ini, "the car's vehicle ini (ini/vehicles/...), with --can")->check(CLI::ExistingFile);

@@ -129,6 +129,12 @@ TEST(RoadslamViewApp, OpensRealMapAndBoundsFolders) {
   EXPECT_NE(r.out.find(" 6 frames, 0 loops, "), std::string::npos) << r.out;  // the box room's 6 sweeps
   EXPECT_NE(r.out.find(" 6 boundary sweeps, 6 ground-truth poses"), std::string::npos) << r.out;
   EXPECT_TRUE(fs::exists(f.dir / "real.png"));
+  // --octomap: the map folder's map.bt occupied leaves instead of its point map
+  const AppRun o = run(f.rawlog.string() + " --map " + map.string() + " --octomap --size 320x240 --render " +
+                       (f.dir / "octo.png").string() + " --at 0.3");
+  EXPECT_EQ(o.status, 0) << o.out;
+  EXPECT_NE(o.out.find(" 0 map points, "), std::string::npos) << o.out;
+  EXPECT_EQ(o.out.find(" 0 OctoMap voxels"), std::string::npos) << "the box room's walls are occupied: " << o.out;
 }
 
 // --run-slam: the pipeline's odometry over the replayed recording posts one frame per sweep, as many

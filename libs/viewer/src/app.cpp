@@ -34,13 +34,13 @@ std::pair<int, int> parseSize(const std::string& text) {
 
 std::string summaryLine(const ViewerModel& m) {
   const auto& idx = m.recording();
-  char buf[400];
+  char buf[600];
   std::snprintf(buf, sizeof buf,
                 "%s: %zu observations over %.1f s (index %s, %.0f ms); %zu frames, %zu loops, %zu map points, "
-                "%zu boundary sweeps, %zu ground-truth poses, %zu CAN samples",
+                "%zu boundary sweeps, %zu ground-truth poses, %zu CAN samples, %zu OctoMap voxels",
                 idx.path().c_str(), idx.size(), m.endTime() - m.startTime(),
                 idx.openInfo().from_cache ? "cached" : "built", idx.openInfo().seconds * 1e3, m.frames().size(),
-                m.loops().size(), m.mapPoints().size(), m.boundaries().size(), m.groundTruth().size(), m.can().size());
+                m.loops().size(), m.mapPoints().size(), m.boundaries().size(), m.groundTruth().size(), m.can().size(), m.octoVoxels().size());
   return buf;
 }
 

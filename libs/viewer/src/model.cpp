@@ -1,5 +1,7 @@
 #include "roadslam/viewer/model.h"
 
+#include <octomap/OcTree.h>
+
 #include "roadslam/can/candump.h"
 #include "roadslam/vehicle/params.h"
 #include "roadslam/vehicle/vehicle_state.h"
@@ -229,7 +231,19 @@ void ViewerModel::loadMapFolder(const std::string& dir) {
       throw std::runtime_error("cannot read '" + dir + "/summary.json': " + e.what());
     }
   }
-  if (fs::exists(dir + "/map.ply")) map_points_ = readPlyPoints(dir + "/map.ply", in_.map_voxel_m);
+  if (in_.octomap) {
+    const std::string bt = dir + "/map.bt";
+    if (!fs::exists(bt)) throw std::runtime_error("--octomap: map folder '" + dir + "' has no map.bt ([octomap] enabled = false?)");
+    octomap::OcTree tree(0.1);
+    if (!tree.readBinary(bt)) throw std::runtime_error("cannot read the OctoMap '" + bt + "'");
+    for (auto it = tree.begin_leafs(), end = tree.end_leafs(); it != end; ++it) {
+      if (!tree.isNodeOccupied(*it)) continue;
+      const auto c = it.getCoordinate();
+      octo_voxels_.emplace_back(c.x(), c.y(), c.z(), static_cast<float>(it.getSize()));
+    }
+  } else if (fs::exists(dir + "/map.ply")) {
+    map_points_ = readPlyPoints(dir + "/map.ply", in_.map_voxel_m);
+  }
 }
 
 void ViewerModel::loadBounds(const std::string& dir) {

@@ -3,6 +3,7 @@
 #include "roadslam/viewer/plots.h"
 
 #include <mrpt/img/color_maps.h>
+#include <mrpt/opengl/COctoMapVoxels.h>
 #include <mrpt/opengl/COpenGLScene.h>
 #include <mrpt/opengl/CPointCloud.h>
 #include <mrpt/opengl/CPointCloudColoured.h>
@@ -114,6 +115,17 @@ CameraView buildScene(const ViewerModel& model, const SceneState& st, const Scen
   const double t_pose = st.sweep ? st.sweep->stamp_s : st.t_s;
   const Eigen::Isometry3d T_map_lidar = poseAt(model, t_pose);
 
+  if (o.show_map && !model.octoVoxels().empty()) {
+    auto voxels = COctoMapVoxels::Create();
+    voxels->resizeVoxelSets(1);
+    voxels->showVoxels(0, true);
+    voxels->showGridLines(false);
+    voxels->enableLights(false);
+    voxels->setVisualizationMode(COctoMapVoxels::FIXED);
+    for (const auto& v : model.octoVoxels())
+      voxels->push_back_Voxel(0, COctoMapVoxels::TVoxel({v.x(), v.y(), v.z()}, v.w(), rgb(SceneColors::map)));
+    scene.insert(voxels);
+  }
   if (o.show_map && !model.mapPoints().empty()) {
     auto map = CPointCloud::Create();
     for (const auto& p : model.mapPoints()) map->insertPoint(p.x(), p.y(), p.z());

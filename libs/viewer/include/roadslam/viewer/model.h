@@ -62,6 +62,7 @@ struct ViewerInputs {
   std::string can_log;      ///< candump -l log of the same drive (optional), with vehicle_ini
   std::string vehicle_ini;  ///< the car's vehicle ini (ini/vehicles/...): its DBC and signal mapping
   double map_voxel_m = 0.5; ///< the point map is decimated to one point per voxel of this size [m]
+  bool octomap = false;     ///< the map folder's OctoMap (map.bt) occupied voxels instead of its point map
   sources::RawlogIndexOptions index;
 };
 
@@ -97,6 +98,8 @@ class ViewerModel {
 
   const std::vector<LoopEdge>& loops() const { return loops_; }
   const std::vector<Eigen::Vector3f>& mapPoints() const { return map_points_; }  ///< decimated, map frame
+  /// Occupied OctoMap leaves (centre, map frame [m]) and their side [m], with ViewerInputs::octomap.
+  const std::vector<Eigen::Vector4f>& octoVoxels() const { return octo_voxels_; }
   const std::vector<double>& groundTruthStamps() const { return gt_stamps_; }
   const std::vector<Eigen::Vector3d>& groundTruth() const { return gt_positions_; }
   const std::vector<BoundaryFrame>& boundaries() const { return bounds_; }
@@ -119,6 +122,7 @@ class ViewerModel {
   std::vector<FrameResult> posted_;
   std::vector<LoopEdge> loops_;
   std::vector<Eigen::Vector3f> map_points_;
+  std::vector<Eigen::Vector4f> octo_voxels_;
   std::vector<double> gt_stamps_;
   std::vector<Eigen::Vector3d> gt_positions_;
   std::vector<BoundaryFrame> bounds_;
