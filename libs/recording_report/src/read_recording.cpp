@@ -1,0 +1,117 @@
+// The sensor part of the report: every packet of a pcap, a rawlog or a grab folder's rawlog segments,
+// grouped into streams (one per LiDAR source address and port, its position packets, GPS records).
+#include <algorithm>
+#include <filesystem>
+#include <map>
+#include <stdexcept>
+
+#include "internal.h"
+#include "roadslam/sources/rawlog_source.h"
+#include "roadslam/sources/recording.h"
+
+namespace fs = std::filesystem;
+
+namespace roadslam::recording_report {
+namespace {
+
+std::string ipText(uint32_t ip) {
+  if (ip == 0) return "";
+  return std::to_string(ip >> 24) + "." + std::to_string((ip >> 16) & 0xFF) + "." + std::to_string((ip >> 8) & 0xFF) +
+         "." + std::to_string(ip & 0xFF) + ":";
+}
+
+/// One LiDAR's data packets: stamps, azimuth wraps (sweeps), packets missing from its own clock.
+struct LidarAcc {
+  std::vector<double> stamps, wraps;
+  sources::GapCounter gaps;
+  int last_azimuth = -1;
+  uint8_t product = 0, mode = 0;
+  void feed(const velodyne::RawPacket& p) {
+    stamps.push_back(p.stamp_s);
+    gaps.feed(p.payload.data());
+    const int az = p.payload[2] | (p.payload[3] << 8);  // first block azimuth [0.01 deg]
+    if (last_azimuth >= 0 && az < last_azimuth - 18000) wraps.push_back(p.stamp_s);  // a turn completed
+    last_azimuth = az;
+    product = p.payload[1205];
+    mode = p.payload[1204];
+  }
+};
+
+std::string modelName(uint8_t product) {
+  switch (static_cast<velodyne::Model>(product)) {
+    case velodyne::Model::VLP16: return "vlp16";
+    case velodyne::Model::HDL32: return "hdl32";
+    default: return "unknown (0x" + std::to_string(product) + ")";
+  }
+}
+
+}  // namespace
+
+std::vector<std::string> recordingFiles(const std::string& path) {
+  if (!fs::is_directory(path)) return {path};
+  std::vector<std::string> files;
+  for (const auto& e : fs::directory_iterator(path)) {
+    const std::string n = e.path().filename().string();
+    if (e.is_regular_file() && n.find(".rawlog") != std::string::npos && n.find(".ini") == std::string::npos)
+      files.push_back(e.path().string());
+  }
+  std::sort(files.begin(), files.end());  // grab_000, grab_001, ...: recording order
+  if (files.empty()) throw std::runtime_error(path + ": a folder without rawlog segments (grab_*.rawlog)");
+  return files;
+}
+
+std::vector<PendingStream> readSensors(RecordingReport& r) {
+  std::map<std::string, LidarAcc> lidars;
+  std::map<std::string, std::vector<double>> other;  // position packets, GPS records
+  uint64_t malformed = 0;
+  for (const std::string& file : r.files) {
+    auto src = sources::openRecording(file);
+    auto* rawlog = dynamic_cast<sources::RawlogPacketSource*>(src.get());
+    r.format = rawlog ? "rawlog" : "pcap";
+    while (auto pkt = src->next()) {
+      const std::string where = ipText(pkt->src_ip) + std::to_string(pkt->dst_port);
+      if (pkt->payload.size() == velodyne::kDataPacketSize) {
+        lidars["velodyne " + where].feed(*pkt);
+      } else {
+        other["position packets " + where].push_back(pkt->stamp_s);
+      }
+      for (const auto& fix : src->takeDecodedFixes()) other["gps (rawlog)"].push_back(fix.stamp_s);
+    }
+    for (const auto& fix : src->takeDecodedFixes()) other["gps (rawlog)"].push_back(fix.stamp_s);
+    malformed += src->stats().malformed_packets;
+    if (rawlog) r.sensor_records += rawlog->otherRecords();
+    if (!src->errorMessage().empty()) {
+      if (lidars.empty() && other.empty()) throw std::runtime_error(src->errorMessage());
+      r.damage = src->errorMessage();
+      break;  // the segments after a damaged one are not read: the report covers the data before it
+    }
+  }
+  if (lidars.empty() && other.empty()) throw std::runtime_error(r.recording + ": no Velodyne or GPS data in it");
+  std::vector<PendingStream> out;
+  for (auto& [label, acc] : lidars) {
+    PendingStream ps;
+    const bool dual = acc.mode == static_cast<uint8_t>(velodyne::ReturnMode::Dual);
+    const auto model = static_cast<velodyne::Model>(acc.product);
+    if (model != velodyne::Model::Unknown) ps.nominal_period_s = sources::GapCounter::packetPeriod_s(model, dual);
+    ps.info.label = label;
+    ps.info.kind = "lidar";
+    ps.info.model = modelName(acc.product);
+    ps.info.drops = acc.gaps.missing();
+    ps.info.malformed = malformed;
+    ps.info.sweeps = acc.wraps.size() > 1 ? acc.wraps.size() - 1 : 0;
+    if (ps.info.sweeps > 0)
+      ps.info.sweep_rate_hz = static_cast<double>(ps.info.sweeps) / (acc.wraps.back() - acc.wraps.front());
+    ps.stamps = std::move(acc.stamps);
+    out.push_back(std::move(ps));
+  }
+  for (auto& [label, t] : other) {
+    PendingStream ps;
+    ps.info.label = label;
+    ps.info.kind = "gps";
+    ps.stamps = std::move(t);
+    out.push_back(std::move(ps));
+  }
+  return out;
+}
+
+}  // namespace roadslam::recording_report
