@@ -25,6 +25,8 @@ int main(int argc, char** argv) {
   app.add_option("--vehicle", in.vehicle_ini, "vehicle ini (ini/vehicles/X.ini): DBC names, signals, dead reckoning")
       ->check(CLI::ExistingFile);
   app.add_option("--map", in.map_dir, "roadslam-map output folder: trajectory and map pictures");
+  app.add_option("--lidar-model", in.lidar_model, "force the LiDAR model when the packets' product byte lies")
+      ->check(CLI::IsMember({"vlp16", "hdl32"}));
   app.add_option("--gap-factor", p.gap_factor, "an interval over this many nominal periods is a gap")
       ->check(CLI::Range(1.0, 1e6));
   app.add_option("--min-gap", p.min_gap_s, "shorter intervals are never gaps [s]")->check(CLI::Range(0.0, 1e6));
@@ -33,6 +35,7 @@ int main(int argc, char** argv) {
   try {
     const rr::RecordingReport r = rr::buildReport(in, p);
     rr::writeReport(r, out);
+    for (const auto& w : r.warnings) std::fprintf(stderr, "roadslam-report: warning: %s\n", w.c_str());
     if (!r.damage.empty()) std::fprintf(stderr, "roadslam-report: warning: %s; reported up to there\n", r.damage.c_str());
     if (!quiet) std::printf("%s%s/report.html, %s/report.json\n", rr::toText(r).c_str(), out.c_str(), out.c_str());
   } catch (const std::exception& e) {

@@ -60,6 +60,7 @@ void sensorSection(report::HtmlPage& page, const RecordingReport& r) {
     o.x_label = "time since start [s]";
     o.y_label = "rate [Hz]";
     o.points = false;
+    o.y_include_zero = true;  // a drop to zero is a drop
     for (const auto& s : r.streams) {
       if (s.kind != kind) continue;
       series.push_back({s.label, s.bin_t_s, s.bin_rate_hz});
@@ -126,12 +127,12 @@ void mapSection(report::HtmlPage& page, const MapReport& m) {
 
 std::string toHtml(const RecordingReport& r) {
   report::HtmlPage page("Recording report: " + r.recording);
-  page.heading("Recording report", 1);
   std::string files;
   for (const auto& file : r.files) files += (files.empty() ? "" : ", ") + file;
   page.paragraph(r.format + " " + files + ": " + f(r.end_s - r.start_s, 1) + " s from " + utc(r.start_s) + ", " +
                  std::to_string(r.streams.size()) + " streams" +
                  (r.sensor_records ? ", " + std::to_string(r.sensor_records) + " other rawlog records" : ""));
+  for (const auto& w : r.warnings) page.paragraph("Warning: " + w + ".");
   if (!r.damage.empty()) page.paragraph("Damaged: " + r.damage + ". The report covers the data before it.");
   sensorSection(page, r);
   if (r.can) canSection(page, *r.can);

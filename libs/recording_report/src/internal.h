@@ -17,7 +17,7 @@ struct PendingStream {
 /// The files of a recording: itself, or a grab folder's rawlog segments in order.
 std::vector<std::string> recordingFiles(const std::string& path);
 /// Reads r.files into streams; sets r.format, r.damage, r.sensor_records.
-std::vector<PendingStream> readSensors(RecordingReport& r);
+std::vector<PendingStream> readSensors(RecordingReport& r, const std::string& lidar_model);
 /// A grab folder's CAN sidecars (can_*.candump.log), in order; empty for a file.
 std::vector<std::string> canSidecars(const std::string& path);
 /// Reads the CAN log(s); the bus's frames become one stream per interface.

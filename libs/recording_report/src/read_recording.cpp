@@ -22,8 +22,10 @@ std::string ipText(uint32_t ip) {
 
 /// One LiDAR's data packets: stamps, azimuth wraps (sweeps), packets missing from its own clock.
 struct LidarAcc {
+  explicit LidarAcc(velodyne::Model model) : forced(model) {}
   std::vector<double> stamps, wraps;
-  sources::GapCounter gaps;
+  velodyne::Model forced = velodyne::Model::Unknown;
+  sources::GapCounter gaps{0, forced};
   int last_azimuth = -1;
   uint8_t product = 0, mode = 0;
   void feed(const velodyne::RawPacket& p) {
@@ -32,7 +34,7 @@ struct LidarAcc {
     const int az = p.payload[2] | (p.payload[3] << 8);  // first block azimuth [0.01 deg]
     if (last_azimuth >= 0 && az < last_azimuth - 18000) wraps.push_back(p.stamp_s);  // a turn completed
     last_azimuth = az;
-    product = p.payload[1205];
+    product = forced != velodyne::Model::Unknown ? static_cast<uint8_t>(forced) : p.payload[1205];
     mode = p.payload[1204];
   }
 };
@@ -60,18 +62,24 @@ std::vector<std::string> recordingFiles(const std::string& path) {
   return files;
 }
 
-std::vector<PendingStream> readSensors(RecordingReport& r) {
+std::vector<PendingStream> readSensors(RecordingReport& r, const std::string& lidar_model) {
+  sources::PortConfig ports;
+  if (lidar_model == "vlp16") ports.model = velodyne::Model::VLP16;
+  else if (lidar_model == "hdl32") ports.model = velodyne::Model::HDL32;
+  else if (!lidar_model.empty()) throw std::runtime_error("unknown LiDAR model '" + lidar_model + "' (vlp16 or hdl32)");
   std::map<std::string, LidarAcc> lidars;
   std::map<std::string, std::vector<double>> other;  // position packets, GPS records
   uint64_t malformed = 0;
   for (const std::string& file : r.files) {
-    auto src = sources::openRecording(file);
+    auto src = sources::openRecording(file, ports);
     auto* rawlog = dynamic_cast<sources::RawlogPacketSource*>(src.get());
     r.format = rawlog ? "rawlog" : "pcap";
     while (auto pkt = src->next()) {
       const std::string where = ipText(pkt->src_ip) + std::to_string(pkt->dst_port);
       if (pkt->payload.size() == velodyne::kDataPacketSize) {
-        lidars["velodyne " + where].feed(*pkt);
+        auto it = lidars.find("velodyne " + where);
+        if (it == lidars.end()) it = lidars.emplace("velodyne " + where, LidarAcc(ports.model)).first;
+        it->second.feed(*pkt);
       } else {
         other["position packets " + where].push_back(pkt->stamp_s);
       }

@@ -10,12 +10,33 @@
 
 namespace roadslam::recording_report {
 
+namespace {
+
+/// A CAN log recorded at another time than the sensors is most likely the wrong file: said, not refused.
+void checkOverlap(RecordingReport& r, const std::vector<PendingStream>& pending) {
+  double s0 = 1e300, s1 = -1e300, c0 = 1e300, c1 = -1e300;
+  for (const auto& ps : pending) {
+    if (ps.stamps.empty()) continue;
+    const auto [lo, hi] = std::minmax_element(ps.stamps.begin(), ps.stamps.end());
+    double& a = ps.info.kind == "can" ? c0 : s0;
+    double& b = ps.info.kind == "can" ? c1 : s1;
+    a = std::min(a, *lo), b = std::max(b, *hi);
+  }
+  if (c1 < c0 || s1 < s0 || (c0 <= s1 && s0 <= c1)) return;
+  char b[256];
+  std::snprintf(b, sizeof b, "the CAN log does not overlap the recording in time (it starts %.1f s %s it)",
+                c0 > s1 ? c0 - s1 : s0 - c1, c0 > s1 ? "after the end of" : "before the start of");
+  r.warnings.push_back(b);
+}
+
+}  // namespace
+
 RecordingReport buildReport(const ReportInputs& in, const ReportParams& p) {
   RecordingReport r;
   r.recording = in.recording;
   if (!std::filesystem::exists(in.recording)) throw std::runtime_error(in.recording + ": no such file or folder");
   r.files = recordingFiles(in.recording);
-  std::vector<PendingStream> pending = readSensors(r);
+  std::vector<PendingStream> pending = readSensors(r, in.lidar_model);
   const std::vector<std::string> logs = in.can_log.empty() ? canSidecars(in.recording) : std::vector{in.can_log};
   if (!logs.empty()) r.can = readCan(logs, in.vehicle_ini, p, pending);
   if (!in.map_dir.empty()) r.map = readMap(in.map_dir, p);
@@ -26,6 +47,7 @@ RecordingReport buildReport(const ReportInputs& in, const ReportParams& p) {
     r.start_s = std::min(r.start_s, *std::min_element(ps.stamps.begin(), ps.stamps.end()));
     r.end_s = std::max(r.end_s, *std::max_element(ps.stamps.begin(), ps.stamps.end()));
   }
+  checkOverlap(r, pending);
   for (auto& ps : pending) {
     StreamStats s = streamStats(std::move(ps.stamps), ps.nominal_period_s, r.start_s, p);
     const StreamStats& i = ps.info;
@@ -56,7 +78,7 @@ nlohmann::json streamJson(const StreamStats& s, double start_s) {
 
 nlohmann::json toJson(const RecordingReport& r) {
   nlohmann::json j = {{"recording", r.recording}, {"files", r.files}, {"format", r.format},
-                      {"damage", r.damage},       {"start_s", r.start_s}, {"duration_s", r.end_s - r.start_s},
+                      {"damage", r.damage}, {"warnings", r.warnings},       {"start_s", r.start_s}, {"duration_s", r.end_s - r.start_s},
                       {"other_records", r.sensor_records}};
   j["note"] = "times are seconds since start_s (Unix epoch seconds) unless named otherwise";
   j["streams"] = nlohmann::json::array();
@@ -115,6 +137,7 @@ std::string toText(const RecordingReport& r) {
     std::snprintf(b, sizeof b, "  map: %llu poses, %.1f m\n", static_cast<unsigned long long>(r.map->poses), r.map->length_m);
     t += b;
   }
+  for (const auto& w : r.warnings) t += "  warning: " + w + "\n";
   if (!r.damage.empty()) t += "  damaged: " + r.damage + " (reported up to there)\n";
   return t;
 }

@@ -34,16 +34,18 @@ StreamStats streamStats(std::vector<double> t, double nominal_period_s, double s
     s.gaps.resize(p.max_listed_gaps);
     std::sort(s.gaps.begin(), s.gaps.end(), [](const Gap& a, const Gap& b) { return a.start_s < b.start_s; });
   }
-  const double bin = p.rate_bin_s > 0 ? p.rate_bin_s : 1.0;
+  // Wider bins when the stream would need more than max_rate_bins (a long drive, or streams far apart).
+  const double bin = std::max(p.rate_bin_s > 0 ? p.rate_bin_s : 1.0,
+                              (s.last_s - start_s) / static_cast<double>(std::max<std::size_t>(p.max_rate_bins, 1)));
   const auto nbins = static_cast<size_t>(std::floor((s.last_s - start_s) / bin)) + 1;
   std::vector<double> counts(nbins, 0.0);
   for (double v : t) counts[std::min(nbins - 1, static_cast<size_t>(std::max(0.0, std::floor((v - start_s) / bin))))] += 1;
   for (size_t i = 0; i < nbins; ++i) {
-    // The last bin ends at the last stamp: its rate over the part covered, left out when under half a bin.
+    // Only whole bins (a part-filled last bin would misstate the rate), unless there is no whole one.
     const double covered = i + 1 < nbins ? bin : s.last_s - start_s - static_cast<double>(i) * bin;
-    if (covered < 0.5 * bin) continue;
+    if (i + 1 == nbins && nbins > 1 && covered < bin) continue;
     s.bin_t_s.push_back(static_cast<double>(i) * bin);
-    s.bin_rate_hz.push_back(counts[i] / covered);
+    s.bin_rate_hz.push_back(counts[i] / (i + 1 < nbins ? bin : std::max(covered, 1e-9)));
   }
   return s;
 }

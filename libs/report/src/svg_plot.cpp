@@ -61,6 +61,7 @@ std::string svgPlot(const std::vector<Series>& series, const PlotOptions& o) {
   if (!std::isfinite(x0)) {
     return svg + "<text x=\"" + num(W / 2) + "\" y=\"" + num(H / 2) + "\" text-anchor=\"middle\">no data</text>\n</svg>";
   }
+  if (o.y_include_zero) y0 = std::min(y0, 0.0), y1 = std::max(y1, 0.0);
   if (x1 - x0 < 1e-12) x0 -= 0.5, x1 += 0.5;
   if (y1 - y0 < 1e-12) y0 -= 0.5, y1 += 0.5;
   const double pad = 0.05 * (y1 - y0);

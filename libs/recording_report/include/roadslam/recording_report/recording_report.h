@@ -20,6 +20,7 @@ struct ReportParams {
   double gap_factor = 3.0;              ///< an interval over gap_factor x the nominal period is a gap [-]
   double min_gap_s = 0.05;              ///< shorter intervals are never gaps [s]
   double rate_bin_s = 1.0;              ///< bin of the rate-over-time plots [s]
+  std::size_t max_rate_bins = 2000;     ///< more bins than this widen rate_bin_s [count]
   std::size_t max_listed_gaps = 20;     ///< gaps listed per stream, the longest; all are counted [count]
   std::size_t max_plot_points = 3000;   ///< points per plotted series, decimated beyond [count]
   std::size_t max_listed_issues = 10;   ///< bad CAN log lines listed with their line numbers [count]
@@ -102,6 +103,7 @@ struct RecordingReport {
   std::string format;                          ///< pcap | rawlog
   std::string damage;                          ///< "" or the place the recording is damaged (file, record, byte)
   double start_s = 0, end_s = 0;               ///< earliest / latest stamp of any stream [s since epoch]
+  std::vector<std::string> warnings;           ///< e.g. a CAN log that does not overlap the recording in time
   std::uint64_t sensor_records = 0;            ///< rawlog records that are neither Velodyne nor GPS [count]
   std::vector<StreamStats> streams;
   std::optional<CanReport> can;
@@ -113,6 +115,9 @@ struct ReportInputs {
   std::string can_log;       ///< candump log; "" = a grab folder's can_*.candump.log sidecars, if any
   std::string vehicle_ini;   ///< ini/vehicles/X.ini: DBC names, decoded signals, dead reckoning
   std::string map_dir;       ///< roadslam-map output folder
+  /// "" = the packets' product byte; vlp16 / hdl32 forced for captures whose byte lies (early VLP-16
+  /// firmware reports the HDL-32E code): sets the packet period of the gap and drop counts.
+  std::string lidar_model;
 };
 
 /// Reads everything. Throws std::runtime_error naming the file when an input is missing, unreadable or
