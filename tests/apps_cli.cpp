@@ -91,8 +91,9 @@ std::string kittiYard(const std::string& name, int n) {
   return dir.string();
 }
 
-const char* kPrograms[] = {"roadslam-bounds", "roadslam-can",    "roadslam-eval", "roadslam-experiment",
-                           "roadslam-grab",   "roadslam-map",    "roadslam-rawlog", "roadslam-sim"};
+const char* kPrograms[] = {"roadslam-bounds", "roadslam-can",    "roadslam-eval",   "roadslam-experiment",
+                           "roadslam-grab",   "roadslam-map",    "roadslam-rawlog", "roadslam-report",
+                           "roadslam-sim"};
 }  // namespace
 
 TEST(AppsCli, VersionNamesProgramVersionCommitAndBuildType) {

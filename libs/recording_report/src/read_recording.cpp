@@ -39,6 +39,21 @@ struct LidarAcc {
   }
 };
 
+/// Complete turns: wrap-to-wrap intervals up to 1.5 x their median (a longer one spans lost packets);
+/// the rotation rate from their mean length.
+void sweepRate(const std::vector<double>& wraps, StreamStats& s) {
+  std::vector<double> dt;
+  for (size_t i = 1; i < wraps.size(); ++i) dt.push_back(wraps[i] - wraps[i - 1]);
+  if (dt.empty()) return;
+  std::vector<double> sorted = dt;
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<long>(sorted.size() / 2), sorted.end());
+  const double median = sorted[sorted.size() / 2];
+  double sum = 0;
+  for (double d : dt)
+    if (d <= 1.5 * median) sum += d, ++s.sweeps;
+  if (sum > 0) s.sweep_rate_hz = static_cast<double>(s.sweeps) / sum;
+}
+
 std::string modelName(uint8_t product) {
   switch (static_cast<velodyne::Model>(product)) {
     case velodyne::Model::VLP16: return "vlp16";
@@ -106,9 +121,7 @@ std::vector<PendingStream> readSensors(RecordingReport& r, const std::string& li
     ps.info.model = modelName(acc.product);
     ps.info.drops = acc.gaps.missing();
     ps.info.malformed = malformed;
-    ps.info.sweeps = acc.wraps.size() > 1 ? acc.wraps.size() - 1 : 0;
-    if (ps.info.sweeps > 0)
-      ps.info.sweep_rate_hz = static_cast<double>(ps.info.sweeps) / (acc.wraps.back() - acc.wraps.front());
+    sweepRate(acc.wraps, ps.info);
     ps.stamps = std::move(acc.stamps);
     out.push_back(std::move(ps));
   }

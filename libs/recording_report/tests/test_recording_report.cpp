@@ -157,6 +157,8 @@ TEST(RecordingReport, CutPcapShowsTheGapWhereItWasCutAndTheDropsFromTheSensorClo
   EXPECT_NEAR(lidar->gaps[0].start_s - t0, kCutFrom_s, 2e-3);
   EXPECT_NEAR(lidar->gaps[0].end_s - t0, kCutTo_s, 2e-3);
   EXPECT_EQ(lidar->drops, removed) << "the sensor clock jumps by the packets cut";
+  EXPECT_NEAR(lidar->sweep_rate_hz, 10.0, 0.05) << "the turn across the hole is not one";
+  EXPECT_NEAR(static_cast<double>(lidar->sweeps), 48 - 6, 1) << "the 5 turns cut and the one across the hole";
   EXPECT_EQ(stream(r, "gps")->gap_count, 0u) << "position packets were kept";
   EXPECT_EQ(stream(r, "can")->gap_count, 0u);
   // the rate over time: the second holding the cut is half full
@@ -181,6 +183,45 @@ TEST(RecordingReport, RawlogConversionReportsTheSameSensor) {
   EXPECT_EQ(lb->gap_count, 0u);
   ASSERT_NE(stream(b, "gps"), nullptr) << "CObservationGPS records";
   EXPECT_EQ(stream(b, "gps")->count, stream(a, "gps")->count);
+}
+
+TEST(RecordingReport, GrabFolderSegmentsAndCanSidecarsReadAsOneRecording) {
+  // a roadslam-grab session folder: grab_000.rawlog, grab_001.rawlog and can_000/001.candump.log, here
+  // made from the drive cut in two at 2.5 s (each half converted by roadslam-rawlog)
+  const std::string dir = freshDir("grab");
+  {
+    roadslam::sources::PcapPacketSource in(drive() + "/velodyne.pcap");
+    roadslam::pcap::PcapWriter a(dir + "/a.pcap"), b(dir + "/b.pcap");
+    double t0 = -1;
+    while (auto p = in.next()) {
+      if (t0 < 0) t0 = p->stamp_s;
+      (p->stamp_s - t0 < 2.5 ? a : b).writeUdp(p->stamp_s, p->dst_port, p->dst_port, p->payload.data(),
+                                                p->payload.size(), p->src_ip);
+    }
+  }
+  fs::create_directories(dir + "/session");
+  for (const char* half : {"a", "b"}) {
+    const std::string out = dir + "/session/grab_00" + (half[0] == 'a' ? "0" : "1") + ".rawlog";
+    ASSERT_EQ(std::system((kBin + "/roadslam-rawlog convert " + dir + "/" + half + ".pcap " + out + " > /dev/null").c_str()), 0);
+  }
+  std::ifstream can(drive() + "/can.log");
+  std::ofstream c0(dir + "/session/can_000.candump.log"), c1(dir + "/session/can_001.candump.log");
+  std::string line;
+  for (int n = 0; std::getline(can, line); ++n) (n < 700 ? c0 : c1) << line << "\n";
+  c0.close(), c1.close();
+  rr::ReportInputs in;
+  in.recording = dir + "/session";
+  const auto r = rr::buildReport(in);
+  const auto whole = rr::buildReport(simInputs(drive() + "/velodyne.pcap"));
+  ASSERT_EQ(r.files.size(), 2u) << "the .rawlog.ini beside each segment is no segment";
+  EXPECT_EQ(r.format, "rawlog");
+  EXPECT_EQ(stream(r, "lidar")->count, stream(whole, "lidar")->count);
+  EXPECT_EQ(stream(r, "lidar")->sweeps, stream(whole, "lidar")->sweeps);
+  EXPECT_EQ(stream(r, "lidar")->gap_count, 0u) << "segments join without a hole";
+  ASSERT_TRUE(r.can) << "the CAN sidecars, found without --can";
+  EXPECT_EQ(r.can->frames, 1550u);
+  EXPECT_EQ(r.can->ids.size(), 5u);
+  EXPECT_TRUE(r.can->signals.empty()) << "no --vehicle: rates only";
 }
 
 TEST(RecordingReport, DamagedInputsNameThePlace) {
