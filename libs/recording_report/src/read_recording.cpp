@@ -90,7 +90,10 @@ std::vector<PendingStream> readSensors(RecordingReport& r, const std::string& li
     auto* rawlog = dynamic_cast<sources::RawlogPacketSource*>(src.get());
     r.format = rawlog ? "rawlog" : "pcap";
     while (auto pkt = src->next()) {
-      const std::string where = ipText(pkt->src_ip) + std::to_string(pkt->dst_port);
+      // a rawlog keeps no address: its LiDARs are told apart by the scans' sensorLabel
+      const std::string where = rawlog && !rawlog->scanLabel().empty() && pkt->payload.size() == velodyne::kDataPacketSize
+                                    ? rawlog->scanLabel()
+                                    : ipText(pkt->src_ip) + std::to_string(pkt->dst_port);
       if (pkt->payload.size() == velodyne::kDataPacketSize) {
         auto it = lidars.find("velodyne " + where);
         if (it == lidars.end()) it = lidars.emplace("velodyne " + where, LidarAcc(ports.model)).first;

@@ -16,6 +16,11 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include <mrpt/io/CFileGZInputStream.h>
+#include <mrpt/io/CFileGZOutputStream.h>
+#include <mrpt/obs/CObservationVelodyneScan.h>
+#include <mrpt/serialization/CArchive.h>
+
 #include "roadslam/pcap/pcap_writer.h"
 #include "roadslam/recording_report/recording_report.h"
 #include "roadslam/sim/outputs.h"
@@ -183,6 +188,41 @@ TEST(RecordingReport, RawlogConversionReportsTheSameSensor) {
   EXPECT_EQ(lb->gap_count, 0u);
   ASSERT_NE(stream(b, "gps"), nullptr) << "CObservationGPS records";
   EXPECT_EQ(stream(b, "gps")->count, stream(a, "gps")->count);
+}
+
+TEST(RecordingReport, RawlogLidarsAreToldApartBySensorLabel) {
+  // the converted drive rewritten with every other scan labelled LIDAR_B (MRPT's own reader and writer)
+  const std::string dir = freshDir("labels");
+  const std::string one = dir + "/one.rawlog", two = dir + "/two.rawlog";
+  ASSERT_EQ(std::system((kBin + "/roadslam-rawlog convert " + drive() + "/velodyne.pcap " + one + " > /dev/null").c_str()), 0);
+  size_t scans = 0;
+  {
+    mrpt::io::CFileGZInputStream in(one);
+    mrpt::io::CFileGZOutputStream out(two);
+    auto ar_in = mrpt::serialization::archiveFrom(in);
+    auto ar_out = mrpt::serialization::archiveFrom(out);
+    for (;;) {
+      mrpt::serialization::CSerializable::Ptr o;
+      try {
+        o = ar_in.ReadObject();
+      } catch (const mrpt::serialization::CExceptionEOF&) {
+        break;
+      }
+      if (auto v = std::dynamic_pointer_cast<mrpt::obs::CObservationVelodyneScan>(o))
+        v->sensorLabel = scans++ % 2 ? "LIDAR_B" : "LIDAR_A";
+      ar_out << *o;
+    }
+  }
+  ASSERT_GT(scans, 40u);
+  rr::ReportInputs in;
+  in.recording = two;
+  const auto r = rr::buildReport(in);
+  std::map<std::string, uint64_t> count;
+  for (const auto& s : r.streams)
+    if (s.kind == "lidar") count[s.label] = s.count;
+  ASSERT_EQ(count.size(), 2u);
+  EXPECT_EQ(count["velodyne LIDAR_A"] + count["velodyne LIDAR_B"],
+            stream(rr::buildReport(simInputs(drive() + "/velodyne.pcap")), "lidar")->count);
 }
 
 TEST(RecordingReport, GrabFolderSegmentsAndCanSidecarsReadAsOneRecording) {

@@ -94,6 +94,7 @@ bool RawlogPacketSource::readMore() {
   }
   if (auto v = std::dynamic_pointer_cast<CObservationVelodyneScan>(obs)) {
     ++scans_;
+    scan_label_ = v->sensorLabel;
     const auto t0 = v->originalReceivedTimestamp != INVALID_TIMESTAMP ? v->originalReceivedTimestamp
                                                                        : v->timestamp;
     const double stamp0 = mrpt::Clock::toDouble(t0);

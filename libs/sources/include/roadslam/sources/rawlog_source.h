@@ -35,13 +35,16 @@ class RawlogPacketSource : public PacketSource {
   std::size_t scansRead() const { return scans_; }
   /// Records that are neither Velodyne scans nor GPS [count].
   std::size_t otherRecords() const { return other_; }
+  /// sensorLabel of the CObservationVelodyneScan whose packets next() returns now (one scan is
+  /// queued at a time), e.g. to tell several LiDARs of one rawlog apart.
+  const std::string& scanLabel() const { return scan_label_; }
 
  private:
   bool readMore();
 
   struct Impl;
   std::unique_ptr<Impl> impl_;
-  std::string path_, error_;
+  std::string path_, error_, scan_label_;
   PortConfig ports_;
   std::deque<velodyne::RawPacket> queue_;
   std::vector<TimedGpsFix> gps_;
