@@ -52,11 +52,12 @@ void sensorSection(report::HtmlPage& page, const RecordingReport& r) {
     page.heading("Gaps", 3);
     page.table({"sensor", "from [s]", "to [s]", "length [s]"}, gap_rows);
   }
-  for (const char* kind : {"lidar", "gps", "can"}) {
+  for (const char* kind : {"lidar", "gps", "rawlog", "can"}) {
     std::vector<Series> series;
     PlotOptions o;
-    o.title = std::string(kind == std::string("lidar") ? "LiDAR data packets" : kind == std::string("gps") ? "GPS / position" : "CAN frames") +
-              " per second (gaps dashed)";
+    const std::string k = kind;
+    o.title = (k == "lidar" ? "LiDAR data packets" : k == "gps" ? "GPS / position" : k == "rawlog" ? "other rawlog records" : "CAN frames") +
+              std::string(" per second (gaps dashed)");
     o.x_label = "time since start [s]";
     o.y_label = "rate [Hz]";
     o.points = false;

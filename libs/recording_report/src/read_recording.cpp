@@ -83,12 +83,21 @@ std::vector<PendingStream> readSensors(RecordingReport& r, const std::string& li
   else if (lidar_model == "hdl32") ports.model = velodyne::Model::HDL32;
   else if (!lidar_model.empty()) throw std::runtime_error("unknown LiDAR model '" + lidar_model + "' (vlp16 or hdl32)");
   std::map<std::string, LidarAcc> lidars;
-  std::map<std::string, std::vector<double>> other;  // position packets, GPS records
+  std::map<std::string, std::vector<double>> other;    // position packets, GPS records
+  std::map<std::string, std::vector<double>> vehicle;  // other rawlog records by label (CAN observations)
   uint64_t malformed = 0;
   for (const std::string& file : r.files) {
     auto src = sources::openRecording(file, ports);
     auto* rawlog = dynamic_cast<sources::RawlogPacketSource*>(src.get());
     r.format = rawlog ? "rawlog" : "pcap";
+    if (rawlog) rawlog->keepOtherRecords(true);
+    const auto takeOthers = [&] {
+      if (!rawlog) return;
+      for (const auto& o : rawlog->takeOtherRecords()) {
+        const std::string cls = o.class_name.substr(o.class_name.rfind(':') == std::string::npos ? 0 : o.class_name.rfind(':') + 1);
+        vehicle[o.label.empty() ? cls : o.label + " (" + cls + ")"].push_back(o.stamp_s);
+      }
+    };
     while (auto pkt = src->next()) {
       // a rawlog keeps no address: its LiDARs are told apart by the scans' sensorLabel
       const std::string where = rawlog && !rawlog->scanLabel().empty() && pkt->payload.size() == velodyne::kDataPacketSize
@@ -102,17 +111,20 @@ std::vector<PendingStream> readSensors(RecordingReport& r, const std::string& li
         other["position packets " + where].push_back(pkt->stamp_s);
       }
       for (const auto& fix : src->takeDecodedFixes()) other["gps (rawlog)"].push_back(fix.stamp_s);
+      takeOthers();
     }
     for (const auto& fix : src->takeDecodedFixes()) other["gps (rawlog)"].push_back(fix.stamp_s);
+    takeOthers();
     malformed += src->stats().malformed_packets;
     if (rawlog) r.sensor_records += rawlog->otherRecords();
     if (!src->errorMessage().empty()) {
-      if (lidars.empty() && other.empty()) throw std::runtime_error(src->errorMessage());
+      if (lidars.empty() && other.empty() && vehicle.empty()) throw std::runtime_error(src->errorMessage());
       r.damage = src->errorMessage();
       break;  // the segments after a damaged one are not read: the report covers the data before it
     }
   }
-  if (lidars.empty() && other.empty()) throw std::runtime_error(r.recording + ": no Velodyne or GPS data in it");
+  if (lidars.empty() && other.empty() && vehicle.empty())
+    throw std::runtime_error(r.recording + ": no Velodyne, GPS or other sensor data in it");
   std::vector<PendingStream> out;
   for (auto& [label, acc] : lidars) {
     PendingStream ps;
@@ -132,6 +144,13 @@ std::vector<PendingStream> readSensors(RecordingReport& r, const std::string& li
     PendingStream ps;
     ps.info.label = label;
     ps.info.kind = "gps";
+    ps.stamps = std::move(t);
+    out.push_back(std::move(ps));
+  }
+  for (auto& [label, t] : vehicle) {
+    PendingStream ps;
+    ps.info.label = label;
+    ps.info.kind = "rawlog";
     ps.stamps = std::move(t);
     out.push_back(std::move(ps));
   }

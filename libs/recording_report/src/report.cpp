@@ -113,7 +113,7 @@ std::string toText(const RecordingReport& r) {
                 r.end_s - r.start_s, r.streams.size());
   t += b;
   for (const auto& s : r.streams) {
-    std::snprintf(b, sizeof b, "  %-32s %9llu  %8.2f Hz  gaps %llu (%.2f s)  drops %llu", s.label.c_str(),
+    std::snprintf(b, sizeof b, "  %-40s %9llu  %8.2f Hz  gaps %llu (%.2f s)  drops %llu", s.label.c_str(),
                   static_cast<unsigned long long>(s.count), s.rate_hz, static_cast<unsigned long long>(s.gap_count),
                   s.gap_time_s, static_cast<unsigned long long>(s.drops));
     t += b;

@@ -225,6 +225,29 @@ TEST(RecordingReport, RawlogLidarsAreToldApartBySensorLabel) {
             stream(rr::buildReport(simInputs(drive() + "/velodyne.pcap")), "lidar")->count);
 }
 
+TEST(RecordingReport, RawlogVehicleObservationsAreStreamsOfTheirOwn) {
+  // roadslam-can to-rawlog: a CObservationOdometry per wheel-speed update and a CObservationIMU per
+  // yaw-rate update, both sent every 10 ms by the simulator (and GenMsgCycleTime 10 in its DBC)
+  const std::string dir = freshDir("vehicle_obs");
+  ASSERT_EQ(std::system((kBin + "/roadslam-can to-rawlog --vehicle " + kSrc + "/ini/vehicles/roadslam-sim.ini " + drive() +
+                         "/can.log " + dir + "/can.rawlog > /dev/null").c_str()),
+            0);
+  rr::ReportInputs in;
+  in.recording = dir + "/can.rawlog";
+  const auto r = rr::buildReport(in);
+  std::map<std::string, const rr::StreamStats*> by;
+  for (const auto& s : r.streams) by[s.label] = &s;
+  ASSERT_EQ(by.size(), 2u);
+  ASSERT_TRUE(by.count("CAN_ODOMETRY (CObservationOdometry)"));
+  ASSERT_TRUE(by.count("CAN_IMU (CObservationIMU)"));
+  for (const auto& [label, s] : by) {
+    EXPECT_EQ(s->kind, "rawlog");
+    EXPECT_NEAR(s->rate_hz, 100.0, 0.5) << label;
+    EXPECT_NEAR(static_cast<double>(s->count), 500, 1) << label;
+    EXPECT_EQ(s->gap_count, 0u) << label;
+  }
+}
+
 TEST(RecordingReport, GrabFolderSegmentsAndCanSidecarsReadAsOneRecording) {
   // a roadslam-grab session folder: grab_000.rawlog, grab_001.rawlog and can_000/001.candump.log, here
   // made from the drive cut in two at 2.5 s (each half converted by roadslam-rawlog)

@@ -118,8 +118,16 @@ bool RawlogPacketSource::readMore() {
     }
   } else {
     ++other_;
+    if (keep_other_ && obs)
+      others_.push_back({obs->sensorLabel, obs->GetRuntimeClass()->className, mrpt::Clock::toDouble(obs->timestamp)});
   }
   return true;
+}
+
+std::vector<RawlogPacketSource::OtherRecord> RawlogPacketSource::takeOtherRecords() {
+  std::vector<OtherRecord> out;
+  out.swap(others_);
+  return out;
 }
 
 std::vector<TimedGpsFix> RawlogPacketSource::takeDecodedFixes() {

@@ -36,7 +36,7 @@ struct Gap {
 /// One stream of timed messages: a LiDAR's data packets, its position packets, GPS records, a CAN bus.
 struct StreamStats {
   std::string label;               ///< e.g. "velodyne 192.168.1.201:2368", "gps", "can0"
-  std::string kind;                ///< lidar | gps | can
+  std::string kind;                ///< lidar | gps | can | rawlog (other records, e.g. the grabber's CAN observations)
   std::uint64_t count = 0;         ///< messages [count]
   double first_s = 0, last_s = 0;  ///< [s since epoch]
   double rate_hz = 0;              ///< (count - 1) / (last - first) [Hz]
