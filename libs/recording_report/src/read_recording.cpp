@@ -120,6 +120,9 @@ std::vector<PendingStream> readSensors(RecordingReport& r, const std::string& li
     if (!src->errorMessage().empty()) {
       if (lidars.empty() && other.empty() && vehicle.empty()) throw std::runtime_error(src->errorMessage());
       r.damage = src->errorMessage();
+      if (rawlog)  // the place as a record count too (the byte is in the uncompressed stream)
+        r.damage += "; " + std::to_string(rawlog->scansRead() + rawlog->otherRecords() + src->stats().position_packets) +
+                    " records read before it";
       break;  // the segments after a damaged one are not read: the report covers the data before it
     }
   }

@@ -305,6 +305,19 @@ TEST(RecordingReport, DamagedInputsNameThePlace) {
   const std::string place = "record " + std::to_string(record) + " (byte " + std::to_string(off) + ")";
   EXPECT_NE(r.damage.find(place), std::string::npos) << r.damage << " vs " << place;
   EXPECT_GT(stream(r, "lidar")->count, 200u) << "reported up to the damage";
+  // a rawlog cut in the middle: reported up to there, the place named as uncompressed byte and record count
+  const std::string rawlog = dir + "/drive.rawlog";
+  ASSERT_EQ(std::system((kBin + "/roadslam-rawlog convert " + drive() + "/velodyne.pcap " + rawlog + " > /dev/null").c_str()), 0);
+  std::ifstream rf(rawlog, std::ios::binary);
+  const std::string rbytes((std::istreambuf_iterator<char>(rf)), std::istreambuf_iterator<char>());
+  std::ofstream(dir + "/cut.rawlog", std::ios::binary) << rbytes.substr(0, rbytes.size() / 2);
+  in.recording = dir + "/cut.rawlog";
+  const auto rc = rr::buildReport(in);
+  EXPECT_NE(rc.damage.find("cut.rawlog"), std::string::npos) << rc.damage;
+  EXPECT_NE(rc.damage.find("at byte"), std::string::npos) << rc.damage;
+  EXPECT_NE(rc.damage.find("records read before it"), std::string::npos) << rc.damage;
+  EXPECT_GT(stream(rc, "lidar")->sweeps, 10u);
+  EXPECT_LT(stream(rc, "lidar")->sweeps, 45u);
   std::ofstream(dir + "/random.rawlog", std::ios::binary) << std::string(5000, '\x5a');
   for (const std::string& bad : {dir + "/random.rawlog", dir + "/nope.pcap"}) {
     in.recording = bad;
