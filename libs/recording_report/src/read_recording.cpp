@@ -1,6 +1,7 @@
 // The sensor part of the report: every packet of a pcap, a rawlog or a grab folder's rawlog segments,
 // grouped into streams (one per LiDAR source address and port, its position packets, GPS records).
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <stdexcept>
@@ -58,7 +59,11 @@ std::string modelName(uint8_t product) {
   switch (static_cast<velodyne::Model>(product)) {
     case velodyne::Model::VLP16: return "vlp16";
     case velodyne::Model::HDL32: return "hdl32";
-    default: return "unknown (0x" + std::to_string(product) + ")";
+    default: {
+      char b[32];
+      std::snprintf(b, sizeof b, "unknown (0x%02X)", product);
+      return b;
+    }
   }
 }
 
@@ -77,87 +82,107 @@ std::vector<std::string> recordingFiles(const std::string& path) {
   return files;
 }
 
-std::vector<PendingStream> readSensors(RecordingReport& r, const std::string& lidar_model) {
+namespace {
+
+/// Every stream of a recording's files, accumulated packet by packet.
+struct SensorStreams {
   sources::PortConfig ports;
-  if (lidar_model == "vlp16") ports.model = velodyne::Model::VLP16;
-  else if (lidar_model == "hdl32") ports.model = velodyne::Model::HDL32;
-  else if (!lidar_model.empty()) throw std::runtime_error("unknown LiDAR model '" + lidar_model + "' (vlp16 or hdl32)");
   std::map<std::string, LidarAcc> lidars;
-  std::map<std::string, std::vector<double>> other;    // position packets, GPS records
-  std::map<std::string, std::vector<double>> vehicle;  // other rawlog records by label (CAN observations)
+  std::map<std::string, std::vector<double>> gps;    // position packets, GPS records
+  std::map<std::string, std::vector<double>> other;  // other rawlog records by label and class
   uint64_t malformed = 0;
-  for (const std::string& file : r.files) {
+
+  bool empty() const { return lidars.empty() && gps.empty() && other.empty(); }
+
+  void add(const velodyne::RawPacket& pkt, const sources::RawlogPacketSource* rawlog) {
+    const bool data = pkt.payload.size() == velodyne::kDataPacketSize;
+    // a rawlog keeps no address: its LiDARs are told apart by the scans' sensorLabel
+    const std::string where = rawlog && data && !rawlog->scanLabel().empty()
+                                  ? rawlog->scanLabel()
+                                  : ipText(pkt.src_ip) + std::to_string(pkt.dst_port);
+    if (!data) {
+      gps["position packets " + where].push_back(pkt.stamp_s);
+      return;
+    }
+    auto it = lidars.find("velodyne " + where);
+    if (it == lidars.end()) it = lidars.emplace("velodyne " + where, LidarAcc(ports.model)).first;
+    it->second.feed(pkt);
+  }
+
+  /// GPS fixes and other records the source decoded since the last call.
+  void takeDecoded(sources::PacketSource& src, sources::RawlogPacketSource* rawlog) {
+    for (const auto& fix : src.takeDecodedFixes()) gps["gps (rawlog)"].push_back(fix.stamp_s);
+    if (!rawlog) return;
+    for (const auto& o : rawlog->takeOtherRecords()) {
+      const auto colon = o.class_name.rfind(':');
+      const std::string cls = colon == std::string::npos ? o.class_name : o.class_name.substr(colon + 1);
+      other[o.label.empty() ? cls : o.label + " (" + cls + ")"].push_back(o.stamp_s);
+    }
+  }
+
+  /// Reads one file; returns false when it is damaged (RecordingReport::damage set).
+  bool read(const std::string& file, RecordingReport& r) {
     auto src = sources::openRecording(file, ports);
     auto* rawlog = dynamic_cast<sources::RawlogPacketSource*>(src.get());
     r.format = rawlog ? "rawlog" : "pcap";
     if (rawlog) rawlog->keepOtherRecords(true);
-    const auto takeOthers = [&] {
-      if (!rawlog) return;
-      for (const auto& o : rawlog->takeOtherRecords()) {
-        const std::string cls = o.class_name.substr(o.class_name.rfind(':') == std::string::npos ? 0 : o.class_name.rfind(':') + 1);
-        vehicle[o.label.empty() ? cls : o.label + " (" + cls + ")"].push_back(o.stamp_s);
-      }
-    };
     while (auto pkt = src->next()) {
-      // a rawlog keeps no address: its LiDARs are told apart by the scans' sensorLabel
-      const std::string where = rawlog && !rawlog->scanLabel().empty() && pkt->payload.size() == velodyne::kDataPacketSize
-                                    ? rawlog->scanLabel()
-                                    : ipText(pkt->src_ip) + std::to_string(pkt->dst_port);
-      if (pkt->payload.size() == velodyne::kDataPacketSize) {
-        auto it = lidars.find("velodyne " + where);
-        if (it == lidars.end()) it = lidars.emplace("velodyne " + where, LidarAcc(ports.model)).first;
-        it->second.feed(*pkt);
-      } else {
-        other["position packets " + where].push_back(pkt->stamp_s);
-      }
-      for (const auto& fix : src->takeDecodedFixes()) other["gps (rawlog)"].push_back(fix.stamp_s);
-      takeOthers();
+      add(*pkt, rawlog);
+      takeDecoded(*src, rawlog);
     }
-    for (const auto& fix : src->takeDecodedFixes()) other["gps (rawlog)"].push_back(fix.stamp_s);
-    takeOthers();
+    takeDecoded(*src, rawlog);
     malformed += src->stats().malformed_packets;
     if (rawlog) r.sensor_records += rawlog->otherRecords();
-    if (!src->errorMessage().empty()) {
-      if (lidars.empty() && other.empty() && vehicle.empty()) throw std::runtime_error(src->errorMessage());
-      r.damage = src->errorMessage();
-      if (rawlog)  // the place as a record count too (the byte is in the uncompressed stream)
-        r.damage += "; " + std::to_string(rawlog->scansRead() + rawlog->otherRecords() + src->stats().position_packets) +
-                    " records read before it";
-      break;  // the segments after a damaged one are not read: the report covers the data before it
+    if (src->errorMessage().empty()) return true;
+    if (empty()) throw std::runtime_error(src->errorMessage());
+    r.damage = src->errorMessage();
+    if (rawlog)  // the place as a record count too (the byte is in the uncompressed stream)
+      r.damage += "; " + std::to_string(rawlog->scansRead() + rawlog->otherRecords() + src->stats().position_packets) +
+                  " records read before it";
+    return false;
+  }
+
+  std::vector<PendingStream> streams() {
+    std::vector<PendingStream> out;
+    for (auto& [label, acc] : lidars) {
+      PendingStream ps;
+      const bool dual = acc.mode == static_cast<uint8_t>(velodyne::ReturnMode::Dual);
+      const auto model = static_cast<velodyne::Model>(acc.product);
+      if (model != velodyne::Model::Unknown) ps.nominal_period_s = sources::GapCounter::packetPeriod_s(model, dual);
+      ps.info.label = label;
+      ps.info.kind = "lidar";
+      ps.info.model = modelName(acc.product);
+      ps.info.drops = acc.gaps.missing();
+      ps.info.malformed = malformed;
+      sweepRate(acc.wraps, ps.info);
+      ps.stamps = std::move(acc.stamps);
+      out.push_back(std::move(ps));
     }
+    for (auto* m : {&gps, &other}) {
+      for (auto& [label, t] : *m) {
+        PendingStream ps;
+        ps.info.label = label;
+        ps.info.kind = m == &gps ? "gps" : "rawlog";
+        ps.stamps = std::move(t);
+        out.push_back(std::move(ps));
+      }
+    }
+    return out;
   }
-  if (lidars.empty() && other.empty() && vehicle.empty())
-    throw std::runtime_error(r.recording + ": no Velodyne, GPS or other sensor data in it");
-  std::vector<PendingStream> out;
-  for (auto& [label, acc] : lidars) {
-    PendingStream ps;
-    const bool dual = acc.mode == static_cast<uint8_t>(velodyne::ReturnMode::Dual);
-    const auto model = static_cast<velodyne::Model>(acc.product);
-    if (model != velodyne::Model::Unknown) ps.nominal_period_s = sources::GapCounter::packetPeriod_s(model, dual);
-    ps.info.label = label;
-    ps.info.kind = "lidar";
-    ps.info.model = modelName(acc.product);
-    ps.info.drops = acc.gaps.missing();
-    ps.info.malformed = malformed;
-    sweepRate(acc.wraps, ps.info);
-    ps.stamps = std::move(acc.stamps);
-    out.push_back(std::move(ps));
+};
+
+}  // namespace
+
+std::vector<PendingStream> readSensors(RecordingReport& r, const std::string& lidar_model) {
+  SensorStreams s;
+  if (lidar_model == "vlp16") s.ports.model = velodyne::Model::VLP16;
+  else if (lidar_model == "hdl32") s.ports.model = velodyne::Model::HDL32;
+  else if (!lidar_model.empty()) throw std::runtime_error("unknown LiDAR model '" + lidar_model + "' (vlp16 or hdl32)");
+  for (const std::string& file : r.files) {
+    if (!s.read(file, r)) break;  // the segments after a damaged one are not read: the report covers the data before it
   }
-  for (auto& [label, t] : other) {
-    PendingStream ps;
-    ps.info.label = label;
-    ps.info.kind = "gps";
-    ps.stamps = std::move(t);
-    out.push_back(std::move(ps));
-  }
-  for (auto& [label, t] : vehicle) {
-    PendingStream ps;
-    ps.info.label = label;
-    ps.info.kind = "rawlog";
-    ps.stamps = std::move(t);
-    out.push_back(std::move(ps));
-  }
-  return out;
+  if (s.empty()) throw std::runtime_error(r.recording + ": no Velodyne, GPS or other sensor data in it");
+  return s.streams();
 }
 
 }  // namespace roadslam::recording_report
