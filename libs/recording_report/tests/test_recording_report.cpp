@@ -169,6 +169,9 @@ TEST(RecordingReport, CutPcapShowsTheGapWhereItWasCutAndTheDropsFromTheSensorClo
   // the rate over time: the second holding the cut is half full
   EXPECT_NEAR(lidar->bin_rate_hz.at(2), 0.5 * kVlp16PacketRate, 3);
   EXPECT_NEAR(lidar->bin_rate_hz.at(1), kVlp16PacketRate, 2);
+  const std::string html = rr::toHtml(r);
+  EXPECT_NE(html.find("stroke-dasharray"), std::string::npos) << "the gap marked on the rate plot";
+  EXPECT_NE(html.find("<td>2.000</td><td>2.500</td>"), std::string::npos) << "and listed";
 }
 
 TEST(RecordingReport, RawlogConversionReportsTheSameSensor) {
