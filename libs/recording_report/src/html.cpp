@@ -69,6 +69,15 @@ void sensorSection(report::HtmlPage& page, const RecordingReport& r) {
     }
     if (!series.empty()) page.svg(report::svgPlot(series, o));
   }
+  if (r.gnss_x_m.size() > 1) {
+    PlotOptions o;
+    o.title = "GNSS fixes (east-north about the first), " + n(r.gnss_fixes) + " fixes, " + f(r.gnss_length_m, 1) + " m";
+    o.x_label = "east [m]";
+    o.y_label = "north [m]";
+    o.equal_axes = true;
+    o.width_px = o.height_px = 480;
+    page.svg(report::svgPlot({{"RMC fixes", r.gnss_x_m, r.gnss_y_m}}, o));
+  }
 }
 
 void canSection(report::HtmlPage& page, const CanReport& c) {

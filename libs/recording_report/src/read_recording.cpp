@@ -1,12 +1,14 @@
 // The sensor part of the report: every packet of a pcap, a rawlog or a grab folder's rawlog segments,
 // grouped into streams (one per LiDAR source address and port, its position packets, GPS records).
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <map>
 #include <stdexcept>
 
 #include "internal.h"
+#include "roadslam/sources/gps_fix.h"
 #include "roadslam/sources/rawlog_source.h"
 #include "roadslam/sources/recording.h"
 
@@ -91,6 +93,7 @@ struct SensorStreams {
   std::map<std::string, std::vector<double>> gps;    // position packets, GPS records
   std::map<std::string, std::vector<double>> other;  // other rawlog records by label and class
   uint64_t malformed = 0;
+  std::vector<sources::TimedGpsFix> fixes;  // valid RMC fixes
 
   bool empty() const { return lidars.empty() && gps.empty() && other.empty(); }
 
@@ -102,6 +105,7 @@ struct SensorStreams {
                                   : ipText(pkt.src_ip) + std::to_string(pkt.dst_port);
     if (!data) {
       gps["position packets " + where].push_back(pkt.stamp_s);
+      if (auto f = sources::decodeGpsFix(pkt); f && f->fix.valid) fixes.push_back(*f);
       return;
     }
     auto it = lidars.find("velodyne " + where);
@@ -111,7 +115,10 @@ struct SensorStreams {
 
   /// GPS fixes and other records the source decoded since the last call.
   void takeDecoded(sources::PacketSource& src, sources::RawlogPacketSource* rawlog) {
-    for (const auto& fix : src.takeDecodedFixes()) gps["gps (rawlog)"].push_back(fix.stamp_s);
+    for (const auto& fix : src.takeDecodedFixes()) {
+      gps["gps (rawlog)"].push_back(fix.stamp_s);
+      if (fix.fix.valid) fixes.push_back(fix);
+    }
     if (!rawlog) return;
     for (const auto& o : rawlog->takeOtherRecords()) {
       const auto colon = o.class_name.rfind(':');
@@ -173,6 +180,23 @@ struct SensorStreams {
 
 }  // namespace
 
+/// The fixes in a local east-north plane about the first (equirectangular; WGS84 equatorial radius).
+void gnssPath(std::vector<sources::TimedGpsFix> fixes, RecordingReport& r) {
+  constexpr double kEarthRadius_m = 6378137.0, kDeg = M_PI / 180.0;
+  std::stable_sort(fixes.begin(), fixes.end(), [](const auto& a, const auto& b) { return a.stamp_s < b.stamp_s; });
+  if (fixes.empty()) return;
+  const double lat0 = fixes[0].fix.latitude_deg, lon0 = fixes[0].fix.longitude_deg;
+  for (const auto& f : fixes) {
+    const double x = (f.fix.longitude_deg - lon0) * kDeg * kEarthRadius_m * std::cos(lat0 * kDeg);
+    const double y = (f.fix.latitude_deg - lat0) * kDeg * kEarthRadius_m;
+    if (!r.gnss_x_m.empty()) r.gnss_length_m += std::hypot(x - r.gnss_x_m.back(), y - r.gnss_y_m.back());
+    r.gnss_t_s.push_back(f.stamp_s);
+    r.gnss_x_m.push_back(x);
+    r.gnss_y_m.push_back(y);
+  }
+  r.gnss_fixes = fixes.size();
+}
+
 std::vector<PendingStream> readSensors(RecordingReport& r, const std::string& lidar_model) {
   SensorStreams s;
   if (lidar_model == "vlp16") s.ports.model = velodyne::Model::VLP16;
@@ -182,6 +206,7 @@ std::vector<PendingStream> readSensors(RecordingReport& r, const std::string& li
     if (!s.read(file, r)) break;  // the segments after a damaged one are not read: the report covers the data before it
   }
   if (s.empty()) throw std::runtime_error(r.recording + ": no Velodyne, GPS or other sensor data in it");
+  gnssPath(std::move(s.fixes), r);
   return s.streams();
 }
 

@@ -56,6 +56,10 @@ RecordingReport buildReport(const ReportInputs& in, const ReportParams& p) {
     r.streams.push_back(std::move(s));
   }
   if (r.can) shiftCanTimes(*r.can, r.start_s);
+  for (double& t : r.gnss_t_s) t -= r.start_s;
+  r.gnss_t_s = decimate(r.gnss_t_s, p.max_plot_points);
+  r.gnss_x_m = decimate(r.gnss_x_m, p.max_plot_points);
+  r.gnss_y_m = decimate(r.gnss_y_m, p.max_plot_points);
   return r;
 }
 
@@ -83,6 +87,8 @@ nlohmann::json toJson(const RecordingReport& r) {
   j["note"] = "times are seconds since start_s (Unix epoch seconds) unless named otherwise";
   j["streams"] = nlohmann::json::array();
   for (const auto& s : r.streams) j["streams"].push_back(streamJson(s, r.start_s));
+  j["gnss"] = {{"fixes", r.gnss_fixes}, {"length_m", r.gnss_length_m}, {"t_s", r.gnss_t_s}, {"x_m", r.gnss_x_m},
+               {"y_m", r.gnss_y_m}};
   if (r.can) {
     const CanReport& c = *r.can;
     nlohmann::json ids = nlohmann::json::array();
@@ -122,6 +128,10 @@ std::string toText(const RecordingReport& r) {
       t += b;
     }
     t += "\n";
+  }
+  if (r.gnss_fixes > 0) {
+    std::snprintf(b, sizeof b, "  GNSS: %llu fixes, %.1f m\n", static_cast<unsigned long long>(r.gnss_fixes), r.gnss_length_m);
+    t += b;
   }
   if (r.can) {
     std::snprintf(b, sizeof b, "  CAN: %llu frames, %llu bad lines, %zu ids", static_cast<unsigned long long>(r.can->frames),

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -147,6 +148,28 @@ TEST(RecordingReport, SimulatedDriveGivesTheSensorsRatesAndCanSchedule) {
   ASSERT_GT(gt, 5.0);
   EXPECT_NEAR(r.can->path_length_m, gt, 0.03 * gt) << "dead reckoning against the ground truth path";
   EXPECT_TRUE(r.warnings.empty());
+}
+
+TEST(RecordingReport, GnssFixesFollowTheGroundTruth) {
+  // the simulator writes its true position as $GPRMC (1 Hz): each fix, east-north about the first, is
+  // the ground-truth displacement since the first fix (to the NMEA resolution, 0.0001' ~ 0.2 m)
+  rr::ReportInputs in;
+  in.recording = drive() + "/velodyne.pcap";
+  const auto r = rr::buildReport(in);
+  ASSERT_EQ(r.gnss_fixes, 5u);
+  std::ifstream gt(drive() + "/gt_trajectory.tum");
+  std::vector<std::array<double, 3>> txy;
+  for (double t, x, y, z, qx, qy, qz, qw; gt >> t >> x >> y >> z >> qx >> qy >> qz >> qw;) txy.push_back({t, x, y});
+  const auto at = [&](double t) {
+    return *std::min_element(txy.begin(), txy.end(),
+                             [t](const auto& a, const auto& b) { return std::abs(a[0] - t) < std::abs(b[0] - t); });
+  };
+  const auto g0 = at(r.start_s + r.gnss_t_s[0]);
+  for (size_t i = 0; i < r.gnss_x_m.size(); ++i) {
+    const auto g = at(r.start_s + r.gnss_t_s[i]);
+    EXPECT_NEAR(r.gnss_x_m[i], g[1] - g0[1], 0.3) << i;
+    EXPECT_NEAR(r.gnss_y_m[i], g[2] - g0[2], 0.3) << i;
+  }
 }
 
 TEST(RecordingReport, CutPcapShowsTheGapWhereItWasCutAndTheDropsFromTheSensorClock) {

@@ -106,6 +106,11 @@ struct RecordingReport {
   std::vector<std::string> warnings;           ///< e.g. a CAN log that does not overlap the recording in time
   std::uint64_t sensor_records = 0;            ///< rawlog records that are neither Velodyne nor GPS [count]
   std::vector<StreamStats> streams;
+  /// Valid GNSS fixes (position packets' or rawlog's RMC) in a local east-north plane about the first
+  /// one (equirectangular, fine over a few km), decimated [m]; their times [s since start].
+  std::vector<double> gnss_t_s, gnss_x_m, gnss_y_m;
+  std::uint64_t gnss_fixes = 0;                ///< valid fixes [count]
+  double gnss_length_m = 0;                    ///< fix-to-fix path length [m]
   std::optional<CanReport> can;
   std::optional<MapReport> map;
 };
