@@ -91,9 +91,9 @@ std::string kittiYard(const std::string& name, int n) {
   return dir.string();
 }
 
-const char* kPrograms[] = {"roadslam-bounds", "roadslam-can",    "roadslam-eval", "roadslam-experiment",
-                           "roadslam-grab",   "roadslam-map",    "roadslam-rawlog", "roadslam-sim",
-                           "roadslam-view"};
+const char* kPrograms[] = {"roadslam-bounds", "roadslam-can",    "roadslam-eval",   "roadslam-experiment",
+                           "roadslam-grab",   "roadslam-map",    "roadslam-rawlog", "roadslam-report",
+                           "roadslam-sim",    "roadslam-view"};
 }  // namespace
 
 TEST(AppsCli, VersionNamesProgramVersionCommitAndBuildType) {

@@ -188,6 +188,13 @@ const Row kTable[] = {
   {"exp-bad-emit",         "roadslam-experiment --config {W}/exp-typo.ini --out {O} --emit sge", 105, "--emit"},
   {"exp-collect-no-plan",  "roadslam-experiment collect {W}/empty-dir", 1, "not an experiment folder"},
   {"exp-no-out",           "roadslam-experiment --config {W}/exp-typo.ini", 2, "--config and --out are required"},
+  // roadslam-report
+  {"report-missing",       "roadslam-report {W}/nope.pcap --out {O}", 1, "nope.pcap: no such file or folder"},
+  {"report-random",        "roadslam-report {W}/random.pcap --out {O}", 1, "random.pcap"},
+  {"report-truncated",     "roadslam-report {W}/truncated.pcap --out {O}", 0, "damaged at record 239 (byte 299344)"},
+  {"report-can-garbage",   "roadslam-report {W}/truncated.pcap --can {W}/garbage.log --out {O}", 1, "garbage.log: no CAN frame in it (3 of 3 lines unreadable, first at line 1)"},
+  {"report-can-half-good", "roadslam-report {W}/truncated.pcap --can {W}/half-good.log --out {O}", 0, "1 bad lines"},
+  {"report-no-map",        "roadslam-report {W}/truncated.pcap --map {W}/a-file --out {O}", 1, "a-file: not a folder"},
   // roadslam-can
   {"can-decode-garbage",   "roadslam-can decode --dbc {S}/ini/vehicles/roadslam-sim.dbc {W}/garbage.log", 2, "3 of 3 lines unreadable (first at line 1"},
   {"can-decode-allowed",   "roadslam-can decode --dbc {S}/ini/vehicles/roadslam-sim.dbc {W}/garbage.log --max-bad-lines 3", 0, "3 bad log lines"},

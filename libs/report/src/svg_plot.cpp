@@ -61,10 +61,16 @@ std::string svgPlot(const std::vector<Series>& series, const PlotOptions& o) {
   if (!std::isfinite(x0)) {
     return svg + "<text x=\"" + num(W / 2) + "\" y=\"" + num(H / 2) + "\" text-anchor=\"middle\">no data</text>\n</svg>";
   }
+  if (o.y_include_zero) y0 = std::min(y0, 0.0), y1 = std::max(y1, 0.0);
   if (x1 - x0 < 1e-12) x0 -= 0.5, x1 += 0.5;
   if (y1 - y0 < 1e-12) y0 -= 0.5, y1 += 0.5;
   const double pad = 0.05 * (y1 - y0);
   y0 -= pad, y1 += pad;
+  if (o.equal_axes) {  // widen the range that has fewer units per pixel, about its centre
+    const double ux = (x1 - x0) / (W - l - r), uy = (y1 - y0) / (H - t - b), u = std::max(ux, uy);
+    const double cx = 0.5 * (x0 + x1), cy = 0.5 * (y0 + y1), hx = 0.5 * u * (W - l - r), hy = 0.5 * u * (H - t - b);
+    x0 = cx - hx, x1 = cx + hx, y0 = cy - hy, y1 = cy + hy;
+  }
   const auto X = [&](double v) { return l + (v - x0) / (x1 - x0) * (W - l - r); };
   const auto Y = [&](double v) { return H - b - (v - y0) / (y1 - y0) * (H - t - b); };
   for (double v : niceTicks(x0, x1)) {

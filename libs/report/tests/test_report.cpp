@@ -1,5 +1,5 @@
 // The report library against independent oracles: RFC 4648's base64 test vectors, an XML parser
-// (Python's, Debian's /usr/bin/python3) on the SVG, and tick placement by hand.
+// (Python's, Debian's /usr/bin/python3) on the SVG, tick placement and axis scales by hand.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -74,4 +74,38 @@ TEST(Report, PageEmbedsPicturesAndNeedsNoNetwork) {
   EXPECT_EQ(html.find("http://"), std::string::npos) << "nothing fetched from elsewhere";
   EXPECT_EQ(html.find("https://"), std::string::npos);
   EXPECT_THROW(page.pngFile("/nonexistent.png", "x"), std::runtime_error);
+}
+
+namespace {
+/// Centres of the <circle> marks in order.
+std::vector<std::pair<double, double>> circles(const std::string& svg) {
+  std::vector<std::pair<double, double>> out;
+  const std::regex re("<circle cx=\"([-0-9.]+)\" cy=\"([-0-9.]+)\"");
+  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), re); it != std::sregex_iterator(); ++it)
+    out.emplace_back(std::stod((*it)[1]), std::stod((*it)[2]));
+  return out;
+}
+}  // namespace
+
+TEST(Report, EqualAxesDrawAMetreAsLongOnXAsOnY) {
+  Series path{"path", {0, 10, 10}, {0, 0, 1}};  // 10 m east, then 1 m north
+  PlotOptions o;
+  o.equal_axes = true;
+  const auto c = circles(svgPlot({path}, o));
+  ASSERT_EQ(c.size(), 3u);
+  const double px_per_m_x = std::abs(c[1].first - c[0].first) / 10, px_per_m_y = std::abs(c[2].second - c[1].second) / 1;
+  EXPECT_NEAR(px_per_m_x, px_per_m_y, 0.02 * px_per_m_x);
+  EXPECT_LT(c[2].second, c[1].second) << "north is up";
+  o.equal_axes = false;
+  const auto d = circles(svgPlot({path}, o));
+  EXPECT_GT(std::abs(d[2].second - d[1].second) / 1, 3 * std::abs(d[1].first - d[0].first) / 10) << "stretched without";
+}
+
+TEST(Report, YIncludeZeroPutsZeroOnTheAxis) {
+  PlotOptions o;
+  o.y_include_zero = true;
+  const std::string svg = svgPlot({{"rate", {0, 1, 2}, {753, 754, 753}}}, o);
+  EXPECT_NE(svg.find("text-anchor=\"end\">0</text>"), std::string::npos) << "a 0 tick on the y axis";
+  o.y_include_zero = false;
+  EXPECT_EQ(svgPlot({{"rate", {0, 1, 2}, {753, 754, 753}}}, o).find("text-anchor=\"end\">0</text>"), std::string::npos);
 }

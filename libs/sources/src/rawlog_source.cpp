@@ -18,6 +18,16 @@ using mrpt::obs::CObservationVelodyneScan;
 
 namespace {
 constexpr double kHour_s = 3600.0;
+
+/// The sensor's microsecond counter of a packet (bytes 1200-1203, little-endian), read byte by byte:
+/// MRPT's packed 1206-byte struct sits at unaligned addresses in scan_packets, where its
+/// gps_timestamp() binds a misaligned uint32_t reference (UBSan: misaligned address).
+uint32_t packetCounter_us(const CObservationVelodyneScan::TVelodyneRawPacket& raw) {
+  const auto* b = reinterpret_cast<const uint8_t*>(&raw) + 1200;
+  return static_cast<uint32_t>(b[0]) | static_cast<uint32_t>(b[1]) << 8 | static_cast<uint32_t>(b[2]) << 16 |
+         static_cast<uint32_t>(b[3]) << 24;
+}
+
 constexpr double kKnot_mps = 1852.0 / 3600.0;
 
 TimedGpsFix fixFromObservation(const mrpt::obs::CObservationGPS& o) {
@@ -94,13 +104,14 @@ bool RawlogPacketSource::readMore() {
   }
   if (auto v = std::dynamic_pointer_cast<CObservationVelodyneScan>(obs)) {
     ++scans_;
+    scan_label_ = v->sensorLabel;
     const auto t0 = v->originalReceivedTimestamp != INVALID_TIMESTAMP ? v->originalReceivedTimestamp
                                                                        : v->timestamp;
     const double stamp0 = mrpt::Clock::toDouble(t0);
-    const double counter0 = v->scan_packets.empty() ? 0 : v->scan_packets[0].gps_timestamp() * 1e-6;
+    const double counter0 = v->scan_packets.empty() ? 0 : packetCounter_us(v->scan_packets[0]) * 1e-6;
     for (const auto& raw : v->scan_packets) {
       velodyne::RawPacket pkt;
-      double dt = raw.gps_timestamp() * 1e-6 - counter0;
+      double dt = packetCounter_us(raw) * 1e-6 - counter0;
       if (dt < -kHour_s / 2) dt += kHour_s;  // sensor counter wraps at the top of the hour
       pkt.stamp_s = stamp0 + dt;
       pkt.dst_port = ports_.data_port;
@@ -117,8 +128,16 @@ bool RawlogPacketSource::readMore() {
     }
   } else {
     ++other_;
+    if (keep_other_ && obs)
+      others_.push_back({obs->sensorLabel, obs->GetRuntimeClass()->className, mrpt::Clock::toDouble(obs->timestamp)});
   }
   return true;
+}
+
+std::vector<RawlogPacketSource::OtherRecord> RawlogPacketSource::takeOtherRecords() {
+  std::vector<OtherRecord> out;
+  out.swap(others_);
+  return out;
 }
 
 std::vector<TimedGpsFix> RawlogPacketSource::takeDecodedFixes() {

@@ -19,6 +19,8 @@ struct PlotOptions {
   bool lines = true;   ///< join the points of a series
   bool points = true;  ///< mark each point
   std::vector<double> x_markers;  ///< vertical lines at these x (drawn in grey)
+  bool y_include_zero = false;  ///< the y range reaches down (or up) to 0 (rates, counts)
+  bool equal_axes = false;  ///< one unit is as long on x as on y (paths in metres); ranges widen to fit
 };
 
 /// The palette's colour of series \p i ("#1f77b4", ...), for legends drawn elsewhere.

@@ -35,19 +35,33 @@ class RawlogPacketSource : public PacketSource {
   std::size_t scansRead() const { return scans_; }
   /// Records that are neither Velodyne scans nor GPS [count].
   std::size_t otherRecords() const { return other_; }
+  /// A record that is neither a Velodyne scan nor GPS (e.g. the grabber's CAN observations).
+  struct OtherRecord {
+    std::string label;       ///< sensorLabel
+    std::string class_name;  ///< e.g. "CObservationOdometry"
+    double stamp_s = 0;      ///< observation timestamp [s since epoch]
+  };
+  /// Those records read since the last call, when keepOtherRecords(true) was set before reading.
+  std::vector<OtherRecord> takeOtherRecords();
+  void keepOtherRecords(bool keep) { keep_other_ = keep; }
+  /// sensorLabel of the CObservationVelodyneScan whose packets next() returns now (one scan is
+  /// queued at a time), e.g. to tell several LiDARs of one rawlog apart.
+  const std::string& scanLabel() const { return scan_label_; }
 
  private:
   bool readMore();
 
   struct Impl;
   std::unique_ptr<Impl> impl_;
-  std::string path_, error_;
+  std::string path_, error_, scan_label_;
   PortConfig ports_;
   std::deque<velodyne::RawPacket> queue_;
   std::vector<TimedGpsFix> gps_;
   SourceStats stats_;
   GapCounter gaps_;
   std::size_t scans_ = 0, other_ = 0;
+  bool keep_other_ = false;
+  std::vector<OtherRecord> others_;
   bool finished_ = false;
 };
 
