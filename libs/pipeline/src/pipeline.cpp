@@ -53,6 +53,7 @@ void feedOctoMap(mapping::OctoMapWorker& octo, const mapping::Mapper& mapper, si
 
 StageTimes& StageTimes::operator+=(const StageTimes& o) {
   source += o.source, poses += o.poses, deskew += o.deskew, maps += o.maps, boundaries += o.boundaries;
+  objects += o.objects;
   return *this;
 }
 
@@ -89,11 +90,14 @@ std::optional<PipelineFrame> Pipeline::next() {
     f.ms.maps = msSince(t);
   }
 
-  if (stages_.boundaries && stages_.boundary_use != BoundaryUse::None) {
+  const bool bounds = stages_.boundaries && stages_.boundary_use != BoundaryUse::None;
+  if (bounds || stages_.objects) {
     if (f.pose.ok) {
       t = Clock::now();
       deskewToReference(*scan, f.pose);
       f.ms.deskew = msSince(t);
+    }
+    if (bounds && f.pose.ok) {
       t = Clock::now();
       if (stages_.boundary_use == BoundaryUse::Accumulate) {
         stages_.boundaries->accumulate(*scan, f.pose.ref, f.pose.t_ref);
@@ -101,6 +105,12 @@ std::optional<PipelineFrame> Pipeline::next() {
         f.boundary = stages_.boundaries->process(*scan, f.pose.ref, f.pose.t_ref);
       }
       f.ms.boundaries = msSince(t);
+    }
+    if (stages_.objects) {
+      t = Clock::now();
+      f.objects = f.pose.ok ? stages_.objects->process(*scan, f.pose.ref, f.pose.t_ref)
+                            : stages_.objects->coast(f.pose.stamp_s);
+      f.ms.objects = msSince(t);
     }
     f.scan = std::move(scan);
   }
