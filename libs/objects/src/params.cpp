@@ -67,6 +67,8 @@ void ClusterParams::saveToConfigFile(mrpt::config::CConfigFileBase& c, const std
 
 void TrackerParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, const std::string& s) {
   gate_m = readDouble(c, s, "gate_m", gate_m);
+  gate_sigma = readDouble(c, s, "gate_sigma", gate_sigma);
+  size_weight = readDouble(c, s, "size_weight", size_weight);
   accel_sigma_mps2 = readDouble(c, s, "accel_sigma_mps2", accel_sigma_mps2);
   meas_sigma_m = readDouble(c, s, "meas_sigma_m", meas_sigma_m);
   init_speed_sigma_mps = readDouble(c, s, "init_speed_sigma_mps", init_speed_sigma_mps);
@@ -74,7 +76,10 @@ void TrackerParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, c
   max_misses = readInt(c, s, "max_misses", max_misses);
   moving_speed_mps = readDouble(c, s, "moving_speed_mps", moving_speed_mps);
   moving_min_travel_m = readDouble(c, s, "moving_min_travel_m", moving_min_travel_m);
+  moving_min_hits = readInt(c, s, "moving_min_hits", moving_min_hits);
   max_extent_growth_m = readDouble(c, s, "max_extent_growth_m", max_extent_growth_m);
+  moving_max_length_m = readDouble(c, s, "moving_max_length_m", moving_max_length_m);
+  moving_max_width_m = readDouble(c, s, "moving_max_width_m", moving_max_width_m);
   max_dt_s = readDouble(c, s, "max_dt_s", max_dt_s);
   if (gate_m <= 0 || accel_sigma_mps2 <= 0 || meas_sigma_m <= 0 || init_speed_sigma_mps <= 0 || confirm_hits < 1 ||
       max_misses < 0 || max_dt_s <= 0) {
@@ -85,6 +90,8 @@ void TrackerParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, c
 
 void TrackerParams::saveToConfigFile(mrpt::config::CConfigFileBase& c, const std::string& s) const {
   c.write(s, "gate_m", gate_m);
+  c.write(s, "gate_sigma", gate_sigma);
+  c.write(s, "size_weight", size_weight);
   c.write(s, "accel_sigma_mps2", accel_sigma_mps2);
   c.write(s, "meas_sigma_m", meas_sigma_m);
   c.write(s, "init_speed_sigma_mps", init_speed_sigma_mps);
@@ -92,7 +99,10 @@ void TrackerParams::saveToConfigFile(mrpt::config::CConfigFileBase& c, const std
   c.write(s, "max_misses", max_misses);
   c.write(s, "moving_speed_mps", moving_speed_mps);
   c.write(s, "moving_min_travel_m", moving_min_travel_m);
+  c.write(s, "moving_min_hits", moving_min_hits);
   c.write(s, "max_extent_growth_m", max_extent_growth_m);
+  c.write(s, "moving_max_length_m", moving_max_length_m);
+  c.write(s, "moving_max_width_m", moving_max_width_m);
   c.write(s, "max_dt_s", max_dt_s);
 }
 

@@ -119,17 +119,24 @@ void Tracker::update(double t, const Eigen::Isometry3d& T_map_lidar, const std::
   // Gated costs: x-y distance of the completed detection centre to the track's prediction.
   std::vector<std::vector<double>> cost(tracks_.size(), std::vector<double>(dets.size(), kUnassignable));
   std::vector<std::vector<Completed>> comp(tracks_.size(), std::vector<Completed>(dets.size()));
+  const Eigen::Matrix2d R = Eigen::Matrix2d::Identity() * p_.meas_sigma_m * p_.meas_sigma_m;
   for (size_t i = 0; i < tracks_.size(); ++i) {
     const Track& tr = tracks_[i];
+    const Eigen::Matrix2d S_inv = (tr.P.topLeftCorner<2, 2>() + R).inverse();  // innovation covariance
     for (size_t j = 0; j < dets.size(); ++j) {
-      comp[i][j] = complete(dets[j], tr.heading, tr.length, tr.width, s);
-      const double d = (comp[i][j].centre - tr.x.head<2>()).norm();
-      if (d <= p_.gate_m) cost[i][j] = d;
+      comp[i][j] = complete(dets[j], tr.heading, std::min(tr.length, p_.max_extent_growth_m),
+                            std::min(tr.width, p_.max_extent_growth_m), s);
+      const Eigen::Vector2d r = comp[i][j].centre - tr.x.head<2>();
+      const double d = r.norm(), m2 = r.dot(S_inv * r);
+      if (d > p_.gate_m || m2 > p_.gate_sigma * p_.gate_sigma) continue;
+      // extents seen now against the track's (capped: a car seen whole once is a car seen in part now)
+      const double dl = std::max(0.0, comp[i][j].along - std::min(tr.length, p_.max_extent_growth_m)) +
+                        std::max(0.0, comp[i][j].across - std::min(tr.width, p_.max_extent_growth_m));
+      cost[i][j] = d + p_.size_weight * dl;
     }
   }
   const std::vector<int> match = hungarian(cost);
   std::vector<char> taken(dets.size(), false);
-  const Eigen::Matrix2d R = Eigen::Matrix2d::Identity() * p_.meas_sigma_m * p_.meas_sigma_m;
   for (size_t i = 0; i < tracks_.size(); ++i) {
     Track& tr = tracks_[i];
     const int j = match[i];
@@ -146,16 +153,20 @@ void Tracker::update(double t, const Eigen::Isometry3d& T_map_lidar, const std::
     const Eigen::Matrix<double, 4, 2> K = PHt * S.inverse();
     tr.x += K * (c.centre - tr.x.head<2>());
     tr.P = (Eigen::Matrix4d::Identity() - K * Eigen::Matrix<double, 2, 4>::Identity()) * tr.P;
-    tr.length = std::min(std::max(tr.length, c.along), p_.max_extent_growth_m);
-    tr.width = std::min(std::max(tr.width, c.across), p_.max_extent_growth_m);
+    tr.length = std::max(tr.length, c.along);
+    tr.width = std::max(tr.width, c.across);
     ++tr.hits, tr.misses = 0, tr.t_last = t, tr.last_detection = j;
     tr.z_min = dets[static_cast<size_t>(j)].z_min, tr.z_max = dets[static_cast<size_t>(j)].z_max;
     if (tr.hits >= p_.confirm_hits) tr.state = TrackState::Confirmed;
     const double v = tr.speed();
     const double travel = (tr.x.head<2>() - tr.birth_xy).norm();
     if (tr.state == TrackState::Confirmed) {
-      if (v > p_.moving_speed_mps && travel > p_.moving_min_travel_m) tr.moving = true;
-      if (v < 0.5 * p_.moving_speed_mps) tr.moving = false;
+      const bool car_sized = std::max(tr.length, tr.width) <= p_.moving_max_length_m &&
+                             std::min(tr.length, tr.width) <= p_.moving_max_width_m;
+      if (v > p_.moving_speed_mps && travel > p_.moving_min_travel_m && tr.hits >= p_.moving_min_hits && car_sized) {
+        tr.moving = true;
+      }
+      if (v < 0.5 * p_.moving_speed_mps || !car_sized) tr.moving = false;
     }
     if (tr.moving) {
       // the heading follows the velocity; extents swap when it turns by more than 45 deg off them
@@ -176,7 +187,7 @@ void Tracker::update(double t, const Eigen::Isometry3d& T_map_lidar, const std::
                .asDiagonal();
     tr.heading = dets[j].yaw;
     const Completed c = complete(dets[j], tr.heading, 0, 0, s);
-    tr.length = std::min(c.along, p_.max_extent_growth_m), tr.width = std::min(c.across, p_.max_extent_growth_m);
+    tr.length = c.along, tr.width = c.across;
     tr.z_min = dets[j].z_min, tr.z_max = dets[j].z_max;
     tr.hits = 1, tr.t_birth = tr.t_last = t, tr.birth_xy = dets[j].centre, tr.last_detection = static_cast<int>(j);
     if (tr.hits >= p_.confirm_hits) tr.state = TrackState::Confirmed;

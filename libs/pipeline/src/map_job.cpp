@@ -99,13 +99,14 @@ struct ObjectsOutput {
   void add(const PipelineFrame& f, objects::ObjectsStage& stage) {
     if (!f.objects) return;
     const objects::ObjectsFrame& o = *f.objects;
+    const double t = f.pose.ok ? f.pose.t_ref : f.pose.stamp_s;  // the time the tracks are at
     if (f.pose.ok) {
-      objects += objects::objectsCsvRows(f.index, f.pose.stamp_s, f.pose.ref, o);
+      objects += objects::objectsCsvRows(f.index, t, f.pose.ref, o);
       ms.push_back(o.ms_segment + o.ms_track);
       ms_ground.push_back(o.ms_ground);
       n_objects += o.objects.size();
     }
-    tracks += objects::tracksCsvRows(f.index, f.pose.stamp_s, o);
+    tracks += objects::tracksCsvRows(f.index, t, o);
     take(stage);
   }
   void take(objects::ObjectsStage& stage) {

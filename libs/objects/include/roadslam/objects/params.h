@@ -44,14 +44,19 @@ struct ClusterParams {
 /// nearest-neighbour association (Hungarian on gated x-y distances), birth, confirmation, death.
 struct TrackerParams {
   double gate_m = 2.5;                   ///< a detection farther than this from a track's prediction is no match [m]
+  double gate_sigma = 3.0;               ///< ... or farther than this many standard deviations (innovation covariance) [-]
+  double size_weight = 0.5;              ///< association cost per metre of extent difference (along + across) [-]
   double accel_sigma_mps2 = 1.5;         ///< white-acceleration process noise of the CV model [m/s^2]
   double meas_sigma_m = 0.25;            ///< detection position noise [m]
   double init_speed_sigma_mps = 10.0;    ///< speed uncertainty of a new track [m/s]
   int confirm_hits = 3;                  ///< hits that confirm a tentative track [-]
   int max_misses = 5;                    ///< consecutive misses (sweeps) that end a confirmed track [-]
-  double moving_speed_mps = 1.5;         ///< a confirmed track faster than this ... [m/s]
-  double moving_min_travel_m = 2.0;      ///< ... that has moved this far from its birth is labelled moving [m]
-  double max_extent_growth_m = 6.0;      ///< longest a track's remembered length grows to (full box of a partly seen car) [m]
+  double moving_speed_mps = 2.5;         ///< a confirmed track faster than this ... [m/s]
+  double moving_min_travel_m = 3.0;      ///< ... that has moved this far from its birth ... [m]
+  int moving_min_hits = 10;              ///< ... and was detected this many times is labelled moving [-]
+  double max_extent_growth_m = 6.0;      ///< a partly seen detection is completed to at most this length (cars) [m]
+  double moving_max_length_m = 7.0;      ///< tracks ever seen longer than this (walls seen in parts) are never moving [m]
+  double moving_max_width_m = 3.0;       ///< ... or wider than this [m]
   double max_dt_s = 1.0;                 ///< a gap longer than this between sweeps ends every track ("gap") [s]
 
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section = "tracking");

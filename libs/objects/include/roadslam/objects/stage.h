@@ -3,6 +3,7 @@
 /// The objects stage of the pipeline: per sweep (deskewed into its reference pose), ground labels,
 /// segmentation, tracking; the results as rows of objects.csv and tracks.csv.
 ///
+/// stamp_s: the sweep's reference time (the deskew's, the tracks' state time; trajectory_odometry.tum's).
 /// objects.csv, one row per object per sweep (map frame):
 ///   frame,stamp_s,object,cx,cy,yaw_rad,length_m,width_m,z_min,z_max,points,track_id
 /// (track_id: the track that took it this sweep, -1 none). tracks.csv, one row per confirmed track per sweep:

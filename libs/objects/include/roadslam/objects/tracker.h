@@ -26,7 +26,7 @@ struct Track {
   TrackState state = TrackState::Tentative;
   Eigen::Vector4d x = Eigen::Vector4d::Zero();  ///< [x, y, vx, vy], map frame [m, m/s]
   Eigen::Matrix4d P = Eigen::Matrix4d::Identity();
-  double length = 0, width = 0;       ///< remembered extents along / across the heading [m]
+  double length = 0, width = 0;       ///< largest extents seen along / across the heading [m]
   double heading = 0;                 ///< [rad], from the velocity once moving, else the box's
   double z_min = 0, z_max = 0;        ///< last detection's heights, map frame [m]
   int hits = 0, misses = 0;           ///< detections associated; consecutive sweeps without one
