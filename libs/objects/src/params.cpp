@@ -37,6 +37,7 @@ void ClusterParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, c
   min_range_m = readDouble(c, s, "min_range_m", min_range_m);
   max_range_m = readDouble(c, s, "max_range_m", max_range_m);
   min_points = readInt(c, s, "min_points", min_points);
+  min_top_height_m = readDouble(c, s, "min_top_height_m", min_top_height_m);
   max_length_m = readDouble(c, s, "max_length_m", max_length_m);
   max_width_m = readDouble(c, s, "max_width_m", max_width_m);
   lshape_step_rad = readDouble(c, s, "lshape_step_deg", lshape_step_rad / kDeg) * kDeg;
@@ -60,6 +61,7 @@ void ClusterParams::saveToConfigFile(mrpt::config::CConfigFileBase& c, const std
   c.write(s, "min_range_m", min_range_m);
   c.write(s, "max_range_m", max_range_m);
   c.write(s, "min_points", min_points);
+  c.write(s, "min_top_height_m", min_top_height_m);
   c.write(s, "max_length_m", max_length_m);
   c.write(s, "max_width_m", max_width_m);
   c.write(s, "lshape_step_deg", lshape_step_rad / kDeg);
@@ -80,6 +82,7 @@ void TrackerParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, c
   max_extent_growth_m = readDouble(c, s, "max_extent_growth_m", max_extent_growth_m);
   moving_max_length_m = readDouble(c, s, "moving_max_length_m", moving_max_length_m);
   moving_max_width_m = readDouble(c, s, "moving_max_width_m", moving_max_width_m);
+  moving_min_width_m = readDouble(c, s, "moving_min_width_m", moving_min_width_m);
   max_dt_s = readDouble(c, s, "max_dt_s", max_dt_s);
   if (gate_m <= 0 || accel_sigma_mps2 <= 0 || meas_sigma_m <= 0 || init_speed_sigma_mps <= 0 || confirm_hits < 1 ||
       max_misses < 0 || max_dt_s <= 0) {
@@ -103,6 +106,7 @@ void TrackerParams::saveToConfigFile(mrpt::config::CConfigFileBase& c, const std
   c.write(s, "max_extent_growth_m", max_extent_growth_m);
   c.write(s, "moving_max_length_m", moving_max_length_m);
   c.write(s, "moving_max_width_m", moving_max_width_m);
+  c.write(s, "moving_min_width_m", moving_min_width_m);
   c.write(s, "max_dt_s", max_dt_s);
 }
 

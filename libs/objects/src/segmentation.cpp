@@ -147,6 +147,7 @@ std::vector<Object> segmentObjects(const std::vector<ScanPoint>& pts, bool has_r
                                    const std::vector<float>& height_above_ground_m, const ClusterParams& p,
                                    SegmentationStats* stats) {
   std::vector<uint32_t> cand;
+  std::vector<float> height(pts.size(), 0.f);
   cand.reserve(pts.size());
   const double rmin2 = p.min_range_m * p.min_range_m, rmax2 = p.max_range_m * p.max_range_m;
   for (size_t i = 0; i < pts.size(); ++i) {
@@ -158,6 +159,7 @@ std::vector<Object> segmentObjects(const std::vector<ScanPoint>& pts, bool has_r
     const float hg = i < height_above_ground_m.size() ? height_above_ground_m[i] : NAN;
     const double h = std::isfinite(hg) ? double(hg) : q.z + p.ground.sensor_height_m;
     if (h < p.min_height_m || h > p.max_height_m) continue;
+    height[i] = static_cast<float>(h);
     cand.push_back(static_cast<uint32_t>(i));
   }
   Labels label(pts.size(), -1);
@@ -176,9 +178,11 @@ std::vector<Object> segmentObjects(const std::vector<ScanPoint>& pts, bool has_r
       const ScanPoint& q = pts[i];
       o.centroid += Eigen::Vector3d(q.x, q.y, q.z);
       o.z_min = std::min<double>(o.z_min, q.z), o.z_max = std::max<double>(o.z_max, q.z);
+      o.top_height_m = std::max<double>(o.top_height_m, height[i]);
       xy.emplace_back(q.x, q.y);
     }
     o.centroid /= static_cast<double>(m.size());
+    if (o.top_height_m < p.min_top_height_m) continue;
     o.box = fitLShape(xy, p.lshape_step_rad);
     if (o.box.length > p.max_length_m || o.box.width > p.max_width_m) continue;
     o.points = m.size();

@@ -162,7 +162,8 @@ void Tracker::update(double t, const Eigen::Isometry3d& T_map_lidar, const std::
     const double travel = (tr.x.head<2>() - tr.birth_xy).norm();
     if (tr.state == TrackState::Confirmed) {
       const bool car_sized = std::max(tr.length, tr.width) <= p_.moving_max_length_m &&
-                             std::min(tr.length, tr.width) <= p_.moving_max_width_m;
+                             std::min(tr.length, tr.width) <= p_.moving_max_width_m &&
+                             std::min(tr.length, tr.width) >= p_.moving_min_width_m;
       if (v > p_.moving_speed_mps && travel > p_.moving_min_travel_m && tr.hits >= p_.moving_min_hits && car_sized) {
         tr.moving = true;
       }

@@ -30,6 +30,7 @@ struct ClusterParams {
   double min_range_m = 2.0;              ///< points nearer (x-y) are the own car's body, not segmented [m]
   double max_range_m = 50.0;             ///< points beyond (x-y distance from the lidar) are not segmented [m]
   int min_points = 8;                    ///< smaller clusters are no object [-]
+  double min_top_height_m = 0.5;         ///< clusters whose highest point is lower above the ground (curbs) are no object [m]
   double max_length_m = 12.0;            ///< longer clusters (walls, hedges) are no object [m]
   double max_width_m = 4.0;              ///< wider clusters are no object [m]
   double lshape_step_rad = 1.0 * 3.14159265358979323846 / 180.0;  ///< L-shape search step; ini `lshape_step_deg` [rad]
@@ -57,6 +58,7 @@ struct TrackerParams {
   double max_extent_growth_m = 6.0;      ///< a partly seen detection is completed to at most this length (cars) [m]
   double moving_max_length_m = 7.0;      ///< tracks ever seen longer than this (walls seen in parts) are never moving [m]
   double moving_max_width_m = 3.0;       ///< ... or wider than this [m]
+  double moving_min_width_m = 1.0;       ///< ... or never seen wider than this (a wall's face slides, a car shows two faces) [m]
   double max_dt_s = 1.0;                 ///< a gap longer than this between sweeps ends every track ("gap") [s]
 
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section = "tracking");

@@ -26,6 +26,7 @@ struct Object {
   Box2 box;                   ///< L-shape box of the points' x-y [m]
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();  ///< mean of the points [m]
   double z_min = 0, z_max = 0;  ///< [m]
+  double top_height_m = 0;      ///< highest point above the local ground [m]
   size_t points = 0;
   std::vector<uint32_t> indices;  ///< the points' indices in the sweep
 };
