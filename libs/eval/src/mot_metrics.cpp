@@ -95,8 +95,8 @@ std::map<long long, std::vector<Hyp>> readTracks(const std::string& path) {
   return out;
 }
 
-/// Hungarian-free optimal assignment is overkill for a handful of cars: greedy on sorted distances
-/// is optimal when the gate is smaller than half the spacing of the objects, which holds for cars.
+/// Greedy assignment in order of distance: the optimal one while the objects stand farther apart than
+/// twice the gate, which holds for cars' centres with a 2 m gate.
 std::vector<std::pair<size_t, size_t>> assign(const std::vector<Eigen::Vector2d>& g, const std::vector<Eigen::Vector2d>& h,
                                               const std::vector<char>& g_free, const std::vector<char>& h_free, double thr) {
   std::vector<std::tuple<double, size_t, size_t>> pairs;

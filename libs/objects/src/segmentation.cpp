@@ -10,6 +10,7 @@ namespace {
 
 constexpr double kClosenessFloor_m = 0.01;  // d0 of Zhang et al. 2017, Alg. 4 (avoids 1/0)
 constexpr size_t kMaxFitPoints = 256;       // the L-shape search sees at most this many points (stride)
+constexpr int kCoarseSteps = 5;             // coarse L-shape search step, in fine steps
 
 /// Labels of connected components over the candidate points; -1 = not a candidate.
 using Labels = std::vector<int>;
@@ -109,9 +110,8 @@ Box2 fitLShape(const std::vector<Eigen::Vector2d>& xy, double step_rad) {
   Box2 b;
   if (xy.empty()) return b;
   const size_t stride = std::max<size_t>(1, xy.size() / kMaxFitPoints);
-  double best = -1, best_theta = 0;
   std::vector<double> c1, c2;
-  for (double theta = 0; theta < M_PI / 2; theta += step_rad) {
+  auto closeness = [&](double theta) {  // Zhang et al. 2017, Alg. 4
     const double co = std::cos(theta), si = std::sin(theta);
     c1.clear(), c2.clear();
     for (size_t i = 0; i < xy.size(); i += stride) {
@@ -120,13 +120,28 @@ Box2 fitLShape(const std::vector<Eigen::Vector2d>& xy, double step_rad) {
     }
     const auto [lo1, hi1] = std::minmax_element(c1.begin(), c1.end());
     const auto [lo2, hi2] = std::minmax_element(c2.begin(), c2.end());
-    double beta = 0;  // closeness criterion, Zhang et al. 2017 Alg. 4
+    double beta = 0;
     for (size_t k = 0; k < c1.size(); ++k) {
       const double d1 = std::min(*hi1 - c1[k], c1[k] - *lo1), d2 = std::min(*hi2 - c2[k], c2[k] - *lo2);
       beta += 1.0 / std::max(std::min(d1, d2), kClosenessFloor_m);
     }
-    if (beta > best) best = beta, best_theta = theta;
+    return beta;
+  };
+  // Alg. 1 searches [0, pi/2) in steps of delta; here coarsely (kCoarseSteps x delta) first, then in
+  // steps of delta around the best coarse angle: a third of the evaluations at 1 deg.
+  double best = -1, best_theta = 0;
+  const double coarse = kCoarseSteps * step_rad;
+  for (double theta = 0; theta < M_PI / 2; theta += coarse) {
+    const double b = closeness(theta);
+    if (b > best) best = b, best_theta = theta;
   }
+  const double centre = best_theta;
+  for (double theta = centre - coarse + step_rad; theta < centre + coarse; theta += step_rad) {
+    if (std::abs(theta - centre) < 1e-12) continue;
+    const double b = closeness(theta);
+    if (b > best) best = b, best_theta = theta;
+  }
+  best_theta = std::fmod(best_theta + M_PI / 2, M_PI / 2);  // the box is the same a quarter turn on
   // The box of every point at the best angle (Alg. 1, lines 9-13).
   const double co = std::cos(best_theta), si = std::sin(best_theta);
   double lo1 = std::numeric_limits<double>::max(), hi1 = -lo1, lo2 = lo1, hi2 = -lo1;

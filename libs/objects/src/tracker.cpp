@@ -124,6 +124,8 @@ void Tracker::update(double t, const Eigen::Isometry3d& T_map_lidar, const std::
     const Track& tr = tracks_[i];
     const Eigen::Matrix2d S_inv = (tr.P.topLeftCorner<2, 2>() + R).inverse();  // innovation covariance
     for (size_t j = 0; j < dets.size(); ++j) {
+      // completion moves a centre by at most half the capped extents: farther boxes cannot be in the gate
+      if ((dets[j].centre - tr.x.head<2>()).norm() > p_.gate_m + p_.max_extent_growth_m) continue;
       comp[i][j] = complete(dets[j], tr.heading, std::min(tr.length, p_.max_extent_growth_m),
                             std::min(tr.width, p_.max_extent_growth_m), s);
       const Eigen::Vector2d r = comp[i][j].centre - tr.x.head<2>();

@@ -8,8 +8,9 @@
 /// frame, interpolated at the time) whose centre is within max_range_m of the lidar, placed with the
 /// GT pose (gt_trajectory.tum, T_world_lidar); the hypotheses are tracks.csv's confirmed tracks,
 /// placed with the run's own pose. So odometry drift does not count: the score is the tracker's.
-/// Correspondences persist while within match_distance_m (Sec. 2.1.1), the rest by Hungarian
-/// assignment on x-y centre distances; a GT whose hypothesis changed is an id switch.
+/// Correspondences persist while within match_distance_m (Sec. 2.1.1), the rest are made greedily in
+/// order of x-y centre distance (optimal while cars stand farther apart than twice the match
+/// distance); a GT whose hypothesis changed is an id switch.
 /// MOTA = 1 - (misses + false positives + id switches) / GT; MOTP = mean matched distance [m].
 /// The GT holds only moving cars: an unmatched hypothesis is a false positive only when it is
 /// labelled moving (static tracks on parked cars, poles and walls are nobody's mistake here).
