@@ -54,11 +54,20 @@ int main(int argc, char** argv) {
   objects->add_option("--match-distance", mp.match_distance_m, "largest centre distance of a match [m]");
   objects->add_option("--speed-after", mp.speed_after_s, "speed error counted for tracks this old [s]");
   objects->add_flag("--json", json, "print JSON instead of text");
+  bool o_ghosts = false;
+  objects->add_flag("--ghosts", o_ghosts, "also count the map's points (RUN/map.ply) on the moving cars' swept paths");
   CLI11_PARSE(app, argc, argv);
   try {
     if (*objects) {
       const auto m = roadslam::eval::evaluateMotFiles(o_gt, o_traj, o_run, mp);
-      std::cout << (json ? roadslam::eval::toJson(m).dump(2) + "\n" : roadslam::eval::toText(m));
+      auto j = roadslam::eval::toJson(m);
+      std::string text = roadslam::eval::toText(m);
+      if (o_ghosts) {
+        const auto g = roadslam::eval::countGhostPoints(o_gt, o_traj, o_run + "/trajectory.tum", o_run + "/map.ply");
+        j["map_points"] = g.map_points, j["ghost_points"] = g.ghost_points;
+        text += "ghost points        " + std::to_string(g.ghost_points) + " of " + std::to_string(g.map_points) + " map points\n";
+      }
+      std::cout << (json ? j.dump(2) + "\n" : text);
       return 0;
     }
     if (*bounds) {

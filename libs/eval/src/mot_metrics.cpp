@@ -212,6 +212,63 @@ MotMetrics evaluateMotFiles(const std::string& gt_objects_json, const std::strin
   return m;
 }
 
+GhostCount countGhostPoints(const std::string& gt_objects_json, const std::string& gt_trajectory_tum,
+                            const std::string& run_trajectory_tum, const std::string& map_ply, double margin_m) {
+  std::ifstream fo(gt_objects_json);
+  if (!fo) throw std::runtime_error("cannot read '" + gt_objects_json + "'");
+  const auto j = nlohmann::json::parse(fo, nullptr, false);
+  if (j.is_discarded() || !j.contains("moving_cars")) throw std::runtime_error("'" + gt_objects_json + "' is no gt_objects.json");
+  const auto gt = datasets::readTum(gt_trajectory_tum);
+  const auto est = datasets::readTum(run_trajectory_tum);
+  if (est.poses.empty()) throw std::runtime_error("'" + run_trajectory_tum + "' holds no pose");
+  Eigen::Isometry3d T_world_lidar;
+  if (!poseAt(gt, est.stamps_s[0], T_world_lidar)) throw std::runtime_error("the GT trajectory does not cover the run's first pose");
+  const Eigen::Isometry3d T_world_map = T_world_lidar * est.poses[0].inverse();
+  // the map's points (binary little-endian float xyz, as roadslam-map writes map.ply)
+  std::ifstream fp(map_ply, std::ios::binary);
+  if (!fp) throw std::runtime_error("cannot read '" + map_ply + "'");
+  std::string line;
+  size_t n = 0;
+  while (std::getline(fp, line) && line != "end_header") {
+    if (line.rfind("element vertex ", 0) == 0) n = std::stoul(line.substr(15));
+  }
+  std::vector<float> xyz(3 * n);
+  fp.read(reinterpret_cast<char*>(xyz.data()), static_cast<std::streamsize>(xyz.size() * sizeof(float)));
+  if (static_cast<size_t>(fp.gcount()) != xyz.size() * sizeof(float)) throw std::runtime_error("'" + map_ply + "' is truncated");
+  // swept boxes on a 1 m grid of the world for a quick lookup
+  struct SweptBox {
+    double x, y, z0, z1, c, s, hl, hw;
+  };
+  std::map<std::pair<long, long>, std::vector<SweptBox>> grid;
+  for (const auto& c : j["moving_cars"]) {
+    const double hl = 0.5 * c["length_m"].get<double>() + margin_m, hw = 0.5 * c["width_m"].get<double>() + margin_m;
+    const double h = c["height_m"].get<double>();
+    for (const auto& q : c["track"]) {
+      const SweptBox b{q[1].get<double>(), q[2].get<double>(), q[3].get<double>() + margin_m, q[3].get<double>() + h,
+                       std::cos(q[4].get<double>()), std::sin(q[4].get<double>()), hl, hw};
+      const double r = std::hypot(hl, hw);
+      for (long gx = static_cast<long>(std::floor(b.x - r)); gx <= static_cast<long>(std::floor(b.x + r)); ++gx) {
+        for (long gy = static_cast<long>(std::floor(b.y - r)); gy <= static_cast<long>(std::floor(b.y + r)); ++gy) grid[{gx, gy}].push_back(b);
+      }
+    }
+  }
+  GhostCount out;
+  out.map_points = n;
+  for (size_t i = 0; i < n; ++i) {
+    const Eigen::Vector3d w = T_world_map * Eigen::Vector3d(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+    const auto it = grid.find({static_cast<long>(std::floor(w.x())), static_cast<long>(std::floor(w.y()))});
+    if (it == grid.end()) continue;
+    for (const SweptBox& b : it->second) {
+      const double dx = w.x() - b.x, dy = w.y() - b.y;
+      if (std::abs(b.c * dx + b.s * dy) <= b.hl && std::abs(-b.s * dx + b.c * dy) <= b.hw && w.z() >= b.z0 && w.z() <= b.z1) {
+        ++out.ghost_points;
+        break;
+      }
+    }
+  }
+  return out;
+}
+
 nlohmann::json toJson(const MotMetrics& m) {
   return {{"frames", m.frames}, {"gt", m.gt}, {"matches", m.matches}, {"misses", m.misses},
           {"false_positives", m.false_positives}, {"id_switches", m.id_switches}, {"mota", m.mota},

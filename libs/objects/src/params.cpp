@@ -41,6 +41,8 @@ void ClusterParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, c
   max_length_m = readDouble(c, s, "max_length_m", max_length_m);
   max_width_m = readDouble(c, s, "max_width_m", max_width_m);
   lshape_step_rad = readDouble(c, s, "lshape_step_deg", lshape_step_rad / kDeg) * kDeg;
+  remove_moving_from_maps = readBool(c, s, "remove_moving_from_maps", remove_moving_from_maps);
+  removal_margin_m = readDouble(c, s, "removal_margin_m", removal_margin_m);
   if (azimuth_bins < 16 || azimuth_window < 1 || ring_window < 0 || cluster_distance_m <= 0 || min_points < 1 ||
       lshape_step_rad <= 0 || lshape_step_rad > M_PI / 4) {
     throw std::runtime_error("[" + s + "] azimuth_bins >= 16, azimuth_window >= 1, ring_window >= 0, "
@@ -65,6 +67,8 @@ void ClusterParams::saveToConfigFile(mrpt::config::CConfigFileBase& c, const std
   c.write(s, "max_length_m", max_length_m);
   c.write(s, "max_width_m", max_width_m);
   c.write(s, "lshape_step_deg", lshape_step_rad / kDeg);
+  c.write(s, "remove_moving_from_maps", remove_moving_from_maps);
+  c.write(s, "removal_margin_m", removal_margin_m);
 }
 
 void TrackerParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, const std::string& s) {

@@ -1,5 +1,6 @@
 #include "roadslam/objects/stage.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdarg>
@@ -45,8 +46,11 @@ ObjectsFrame ObjectsStage::process(const Scan& scan, const Eigen::Isometry3d& T_
   tracker_.update(t_s, T_map_lidar, objs);
   ObjectsFrame f = snapshot();
   f.object_track.assign(objs.size(), -1);
+  f.object_moving.assign(objs.size(), 0);
   for (const Track& t : tracker_.tracks()) {
-    if (t.last_detection >= 0 && t.state == TrackState::Confirmed) f.object_track[static_cast<size_t>(t.last_detection)] = t.id;
+    if (t.last_detection < 0 || t.state != TrackState::Confirmed) continue;
+    f.object_track[static_cast<size_t>(t.last_detection)] = t.id;
+    f.object_moving[static_cast<size_t>(t.last_detection)] = t.moving;
   }
   f.ms_track = msSince(t0);
   f.objects = std::move(objs);
@@ -58,6 +62,28 @@ ObjectsFrame ObjectsStage::process(const Scan& scan, const Eigen::Isometry3d& T_
 ObjectsFrame ObjectsStage::coast(double t_s) {
   tracker_.coast(t_s, "pose");
   return snapshot();
+}
+
+size_t removeMovingPoints(std::vector<Eigen::Vector3d>& pts_lidar, const ObjectsFrame& f, double margin_m) {
+  std::vector<const Object*> moving;
+  for (size_t k = 0; k < f.objects.size() && k < f.object_moving.size(); ++k) {
+    if (f.object_moving[k]) moving.push_back(&f.objects[k]);
+  }
+  if (moving.empty()) return 0;
+  const size_t before = pts_lidar.size();
+  auto inside = [&](const Eigen::Vector3d& q) {
+    for (const Object* o : moving) {
+      const Box2& b = o->box;
+      const double c = std::cos(b.yaw), s = std::sin(b.yaw), dx = q.x() - b.cx, dy = q.y() - b.cy;
+      if (std::abs(c * dx + s * dy) <= 0.5 * b.length + margin_m && std::abs(-s * dx + c * dy) <= 0.5 * b.width + margin_m &&
+          q.z() >= o->z_min - margin_m && q.z() <= o->z_max + margin_m) {
+        return true;
+      }
+    }
+    return false;
+  };
+  pts_lidar.erase(std::remove_if(pts_lidar.begin(), pts_lidar.end(), inside), pts_lidar.end());
+  return before - pts_lidar.size();
 }
 
 std::string objectsCsvHeader() { return "frame,stamp_s,object,cx,cy,yaw_rad,length_m,width_m,z_min,z_max,points,track_id\n"; }

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <random>
 
+#include "roadslam/objects/stage.h"
 #include "roadslam/objects/tracker.h"
 
 using namespace roadslam::objects;
@@ -127,4 +128,19 @@ TEST(Tracker, ACarSeenOnlyFromBehindIsCompletedAwayFromTheSensor) {
   for (int k = 5; k < 10; ++k) tr.update(0.1 * k, Eigen::Isometry3d::Identity(), {car(10 - L / 2 + 0.1, 0, M_PI / 2, 1.8, 0.2)});
   ASSERT_EQ(tr.tracks().size(), 1u);
   EXPECT_NEAR(tr.tracks()[0].x(0), 10.0, 0.2);
+}
+
+TEST(RemoveMovingPoints, OnlyThePointsOfMovingObjectsGo) {
+  ObjectsFrame f;
+  f.objects = {car(10, 0), car(-10, 5)};
+  f.object_moving = {1, 0};
+  std::vector<Eigen::Vector3d> pts = {{10, 0, -1}, {11.5, 0.5, -0.5}, {10, 1.2, -1},  // in the moving car (+0.3 m)
+                                      {10, 0, 1.0},                                   // above it
+                                      {14, 0, -1},                                    // beyond its end
+                                      {-10, 5, -1}};                                  // in the static car
+  EXPECT_EQ(removeMovingPoints(pts, f, 0.3), 3u);
+  ASSERT_EQ(pts.size(), 3u);
+  EXPECT_DOUBLE_EQ(pts[0].z(), 1.0);
+  EXPECT_DOUBLE_EQ(pts[1].x(), 14.0);
+  EXPECT_DOUBLE_EQ(pts[2].x(), -10.0);
 }

@@ -94,10 +94,12 @@ struct ObjectsOutput {
   std::vector<double> ms;  ///< per sweep with a pose: segmentation + tracking [ms]
   std::vector<double> ms_ground;
   size_t n_objects = 0;
+  size_t moving_points_removed = 0;
   std::map<std::string, int> end_reasons;
 
   void add(const PipelineFrame& f, objects::ObjectsStage& stage) {
     if (!f.objects) return;
+    moving_points_removed += f.moving_points_removed;
     const objects::ObjectsFrame& o = *f.objects;
     const double t = f.pose.ok ? f.pose.t_ref : f.pose.stamp_s;  // the time the tracks are at
     if (f.pose.ok) {
@@ -125,7 +127,7 @@ struct ObjectsOutput {
     };
     int confirmed_alive = 0;
     for (const auto& t : stage.tracker().tracks()) confirmed_alive += t.state == objects::TrackState::Confirmed;
-    return {{"objects", n_objects}, {"tracks_alive_at_end", confirmed_alive}, {"tracks_ended", end_reasons},
+    return {{"objects", n_objects}, {"tracks_alive_at_end", confirmed_alive}, {"moving_points_removed_from_maps", moving_points_removed}, {"tracks_ended", end_reasons},
             {"ms_segment_track_per_frame", stats(ms)}, {"ms_ground_per_frame", stats(ms_ground)}};
   }
 };
@@ -166,6 +168,7 @@ MapOutcome runMapJob(const MapRequest& req) {
   stages.octomap = octo.get();
   stages.octomap_keyframe_spacing_m = params.maps.octomap.keyframe_spacing_m;
   stages.objects = objects_stage.get();
+  stages.remove_moving_from_maps = params.objects.remove_moving_from_maps;
   Pipeline pipe(std::move(source), std::move(stages));
   const sources::ScanSource* stream = &pipe.source();
   ProgressBar bar("roadslam-map", stream->sizeHint());

@@ -44,6 +44,18 @@ struct MotMetrics {
 MotMetrics evaluateMotFiles(const std::string& gt_objects_json, const std::string& gt_trajectory_tum,
                             const std::string& run_dir, const MotParams& p = {});
 
+/// Ghost points of moving traffic in a map: points of \p map_ply (binary float xyz, map frame) that fall
+/// inside the path a moving car of \p gt_objects_json swept (its box at every 0.1 s GT sample, grown by
+/// \p margin_m, from \p margin_m above its ground to its roof). The moving cars drive on lanes where the
+/// simulator places nothing else, so every such point is left by a passing car. The map frame is
+/// placed in the world by the first pose of \p run_trajectory_tum (T_map_lidar) and the GT pose
+/// (\p gt_trajectory_tum) at that time; odometry drift moves the map against the lanes over long drives.
+struct GhostCount {
+  size_t map_points = 0, ghost_points = 0;
+};
+GhostCount countGhostPoints(const std::string& gt_objects_json, const std::string& gt_trajectory_tum,
+                            const std::string& run_trajectory_tum, const std::string& map_ply, double margin_m = 0.3);
+
 nlohmann::json toJson(const MotMetrics& m);
 std::string toText(const MotMetrics& m);
 

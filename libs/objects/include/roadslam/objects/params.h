@@ -34,6 +34,10 @@ struct ClusterParams {
   double max_length_m = 12.0;            ///< longer clusters (walls, hedges) are no object [m]
   double max_width_m = 4.0;              ///< wider clusters are no object [m]
   double lshape_step_rad = 1.0 * 3.14159265358979323846 / 180.0;  ///< L-shape search step; ini `lshape_step_deg` [rad]
+  /// Points of objects whose track is labelled moving stay out of the maps (point map, OctoMap, grid,
+  /// keyframes; not the odometry's own local map) [-]
+  bool remove_moving_from_maps = true;
+  double removal_margin_m = 0.3;         ///< around a moving object's box, x-y and z [m]
   preprocess::GroundSegParams ground;    ///< ground labels: read from [preprocess] seg_* (the odometry's), not saved here
 
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section = "objects",

@@ -25,6 +25,7 @@ struct ObjectsFrame {
   std::vector<Object> objects;     ///< lidar frame of the sweep's reference pose
   std::vector<Track> tracks;       ///< confirmed tracks after the update (map frame)
   std::vector<int> object_track;   ///< per object: the id of the track that took it, -1 none
+  std::vector<char> object_moving; ///< per object: its track is labelled moving
   SegmentationStats stats;
   double ms_ground = 0, ms_segment = 0, ms_track = 0;  ///< wall time [ms]
 };
@@ -38,6 +39,7 @@ class ObjectsStage {
   /// A sweep without a pose: tracks coast (and end after TrackerParams::max_misses with reason "pose").
   ObjectsFrame coast(double t_s);
 
+  const ClusterParams& params() const { return p_; }
   const Tracker& tracker() const { return tracker_; }
   Tracker& tracker() { return tracker_; }
 
@@ -46,6 +48,10 @@ class ObjectsStage {
   ClusterParams p_;
   Tracker tracker_;
 };
+
+/// Removes from \p pts_lidar (the sweep's points in the same lidar frame as \p f's objects) the points
+/// inside the boxes of \p f's moving objects grown by \p margin_m; returns how many it removed.
+size_t removeMovingPoints(std::vector<Eigen::Vector3d>& pts_lidar, const ObjectsFrame& f, double margin_m);
 
 /// CSV headers and rows (formats in the file comment); \p T_map_lidar places the objects in the map.
 std::string objectsCsvHeader();

@@ -51,6 +51,8 @@ struct Stages {
   /// Objects stage (segmentation and tracking, libs/objects) on the deskewed sweep; needs a pose
   /// stage that leaves the scan untouched (OdometryPoses' keep_scans).
   objects::ObjectsStage* objects = nullptr;
+  /// With objects: the points of moving objects stay out of what the maps stage is given.
+  bool remove_moving_from_maps = false;
 };
 
 /// One sweep through the stages.
@@ -60,6 +62,7 @@ struct PipelineFrame {
   /// The sweep, deskewed into pose.ref where the pose allows it; kept only when a boundary or objects stage runs.
   std::optional<Scan> scan;
   bool loop_closed = false;  ///< the maps stage accepted a loop at this sweep (keyframe poses moved)
+  size_t moving_points_removed = 0;  ///< points of moving objects kept out of the maps stage
   std::optional<boundary::BoundaryFrame> boundary;  ///< BoundaryUse::Detect and a pose
   /// With an objects stage: the sweep's objects (with a pose) and the confirmed tracks (coasting without one).
   std::optional<objects::ObjectsFrame> objects;
