@@ -14,8 +14,9 @@
 
 namespace roadslam::pipeline::objects_test {
 
-/// ini/default.ini with [objects] enabled = true, written into the test cache.
-inline std::string objectsIni() {
+/// ini/default.ini with [objects] enabled = true (and remove_moving_from_maps as \p remove), written
+/// into the test cache.
+inline std::string objectsIni(bool remove = true) {
   std::ifstream in(std::string(ROADSLAM_SOURCE_DIR) + "/ini/default.ini");
   std::stringstream ss;
   ss << in.rdbuf();
@@ -24,7 +25,12 @@ inline std::string objectsIni() {
   const auto key = s.find("enabled = false", sec);
   if (sec == std::string::npos || key == std::string::npos) throw std::runtime_error("default.ini has no [objects] enabled");
   s.replace(key, 15, "enabled = true");
-  const std::string path = std::string(ROADSLAM_BINARY_DIR) + "/test-cache/objects-on.ini";
+  if (!remove) {
+    const auto r = s.find("remove_moving_from_maps = true", sec);
+    if (r == std::string::npos) throw std::runtime_error("default.ini has no [objects] remove_moving_from_maps = true");
+    s.replace(r, 30, "remove_moving_from_maps = false");
+  }
+  const std::string path = std::string(ROADSLAM_BINARY_DIR) + "/test-cache/objects-on" + (remove ? "" : "-keep") + ".ini";
   std::filesystem::create_directories(std::string(ROADSLAM_BINARY_DIR) + "/test-cache");
   writeFileAtomically(path, s);
   return path;
@@ -36,15 +42,16 @@ struct ObjectsRun {
   std::string out_dir;
 };
 
-inline ObjectsRun runObjects(const std::string& scenario, double duration_s, const std::string& name) {
+inline ObjectsRun runObjects(const std::string& scenario, double duration_s, const std::string& name, bool maps = false,
+                             bool remove = true) {
   auto p = sim::ScenarioParams::fromFile(std::string(ROADSLAM_SOURCE_DIR) + "/ini/sim/" + scenario + ".ini");
   p.duration_s = duration_s;
   const std::string drive = pipeline::test::simulateOnce(p, name);
   pipeline::MapRequest req;
-  req.config_path = objectsIni();
+  req.config_path = objectsIni(remove);
   req.input_path = drive + "/velodyne.pcap";
-  req.out_dir = std::string(ROADSLAM_BINARY_DIR) + "/test-out/objects-" + name;
-  req.maps = false;  // the objects stage needs only the odometry's poses
+  req.out_dir = std::string(ROADSLAM_BINARY_DIR) + "/test-out/objects-" + name + (maps ? (remove ? "-maps" : "-maps-keep") : "");
+  req.maps = maps;  // the objects stage needs only the odometry's poses; the removal needs the maps
   req.progress = false;
   ObjectsRun r;
   r.summary = pipeline::runMapJob(req).summary;
