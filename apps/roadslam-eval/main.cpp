@@ -1,5 +1,6 @@
 // roadslam-eval: scores an estimated trajectory against ground truth (ATE, RPE, KITTI errors), or,
-// with the `bounds` subcommand, estimated road boundaries against ground-truth curbs.
+// with the `bounds` subcommand, estimated road boundaries against ground-truth curbs; `objects`: tracks
+// against the simulator's moving cars (CLEAR MOT).
 #include <CLI/CLI.hpp>
 #include <fstream>
 #include <iostream>
@@ -8,6 +9,7 @@
 #include "roadslam/common/cli.h"
 #include "roadslam/eval/boundary_metrics.h"
 #include "roadslam/eval/evaluate.h"
+#include "roadslam/eval/mot_metrics.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"Trajectory evaluation: ATE (SE(3)-aligned and first-pose-aligned), RPE, KITTI "
@@ -41,8 +43,33 @@ int main(int argc, char** argv) {
   bounds->add_flag("--json", json, "print JSON instead of text");
   std::string b_csv;
   bounds->add_option("--frames-csv", b_csv, "also write each frame's score (found, stations, errors per side) as CSV");
+  auto* objects = app.add_subcommand("objects", "tracks (roadslam-map [objects]) vs the simulator's moving cars: CLEAR MOT");
+  std::string o_gt, o_traj, o_run;
+  roadslam::eval::MotParams mp;
+  objects->add_option("--gt", o_gt, "gt_objects.json (simulator)")->required()->check(CLI::ExistingFile);
+  objects->add_option("--gt-trajectory", o_traj, "ground-truth poses T_world_lidar, TUM")->required()->check(CLI::ExistingFile);
+  objects->add_option("--run", o_run, "roadslam-map output folder (tracks.csv, trajectory_odometry.tum)")->required()
+      ->check(CLI::ExistingDirectory);
+  objects->add_option("--range", mp.max_range_m, "GT cars within this range of the lidar [m]");
+  objects->add_option("--match-distance", mp.match_distance_m, "largest centre distance of a match [m]");
+  objects->add_option("--speed-after", mp.speed_after_s, "speed error counted for tracks this old [s]");
+  objects->add_flag("--json", json, "print JSON instead of text");
+  bool o_ghosts = false;
+  objects->add_flag("--ghosts", o_ghosts, "also count the map's points (RUN/map.ply) on the moving cars' swept paths");
   CLI11_PARSE(app, argc, argv);
   try {
+    if (*objects) {
+      const auto m = roadslam::eval::evaluateMotFiles(o_gt, o_traj, o_run, mp);
+      auto j = roadslam::eval::toJson(m);
+      std::string text = roadslam::eval::toText(m);
+      if (o_ghosts) {
+        const auto g = roadslam::eval::countGhostPoints(o_gt, o_traj, o_run + "/trajectory.tum", o_run + "/map.ply");
+        j["map_points"] = g.map_points, j["ghost_points"] = g.ghost_points;
+        text += "ghost points        " + std::to_string(g.ghost_points) + " of " + std::to_string(g.map_points) + " map points\n";
+      }
+      std::cout << (json ? j.dump(2) + "\n" : text);
+      return 0;
+    }
     if (*bounds) {
       const auto m = roadslam::eval::evaluateBoundaryFiles(b_gt, b_traj, b_est, bp);
       std::cout << (json ? roadslam::eval::toJson(m).dump(2) + "\n" : roadslam::eval::toText(m));

@@ -3,7 +3,9 @@
 #include <mrpt/config/CConfigFileMemory.h>
 
 #include <chrono>
+#include <algorithm>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <stdexcept>
 
@@ -15,6 +17,7 @@
 #include "roadslam/pipeline/vehicle_prior.h"
 #include "roadslam/mapping/map_outputs.h"
 #include "roadslam/mapping/mapper.h"
+#include "roadslam/objects/stage.h"
 #include "roadslam/pipeline/can_prior.h"
 #include "roadslam/pipeline/pipeline.h"
 #include "roadslam/sources/scan_source.h"
@@ -43,8 +46,12 @@ struct JobParams {
   pipeline::VehiclePriorParams vehicle_prior;  ///< read by CanPriorStream with --can; recorded always
   mapping::MapperParams mapper;
   mapping::MapOutputParams maps;
+  objects::ClusterParams objects;    ///< [objects] (ground labels from [preprocess] seg_*)
+  objects::TrackerParams tracking;   ///< [tracking]
 
   void load(const mrpt::config::CConfigFileBase& cfg) {
+    objects.loadFromConfigFile(cfg, "objects", "preprocess");
+    tracking.loadFromConfigFile(cfg, "tracking");
     odometry.loadFromConfigFile(cfg);
     decoder.loadFromConfigFile(cfg, "velodyne");
     kitti.loadFromConfigFile(cfg, "kitti");
@@ -60,6 +67,8 @@ struct JobParams {
     vehicle_prior.saveToConfigFile(out, "vehicle_prior");
     mapper.saveToConfigFile(out);
     maps.saveToConfigFile(out);
+    objects.saveToConfigFile(out, "objects");
+    tracking.saveToConfigFile(out, "tracking");
     return out.getContent();
   }
 };
@@ -77,6 +86,51 @@ nlohmann::json loopsJson(const mapping::Mapper& m) {
   }
   return {{"accepted", acc}, {"rejected", rej}};
 }
+
+/// objects.csv, tracks.csv and tracks_ended.csv as the sweeps come, and the stage's figures.
+struct ObjectsOutput {
+  std::string objects = objects::objectsCsvHeader(), tracks = objects::tracksCsvHeader(),
+              ended = objects::endedCsvHeader();
+  std::vector<double> ms;  ///< per sweep with a pose: segmentation + tracking [ms]
+  std::vector<double> ms_ground;
+  size_t n_objects = 0;
+  size_t moving_points_removed = 0;
+  std::map<std::string, int> end_reasons;
+
+  void add(const PipelineFrame& f, objects::ObjectsStage& stage) {
+    if (!f.objects) return;
+    moving_points_removed += f.moving_points_removed;
+    const objects::ObjectsFrame& o = *f.objects;
+    const double t = f.pose.ok ? f.pose.t_ref : f.pose.stamp_s;  // the time the tracks are at
+    if (f.pose.ok) {
+      objects += objects::objectsCsvRows(f.index, t, f.pose.ref, o);
+      ms.push_back(o.ms_segment + o.ms_track);
+      ms_ground.push_back(o.ms_ground);
+      n_objects += o.objects.size();
+    }
+    tracks += objects::tracksCsvRows(f.index, t, o);
+    take(stage);
+  }
+  void take(objects::ObjectsStage& stage) {
+    const auto e = stage.tracker().takeEnded();
+    for (const auto& t : e) end_reasons[t.reason]++;
+    ended += objects::endedCsvRows(e);
+  }
+  nlohmann::json summary(const objects::ObjectsStage& stage) const {
+    auto stats = [](std::vector<double> v) {
+      if (v.empty()) return nlohmann::json{{"mean", 0}, {"p95", 0}, {"max", 0}};
+      double sum = 0;
+      for (double x : v) sum += x;
+      std::sort(v.begin(), v.end());
+      return nlohmann::json{{"mean", sum / v.size()}, {"p95", v[std::min(v.size() - 1, v.size() * 95 / 100)]},
+                            {"max", v.back()}};
+    };
+    int confirmed_alive = 0;
+    for (const auto& t : stage.tracker().tracks()) confirmed_alive += t.state == objects::TrackState::Confirmed;
+    return {{"objects", n_objects}, {"tracks_alive_at_end", confirmed_alive}, {"moving_points_removed_from_maps", moving_points_removed}, {"tracks_ended", end_reasons},
+            {"ms_segment_track_per_frame", stats(ms)}, {"ms_ground_per_frame", stats(ms_ground)}};
+  }
+};
 
 }  // namespace
 
@@ -103,12 +157,18 @@ MapOutcome runMapJob(const MapRequest& req) {
   std::unique_ptr<CanPriorStream> can;
   if (!req.can_log_path.empty()) can = std::make_unique<CanPriorStream>(req.can_log_path, req.vehicle_ini_path, *cfg);
   Stages stages;
-  auto odometry = std::make_unique<OdometryPoses>(params.odometry, std::move(can), false);
+  std::unique_ptr<objects::ObjectsStage> objects_stage;
+  if (params.objects.enabled) objects_stage = std::make_unique<objects::ObjectsStage>(params.objects, params.tracking);
+  ObjectsOutput objects_out;
+  // the objects stage reads the sweep after the odometry: the odometry must leave it untouched
+  auto odometry = std::make_unique<OdometryPoses>(params.odometry, std::move(can), objects_stage != nullptr);
   const OdometryPoses& odo = *odometry;
   stages.poses = std::move(odometry);
   if (req.maps) stages.mapper = &mapper;
   stages.octomap = octo.get();
   stages.octomap_keyframe_spacing_m = params.maps.octomap.keyframe_spacing_m;
+  stages.objects = objects_stage.get();
+  stages.remove_moving_from_maps = params.objects.remove_moving_from_maps;
   Pipeline pipe(std::move(source), std::move(stages));
   const sources::ScanSource* stream = &pipe.source();
   ProgressBar bar("roadslam-map", stream->sizeHint());
@@ -117,6 +177,7 @@ MapOutcome runMapJob(const MapRequest& req) {
     if (req.max_frames && out.frames.size() >= req.max_frames) break;
     auto f = pipe.next();
     if (!f) break;
+    if (objects_stage) objects_out.add(*f, *objects_stage);
     out.frames.push_back(std::move(*f->pose.odometry));
     if (req.progress) bar.update(out.frames.size());
   }
@@ -156,6 +217,14 @@ MapOutcome runMapJob(const MapRequest& req) {
   }
   const StageTimes& ms_stages = pipe.totals();
   out.summary["ms_by_stage_total"] = {{"source", ms_stages.source}, {"odometry", ms_stages.poses}, {"maps", ms_stages.maps}};
+  if (objects_stage) {
+    out.summary["ms_by_stage_total"]["objects"] = ms_stages.objects;
+    out.summary["ms_by_stage_total"]["deskew"] = ms_stages.deskew;
+    out.summary["objects"] = objects_out.summary(*objects_stage);
+    writeFileAtomically(req.out_dir + "/objects.csv", objects_out.objects);
+    writeFileAtomically(req.out_dir + "/tracks.csv", objects_out.tracks);
+    writeFileAtomically(req.out_dir + "/tracks_ended.csv", objects_out.ended);
+  }
   if (req.maps) {
     const auto loops = loopsJson(mapper);
     out.summary["loop_closures"] = loops["accepted"].size();

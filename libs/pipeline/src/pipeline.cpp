@@ -53,6 +53,7 @@ void feedOctoMap(mapping::OctoMapWorker& octo, const mapping::Mapper& mapper, si
 
 StageTimes& StageTimes::operator+=(const StageTimes& o) {
   source += o.source, poses += o.poses, deskew += o.deskew, maps += o.maps, boundaries += o.boundaries;
+  objects += o.objects;
   return *this;
 }
 
@@ -76,34 +77,49 @@ std::optional<PipelineFrame> Pipeline::next() {
   f.pose = stages_.poses->pose(*scan);
   f.ms.poses = msSince(t);
 
+  // deskew, then objects before the maps: the maps may leave the moving objects' points out
+  const bool bounds = stages_.boundaries && stages_.boundary_use != BoundaryUse::None;
+  const bool keep = bounds || stages_.objects;
+  if (keep && f.pose.ok) {
+    t = Clock::now();
+    deskewToReference(*scan, f.pose);
+    f.ms.deskew = msSince(t);
+  }
+  if (stages_.objects) {
+    t = Clock::now();
+    f.objects = f.pose.ok ? stages_.objects->process(*scan, f.pose.ref, f.pose.t_ref) : stages_.objects->coast(f.pose.stamp_s);
+    f.ms.objects = msSince(t);
+  }
+
   if (stages_.mapper) {
     if (!f.pose.odometry || !f.pose.points_lidar) throw std::logic_error("Pipeline: the maps stage needs the odometry's poses");
     t = Clock::now();
     std::optional<mapping::WheelMotion> wheel;
     if (f.pose.T_baseprev_basecurr) wheel = mapping::WheelMotion{*f.pose.T_baseprev_basecurr, f.pose.T_base_lidar};
     const size_t keyframes_before = stages_.mapper->keyframes().size();
-    f.loop_closed = stages_.mapper->addFrame(*f.pose.odometry, *f.pose.points_lidar, wheel);
+    if (stages_.remove_moving_from_maps && f.objects && f.pose.ok) {
+      std::vector<Eigen::Vector3d> pts = *f.pose.points_lidar;
+      f.moving_points_removed = objects::removeMovingPoints(pts, *f.objects, stages_.objects->params().removal_margin_m);
+      f.loop_closed = stages_.mapper->addFrame(*f.pose.odometry, pts, wheel);
+    } else {
+      f.loop_closed = stages_.mapper->addFrame(*f.pose.odometry, *f.pose.points_lidar, wheel);
+    }
     if (stages_.octomap) {
       feedOctoMap(*stages_.octomap, *stages_.mapper, keyframes_before, f.loop_closed, stages_.octomap_keyframe_spacing_m);
     }
     f.ms.maps = msSince(t);
   }
 
-  if (stages_.boundaries && stages_.boundary_use != BoundaryUse::None) {
-    if (f.pose.ok) {
-      t = Clock::now();
-      deskewToReference(*scan, f.pose);
-      f.ms.deskew = msSince(t);
-      t = Clock::now();
-      if (stages_.boundary_use == BoundaryUse::Accumulate) {
-        stages_.boundaries->accumulate(*scan, f.pose.ref, f.pose.t_ref);
-      } else {
-        f.boundary = stages_.boundaries->process(*scan, f.pose.ref, f.pose.t_ref);
-      }
-      f.ms.boundaries = msSince(t);
+  if (bounds && f.pose.ok) {
+    t = Clock::now();
+    if (stages_.boundary_use == BoundaryUse::Accumulate) {
+      stages_.boundaries->accumulate(*scan, f.pose.ref, f.pose.t_ref);
+    } else {
+      f.boundary = stages_.boundaries->process(*scan, f.pose.ref, f.pose.t_ref);
     }
-    f.scan = std::move(scan);
+    f.ms.boundaries = msSince(t);
   }
+  if (keep) f.scan = std::move(scan);
   totals_ += f.ms;
   return f;
 }

@@ -1,4 +1,5 @@
 // roadslam-map's summary for a person; summary.json (and --json) hold every field.
+#include <algorithm>
 #include <string>
 
 #include "roadslam/common/text_summary.h"
@@ -33,6 +34,13 @@ std::string summaryText(const nlohmann::json& s, const std::string& out_dir) {
                                                 s.value("ms_per_frame_p95", 0.0), s.value("ms_per_frame_max", 0.0)));
   lines.emplace_back("loop closures", formatText("%d (%d candidates rejected)", s.value("loop_closures", 0),
                                                  s.value("loop_candidates_rejected", 0)));
+  if (s.contains("objects")) {
+    const auto& o = s["objects"];
+    const double frames = std::max(1, s.value("frames", 0));
+    lines.emplace_back("objects", formatText("%.1f per sweep, %.2f ms per sweep (segmentation + tracking), %zu moving points kept out of the maps",
+                                             o.value("objects", 0) / frames, o["ms_segment_track_per_frame"].value("mean", 0.0),
+                                             o.value("moving_points_removed_from_maps", size_t{0})));
+  }
   if (s.contains("can")) {
     const auto& c = s["can"];
     lines.emplace_back("CAN prior", formatText("%d priors used, %d missing", c.value("priors_used", 0),

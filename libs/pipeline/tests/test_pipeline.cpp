@@ -183,3 +183,36 @@ TEST(Pipeline, AnInputWithNoSweepIsAnErrorNamingIt) {
     EXPECT_NE(std::string(e.what()).find("input '" + empty.string() + "' gives no sweep"), std::string::npos) << e.what();
   }
 }
+
+TEST(Pipeline, TheObjectsStageTracksTheWallAndCoastsWithoutAPose) {
+  const std::string tum = writeLinearTrajectory(0.3);  // poses for the first 3 sweeps only
+  pipeline::Stages st;
+  st.poses = std::make_unique<pipeline::TrajectoryPoses>(tum);
+  objects::TrackerParams tp;
+  objects::ObjectsStage stage{objects::ClusterParams{}, tp};
+  st.objects = &stage;
+  pipeline::Pipeline pipe(std::make_unique<MemorySource>(wallSweeps(4 + tp.max_misses + 1)), std::move(st));
+  size_t posed = 0;
+  while (auto f = pipe.next()) {
+    ASSERT_TRUE(f->objects) << "every sweep has an objects frame, posed or not";
+    if (f->pose.ok) {
+      ++posed;
+      EXPECT_EQ(f->objects->objects.size(), 1u) << "the wall, clustered without rings (Euclidean)";
+      if (f->index == 2) {  // the third sweep confirms the wall's track, where the wall stands in the map
+        ASSERT_EQ(f->objects->tracks.size(), 1u);
+        EXPECT_NEAR(f->objects->tracks[0].x(0), kWallX, 0.05);
+        EXPECT_NEAR(f->objects->tracks[0].speed(), 0.0, 0.05);
+      }
+      ASSERT_TRUE(f->scan);
+    }
+    for (const auto& t : f->objects->tracks) EXPECT_TRUE(t.x.allFinite());
+  }
+  EXPECT_GE(posed, 3u);  // the sweep at the trajectory's end may still get one
+  EXPECT_GE(pipe.totals().objects, 0.0);
+  EXPECT_TRUE(stage.tracker().tracks().empty());
+  const auto ended = stage.tracker().takeEnded();
+  ASSERT_EQ(ended.size(), 1u);
+  EXPECT_EQ(ended[0].reason, "pose");
+  EXPECT_EQ(ended[0].track.state, objects::TrackState::Confirmed);
+  EXPECT_TRUE(ended[0].track.x.allFinite());
+}

@@ -15,6 +15,7 @@
 
 #include "roadslam/boundary/detector.h"
 #include "roadslam/common/scan.h"
+#include "roadslam/objects/stage.h"
 #include "roadslam/pipeline/pose_stage.h"
 #include "roadslam/sources/scan_source.h"
 
@@ -32,6 +33,7 @@ struct StageTimes {
   double deskew = 0;      ///< deskewing the kept sweep into its reference pose (boundary stage only)
   double maps = 0;        ///< keyframes, pose graph, loop closure, OctoMap queueing
   double boundaries = 0;  ///< the boundary detector
+  double objects = 0;     ///< ground labels, segmentation and tracking of objects
   StageTimes& operator+=(const StageTimes& o);
 };
 
@@ -46,16 +48,24 @@ struct Stages {
   double octomap_keyframe_spacing_m = 0;          ///< [octomap] keyframe_spacing_m
   boundary::BoundaryDetector* boundaries = nullptr;
   BoundaryUse boundary_use = BoundaryUse::Detect;
+  /// Objects stage (segmentation and tracking, libs/objects) on the deskewed sweep; needs a pose
+  /// stage that leaves the scan untouched (OdometryPoses' keep_scans).
+  objects::ObjectsStage* objects = nullptr;
+  /// With objects: the points of moving objects stay out of what the maps stage is given.
+  bool remove_moving_from_maps = false;
 };
 
 /// One sweep through the stages.
 struct PipelineFrame {
   size_t index = 0;  ///< 0-based, every sweep the source gave
   SweepPose pose;
-  /// The sweep, deskewed into pose.ref where the pose allows it; kept only when a boundary stage runs.
+  /// The sweep, deskewed into pose.ref where the pose allows it; kept only when a boundary or objects stage runs.
   std::optional<Scan> scan;
   bool loop_closed = false;  ///< the maps stage accepted a loop at this sweep (keyframe poses moved)
+  size_t moving_points_removed = 0;  ///< points of moving objects kept out of the maps stage
   std::optional<boundary::BoundaryFrame> boundary;  ///< BoundaryUse::Detect and a pose
+  /// With an objects stage: the sweep's objects (with a pose) and the confirmed tracks (coasting without one).
+  std::optional<objects::ObjectsFrame> objects;
   StageTimes ms;
 };
 

@@ -1,0 +1,62 @@
+#pragma once
+/// \file mot_metrics.h
+/// CLEAR MOT (Bernardin and Stiefelhagen, "Evaluating Multiple Object Tracking Performance: The CLEAR
+/// MOT Metrics", EURASIP JIVP 2008) of roadslam-map's tracks against the simulator's moving cars.
+///
+/// Per frame (each pose of the run's trajectory_odometry.tum, T_map_lidar at the tracks' state time),
+/// in the vehicle frame of that time: the ground truth is every moving car of gt_objects.json (world
+/// frame, interpolated at the time) whose centre is within max_range_m of the lidar, placed with the
+/// GT pose (gt_trajectory.tum, T_world_lidar); the hypotheses are tracks.csv's confirmed tracks,
+/// placed with the run's own pose. So odometry drift does not count: the score is the tracker's.
+/// Correspondences persist while within match_distance_m (Sec. 2.1.1), the rest are made greedily in
+/// order of x-y centre distance (optimal while cars stand farther apart than twice the match
+/// distance); a GT whose hypothesis changed is an id switch.
+/// MOTA = 1 - (misses + false positives + id switches) / GT; MOTP = mean matched distance [m].
+/// The GT holds only moving cars: an unmatched hypothesis is a false positive only when it is
+/// labelled moving (static tracks on parked cars, poles and walls are nobody's mistake here).
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace roadslam::eval {
+
+struct MotParams {
+  double max_range_m = 40.0;        ///< GT cars and hypotheses within this x-y range of the lidar [m]
+  double match_distance_m = 2.0;    ///< a hypothesis farther from a GT centre is no match [m]
+  double speed_after_s = 1.0;       ///< speed error counted once a track is this old [s]
+};
+
+struct MotMetrics {
+  size_t frames = 0;
+  size_t gt = 0;                    ///< GT objects summed over frames
+  size_t matches = 0, misses = 0, false_positives = 0, id_switches = 0;
+  double mota = 0, motp_m = 0;
+  size_t speed_samples = 0;         ///< matches with a track older than speed_after_s
+  double speed_error_mean_mps = 0, speed_error_p95_mps = 0;  ///< | |v_track| - |v_gt| |
+  double tracked_s = 0;             ///< time GT cars were matched [s]
+  double id_switches_per_100s = 0;
+  double moving_label_fraction = 0;  ///< of the matches, the ones labelled moving
+  size_t gt_cars_seen = 0;          ///< distinct GT cars that came within range
+};
+
+/// Scores \p run_dir (tracks.csv, trajectory_odometry.tum of roadslam-map with [objects] enabled)
+/// against \p gt_objects_json and \p gt_trajectory_tum. Throws std::runtime_error naming a file it cannot read.
+MotMetrics evaluateMotFiles(const std::string& gt_objects_json, const std::string& gt_trajectory_tum,
+                            const std::string& run_dir, const MotParams& p = {});
+
+/// Ghost points of moving traffic in a map: points of \p map_ply (binary float xyz, map frame) that fall
+/// inside the path a moving car of \p gt_objects_json swept (its box at every 0.1 s GT sample, grown by
+/// \p margin_m, from \p margin_m above its ground to its roof). The moving cars drive on lanes where the
+/// simulator places nothing else, so every such point is left by a passing car. The map frame is
+/// placed in the world by the first pose of \p run_trajectory_tum (T_map_lidar) and the GT pose
+/// (\p gt_trajectory_tum) at that time; odometry drift moves the map against the lanes over long drives.
+struct GhostCount {
+  size_t map_points = 0, ghost_points = 0;
+};
+GhostCount countGhostPoints(const std::string& gt_objects_json, const std::string& gt_trajectory_tum,
+                            const std::string& run_trajectory_tum, const std::string& map_ply, double margin_m = 0.3);
+
+nlohmann::json toJson(const MotMetrics& m);
+std::string toText(const MotMetrics& m);
+
+}  // namespace roadslam::eval

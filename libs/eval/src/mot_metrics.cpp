@@ -1,0 +1,294 @@
+#include "roadslam/eval/mot_metrics.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include "roadslam/datasets/trajectory_io.h"
+
+namespace roadslam::eval {
+namespace {
+
+struct GtCar {
+  int id = 0;
+  std::vector<double> t, x, y;
+};
+
+struct Hyp {
+  int id = 0;
+  Eigen::Vector2d p_map, v_map;
+  bool moving = false;
+  double age_s = 0;
+};
+
+std::vector<GtCar> readGtCars(const std::string& path) {
+  std::ifstream f(path);
+  if (!f) throw std::runtime_error("cannot read '" + path + "'");
+  const auto j = nlohmann::json::parse(f, nullptr, false);
+  if (j.is_discarded() || !j.contains("moving_cars")) throw std::runtime_error("'" + path + "' is no gt_objects.json");
+  std::vector<GtCar> out;
+  for (const auto& c : j["moving_cars"]) {
+    GtCar g;
+    g.id = c["id"].get<int>();
+    for (const auto& s : c["track"]) {
+      g.t.push_back(s[0].get<double>()), g.x.push_back(s[1].get<double>()), g.y.push_back(s[2].get<double>());
+    }
+    if (g.t.size() >= 2) out.push_back(std::move(g));
+  }
+  return out;
+}
+
+/// Linear interpolation of the car at \p t (position and velocity from the bracketing samples);
+/// false outside its track.
+bool carAt(const GtCar& c, double t, Eigen::Vector2d& p, Eigen::Vector2d& v) {
+  if (t < c.t.front() || t > c.t.back()) return false;
+  const size_t k = std::min<size_t>(c.t.size() - 1,
+                                    std::max<size_t>(1, std::upper_bound(c.t.begin(), c.t.end(), t) - c.t.begin()));
+  const double dt = c.t[k] - c.t[k - 1], u = (t - c.t[k - 1]) / dt;
+  p = {(1 - u) * c.x[k - 1] + u * c.x[k], (1 - u) * c.y[k - 1] + u * c.y[k]};
+  v = {(c.x[k] - c.x[k - 1]) / dt, (c.y[k] - c.y[k - 1]) / dt};
+  return true;
+}
+
+/// The pose of \p tr at \p t (linear translation, slerp rotation); false outside it.
+bool poseAt(const datasets::Trajectory& tr, double t, Eigen::Isometry3d& T) {
+  const auto& s = tr.stamps_s;
+  if (s.empty() || t < s.front() - 1e-6 || t > s.back() + 1e-6) return false;
+  const size_t k = std::min<size_t>(s.size() - 1, std::max<size_t>(1, std::upper_bound(s.begin(), s.end(), t) - s.begin()));
+  if (s.size() == 1) {
+    T = tr.poses[0];
+    return true;
+  }
+  const double u = std::clamp((t - s[k - 1]) / (s[k] - s[k - 1]), 0.0, 1.0);
+  const Eigen::Quaterniond q0(tr.poses[k - 1].linear()), q1(tr.poses[k].linear());
+  T = Eigen::Isometry3d::Identity();
+  T.linear() = q0.slerp(u, q1).toRotationMatrix();
+  T.translation() = (1 - u) * tr.poses[k - 1].translation() + u * tr.poses[k].translation();
+  return true;
+}
+
+/// tracks.csv rows grouped by their time (rounded to the microsecond).
+std::map<long long, std::vector<Hyp>> readTracks(const std::string& path) {
+  std::ifstream f(path);
+  if (!f) throw std::runtime_error("cannot read '" + path + "' (roadslam-map with [objects] enabled = true writes it)");
+  std::string line;
+  std::getline(f, line);
+  std::map<long long, std::vector<Hyp>> out;
+  while (std::getline(f, line)) {
+    std::vector<double> v;
+    std::stringstream ss(line);
+    std::string cell;
+    while (std::getline(ss, cell, ',')) v.push_back(std::strtod(cell.c_str(), nullptr));
+    if (v.size() < 17) throw std::runtime_error("'" + path + "': a row with " + std::to_string(v.size()) + " fields, 17 expected");
+    Hyp h;
+    h.id = static_cast<int>(v[2]);
+    h.p_map = {v[3], v[4]}, h.v_map = {v[5], v[6]};
+    h.moving = v[13] != 0, h.age_s = v[16];
+    out[std::llround(v[1] * 1e6)].push_back(h);
+  }
+  return out;
+}
+
+/// Greedy assignment in order of distance: the optimal one while the objects stand farther apart than
+/// twice the gate, which holds for cars' centres with a 2 m gate.
+std::vector<std::pair<size_t, size_t>> assign(const std::vector<Eigen::Vector2d>& g, const std::vector<Eigen::Vector2d>& h,
+                                              const std::vector<char>& g_free, const std::vector<char>& h_free, double thr) {
+  std::vector<std::tuple<double, size_t, size_t>> pairs;
+  for (size_t i = 0; i < g.size(); ++i) {
+    for (size_t j = 0; j < h.size(); ++j) {
+      if (!g_free[i] || !h_free[j]) continue;
+      const double d = (g[i] - h[j]).norm();
+      if (d <= thr) pairs.emplace_back(d, i, j);
+    }
+  }
+  std::sort(pairs.begin(), pairs.end());
+  std::vector<char> gu(g.size(), 0), hu(h.size(), 0);
+  std::vector<std::pair<size_t, size_t>> out;
+  for (const auto& [d, i, j] : pairs) {
+    if (gu[i] || hu[j]) continue;
+    gu[i] = hu[j] = 1;
+    out.emplace_back(i, j);
+  }
+  return out;
+}
+
+}  // namespace
+
+MotMetrics evaluateMotFiles(const std::string& gt_objects_json, const std::string& gt_trajectory_tum,
+                            const std::string& run_dir, const MotParams& p) {
+  const auto cars = readGtCars(gt_objects_json);
+  const auto gt_traj = datasets::readTum(gt_trajectory_tum);
+  const auto est = datasets::readTum(run_dir + "/trajectory_odometry.tum");
+  const auto tracks = readTracks(run_dir + "/tracks.csv");
+  MotMetrics m;
+  std::map<int, int> last_match;  // GT id -> hypothesis id of its last match
+  std::set<int> seen;
+  std::vector<double> speed_err;
+  double dist_sum = 0, prev_t = NAN;
+  size_t moving_matches = 0;
+  for (size_t k = 0; k < est.poses.size(); ++k) {
+    const double t = est.stamps_s[k];
+    Eigen::Isometry3d T_world_lidar;
+    if (!poseAt(gt_traj, t, T_world_lidar)) continue;
+    const Eigen::Isometry3d T_lidar_world = T_world_lidar.inverse(), T_lidar_map = est.poses[k].inverse();
+    const double dt = std::isfinite(prev_t) ? std::min(t - prev_t, 0.5) : 0.1;
+    prev_t = t;
+    ++m.frames;
+    // GT cars and hypotheses in the lidar frame of time t
+    std::vector<Eigen::Vector2d> g, gv, h, hv;
+    std::vector<int> g_id;
+    for (const auto& c : cars) {
+      Eigen::Vector2d pw, vw;
+      if (!carAt(c, t, pw, vw)) continue;
+      const Eigen::Vector3d pl = T_lidar_world * Eigen::Vector3d(pw.x(), pw.y(), T_world_lidar.translation().z());
+      if (pl.head<2>().norm() > p.max_range_m) continue;
+      g.push_back(pl.head<2>());
+      gv.push_back((T_lidar_world.linear() * Eigen::Vector3d(vw.x(), vw.y(), 0)).head<2>());
+      g_id.push_back(c.id);
+      seen.insert(c.id);
+    }
+    std::vector<Hyp> hyps;
+    const auto it = tracks.find(std::llround(t * 1e6));
+    if (it != tracks.end()) {
+      for (const Hyp& y : it->second) {
+        const Eigen::Vector3d pl = T_lidar_map * Eigen::Vector3d(y.p_map.x(), y.p_map.y(), est.poses[k].translation().z());
+        if (pl.head<2>().norm() > p.max_range_m + p.match_distance_m) continue;
+        hyps.push_back(y);
+        h.push_back(pl.head<2>());
+        hv.push_back((T_lidar_map.linear() * Eigen::Vector3d(y.v_map.x(), y.v_map.y(), 0)).head<2>());
+      }
+    }
+    m.gt += g.size();
+    std::vector<char> g_free(g.size(), 1), h_free(h.size(), 1);
+    std::vector<std::pair<size_t, size_t>> matched;
+    // correspondences of the last frame that still hold (CLEAR MOT Sec. 2.1.1)
+    for (size_t i = 0; i < g.size(); ++i) {
+      const auto lm = last_match.find(g_id[i]);
+      if (lm == last_match.end()) continue;
+      for (size_t j = 0; j < h.size(); ++j) {
+        if (h_free[j] && hyps[j].id == lm->second && (g[i] - h[j]).norm() <= p.match_distance_m) {
+          matched.emplace_back(i, j), g_free[i] = h_free[j] = 0;
+          break;
+        }
+      }
+    }
+    for (const auto& [i, j] : assign(g, h, g_free, h_free, p.match_distance_m)) {
+      matched.emplace_back(i, j), g_free[i] = h_free[j] = 0;
+      const auto lm = last_match.find(g_id[i]);
+      if (lm != last_match.end() && lm->second != hyps[j].id) ++m.id_switches;
+    }
+    for (const auto& [i, j] : matched) {
+      last_match[g_id[i]] = hyps[j].id;
+      dist_sum += (g[i] - h[j]).norm();
+      moving_matches += hyps[j].moving;
+      m.tracked_s += dt;
+      if (hyps[j].age_s >= p.speed_after_s) speed_err.push_back(std::abs(hv[j].norm() - gv[i].norm()));
+    }
+    m.matches += matched.size();
+    m.misses += g.size() - matched.size();
+    for (size_t j = 0; j < h.size(); ++j) {
+      if (h_free[j] && hyps[j].moving && h[j].norm() <= p.max_range_m) ++m.false_positives;
+    }
+  }
+  m.mota = m.gt ? 1.0 - double(m.misses + m.false_positives + m.id_switches) / m.gt : 0.0;
+  m.motp_m = m.matches ? dist_sum / m.matches : 0.0;
+  m.speed_samples = speed_err.size();
+  if (!speed_err.empty()) {
+    double s = 0;
+    for (double e : speed_err) s += e;
+    m.speed_error_mean_mps = s / speed_err.size();
+    std::sort(speed_err.begin(), speed_err.end());
+    m.speed_error_p95_mps = speed_err[std::min(speed_err.size() - 1, speed_err.size() * 95 / 100)];
+  }
+  m.id_switches_per_100s = m.tracked_s > 0 ? 100.0 * m.id_switches / m.tracked_s : 0.0;
+  m.moving_label_fraction = m.matches ? double(moving_matches) / m.matches : 0.0;
+  m.gt_cars_seen = seen.size();
+  return m;
+}
+
+GhostCount countGhostPoints(const std::string& gt_objects_json, const std::string& gt_trajectory_tum,
+                            const std::string& run_trajectory_tum, const std::string& map_ply, double margin_m) {
+  std::ifstream fo(gt_objects_json);
+  if (!fo) throw std::runtime_error("cannot read '" + gt_objects_json + "'");
+  const auto j = nlohmann::json::parse(fo, nullptr, false);
+  if (j.is_discarded() || !j.contains("moving_cars")) throw std::runtime_error("'" + gt_objects_json + "' is no gt_objects.json");
+  const auto gt = datasets::readTum(gt_trajectory_tum);
+  const auto est = datasets::readTum(run_trajectory_tum);
+  if (est.poses.empty()) throw std::runtime_error("'" + run_trajectory_tum + "' holds no pose");
+  Eigen::Isometry3d T_world_lidar;
+  if (!poseAt(gt, est.stamps_s[0], T_world_lidar)) throw std::runtime_error("the GT trajectory does not cover the run's first pose");
+  const Eigen::Isometry3d T_world_map = T_world_lidar * est.poses[0].inverse();
+  // the map's points (binary little-endian float xyz, as roadslam-map writes map.ply)
+  std::ifstream fp(map_ply, std::ios::binary);
+  if (!fp) throw std::runtime_error("cannot read '" + map_ply + "'");
+  std::string line;
+  size_t n = 0;
+  while (std::getline(fp, line) && line != "end_header") {
+    if (line.rfind("element vertex ", 0) == 0) n = std::stoul(line.substr(15));
+  }
+  std::vector<float> xyz(3 * n);
+  fp.read(reinterpret_cast<char*>(xyz.data()), static_cast<std::streamsize>(xyz.size() * sizeof(float)));
+  if (static_cast<size_t>(fp.gcount()) != xyz.size() * sizeof(float)) throw std::runtime_error("'" + map_ply + "' is truncated");
+  // swept boxes on a 1 m grid of the world for a quick lookup
+  struct SweptBox {
+    double x, y, z0, z1, c, s, hl, hw;
+  };
+  std::map<std::pair<long, long>, std::vector<SweptBox>> grid;
+  for (const auto& c : j["moving_cars"]) {
+    const double hl = 0.5 * c["length_m"].get<double>() + margin_m, hw = 0.5 * c["width_m"].get<double>() + margin_m;
+    const double h = c["height_m"].get<double>();
+    for (const auto& q : c["track"]) {
+      const SweptBox b{q[1].get<double>(), q[2].get<double>(), q[3].get<double>() + margin_m, q[3].get<double>() + h,
+                       std::cos(q[4].get<double>()), std::sin(q[4].get<double>()), hl, hw};
+      const double r = std::hypot(hl, hw);
+      for (long gx = static_cast<long>(std::floor(b.x - r)); gx <= static_cast<long>(std::floor(b.x + r)); ++gx) {
+        for (long gy = static_cast<long>(std::floor(b.y - r)); gy <= static_cast<long>(std::floor(b.y + r)); ++gy) grid[{gx, gy}].push_back(b);
+      }
+    }
+  }
+  GhostCount out;
+  out.map_points = n;
+  for (size_t i = 0; i < n; ++i) {
+    const Eigen::Vector3d w = T_world_map * Eigen::Vector3d(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+    const auto it = grid.find({static_cast<long>(std::floor(w.x())), static_cast<long>(std::floor(w.y()))});
+    if (it == grid.end()) continue;
+    for (const SweptBox& b : it->second) {
+      const double dx = w.x() - b.x, dy = w.y() - b.y;
+      if (std::abs(b.c * dx + b.s * dy) <= b.hl && std::abs(-b.s * dx + b.c * dy) <= b.hw && w.z() >= b.z0 && w.z() <= b.z1) {
+        ++out.ghost_points;
+        break;
+      }
+    }
+  }
+  return out;
+}
+
+nlohmann::json toJson(const MotMetrics& m) {
+  return {{"frames", m.frames}, {"gt", m.gt}, {"matches", m.matches}, {"misses", m.misses},
+          {"false_positives", m.false_positives}, {"id_switches", m.id_switches}, {"mota", m.mota},
+          {"motp_m", m.motp_m}, {"speed_samples", m.speed_samples}, {"speed_error_mean_mps", m.speed_error_mean_mps},
+          {"speed_error_p95_mps", m.speed_error_p95_mps}, {"tracked_s", m.tracked_s},
+          {"id_switches_per_100s", m.id_switches_per_100s}, {"moving_label_fraction", m.moving_label_fraction},
+          {"gt_cars_seen", m.gt_cars_seen}};
+}
+
+std::string toText(const MotMetrics& m) {
+  char buf[1024];
+  std::snprintf(buf, sizeof(buf),
+                "frames              %zu\nGT objects          %zu (%zu cars)\nmatches             %zu\n"
+                "misses              %zu\nfalse positives     %zu\nid switches         %zu (%.2f per 100 tracked s)\n"
+                "MOTA                %.3f\nMOTP                %.3f m\nspeed error         %.2f m/s mean, %.2f m/s p95 (%zu samples)\n"
+                "labelled moving     %.1f %% of matches\n",
+                m.frames, m.gt, m.gt_cars_seen, m.matches, m.misses, m.false_positives, m.id_switches,
+                m.id_switches_per_100s, m.mota, m.motp_m, m.speed_error_mean_mps, m.speed_error_p95_mps,
+                m.speed_samples, 100 * m.moving_label_fraction);
+  return buf;
+}
+
+}  // namespace roadslam::eval

@@ -1,0 +1,81 @@
+// CLEAR MOT on hand-made files with known counts: one GT car driving along x at 10 m/s past a
+// standing lidar; the tracks follow it 0.1 m off, change id halfway (one switch), and a moving and a
+// static track stand where no car is (the moving one is a false positive, the static one is no one's).
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include <unistd.h>
+
+#include "roadslam/eval/mot_metrics.h"
+
+using namespace roadslam;
+
+namespace {
+
+std::string tmpDir() {
+  const std::string d = std::filesystem::temp_directory_path().string() + "/roadslam_mot_test_" + std::to_string(::getpid());
+  std::filesystem::create_directories(d);
+  return d;
+}
+
+}  // namespace
+
+TEST(MotMetrics, CountsMatchesSwitchesAndFalsePositivesOfKnownTracks) {
+  const std::string d = tmpDir();
+  const double t0 = 1000.0;
+  {
+    nlohmann::json track = nlohmann::json::array();
+    for (int k = 0; k <= 40; ++k) track.push_back({t0 + 0.1 * k, -20.0 + 1.0 * k, 5.0, 0.0, 0.0});
+    const nlohmann::json gt = {{"frame", "world"},
+                               {"moving_cars", {{{"id", 0}, {"length_m", 4.5}, {"width_m", 1.8}, {"height_m", 1.5}, {"track", track}}}}};
+    std::ofstream(d + "/gt_objects.json") << gt.dump();
+    std::ofstream g(d + "/gt_trajectory.tum"), e(d + "/trajectory_odometry.tum"), tr(d + "/tracks.csv");
+    tr << "frame,stamp_s,track_id,x,y,vx,vy,speed_mps,heading_rad,length_m,width_m,z_min,z_max,moving,hits,misses,age_s\n";
+    for (int k = 0; k <= 40; ++k) {
+      const double t = t0 + 0.1 * k;
+      char line[256];
+      std::snprintf(line, sizeof(line), "%.6f 0 0 0 0 0 0 1\n", t);
+      g << line;
+      e << line;
+      // the map frame here is the world: the lidar stands at the origin in both
+      std::snprintf(line, sizeof(line), "%d,%.6f,%d,%.3f,5.1,10.5,0,10.5,0,4.5,1.8,-1,0.5,1,%d,0,%.2f\n", k, t, k < 20 ? 1 : 2,
+                    -20.0 + 1.0 * k, k + 3, k < 20 ? 0.1 * k : 0.1 * (k - 20));
+      tr << line;
+      std::snprintf(line, sizeof(line), "%d,%.6f,7,10,-10,5,0,5,0,4.5,1.8,-1,0.5,1,20,0,3\n", k, t);
+      tr << line;
+      std::snprintf(line, sizeof(line), "%d,%.6f,8,-10,-10,0,0,0,0,4.5,1.8,-1,0.5,0,20,0,3\n", k, t);
+      tr << line;
+    }
+  }
+  const auto m = eval::evaluateMotFiles(d + "/gt_objects.json", d + "/gt_trajectory.tum", d);
+  EXPECT_EQ(m.frames, 41u);
+  EXPECT_EQ(m.gt, 41u);  // the car stays within 40 m: x from -20 to 20, y = 5
+  EXPECT_EQ(m.matches, 41u);
+  EXPECT_EQ(m.misses, 0u);
+  EXPECT_EQ(m.id_switches, 1u);
+  EXPECT_EQ(m.false_positives, 41u);  // track 7 (moving, no car there); track 8 is static: not counted
+  EXPECT_NEAR(m.motp_m, 0.1, 1e-6);
+  EXPECT_NEAR(m.mota, 1.0 - (41.0 + 1.0) / 41.0, 1e-9);
+  // speed 10.5 against 10 m/s, counted for track ages >= 1 s: track 1 from k = 10..19, track 2 from k = 30..40
+  EXPECT_EQ(m.speed_samples, 21u);
+  EXPECT_NEAR(m.speed_error_mean_mps, 0.5, 1e-6);
+  EXPECT_EQ(m.gt_cars_seen, 1u);
+  std::filesystem::remove_all(d);
+}
+
+TEST(MotMetrics, AMissingTracksFileIsAnErrorNamingIt) {
+  const std::string d = tmpDir();
+  std::ofstream(d + "/gt_objects.json") << R"({"moving_cars": []})";
+  std::ofstream(d + "/gt_trajectory.tum") << "1 0 0 0 0 0 0 1\n";
+  std::ofstream(d + "/trajectory_odometry.tum") << "1 0 0 0 0 0 0 1\n";
+  try {
+    eval::evaluateMotFiles(d + "/gt_objects.json", d + "/gt_trajectory.tum", d);
+    FAIL();
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("tracks.csv"), std::string::npos) << e.what();
+  }
+  std::filesystem::remove_all(d);
+}

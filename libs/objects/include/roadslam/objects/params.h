@@ -1,0 +1,72 @@
+#pragma once
+/// \file params.h
+/// Parameters of the objects stage: segmentation of a sweep's non-ground points into objects (ini
+/// section [objects]) and their multi-object tracking in the map frame (section [tracking]).
+
+#include <string>
+
+#include "roadslam/preprocess/ground_segmentation.h"
+
+namespace mrpt::config {
+class CConfigFileBase;
+}
+
+namespace roadslam::objects {
+
+enum class ClusterMethod { RangeImage, Euclidean };
+std::string toString(ClusterMethod m);
+ClusterMethod clusterMethodFromString(const std::string& s);  ///< throws std::invalid_argument
+
+/// Segmentation ([objects]).
+struct ClusterParams {
+  bool enabled = false;                  ///< roadslam-map runs the objects stage and writes objects.csv, tracks.csv [-]
+  ClusterMethod method = ClusterMethod::RangeImage;  ///< range_image (ring x azimuth) or euclidean (xy grid) [-]
+  int azimuth_bins = 1800;               ///< range-image columns over 360 deg (VLP-16 at 10 Hz: 0.2 deg) [-]
+  int azimuth_window = 3;                ///< range image: neighbours searched this many columns either side [-]
+  int ring_window = 2;                   ///< range image: ... and this many rings above and below [-]
+  double cluster_distance_m = 0.6;       ///< two points join one object when this close in x-y [m]
+  double min_height_m = 0.25;            ///< non-ground points at least this high above the local ground [m]
+  double max_height_m = 3.0;             ///< ... and at most this high (tree crowns, bridges out) [m]
+  double min_range_m = 2.0;              ///< points nearer (x-y) are the own car's body, not segmented [m]
+  double max_range_m = 50.0;             ///< points beyond (x-y distance from the lidar) are not segmented [m]
+  int min_points = 8;                    ///< smaller clusters are no object [-]
+  double min_top_height_m = 0.5;         ///< clusters whose highest point is lower above the ground (curbs) are no object [m]
+  double max_length_m = 12.0;            ///< longer clusters (walls, hedges) are no object [m]
+  double max_width_m = 4.0;              ///< wider clusters are no object [m]
+  double lshape_step_rad = 1.0 * 3.14159265358979323846 / 180.0;  ///< L-shape search step; ini `lshape_step_deg` [rad]
+  /// Points of objects whose track is labelled moving stay out of the maps (point map, OctoMap, grid,
+  /// keyframes; not the odometry's own local map) [-]
+  bool remove_moving_from_maps = true;
+  double removal_margin_m = 0.3;         ///< around a moving object's box, x-y and z [m]
+  preprocess::GroundSegParams ground;    ///< ground labels: read from [preprocess] seg_* (the odometry's), not saved here
+
+  void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section = "objects",
+                          const std::string& ground_section = "preprocess");
+  void saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& section = "objects") const;
+};
+
+/// Tracking ([tracking]): constant-velocity Kalman filter per track in the map frame, global
+/// nearest-neighbour association (Hungarian on gated x-y distances), birth, confirmation, death.
+struct TrackerParams {
+  double gate_m = 2.5;                   ///< a detection farther than this from a track's prediction is no match [m]
+  double gate_sigma = 3.0;               ///< ... or farther than this many standard deviations (innovation covariance) [-]
+  double size_weight = 0.5;              ///< association cost per metre of extent difference (along + across) [-]
+  double accel_sigma_mps2 = 1.5;         ///< white-acceleration process noise of the CV model [m/s^2]
+  double meas_sigma_m = 0.25;            ///< detection position noise [m]
+  double init_speed_sigma_mps = 10.0;    ///< speed uncertainty of a new track [m/s]
+  int confirm_hits = 3;                  ///< hits that confirm a tentative track [-]
+  int max_misses = 5;                    ///< consecutive misses (sweeps) that end a confirmed track [-]
+  double moving_speed_mps = 4.0;         ///< a confirmed track faster than this (14 km/h; slower cars stay static) ... [m/s]
+  double moving_min_travel_m = 3.0;      ///< ... that has moved this far from its birth ... [m]
+  int moving_min_hits = 10;              ///< ... and was detected this many times is labelled moving [-]
+  double max_extent_growth_m = 6.0;      ///< a partly seen detection is completed to at most this length (cars) [m]
+  double moving_max_length_m = 7.0;      ///< tracks ever seen longer than this (walls seen in parts) are never moving [m]
+  double moving_max_width_m = 3.0;       ///< ... or wider than this [m]
+  double moving_min_width_m = 1.0;       ///< ... or never seen wider than this (a wall's face slides, a car shows two faces) [m]
+  double max_dt_s = 1.0;                 ///< a gap longer than this between sweeps ends every track ("gap") [s]
+
+  void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section = "tracking");
+  void saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& section = "tracking") const;
+};
+
+}  // namespace roadslam::objects

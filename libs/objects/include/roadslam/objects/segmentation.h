@@ -1,0 +1,54 @@
+#pragma once
+/// \file segmentation.h
+/// One sweep's non-ground points grouped into objects: connected components on the range image
+/// (ring x azimuth; neighbours within a window join when close in x-y), or Euclidean clusters on an
+/// x-y grid (the option); each object with its L-shape box (Zhang et al., "Efficient L-Shape Fitting
+/// for Vehicle Detection Using Laser Scanners", IEEE IV 2017, Alg. 1 with the closeness criterion, Alg. 4).
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <vector>
+
+#include "roadslam/common/scan.h"
+#include "roadslam/objects/params.h"
+
+namespace roadslam::objects {
+
+/// An oriented box in the x-y plane: centre, yaw of the length axis, length >= width.
+struct Box2 {
+  double cx = 0, cy = 0;      ///< centre [m] (frame of the points it was fit to)
+  double yaw = 0;             ///< direction of the length axis, in [0, pi) [rad]
+  double length = 0, width = 0;  ///< extents along yaw and across it [m]
+};
+
+/// One segmented object, lidar frame of its sweep.
+struct Object {
+  Box2 box;                   ///< L-shape box of the points' x-y [m]
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();  ///< mean of the points [m]
+  double z_min = 0, z_max = 0;  ///< [m]
+  double top_height_m = 0;      ///< highest point above the local ground [m]
+  size_t points = 0;
+  std::vector<uint32_t> indices;  ///< the points' indices in the sweep
+};
+
+struct SegmentationStats {
+  size_t candidates = 0;       ///< non-ground points within heights and range
+  size_t clusters = 0;         ///< connected components of them
+  size_t objects = 0;          ///< components kept (size, extent)
+};
+
+/// The L-shape box of \p xy (search over [0, pi/2) in \p step_rad with the closeness criterion).
+/// One point: a zero-size box on it; none: a zero box at the origin.
+Box2 fitLShape(const std::vector<Eigen::Vector2d>& xy, double step_rad);
+
+/// Objects among \p pts (lidar frame, sensor at the origin). \p height_above_ground_m (NaN where
+/// unknown: z + sensor height is used) and \p ground (1 = ground) come from
+/// preprocess::segmentGroundWithHeights. Points without rings (has_rings false) use the Euclidean method.
+std::vector<Object> segmentObjects(const std::vector<ScanPoint>& pts, bool has_rings, const std::vector<uint8_t>& ground,
+                                   const std::vector<float>& height_above_ground_m, const ClusterParams& p,
+                                   SegmentationStats* stats = nullptr);
+
+/// The whole step on a sweep: ground labels, then segmentObjects.
+std::vector<Object> segmentSweep(const Scan& scan, const ClusterParams& p, SegmentationStats* stats = nullptr);
+
+}  // namespace roadslam::objects

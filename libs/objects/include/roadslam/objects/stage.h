@@ -1,0 +1,64 @@
+#pragma once
+/// \file stage.h
+/// The objects stage of the pipeline: per sweep (deskewed into its reference pose), ground labels,
+/// segmentation, tracking; the results as rows of objects.csv and tracks.csv.
+///
+/// stamp_s: the sweep's reference time (the deskew's, the tracks' state time; trajectory_odometry.tum's).
+/// objects.csv, one row per object per sweep (map frame):
+///   frame,stamp_s,object,cx,cy,yaw_rad,length_m,width_m,z_min,z_max,points,track_id
+/// (track_id: the track that took it this sweep, -1 none). tracks.csv, one row per confirmed track per sweep:
+///   frame,stamp_s,track_id,x,y,vx,vy,speed_mps,heading_rad,length_m,width_m,z_min,z_max,moving,hits,misses,age_s
+/// tracks_ended.csv: track_id,t_birth,t_end,hits,confirmed,moving,reason.
+
+#include <Eigen/Geometry>
+#include <string>
+#include <vector>
+
+#include "roadslam/common/scan.h"
+#include "roadslam/objects/segmentation.h"
+#include "roadslam/objects/tracker.h"
+
+namespace roadslam::objects {
+
+/// One sweep through the stage.
+struct ObjectsFrame {
+  std::vector<Object> objects;     ///< lidar frame of the sweep's reference pose
+  std::vector<Track> tracks;       ///< confirmed tracks after the update (map frame)
+  std::vector<int> object_track;   ///< per object: the id of the track that took it, -1 none
+  std::vector<char> object_moving; ///< per object: its track is labelled moving
+  SegmentationStats stats;
+  double ms_ground = 0, ms_segment = 0, ms_track = 0;  ///< wall time [ms]
+};
+
+class ObjectsStage {
+ public:
+  ObjectsStage(const ClusterParams& cluster, const TrackerParams& tracking) : p_(cluster), tracker_(tracking) {}
+
+  /// \p scan deskewed into \p T_map_lidar, the lidar pose at time \p t_s.
+  ObjectsFrame process(const Scan& scan, const Eigen::Isometry3d& T_map_lidar, double t_s);
+  /// A sweep without a pose: tracks coast (and end after TrackerParams::max_misses with reason "pose").
+  ObjectsFrame coast(double t_s);
+
+  const ClusterParams& params() const { return p_; }
+  const Tracker& tracker() const { return tracker_; }
+  Tracker& tracker() { return tracker_; }
+
+ private:
+  ObjectsFrame snapshot() const;
+  ClusterParams p_;
+  Tracker tracker_;
+};
+
+/// Removes from \p pts_lidar (the sweep's points in the same lidar frame as \p f's objects) the points
+/// inside the boxes of \p f's moving objects grown by \p margin_m; returns how many it removed.
+size_t removeMovingPoints(std::vector<Eigen::Vector3d>& pts_lidar, const ObjectsFrame& f, double margin_m);
+
+/// CSV headers and rows (formats in the file comment); \p T_map_lidar places the objects in the map.
+std::string objectsCsvHeader();
+std::string objectsCsvRows(size_t frame, double stamp_s, const Eigen::Isometry3d& T_map_lidar, const ObjectsFrame& f);
+std::string tracksCsvHeader();
+std::string tracksCsvRows(size_t frame, double stamp_s, const ObjectsFrame& f);
+std::string endedCsvHeader();
+std::string endedCsvRows(const std::vector<EndedTrack>& ended);
+
+}  // namespace roadslam::objects

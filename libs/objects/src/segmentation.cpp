@@ -1,0 +1,216 @@
+#include "roadslam/objects/segmentation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <unordered_map>
+
+namespace roadslam::objects {
+namespace {
+
+constexpr double kClosenessFloor_m = 0.01;  // d0 of Zhang et al. 2017, Alg. 4 (avoids 1/0)
+constexpr size_t kMaxFitPoints = 256;       // the L-shape search sees at most this many points (stride)
+constexpr int kCoarseSteps = 5;             // coarse L-shape search step, in fine steps
+
+/// Labels of connected components over the candidate points; -1 = not a candidate.
+using Labels = std::vector<int>;
+
+/// Range image: each candidate point goes to its (ring, azimuth) cell (a cell may hold several: a
+/// chain). Components grow from a point to the points of the cells within ring_window x
+/// azimuth_window around its own that are within cluster_distance_m in x-y.
+int rangeImageComponents(const std::vector<ScanPoint>& pts, const std::vector<uint32_t>& cand, const ClusterParams& p,
+                         Labels& label) {
+  int rings = 0;
+  for (uint32_t i : cand) rings = std::max(rings, static_cast<int>(pts[i].ring) + 1);
+  const int bins = p.azimuth_bins;
+  std::vector<int> head(static_cast<size_t>(rings) * bins, -1);  // first point of each cell
+  std::vector<int> next(pts.size(), -1), cell_of(pts.size(), -1);
+  for (uint32_t i : cand) {
+    const double az = std::atan2(pts[i].y, pts[i].x) + M_PI;  // [0, 2 pi]
+    const int a = std::min(bins - 1, static_cast<int>(az / (2 * M_PI) * bins));
+    const int c = pts[i].ring * bins + a;
+    cell_of[i] = c;
+    next[i] = head[static_cast<size_t>(c)];
+    head[static_cast<size_t>(c)] = static_cast<int>(i);
+  }
+  const double d2 = p.cluster_distance_m * p.cluster_distance_m;
+  int n = 0;
+  std::vector<uint32_t> stack;
+  for (uint32_t i0 : cand) {
+    if (label[i0] >= 0) continue;
+    label[i0] = n;
+    stack.assign(1, i0);
+    while (!stack.empty()) {
+      const uint32_t i = stack.back();
+      stack.pop_back();
+      const ScanPoint& q = pts[i];
+      const int r = cell_of[i] / bins, a = cell_of[i] % bins;
+      for (int rr = std::max(0, r - p.ring_window); rr <= std::min(rings - 1, r + p.ring_window); ++rr) {
+        for (int da = -p.azimuth_window; da <= p.azimuth_window; ++da) {
+          const int aa = (a + da + bins) % bins;
+          for (int j = head[static_cast<size_t>(rr) * bins + aa]; j >= 0; j = next[static_cast<size_t>(j)]) {
+            if (label[static_cast<size_t>(j)] >= 0) continue;
+            const double dx = pts[static_cast<size_t>(j)].x - q.x, dy = pts[static_cast<size_t>(j)].y - q.y;
+            if (dx * dx + dy * dy > d2) continue;
+            label[static_cast<size_t>(j)] = n;
+            stack.push_back(static_cast<uint32_t>(j));
+          }
+        }
+      }
+    }
+    ++n;
+  }
+  return n;
+}
+
+/// Euclidean clusters: x-y grid of cluster_distance_m cells, components of points within
+/// cluster_distance_m of each other (the 3 x 3 cells around a point hold every such neighbour).
+int euclideanComponents(const std::vector<ScanPoint>& pts, const std::vector<uint32_t>& cand, const ClusterParams& p,
+                        Labels& label) {
+  const double cell = p.cluster_distance_m, d2 = cell * cell;
+  auto key = [&](double x, double y) {
+    const int64_t ix = static_cast<int64_t>(std::floor(x / cell)), iy = static_cast<int64_t>(std::floor(y / cell));
+    return (ix << 32) ^ (iy & 0xffffffff);
+  };
+  std::unordered_map<int64_t, std::vector<uint32_t>> grid;
+  grid.reserve(cand.size());
+  for (uint32_t i : cand) grid[key(pts[i].x, pts[i].y)].push_back(i);
+  int n = 0;
+  std::vector<uint32_t> stack;
+  for (uint32_t i0 : cand) {
+    if (label[i0] >= 0) continue;
+    label[i0] = n;
+    stack.assign(1, i0);
+    while (!stack.empty()) {
+      const uint32_t i = stack.back();
+      stack.pop_back();
+      const ScanPoint& q = pts[i];
+      for (int dx = -1; dx <= 1; ++dx) {
+        for (int dy = -1; dy <= 1; ++dy) {
+          auto it = grid.find(key(q.x + dx * cell, q.y + dy * cell));
+          if (it == grid.end()) continue;
+          for (uint32_t j : it->second) {
+            if (label[j] >= 0) continue;
+            const double ex = pts[j].x - q.x, ey = pts[j].y - q.y;
+            if (ex * ex + ey * ey > d2) continue;
+            label[j] = n;
+            stack.push_back(j);
+          }
+        }
+      }
+    }
+    ++n;
+  }
+  return n;
+}
+
+}  // namespace
+
+Box2 fitLShape(const std::vector<Eigen::Vector2d>& xy, double step_rad) {
+  Box2 b;
+  if (xy.empty()) return b;
+  const size_t stride = std::max<size_t>(1, xy.size() / kMaxFitPoints);
+  std::vector<double> c1, c2;
+  auto closeness = [&](double theta) {  // Zhang et al. 2017, Alg. 4
+    const double co = std::cos(theta), si = std::sin(theta);
+    c1.clear(), c2.clear();
+    for (size_t i = 0; i < xy.size(); i += stride) {
+      c1.push_back(co * xy[i].x() + si * xy[i].y());
+      c2.push_back(-si * xy[i].x() + co * xy[i].y());
+    }
+    const auto [lo1, hi1] = std::minmax_element(c1.begin(), c1.end());
+    const auto [lo2, hi2] = std::minmax_element(c2.begin(), c2.end());
+    double beta = 0;
+    for (size_t k = 0; k < c1.size(); ++k) {
+      const double d1 = std::min(*hi1 - c1[k], c1[k] - *lo1), d2 = std::min(*hi2 - c2[k], c2[k] - *lo2);
+      beta += 1.0 / std::max(std::min(d1, d2), kClosenessFloor_m);
+    }
+    return beta;
+  };
+  // Alg. 1 searches [0, pi/2) in steps of delta; here coarsely (kCoarseSteps x delta) first, then in
+  // steps of delta around the best coarse angle: a third of the evaluations at 1 deg.
+  double best = -1, best_theta = 0;
+  const double coarse = kCoarseSteps * step_rad;
+  for (double theta = 0; theta < M_PI / 2; theta += coarse) {
+    const double b = closeness(theta);
+    if (b > best) best = b, best_theta = theta;
+  }
+  const double centre = best_theta;
+  for (double theta = centre - coarse + step_rad; theta < centre + coarse; theta += step_rad) {
+    if (std::abs(theta - centre) < 1e-12) continue;
+    const double b = closeness(theta);
+    if (b > best) best = b, best_theta = theta;
+  }
+  best_theta = std::fmod(best_theta + M_PI / 2, M_PI / 2);  // the box is the same a quarter turn on
+  // The box of every point at the best angle (Alg. 1, lines 9-13).
+  const double co = std::cos(best_theta), si = std::sin(best_theta);
+  double lo1 = std::numeric_limits<double>::max(), hi1 = -lo1, lo2 = lo1, hi2 = -lo1;
+  for (const auto& q : xy) {
+    const double a = co * q.x() + si * q.y(), c = -si * q.x() + co * q.y();
+    lo1 = std::min(lo1, a), hi1 = std::max(hi1, a), lo2 = std::min(lo2, c), hi2 = std::max(hi2, c);
+  }
+  const double m1 = 0.5 * (lo1 + hi1), m2 = 0.5 * (lo2 + hi2);
+  b.cx = co * m1 - si * m2;
+  b.cy = si * m1 + co * m2;
+  b.length = hi1 - lo1, b.width = hi2 - lo2, b.yaw = best_theta;
+  if (b.width > b.length) std::swap(b.length, b.width), b.yaw += M_PI / 2;
+  b.yaw = std::fmod(b.yaw, M_PI);
+  return b;
+}
+
+std::vector<Object> segmentObjects(const std::vector<ScanPoint>& pts, bool has_rings, const std::vector<uint8_t>& ground,
+                                   const std::vector<float>& height_above_ground_m, const ClusterParams& p,
+                                   SegmentationStats* stats) {
+  std::vector<uint32_t> cand;
+  std::vector<float> height(pts.size(), 0.f);
+  cand.reserve(pts.size());
+  const double rmin2 = p.min_range_m * p.min_range_m, rmax2 = p.max_range_m * p.max_range_m;
+  for (size_t i = 0; i < pts.size(); ++i) {
+    const ScanPoint& q = pts[i];
+    if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z)) continue;
+    if (i < ground.size() && ground[i]) continue;
+    const double r2 = double(q.x) * q.x + double(q.y) * q.y;
+    if (r2 < rmin2 || r2 > rmax2) continue;
+    const float hg = i < height_above_ground_m.size() ? height_above_ground_m[i] : NAN;
+    const double h = std::isfinite(hg) ? double(hg) : q.z + p.ground.sensor_height_m;
+    if (h < p.min_height_m || h > p.max_height_m) continue;
+    height[i] = static_cast<float>(h);
+    cand.push_back(static_cast<uint32_t>(i));
+  }
+  Labels label(pts.size(), -1);
+  const int n = (has_rings && p.method == ClusterMethod::RangeImage) ? rangeImageComponents(pts, cand, p, label)
+                                                                       : euclideanComponents(pts, cand, p, label);
+  std::vector<std::vector<uint32_t>> members(static_cast<size_t>(n));
+  for (uint32_t i : cand) members[static_cast<size_t>(label[i])].push_back(i);
+  std::vector<Object> out;
+  std::vector<Eigen::Vector2d> xy;
+  for (auto& m : members) {
+    if (m.size() < static_cast<size_t>(p.min_points)) continue;
+    Object o;
+    o.z_min = std::numeric_limits<double>::max(), o.z_max = -o.z_min;
+    xy.clear();
+    for (uint32_t i : m) {
+      const ScanPoint& q = pts[i];
+      o.centroid += Eigen::Vector3d(q.x, q.y, q.z);
+      o.z_min = std::min<double>(o.z_min, q.z), o.z_max = std::max<double>(o.z_max, q.z);
+      o.top_height_m = std::max<double>(o.top_height_m, height[i]);
+      xy.emplace_back(q.x, q.y);
+    }
+    o.centroid /= static_cast<double>(m.size());
+    if (o.top_height_m < p.min_top_height_m) continue;
+    o.box = fitLShape(xy, p.lshape_step_rad);
+    if (o.box.length > p.max_length_m || o.box.width > p.max_width_m) continue;
+    o.points = m.size();
+    o.indices = std::move(m);
+    out.push_back(std::move(o));
+  }
+  if (stats) *stats = {cand.size(), static_cast<size_t>(n), out.size()};
+  return out;
+}
+
+std::vector<Object> segmentSweep(const Scan& scan, const ClusterParams& p, SegmentationStats* stats) {
+  const auto g = preprocess::segmentGroundWithHeights(scan.points, p.ground);
+  return segmentObjects(scan.points, scan.has_rings, g.ground, g.height_above_ground_m, p, stats);
+}
+
+}  // namespace roadslam::objects

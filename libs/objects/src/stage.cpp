@@ -1,0 +1,129 @@
+#include "roadslam/objects/stage.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdarg>
+#include <cstdio>
+
+#include "roadslam/preprocess/ground_segmentation.h"
+
+namespace roadslam::objects {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+
+std::string fmt(const char* f, ...) __attribute__((format(printf, 1, 2)));
+std::string fmt(const char* f, ...) {
+  char buf[512];
+  va_list ap;
+  va_start(ap, f);
+  std::vsnprintf(buf, sizeof(buf), f, ap);
+  va_end(ap);
+  return buf;
+}
+
+}  // namespace
+
+ObjectsFrame ObjectsStage::snapshot() const {
+  ObjectsFrame f;
+  for (const Track& t : tracker_.tracks()) {
+    if (t.state == TrackState::Confirmed) f.tracks.push_back(t);
+  }
+  return f;
+}
+
+ObjectsFrame ObjectsStage::process(const Scan& scan, const Eigen::Isometry3d& T_map_lidar, double t_s) {
+  auto t0 = Clock::now();
+  const auto g = preprocess::segmentGroundWithHeights(scan.points, p_.ground);
+  const double ms_ground = msSince(t0);
+  t0 = Clock::now();
+  SegmentationStats st;
+  std::vector<Object> objs = segmentObjects(scan.points, scan.has_rings, g.ground, g.height_above_ground_m, p_, &st);
+  const double ms_segment = msSince(t0);
+  t0 = Clock::now();
+  tracker_.update(t_s, T_map_lidar, objs);
+  ObjectsFrame f = snapshot();
+  f.object_track.assign(objs.size(), -1);
+  f.object_moving.assign(objs.size(), 0);
+  for (const Track& t : tracker_.tracks()) {
+    if (t.last_detection < 0 || t.state != TrackState::Confirmed) continue;
+    f.object_track[static_cast<size_t>(t.last_detection)] = t.id;
+    f.object_moving[static_cast<size_t>(t.last_detection)] = t.moving;
+  }
+  f.ms_track = msSince(t0);
+  f.objects = std::move(objs);
+  f.stats = st;
+  f.ms_ground = ms_ground, f.ms_segment = ms_segment;
+  return f;
+}
+
+ObjectsFrame ObjectsStage::coast(double t_s) {
+  tracker_.coast(t_s, "pose");
+  return snapshot();
+}
+
+size_t removeMovingPoints(std::vector<Eigen::Vector3d>& pts_lidar, const ObjectsFrame& f, double margin_m) {
+  std::vector<const Object*> moving;
+  for (size_t k = 0; k < f.objects.size() && k < f.object_moving.size(); ++k) {
+    if (f.object_moving[k]) moving.push_back(&f.objects[k]);
+  }
+  if (moving.empty()) return 0;
+  const size_t before = pts_lidar.size();
+  auto inside = [&](const Eigen::Vector3d& q) {
+    for (const Object* o : moving) {
+      const Box2& b = o->box;
+      const double c = std::cos(b.yaw), s = std::sin(b.yaw), dx = q.x() - b.cx, dy = q.y() - b.cy;
+      if (std::abs(c * dx + s * dy) <= 0.5 * b.length + margin_m && std::abs(-s * dx + c * dy) <= 0.5 * b.width + margin_m &&
+          q.z() >= o->z_min - margin_m && q.z() <= o->z_max + margin_m) {
+        return true;
+      }
+    }
+    return false;
+  };
+  pts_lidar.erase(std::remove_if(pts_lidar.begin(), pts_lidar.end(), inside), pts_lidar.end());
+  return before - pts_lidar.size();
+}
+
+std::string objectsCsvHeader() { return "frame,stamp_s,object,cx,cy,yaw_rad,length_m,width_m,z_min,z_max,points,track_id\n"; }
+
+std::string objectsCsvRows(size_t frame, double stamp_s, const Eigen::Isometry3d& T_map_lidar, const ObjectsFrame& f) {
+  std::string out;
+  const double dyaw = std::atan2(T_map_lidar(1, 0), T_map_lidar(0, 0)), z0 = T_map_lidar.translation().z();
+  for (size_t k = 0; k < f.objects.size(); ++k) {
+    const Object& o = f.objects[k];
+    const Eigen::Vector3d c = T_map_lidar * Eigen::Vector3d(o.box.cx, o.box.cy, 0);
+    out += fmt("%zu,%.6f,%zu,%.3f,%.3f,%.4f,%.3f,%.3f,%.3f,%.3f,%zu,%d\n", frame, stamp_s, k, c.x(), c.y(),
+               std::atan2(std::sin(o.box.yaw + dyaw), std::cos(o.box.yaw + dyaw)), o.box.length, o.box.width,
+               o.z_min + z0, o.z_max + z0, o.points, k < f.object_track.size() ? f.object_track[k] : -1);
+  }
+  return out;
+}
+
+std::string tracksCsvHeader() {
+  return "frame,stamp_s,track_id,x,y,vx,vy,speed_mps,heading_rad,length_m,width_m,z_min,z_max,moving,hits,misses,age_s\n";
+}
+
+std::string tracksCsvRows(size_t frame, double stamp_s, const ObjectsFrame& f) {
+  std::string out;
+  for (const Track& t : f.tracks) {
+    out += fmt("%zu,%.6f,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.4f,%.3f,%.3f,%.3f,%.3f,%d,%d,%d,%.2f\n", frame, stamp_s, t.id, t.x(0),
+               t.x(1), t.x(2), t.x(3), t.speed(), t.heading, t.length, t.width, t.z_min, t.z_max, t.moving ? 1 : 0,
+               t.hits, t.misses, stamp_s - t.t_birth);
+  }
+  return out;
+}
+
+std::string endedCsvHeader() { return "track_id,t_birth,t_end,hits,confirmed,moving,reason\n"; }
+
+std::string endedCsvRows(const std::vector<EndedTrack>& ended) {
+  std::string out;
+  for (const EndedTrack& e : ended) {
+    out += fmt("%d,%.6f,%.6f,%d,%d,%d,%s\n", e.track.id, e.track.t_birth, e.t_end, e.track.hits,
+               e.track.state == TrackState::Confirmed ? 1 : 0, e.track.moving ? 1 : 0, e.reason.c_str());
+  }
+  return out;
+}
+
+}  // namespace roadslam::objects

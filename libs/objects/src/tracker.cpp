@@ -1,0 +1,207 @@
+#include "roadslam/objects/tracker.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace roadslam::objects {
+namespace {
+
+constexpr double kUnassignable = 1e9;  // cost of a gated-out pair in the assignment
+
+/// A detection in the map frame: its box's corners (x-y) and heading of its length axis.
+struct Detection {
+  std::array<Eigen::Vector2d, 4> corners;
+  Eigen::Vector2d centre;
+  double yaw = 0;
+  double z_min = 0, z_max = 0;
+};
+
+Detection toMap(const Object& o, const Eigen::Isometry3d& T_map_lidar) {
+  Detection d;
+  const Box2& b = o.box;
+  const Eigen::Vector2d u(std::cos(b.yaw), std::sin(b.yaw)), v(-u.y(), u.x());
+  const Eigen::Vector2d c(b.cx, b.cy);
+  const double hl = 0.5 * b.length, hw = 0.5 * b.width;
+  const std::array<Eigen::Vector2d, 4> lidar = {c + hl * u + hw * v, c + hl * u - hw * v, c - hl * u - hw * v,
+                                                c - hl * u + hw * v};
+  for (size_t k = 0; k < 4; ++k) d.corners[k] = (T_map_lidar * Eigen::Vector3d(lidar[k].x(), lidar[k].y(), 0)).head<2>();
+  d.centre = (T_map_lidar * Eigen::Vector3d(c.x(), c.y(), 0)).head<2>();
+  const Eigen::Vector3d um = T_map_lidar.linear() * Eigen::Vector3d(u.x(), u.y(), 0);
+  d.yaw = std::atan2(um.y(), um.x());
+  const double z0 = T_map_lidar.translation().z();
+  d.z_min = o.z_min + z0, d.z_max = o.z_max + z0;
+  return d;
+}
+
+/// The detection's extents along the heading \p h and across it, and its centre completed to the
+/// track's remembered extents \p L x \p W away from the sensor at \p s: the faces seen are the near ones.
+struct Completed {
+  Eigen::Vector2d centre;
+  double along = 0, across = 0;
+};
+
+Completed complete(const Detection& d, double h, double L, double W, const Eigen::Vector2d& s) {
+  const Eigen::Vector2d u(std::cos(h), std::sin(h)), v(-u.y(), u.x());
+  double lo_u = 1e300, hi_u = -1e300, lo_v = 1e300, hi_v = -1e300;
+  for (const auto& c : d.corners) {
+    lo_u = std::min(lo_u, c.dot(u)), hi_u = std::max(hi_u, c.dot(u));
+    lo_v = std::min(lo_v, c.dot(v)), hi_v = std::max(hi_v, c.dot(v));
+  }
+  auto centreOn = [](double lo, double hi, double full, double sensor) {
+    if (hi - lo >= full) return 0.5 * (lo + hi);
+    return std::abs(sensor - lo) < std::abs(sensor - hi) ? lo + 0.5 * full : hi - 0.5 * full;
+  };
+  Completed c;
+  c.along = hi_u - lo_u, c.across = hi_v - lo_v;
+  c.centre = centreOn(lo_u, hi_u, L, s.dot(u)) * u + centreOn(lo_v, hi_v, W, s.dot(v)) * v;
+  return c;
+}
+
+double wrapPi(double a) { return std::atan2(std::sin(a), std::cos(a)); }
+
+}  // namespace
+
+void Tracker::predict(double t) {
+  const double dt = std::max(0.0, t - t_);
+  Eigen::Matrix4d F = Eigen::Matrix4d::Identity();
+  F(0, 2) = F(1, 3) = dt;
+  const double q = p_.accel_sigma_mps2 * p_.accel_sigma_mps2;
+  // discrete white-acceleration noise: G q G^T with G = [dt^2/2, dt]
+  Eigen::Matrix4d Q = Eigen::Matrix4d::Zero();
+  const double a = dt * dt * dt * dt / 4 * q, b = dt * dt * dt / 2 * q, c = dt * dt * q;
+  Q(0, 0) = Q(1, 1) = a;
+  Q(0, 2) = Q(2, 0) = Q(1, 3) = Q(3, 1) = b;
+  Q(2, 2) = Q(3, 3) = c;
+  for (Track& tr : tracks_) {
+    tr.x = F * tr.x;
+    tr.P = F * tr.P * F.transpose() + Q;
+  }
+  t_ = t;
+}
+
+void Tracker::endAll(double t, const std::string& reason) {
+  for (Track& tr : tracks_) ended_.push_back({tr, reason, t});
+  tracks_.clear();
+}
+
+void Tracker::prune(double t, const std::string& reason) {
+  std::vector<Track> keep;
+  for (Track& tr : tracks_) {
+    const bool dead = tr.state == TrackState::Tentative ? tr.misses > 0 : tr.misses > p_.max_misses;
+    if (dead || !tr.x.allFinite()) {
+      ended_.push_back({tr, tr.x.allFinite() ? reason : "diverged", t});
+    } else {
+      keep.push_back(tr);
+    }
+  }
+  tracks_ = std::move(keep);
+}
+
+void Tracker::coast(double t, const std::string& reason) {
+  if (!std::isfinite(t)) return;
+  if (!started_) started_ = true, t_ = t;
+  if (t - t_ > p_.max_dt_s || t < t_) endAll(t, "gap");
+  predict(t);
+  for (Track& tr : tracks_) ++tr.misses, tr.last_detection = -1;
+  prune(t, reason);
+}
+
+void Tracker::update(double t, const Eigen::Isometry3d& T_map_lidar, const std::vector<Object>& objects) {
+  if (!std::isfinite(t) || !T_map_lidar.matrix().allFinite()) return coast(t, "pose");
+  if (!started_) started_ = true, t_ = t;
+  if (t - t_ > p_.max_dt_s || t < t_) endAll(t, "gap");
+  predict(t);
+  const Eigen::Vector2d s = T_map_lidar.translation().head<2>();
+  std::vector<Detection> dets;
+  dets.reserve(objects.size());
+  for (const Object& o : objects) dets.push_back(toMap(o, T_map_lidar));  // finite: segmentObjects drops NaN points
+  // Gated costs: x-y distance of the completed detection centre to the track's prediction.
+  std::vector<std::vector<double>> cost(tracks_.size(), std::vector<double>(dets.size(), kUnassignable));
+  std::vector<std::vector<Completed>> comp(tracks_.size(), std::vector<Completed>(dets.size()));
+  const Eigen::Matrix2d R = Eigen::Matrix2d::Identity() * p_.meas_sigma_m * p_.meas_sigma_m;
+  for (size_t i = 0; i < tracks_.size(); ++i) {
+    const Track& tr = tracks_[i];
+    const Eigen::Matrix2d S_inv = (tr.P.topLeftCorner<2, 2>() + R).inverse();  // innovation covariance
+    for (size_t j = 0; j < dets.size(); ++j) {
+      // completion moves a centre by at most half the capped extents: farther boxes cannot be in the gate
+      if ((dets[j].centre - tr.x.head<2>()).norm() > p_.gate_m + p_.max_extent_growth_m) continue;
+      comp[i][j] = complete(dets[j], tr.heading, std::min(tr.length, p_.max_extent_growth_m),
+                            std::min(tr.width, p_.max_extent_growth_m), s);
+      const Eigen::Vector2d r = comp[i][j].centre - tr.x.head<2>();
+      const double d = r.norm(), m2 = r.dot(S_inv * r);
+      if (d > p_.gate_m || m2 > p_.gate_sigma * p_.gate_sigma) continue;
+      // extents seen now against the track's (capped: a car seen whole once is a car seen in part now)
+      const double dl = std::max(0.0, comp[i][j].along - std::min(tr.length, p_.max_extent_growth_m)) +
+                        std::max(0.0, comp[i][j].across - std::min(tr.width, p_.max_extent_growth_m));
+      cost[i][j] = d + p_.size_weight * dl;
+    }
+  }
+  const std::vector<int> match = hungarian(cost);
+  std::vector<char> taken(dets.size(), false);
+  for (size_t i = 0; i < tracks_.size(); ++i) {
+    Track& tr = tracks_[i];
+    const int j = match[i];
+    tr.last_detection = -1;
+    if (j < 0 || cost[i][static_cast<size_t>(j)] >= kUnassignable) {
+      ++tr.misses;
+      continue;
+    }
+    taken[static_cast<size_t>(j)] = true;
+    const Completed& c = comp[i][static_cast<size_t>(j)];
+    // Kalman update with H = [I 0]: K = P H^T (H P H^T + R)^-1
+    const Eigen::Matrix<double, 4, 2> PHt = tr.P.leftCols<2>();
+    const Eigen::Matrix2d S = tr.P.topLeftCorner<2, 2>() + R;
+    const Eigen::Matrix<double, 4, 2> K = PHt * S.inverse();
+    tr.x += K * (c.centre - tr.x.head<2>());
+    tr.P = (Eigen::Matrix4d::Identity() - K * Eigen::Matrix<double, 2, 4>::Identity()) * tr.P;
+    tr.length = std::max(tr.length, c.along);
+    tr.width = std::max(tr.width, c.across);
+    ++tr.hits, tr.misses = 0, tr.t_last = t, tr.last_detection = j;
+    tr.z_min = dets[static_cast<size_t>(j)].z_min, tr.z_max = dets[static_cast<size_t>(j)].z_max;
+    if (tr.hits >= p_.confirm_hits) tr.state = TrackState::Confirmed;
+    const double v = tr.speed();
+    const double travel = (tr.x.head<2>() - tr.birth_xy).norm();
+    if (tr.state == TrackState::Confirmed) {
+      const bool car_sized = std::max(tr.length, tr.width) <= p_.moving_max_length_m &&
+                             std::min(tr.length, tr.width) <= p_.moving_max_width_m &&
+                             std::min(tr.length, tr.width) >= p_.moving_min_width_m;
+      if (v > p_.moving_speed_mps && travel > p_.moving_min_travel_m && tr.hits >= p_.moving_min_hits && car_sized) {
+        tr.moving = true;
+      }
+      if (v < 0.5 * p_.moving_speed_mps || !car_sized) tr.moving = false;
+    }
+    if (tr.moving) {
+      // the heading follows the velocity; extents swap when it turns by more than 45 deg off them
+      const double h = std::atan2(tr.x(3), tr.x(2));
+      if (std::abs(std::sin(wrapPi(h - tr.heading))) > std::sqrt(0.5)) std::swap(tr.length, tr.width);
+      tr.heading = h;
+    }
+  }
+  prune(t, "missed");
+  for (size_t j = 0; j < dets.size(); ++j) {
+    if (taken[j]) continue;
+    Track tr;
+    tr.id = next_id_++;
+    tr.x << dets[j].centre, 0, 0;
+    tr.P = Eigen::Vector4d(p_.meas_sigma_m * p_.meas_sigma_m, p_.meas_sigma_m * p_.meas_sigma_m,
+                           p_.init_speed_sigma_mps * p_.init_speed_sigma_mps,
+                           p_.init_speed_sigma_mps * p_.init_speed_sigma_mps)
+               .asDiagonal();
+    tr.heading = dets[j].yaw;
+    const Completed c = complete(dets[j], tr.heading, 0, 0, s);
+    tr.length = c.along, tr.width = c.across;
+    tr.z_min = dets[j].z_min, tr.z_max = dets[j].z_max;
+    tr.hits = 1, tr.t_birth = tr.t_last = t, tr.birth_xy = dets[j].centre, tr.last_detection = static_cast<int>(j);
+    if (tr.hits >= p_.confirm_hits) tr.state = TrackState::Confirmed;
+    tracks_.push_back(tr);
+  }
+}
+
+std::vector<EndedTrack> Tracker::takeEnded() {
+  std::vector<EndedTrack> out;
+  out.swap(ended_);
+  return out;
+}
+
+}  // namespace roadslam::objects

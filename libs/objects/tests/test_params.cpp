@@ -1,0 +1,43 @@
+// [objects] / [tracking]: every key saved is read back; bad values are errors naming the section.
+#include <gtest/gtest.h>
+#include <mrpt/config/CConfigFileMemory.h>
+
+#include "roadslam/objects/params.h"
+
+using namespace roadslam::objects;
+
+TEST(ObjectsParams, SaveLoadRoundTrip) {
+  ClusterParams c;
+  c.enabled = true, c.method = ClusterMethod::Euclidean, c.cluster_distance_m = 0.8, c.lshape_step_rad = 0.02;
+  TrackerParams t;
+  t.gate_m = 3.3, t.max_misses = 7;
+  mrpt::config::CConfigFileMemory ini;
+  c.saveToConfigFile(ini);
+  t.saveToConfigFile(ini);
+  ClusterParams c2;
+  TrackerParams t2;
+  c2.loadFromConfigFile(ini);
+  t2.loadFromConfigFile(ini);
+  EXPECT_TRUE(c2.enabled);
+  EXPECT_EQ(c2.method, ClusterMethod::Euclidean);
+  EXPECT_DOUBLE_EQ(c2.cluster_distance_m, 0.8);
+  EXPECT_NEAR(c2.lshape_step_rad, 0.02, 1e-7);  // saved in degrees, as text
+  EXPECT_DOUBLE_EQ(t2.gate_m, 3.3);
+  EXPECT_EQ(t2.max_misses, 7);
+}
+
+TEST(ObjectsParams, BadValuesNameTheSection) {
+  mrpt::config::CConfigFileMemory ini;
+  ini.write("objects", "method", std::string("dbscan"));
+  ClusterParams c;
+  try {
+    c.loadFromConfigFile(ini);
+    FAIL();
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("[objects]"), std::string::npos);
+  }
+  mrpt::config::CConfigFileMemory ini2;
+  ini2.write("tracking", "gate_m", -1.0);
+  TrackerParams t;
+  EXPECT_THROW(t.loadFromConfigFile(ini2), std::runtime_error);
+}

@@ -1,0 +1,118 @@
+// Segmentation on a ray-cast street of boxes with known poses (oracle: the boxes), and the L-shape
+// fit on exact rectangle outlines with a known yaw.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+#include <random>
+
+#include "roadslam/objects/segmentation.h"
+#include "synthetic_boxes.h"
+
+using namespace roadslam;
+using namespace roadslam::objects;
+
+namespace {
+
+/// Smallest difference of two headings of an undirected axis [rad].
+double axisError(double a, double b) {
+  const double d = std::fmod(std::abs(a - b), M_PI);
+  return std::min(d, M_PI - d);
+}
+
+/// For each box, the objects whose centroid falls inside its footprint (+0.3 m).
+std::vector<int> objectsPerBox(const std::vector<test::SynthBox>& boxes, const std::vector<Object>& objs) {
+  std::vector<int> n(boxes.size(), 0);
+  for (const auto& o : objs) {
+    for (size_t b = 0; b < boxes.size(); ++b) {
+      const double c = std::cos(boxes[b].yaw), s = std::sin(boxes[b].yaw);
+      const double dx = o.centroid.x() - boxes[b].cx, dy = o.centroid.y() - boxes[b].cy;
+      n[b] += std::abs(c * dx + s * dy) <= boxes[b].length / 2 + 0.3 && std::abs(-s * dx + c * dy) <= boxes[b].width / 2 + 0.3;
+    }
+  }
+  return n;
+}
+
+}  // namespace
+
+TEST(Segmentation, EachBoxOfAStreetIsOneObjectWithBothMethods) {
+  const auto boxes = test::streetScene();
+  const Scan scan = test::castSweep(boxes);
+  for (ClusterMethod m : {ClusterMethod::RangeImage, ClusterMethod::Euclidean}) {
+    ClusterParams p;
+    p.method = m;
+    p.min_points = 4;
+    SegmentationStats st;
+    const auto objs = segmentSweep(scan, p, &st);
+    SCOPED_TRACE(toString(m));
+    EXPECT_EQ(objs.size(), boxes.size());
+    if (objs.size() != boxes.size()) {
+      for (const auto& o : objs) {
+        std::cout << "object " << o.box.cx << "," << o.box.cy << " " << o.box.length << " x " << o.box.width
+                  << " yaw " << o.box.yaw << " points " << o.points << " z " << o.z_min << ".." << o.z_max << "\n";
+      }
+    }
+    const auto n = objectsPerBox(boxes, objs);
+    for (size_t b = 0; b < boxes.size(); ++b) EXPECT_EQ(n[b], 1) << "box " << b;
+    EXPECT_GT(st.candidates, 200u);
+  }
+}
+
+TEST(Segmentation, TwoCarsCloserThanTheDistanceMergeFartherApartSplit) {
+  ClusterParams p;
+  for (double gap : {0.3, 1.2}) {
+    const std::vector<test::SynthBox> boxes = {{10, 4, 0, 4.5, 1.8, 1.5}, {10 + 4.5 + gap, 4, 0, 4.5, 1.8, 1.5}};
+    const auto objs = segmentSweep(test::castSweep(boxes), p);
+    EXPECT_EQ(objs.size(), gap < p.cluster_distance_m ? 1u : 2u) << "gap " << gap;
+  }
+}
+
+TEST(Segmentation, EmptyAndOnePointSweepsGiveNoObjects) {
+  ClusterParams p;
+  Scan empty;
+  empty.has_rings = true;
+  EXPECT_TRUE(segmentSweep(empty, p).empty());
+  Scan one = empty;
+  one.points.push_back({5, 5, 0, 0, 0, 8, 0});
+  EXPECT_TRUE(segmentSweep(one, p).empty());
+  p.min_points = 1;
+  const auto objs = segmentSweep(one, p);
+  ASSERT_EQ(objs.size(), 1u);
+  EXPECT_TRUE(std::isfinite(objs[0].box.cx) && std::isfinite(objs[0].box.yaw));
+  EXPECT_NEAR(objs[0].box.length, 0, 1e-9);
+}
+
+TEST(LShape, RecoversTheYawOfARectanglesTwoVisibleSides) {
+  std::mt19937 rng(21);
+  std::normal_distribution<double> noise(0, 0.02);
+  for (double yaw_deg : {0.0, 12.0, 33.0, 47.0, 71.0, 89.0, 123.0, 160.0}) {
+    const double yaw = yaw_deg * M_PI / 180, L = 4.6, W = 1.8;
+    const Eigen::Vector2d c(15, 6), u(std::cos(yaw), std::sin(yaw)), v(-u.y(), u.x());
+    // the two sides facing the sensor at the origin: an L of points
+    const Eigen::Vector2d su = (c.dot(u) > 0 ? -1.0 : 1.0) * u, sv = (c.dot(v) > 0 ? -1.0 : 1.0) * v;
+    std::vector<Eigen::Vector2d> pts;
+    for (double a = -L / 2; a <= L / 2; a += 0.05) pts.push_back(c + a * u + W / 2 * sv + noise(rng) * sv);
+    for (double b = -W / 2; b <= W / 2; b += 0.05) pts.push_back(c + L / 2 * su + b * v + noise(rng) * su);
+    const Box2 box = fitLShape(pts, M_PI / 180);
+    EXPECT_LT(axisError(box.yaw, yaw), 2.0 * M_PI / 180) << "yaw " << yaw_deg << " got " << box.yaw * 180 / M_PI;
+    EXPECT_NEAR(box.length, L, 0.1);
+    EXPECT_NEAR(box.width, W, 0.1);
+    EXPECT_NEAR(box.cx, c.x(), 0.1);
+    EXPECT_NEAR(box.cy, c.y(), 0.1);
+  }
+}
+
+TEST(LShape, BoxesOfTheRayCastCarsHaveTheirYaw) {
+  const auto boxes = test::streetScene();
+  const auto objs = segmentSweep(test::castSweep(boxes), ClusterParams{});
+  int checked = 0;
+  for (const auto& b : boxes) {
+    if (b.length < 2) continue;  // the pole has no axis
+    for (const auto& o : objs) {
+      if (std::hypot(o.box.cx - b.cx, o.box.cy - b.cy) > 1.5 || o.box.length < 3.5) continue;  // fully seen cars
+      EXPECT_LT(axisError(o.box.yaw, b.yaw), 3.0 * M_PI / 180) << "car at " << b.cx << "," << b.cy;
+      ++checked;
+    }
+  }
+  EXPECT_GE(checked, 4);
+}

@@ -1,0 +1,146 @@
+// Tracker: the KF's velocity converges to a constant-velocity target's; crossing targets keep their
+// ids; empty sweeps and missing poses coast and end tracks with a reason, never NaN; Hungarian on a
+// cost matrix with a known optimum.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "roadslam/objects/stage.h"
+#include "roadslam/objects/tracker.h"
+
+using namespace roadslam::objects;
+
+namespace {
+
+Object car(double x, double y, double yaw = 0, double L = 4.5, double W = 1.8) {
+  Object o;
+  o.box = {x, y, yaw, L, W};
+  o.centroid = {x, y, -1};
+  o.z_min = -1.9, o.z_max = -0.4, o.points = 100;
+  return o;
+}
+
+}  // namespace
+
+TEST(Hungarian, FindsTheMinimumCostAssignment) {
+  // optimum 1 + 2 + 2 = 5 (rows 0->1, 1->0, 2->2); the greedy choice (row 0 -> col 0, cost 0) is worse
+  const std::vector<std::vector<double>> c = {{0, 1, 9}, {2, 8, 9}, {9, 9, 2}};
+  EXPECT_EQ(hungarian(c), (std::vector<int>{1, 0, 2}));
+  const std::vector<std::vector<double>> wide = {{5, 1, 7, 3}, {1, 6, 8, 2}};
+  EXPECT_EQ(hungarian(wide), (std::vector<int>{1, 0}));
+  // three rows, two columns: 1 + 0.4 beats 1 + 0.5 and 1 + 1
+  const std::vector<std::vector<double>> tall = {{5, 1}, {1, 6}, {0.5, 0.4}};
+  EXPECT_EQ(hungarian(tall), (std::vector<int>{-1, 0, 1}));
+}
+
+TEST(Tracker, VelocityOfAConstantVelocityTargetConvergesToTheTruth) {
+  std::mt19937 rng(7);
+  std::normal_distribution<double> n(0, 0.1);
+  Tracker tr;
+  const double vx = 8.0, vy = -3.0;
+  for (int k = 0; k <= 40; ++k) {
+    const double t = 0.1 * k;
+    tr.update(100 + t, Eigen::Isometry3d::Identity(), {car(10 + vx * t + n(rng), 20 + vy * t + n(rng), std::atan2(vy, vx))});
+  }
+  ASSERT_EQ(tr.tracks().size(), 1u);
+  const Track& t = tr.tracks()[0];
+  EXPECT_EQ(t.id, 1);
+  EXPECT_EQ(t.state, TrackState::Confirmed);
+  EXPECT_NEAR(t.x(2), vx, 0.3);
+  EXPECT_NEAR(t.x(3), vy, 0.3);
+  EXPECT_TRUE(t.moving);
+  EXPECT_NEAR(t.x(0), 10 + vx * 4.0, 0.3);
+}
+
+TEST(Tracker, AParkedCarSeenFromAMovingSensorStaysStatic) {
+  Tracker tr;
+  for (int k = 0; k <= 50; ++k) {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.translation() = Eigen::Vector3d(1.0 * k, 0, 0);  // 10 m/s past a car at (30, 4) in the map
+    tr.update(0.1 * k, T, {car(30 - 1.0 * k, 4)});
+  }
+  ASSERT_EQ(tr.tracks().size(), 1u);
+  EXPECT_FALSE(tr.tracks()[0].moving);
+  EXPECT_LT(tr.tracks()[0].speed(), 0.3);
+}
+
+TEST(Tracker, TwoCarsPassingEachOtherKeepTheirIds) {
+  Tracker tr;
+  for (int k = 0; k <= 40; ++k) {
+    const double t = 0.1 * k;
+    tr.update(t, Eigen::Isometry3d::Identity(), {car(0 + 10 * t, 1.75), car(40 - 10 * t, -1.75, M_PI)});
+  }
+  ASSERT_EQ(tr.tracks().size(), 2u);
+  for (const Track& t : tr.tracks()) {
+    if (t.id == 1) {
+      EXPECT_GT(t.x(2), 9.0);
+    } else {
+      EXPECT_EQ(t.id, 2);
+      EXPECT_LT(t.x(2), -9.0);
+    }
+  }
+  EXPECT_TRUE(tr.takeEnded().empty());
+}
+
+TEST(Tracker, EmptySweepsCoastThenEndTheTrackWithAReasonAndNoNaN) {
+  TrackerParams p;
+  Tracker tr(p);
+  for (int k = 0; k < 10; ++k) tr.update(0.1 * k, Eigen::Isometry3d::Identity(), {car(10 + 1.0 * k, 0)});
+  ASSERT_EQ(tr.tracks().size(), 1u);
+  for (int k = 10; k < 10 + p.max_misses; ++k) {
+    tr.update(0.1 * k, Eigen::Isometry3d::Identity(), {});
+    ASSERT_EQ(tr.tracks().size(), 1u) << "coasting at sweep " << k;
+    EXPECT_TRUE(tr.tracks()[0].x.allFinite());
+  }
+  tr.update(0.1 * (10 + p.max_misses), Eigen::Isometry3d::Identity(), {});
+  EXPECT_TRUE(tr.tracks().empty());
+  const auto ended = tr.takeEnded();
+  ASSERT_EQ(ended.size(), 1u);
+  EXPECT_EQ(ended[0].reason, "missed");
+  EXPECT_TRUE(ended[0].track.x.allFinite());
+}
+
+TEST(Tracker, AFailedPoseCoastsAndAGapEndsEveryTrack) {
+  Tracker tr;
+  for (int k = 0; k < 5; ++k) tr.update(0.1 * k, Eigen::Isometry3d::Identity(), {car(10, 0)});
+  Eigen::Isometry3d bad = Eigen::Isometry3d::Identity();
+  bad.translation().x() = std::nan("");
+  tr.update(0.5, bad, {car(10, 0)});
+  ASSERT_EQ(tr.tracks().size(), 1u);
+  EXPECT_EQ(tr.tracks()[0].misses, 1);
+  EXPECT_TRUE(tr.tracks()[0].x.allFinite());
+  tr.coast(0.6);
+  EXPECT_EQ(tr.tracks()[0].misses, 2);
+  tr.update(5.0, Eigen::Isometry3d::Identity(), {car(10, 0)});  // 4.4 s later
+  const auto ended = tr.takeEnded();
+  ASSERT_EQ(ended.size(), 1u);
+  EXPECT_EQ(ended[0].reason, "gap");
+  ASSERT_EQ(tr.tracks().size(), 1u);
+  EXPECT_EQ(tr.tracks()[0].id, 2);
+}
+
+TEST(Tracker, ACarSeenOnlyFromBehindIsCompletedAwayFromTheSensor) {
+  // first seen whole (side view), later only its rear face: the centre stays the car's, not the face's
+  Tracker tr;
+  const double L = 4.5;
+  for (int k = 0; k < 5; ++k) tr.update(0.1 * k, Eigen::Isometry3d::Identity(), {car(10, 0, 0, L, 1.8)});
+  for (int k = 5; k < 10; ++k) tr.update(0.1 * k, Eigen::Isometry3d::Identity(), {car(10 - L / 2 + 0.1, 0, M_PI / 2, 1.8, 0.2)});
+  ASSERT_EQ(tr.tracks().size(), 1u);
+  EXPECT_NEAR(tr.tracks()[0].x(0), 10.0, 0.2);
+}
+
+TEST(RemoveMovingPoints, OnlyThePointsOfMovingObjectsGo) {
+  ObjectsFrame f;
+  f.objects = {car(10, 0), car(-10, 5)};
+  f.object_moving = {1, 0};
+  std::vector<Eigen::Vector3d> pts = {{10, 0, -1}, {11.5, 0.5, -0.5}, {10, 1.2, -1},  // in the moving car (+0.3 m)
+                                      {10, 0, 1.0},                                   // above it
+                                      {14, 0, -1},                                    // beyond its end
+                                      {-10, 5, -1}};                                  // in the static car
+  EXPECT_EQ(removeMovingPoints(pts, f, 0.3), 3u);
+  ASSERT_EQ(pts.size(), 3u);
+  EXPECT_DOUBLE_EQ(pts[0].z(), 1.0);
+  EXPECT_DOUBLE_EQ(pts[1].x(), 14.0);
+  EXPECT_DOUBLE_EQ(pts[2].x(), -10.0);
+}
