@@ -187,7 +187,7 @@ void writeJobFolder(const Job& job, const ExperimentSpec& spec) {
   std::error_code ec;
   fs::create_directories(job.dir, ec);
   if (!fs::is_directory(job.dir)) throw std::runtime_error("cannot create job folder '" + job.dir + "': " + ec.message());
-  writeFileAtomically(job.dir + "/config.ini", job.config_text);
+  writeFileAtomically(job.dir + "/config_used.ini", job.config_text);
   const Dataset* d = nullptr;
   for (const auto& x : spec.datasets) d = x.name == job.dataset ? &x : d;
   nlohmann::json stages = nlohmann::json::array();

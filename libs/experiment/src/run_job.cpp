@@ -33,7 +33,7 @@ bool hasStage(const nlohmann::json& job, const std::string& s) {
 void runTrajectoryStage(const std::string& dir, const nlohmann::json& job, bool maps, nlohmann::json& m) {
   const auto& d = job["dataset"];
   pipeline::MapRequest req;
-  req.config_path = dir + "/config.ini";
+  req.config_path = dir + "/config_used.ini";
   req.input_path = d["input"];
   req.times_path = d["times"];
   req.out_dir = dir + "/map";
@@ -54,7 +54,7 @@ void runTrajectoryStage(const std::string& dir, const nlohmann::json& job, bool 
 void runBoundsStage(const std::string& dir, const nlohmann::json& job, nlohmann::json& m) {
   const auto& d = job["dataset"];
   pipeline::BoundsRequest req;
-  req.config_path = dir + "/config.ini";
+  req.config_path = dir + "/config_used.ini";
   req.input_path = d["input"];
   req.times_path = d["times"];
   req.out_dir = dir + "/bounds";

@@ -131,11 +131,11 @@ TEST(Experiment, JobsEqualTheMapJobRunAloneAndRerunsSkipThem) {
     const std::string job = dir + "/out/" + row["dir"].get<std::string>();
     const std::string voxel = row["params"]["odometry.registration_voxel_m"];
     // the job's config is the base with the swept value
-    mrpt::config::CConfigFileMemory cfg(readText(job + "/config.ini"));
+    mrpt::config::CConfigFileMemory cfg(readText(job + "/config_used.ini"));
     EXPECT_EQ(cfg.read_string("odometry", "registration_voxel_m", ""), voxel);
     // oracle: roadslam-map alone on the job's config gives the same odometry, byte for byte
     const std::string alone = dir + "/alone-" + voxel;
-    ASSERT_EQ(std::system((kBin + "/roadslam-map --quiet --config " + job + "/config.ini --input " + drive() +
+    ASSERT_EQ(std::system((kBin + "/roadslam-map --quiet --config " + job + "/config_used.ini --input " + drive() +
                            "/velodyne.pcap --out " + alone).c_str()), 0);
     EXPECT_EQ(readText(job + "/map/trajectory.tum"), readText(alone + "/trajectory_odometry.tum"));
     EXPECT_GT(row["metrics"]["rte_percent"].get<double>(), 0.0);

@@ -1,7 +1,7 @@
 #pragma once
 /// \file jobs.h
 /// An experiment's jobs: one per (configuration of the sweep, dataset), each with its own folder
-/// OUT/jobs/<dataset>-<key>/ holding job.json (what to run), config.ini (the effective config: the
+/// OUT/jobs/<dataset>-<key>/ holding job.json (what to run), config_used.ini (the effective config: the
 /// base with the sweep's values), and after the run: the stages' outputs, log.txt and metrics.json
 /// (or failed.json). The key is a hash of the effective config, the dataset, the stages and the
 /// program version: a rerun finds a finished job by it and skips it.
@@ -39,7 +39,7 @@ void prepareDatasets(ExperimentSpec& spec, const std::string& out_dir);
 /// Every job of the plan with its folder's path, in order (variants outer, datasets inner).
 std::vector<Job> planJobs(const ExperimentSpec& spec, const std::string& out_dir);
 
-/// Writes the job's folder (job.json, config.ini); leaves its results as they are.
+/// Writes the job's folder (job.json, config_used.ini); leaves its results as they are.
 void writeJobFolder(const Job& job, const ExperimentSpec& spec);
 
 /// The job is finished with this key (metrics.json present and carrying it).

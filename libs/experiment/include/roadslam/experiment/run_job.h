@@ -1,6 +1,6 @@
 #pragma once
 /// \file run_job.h
-/// One job of an experiment, run from its folder alone (job.json, config.ini), so that a local pool,
+/// One job of an experiment, run from its folder alone (job.json, config_used.ini), so that a local pool,
 /// GNU parallel on other hosts or a Slurm array task run it the same way:
 /// `roadslam-experiment run-job DIR`. Stages, in order: odometry (the pipeline's odometry only) or
 /// map (odometry, pose graph, maps), bounds (poses: see BoundsPoses), eval (trajectory metrics
