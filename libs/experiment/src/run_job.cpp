@@ -30,15 +30,22 @@ bool hasStage(const nlohmann::json& job, const std::string& s) {
   return false;
 }
 
-void runTrajectoryStage(const std::string& dir, const nlohmann::json& job, bool maps, nlohmann::json& m) {
+/// The fields every job request shares: the job's config, its dataset, a sub-folder for the outputs.
+template <class Request>
+Request jobRequest(const std::string& dir, const nlohmann::json& job, const std::string& sub) {
   const auto& d = job["dataset"];
-  pipeline::MapRequest req;
+  Request req;
   req.config_path = dir + "/config_used.ini";
   req.input_path = d["input"];
   req.times_path = d["times"];
-  req.out_dir = dir + "/map";
+  req.out_dir = dir + "/" + sub;
   req.max_frames = job["max_frames"];
   req.progress = false;
+  return req;
+}
+
+void runTrajectoryStage(const std::string& dir, const nlohmann::json& job, bool maps, nlohmann::json& m) {
+  auto req = jobRequest<pipeline::MapRequest>(dir, job, "map");
   req.maps = maps;
   const auto out = pipeline::runMapJob(req);
   const auto& s = out.summary;
@@ -53,14 +60,8 @@ void runTrajectoryStage(const std::string& dir, const nlohmann::json& job, bool 
 
 void runBoundsStage(const std::string& dir, const nlohmann::json& job, nlohmann::json& m) {
   const auto& d = job["dataset"];
-  pipeline::BoundsRequest req;
-  req.config_path = dir + "/config_used.ini";
-  req.input_path = d["input"];
-  req.times_path = d["times"];
-  req.out_dir = dir + "/bounds";
-  req.max_frames = job["max_frames"];
+  auto req = jobRequest<pipeline::BoundsRequest>(dir, job, "bounds");
   req.png_every = 0;
-  req.progress = false;
   const std::string poses = job["bounds_poses"];
   const bool own = fs::exists(dir + "/map/trajectory.tum");
   if (poses == "gt" || (poses == "auto" && !own)) req.trajectory_path = d["gt"];

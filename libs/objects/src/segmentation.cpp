@@ -15,6 +15,36 @@ constexpr int kCoarseSteps = 5;             // coarse L-shape search step, in fi
 /// Labels of connected components over the candidate points; -1 = not a candidate.
 using Labels = std::vector<int>;
 
+/// Connected components of the candidates under "within \p dist_m in x-y": from each unlabelled
+/// point, a flood over the points \p forNeighbours(i, visit) offers (each index to visit(j)).
+/// Returns the number of components.
+template <class ForNeighbours>
+int floodComponents(const std::vector<ScanPoint>& pts, const std::vector<uint32_t>& cand, double dist_m, Labels& label,
+                    ForNeighbours&& forNeighbours) {
+  const double d2 = dist_m * dist_m;
+  int n = 0;
+  std::vector<uint32_t> stack;
+  for (uint32_t i0 : cand) {
+    if (label[i0] >= 0) continue;
+    label[i0] = n;
+    stack.assign(1, i0);
+    while (!stack.empty()) {
+      const uint32_t i = stack.back();
+      stack.pop_back();
+      const ScanPoint& q = pts[i];
+      forNeighbours(i, [&](uint32_t j) {
+        if (label[j] >= 0) return;
+        const double dx = pts[j].x - q.x, dy = pts[j].y - q.y;
+        if (dx * dx + dy * dy > d2) return;
+        label[j] = n;
+        stack.push_back(j);
+      });
+    }
+    ++n;
+  }
+  return n;
+}
+
 /// Range image: each candidate point goes to its (ring, azimuth) cell (a cell may hold several: a
 /// chain). Components grow from a point to the points of the cells within ring_window x
 /// azimuth_window around its own that are within cluster_distance_m in x-y.
@@ -33,41 +63,24 @@ int rangeImageComponents(const std::vector<ScanPoint>& pts, const std::vector<ui
     next[i] = head[static_cast<size_t>(c)];
     head[static_cast<size_t>(c)] = static_cast<int>(i);
   }
-  const double d2 = p.cluster_distance_m * p.cluster_distance_m;
-  int n = 0;
-  std::vector<uint32_t> stack;
-  for (uint32_t i0 : cand) {
-    if (label[i0] >= 0) continue;
-    label[i0] = n;
-    stack.assign(1, i0);
-    while (!stack.empty()) {
-      const uint32_t i = stack.back();
-      stack.pop_back();
-      const ScanPoint& q = pts[i];
-      const int r = cell_of[i] / bins, a = cell_of[i] % bins;
-      for (int rr = std::max(0, r - p.ring_window); rr <= std::min(rings - 1, r + p.ring_window); ++rr) {
-        for (int da = -p.azimuth_window; da <= p.azimuth_window; ++da) {
-          const int aa = (a + da + bins) % bins;
-          for (int j = head[static_cast<size_t>(rr) * bins + aa]; j >= 0; j = next[static_cast<size_t>(j)]) {
-            if (label[static_cast<size_t>(j)] >= 0) continue;
-            const double dx = pts[static_cast<size_t>(j)].x - q.x, dy = pts[static_cast<size_t>(j)].y - q.y;
-            if (dx * dx + dy * dy > d2) continue;
-            label[static_cast<size_t>(j)] = n;
-            stack.push_back(static_cast<uint32_t>(j));
-          }
+  return floodComponents(pts, cand, p.cluster_distance_m, label, [&](uint32_t i, auto&& visit) {
+    const int r = cell_of[i] / bins, a = cell_of[i] % bins;
+    for (int rr = std::max(0, r - p.ring_window); rr <= std::min(rings - 1, r + p.ring_window); ++rr) {
+      for (int da = -p.azimuth_window; da <= p.azimuth_window; ++da) {
+        const int aa = (a + da + bins) % bins;
+        for (int j = head[static_cast<size_t>(rr) * bins + aa]; j >= 0; j = next[static_cast<size_t>(j)]) {
+          visit(static_cast<uint32_t>(j));
         }
       }
     }
-    ++n;
-  }
-  return n;
+  });
 }
 
 /// Euclidean clusters: x-y grid of cluster_distance_m cells, components of points within
 /// cluster_distance_m of each other (the 3 x 3 cells around a point hold every such neighbour).
 int euclideanComponents(const std::vector<ScanPoint>& pts, const std::vector<uint32_t>& cand, const ClusterParams& p,
                         Labels& label) {
-  const double cell = p.cluster_distance_m, d2 = cell * cell;
+  const double cell = p.cluster_distance_m;
   auto key = [&](double x, double y) {
     const int64_t ix = static_cast<int64_t>(std::floor(x / cell)), iy = static_cast<int64_t>(std::floor(y / cell));
     return (ix << 32) ^ (iy & 0xffffffff);
@@ -75,33 +88,15 @@ int euclideanComponents(const std::vector<ScanPoint>& pts, const std::vector<uin
   std::unordered_map<int64_t, std::vector<uint32_t>> grid;
   grid.reserve(cand.size());
   for (uint32_t i : cand) grid[key(pts[i].x, pts[i].y)].push_back(i);
-  int n = 0;
-  std::vector<uint32_t> stack;
-  for (uint32_t i0 : cand) {
-    if (label[i0] >= 0) continue;
-    label[i0] = n;
-    stack.assign(1, i0);
-    while (!stack.empty()) {
-      const uint32_t i = stack.back();
-      stack.pop_back();
-      const ScanPoint& q = pts[i];
-      for (int dx = -1; dx <= 1; ++dx) {
-        for (int dy = -1; dy <= 1; ++dy) {
-          auto it = grid.find(key(q.x + dx * cell, q.y + dy * cell));
-          if (it == grid.end()) continue;
-          for (uint32_t j : it->second) {
-            if (label[j] >= 0) continue;
-            const double ex = pts[j].x - q.x, ey = pts[j].y - q.y;
-            if (ex * ex + ey * ey > d2) continue;
-            label[j] = n;
-            stack.push_back(j);
-          }
-        }
+  return floodComponents(pts, cand, cell, label, [&](uint32_t i, auto&& visit) {
+    for (int dx = -1; dx <= 1; ++dx) {
+      for (int dy = -1; dy <= 1; ++dy) {
+        const auto it = grid.find(key(pts[i].x + dx * cell, pts[i].y + dy * cell));
+        if (it == grid.end()) continue;
+        for (uint32_t j : it->second) visit(j);
       }
     }
-    ++n;
-  }
-  return n;
+  });
 }
 
 }  // namespace

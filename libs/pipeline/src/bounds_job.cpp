@@ -35,15 +35,15 @@ struct Drive {
   double ms_mean = 0;            ///< detector time per sweep (labelling, curb map) [ms]
 };
 
-/// Whole-drive mode, first pass: every sweep's pose (the odometry runs here only) and its curb
-/// points into \p det's curb map.
-Drive accumulateDrive(const BoundsRequest& req, const mrpt::config::CConfigFileBase& cfg, const odometry::Params& op,
-                      boundary::BoundaryDetector& det) {
+/// Whole-drive mode, first pass over \p source: every sweep's pose from \p poses (the odometry runs
+/// here only) and its curb points into \p det's curb map.
+Drive accumulateDrive(const BoundsRequest& req, std::unique_ptr<sources::ScanSource> source,
+                      std::unique_ptr<PoseStage> poses, boundary::BoundaryDetector& det) {
   Stages stages;
-  stages.poses = poseStage(req, op);
+  stages.poses = std::move(poses);
   stages.boundaries = &det;
   stages.boundary_use = BoundaryUse::Accumulate;
-  Pipeline pipe(sources::openScanSource(req.input_path, cfg, req.times_path), std::move(stages));
+  Pipeline pipe(std::move(source), std::move(stages));
   ProgressBar bar("roadslam-bounds: whole drive, pass 1", pipe.source().sizeHint());
   Drive d;
   size_t n = 0;
@@ -100,7 +100,7 @@ nlohmann::json runBoundsJob(const BoundsRequest& req) {
   }
   const auto unknown_keys = cfg->checkEntries(req.allow_unknown_keys);
   auto source = openNonEmptySource(req.input_path, *cfg, req.times_path);
-  // a trajectory that cannot be read fails here, before any output (whole-drive mode reads it in pass 1)
+  // a trajectory that cannot be read fails here, before any output
   std::unique_ptr<PoseStage> poses = poseStage(req, op);
   std::error_code ec;
   fs::create_directories(req.out_dir + "/frames", ec);
@@ -111,8 +111,9 @@ nlohmann::json runBoundsJob(const BoundsRequest& req) {
   boundary::BoundaryDetector det(params);
   Drive drive;  // whole-drive mode: pass 1's poses, replayed in pass 2
   if (req.whole_drive) {
-    drive = accumulateDrive(req, *cfg, op, det);
-    poses = std::make_unique<RecordedPoses>(drive.poses, req.input_path, poses->describe());
+    const std::string origin = poses->describe();
+    drive = accumulateDrive(req, std::move(source), std::move(poses), det);
+    poses = std::make_unique<RecordedPoses>(drive.poses, req.input_path, origin);
     source = sources::openScanSource(req.input_path, *cfg, req.times_path);
   }
   Stages stages;
