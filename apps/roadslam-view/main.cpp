@@ -10,8 +10,17 @@ int main(int argc, char** argv) {
   roadslam::viewer::ViewRequest req;
   std::string color = "height", camera = "follow";
   roadslam::addVersionFlag(app, "roadslam-view");
-  app.add_option("recording", req.inputs.recording, "MRPT rawlog (observations or sensory-frames format), Velodyne pcap or KITTI .bin folder")
-      ->required()->check(CLI::ExistingPath);
+  auto* rec = app.add_option("recording", req.inputs.recording,
+                              "MRPT rawlog (observations or sensory-frames format), Velodyne pcap or KITTI .bin folder")
+                  ->check(CLI::ExistingPath);
+  auto* udp = app.add_option("--udp", req.live.udp_port, "live: show the sweeps of a VLP-16 sending to this UDP data port (2368)")
+                  ->check(CLI::Range(0, 65535));
+  auto* grab = app.add_option("--grab", req.live.grab_ini, "live: every LiDAR and the CAN bus of this roadslam-grab ini")
+                   ->check(CLI::ExistingFile);
+  app.add_option("--record", req.live.record_dir, "live: also record the session into DIR, as roadslam-grab does");
+  app.add_option("--sweeps", req.live_sweeps, "live --render: render once this many sweeps arrived")->check(CLI::PositiveNumber);
+  app.add_option("--timeout", req.live_timeout_s, "live --render: give up after this many seconds")->check(CLI::PositiveNumber);
+  app.add_option("--keep", req.live_keep_s, "live: seconds of sweeps kept to step back through")->check(CLI::PositiveNumber);
   app.add_option("--map", req.inputs.map_dir, "roadslam-map output folder")->check(CLI::ExistingDirectory);
   app.add_option("--bounds", req.inputs.bounds_dir, "roadslam-bounds output folder")->check(CLI::ExistingDirectory);
   app.add_option("--gt", req.inputs.ground_truth, "ground-truth trajectory (TUM)")->check(CLI::ExistingFile);
@@ -34,6 +43,14 @@ int main(int argc, char** argv) {
       ->check(CLI::ExistingFile);
   app.add_flag("--no-index-cache", req.no_index_cache, "rebuild the rawlog index and do not write REC.idx");
   CLI11_PARSE(app, argc, argv);
+  if (int(rec->count() > 0) + int(udp->count() > 0) + int(grab->count() > 0) != 1) {
+    std::cerr << "roadslam-view: give one of a recording, --udp PORT or --grab INI\n" << app.help();
+    return 2;
+  }
+  if (!req.live.record_dir.empty() && !req.isLive()) {
+    std::cerr << "roadslam-view: --record belongs to a live view (--udp or --grab)\n";
+    return 2;
+  }
   try {
     req.color_by = roadslam::viewer::parseColorBy(color);
     req.camera = roadslam::viewer::parseCameraMode(camera);

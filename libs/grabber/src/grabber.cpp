@@ -35,9 +35,11 @@ Grabber::Grabber(const GrabParams& params, const std::string& out_dir)
   Impl& g = *impl_;
   g.params = params;
   g.out_dir = out_dir;
-  std::error_code ec;
-  fs::create_directories(out_dir, ec);
-  if (ec) throw std::runtime_error("cannot create output folder '" + out_dir + "': " + ec.message());
+  if (!out_dir.empty()) {
+    std::error_code ec;
+    fs::create_directories(out_dir, ec);
+    if (ec) throw std::runtime_error("cannot create output folder '" + out_dir + "': " + ec.message());
+  }
   for (const auto& sp : params.sensors) {
     auto rt = std::make_unique<SensorRt>(sp, params.writer.queue_capacity);
     rt->rx = std::make_unique<sources::UdpReceiver>(sp.udp);
@@ -53,8 +55,13 @@ Grabber::Grabber(const GrabParams& params, const std::string& out_dir)
       g.can->source = std::make_unique<can::SocketCanSource>(cp.socketcan);
     }
   }
-  writeSessionFiles(params, out_dir);
+  if (!out_dir.empty()) writeSessionFiles(params, out_dir);
   g.writer_task = makeWriter(g);
+}
+
+void Grabber::setObservationTap(ObservationTap tap) {
+  if (impl_->started) throw std::logic_error("Grabber::setObservationTap after start()");
+  impl_->tap = std::move(tap);
 }
 
 void Grabber::useCanSocket(int fd, const std::string& interface_name) {

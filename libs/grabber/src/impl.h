@@ -95,7 +95,8 @@ std::unique_ptr<WriterTask> makeWriter(Grabber::Impl& g);
 
 struct Grabber::Impl {
   GrabParams params;
-  std::string out_dir;
+  std::string out_dir;  // empty: monitoring, nothing written
+  ObservationTap tap;
   std::vector<std::unique_ptr<SensorRt>> sensors;
   std::unique_ptr<CanRt> can;
   WriterCounters writer;

@@ -110,14 +110,18 @@ std::string Grabber::formatStatus(const GrabStatus& s) {
                         s.can.frames, s.can.error_frames, s.can.bus_off,
                         s.can.kernel_drops + s.can.queue_drops, s.can.queue_depth,
                         s.can.silent ? " SILENT" : "");
-  line += fmt::format(" rawlog: {} sweeps, {:.1f} MB in {} file(s), pending {}", s.writer.sweeps,
-                      double(s.writer.bytes) / 1e6, s.writer.segments, s.writer.pending);
+  if (s.writer.segments == 0)  // monitoring: the first segment of a recording opens with the Grabber
+    line += fmt::format(" not recording: {} sweeps, pending {}", s.writer.sweeps, s.writer.pending);
+  else
+    line += fmt::format(" rawlog: {} sweeps, {:.1f} MB in {} file(s), pending {}", s.writer.sweeps,
+                        double(s.writer.bytes) / 1e6, s.writer.segments, s.writer.pending);
   if (s.writer.write_errors) line += fmt::format(", {} WRITE ERRORS: {}", s.writer.write_errors, s.writer.error);
   return line;
 }
 
 void Grabber::writeSummary(const GrabStatus& s) const {
   using nlohmann::json;
+  if (impl_->out_dir.empty()) return;  // monitoring: nothing is written
   json sensors = json::array();
   std::uint64_t received = 0, dropped = 0;
   for (const auto& o : s.sensors) {

@@ -55,7 +55,7 @@ class Writer : public WriterTask {
   void writeSweep(const SensorItem& it);
   void writePosition(const SensorItem& it);
   void writeVehicle(const can::CanFrame& f);
-  void writeObs(const mrpt::serialization::CSerializable& o);
+  void writeObs(const std::shared_ptr<mrpt::obs::CObservation>& o);
   void flushAll();
   void updateCounters();
   void openSidecars();
@@ -75,7 +75,7 @@ class Writer : public WriterTask {
   }
 
   Grabber::Impl& g_;
-  SegmentWriter seg_;
+  std::unique_ptr<SegmentWriter> seg_;  // null when monitoring
   std::vector<mrpt::obs::VelodyneCalibration> calib_;
   std::vector<std::unique_ptr<pcap::PcapWriter>> pcap_;
   std::FILE* candump_ = nullptr;
@@ -97,7 +97,9 @@ SegmentPolicy policyOf(const WriterParams& w) {
 }
 
 Writer::Writer(Grabber::Impl& g)
-    : g_(g), seg_(g.out_dir, g.params.writer.file_prefix, policyOf(g.params.writer)) {
+    : g_(g) {
+  if (!g.out_dir.empty())
+    seg_ = std::make_unique<SegmentWriter>(g.out_dir, g.params.writer.file_prefix, policyOf(g.params.writer));
   for (const auto& s : g.params.sensors) {
     mrpt::obs::VelodyneCalibration c;
     if (!s.scan.calibration_file.empty()) {
@@ -140,7 +142,7 @@ void Writer::run() {
     if (!got) std::this_thread::sleep_for(kIdleSleep);
   }
   flushAll();
-  guarded([&] { seg_.close(); });
+  if (seg_) guarded([&] { seg_->close(); });
   guarded([&] { closeSidecars(); });
   updateCounters();
 }
@@ -148,6 +150,7 @@ void Writer::run() {
 // Sidecars are cut with the rawlog segments: <sensor>_NNN.pcap and can_NNN.candump.log hold the
 // packets / frames that arrived while grab_NNN.rawlog was the current segment.
 void Writer::openSidecars() {
+  if (!seg_) return;
   char idx[16];
   std::snprintf(idx, sizeof(idx), "_%03zu", sidecar_segment_);
   if (g_.params.writer.pcap_sidecar)
@@ -221,30 +224,33 @@ void Writer::emit(Pending& p) {
   });
 }
 
-void Writer::writeObs(const mrpt::serialization::CSerializable& o) {
-  seg_.write(o, wallNow());
-  g_.writer.observations.fetch_add(1);
-  if (seg_.segments().size() - 1 != sidecar_segment_) {
-    closeSidecars();
-    sidecar_segment_ = seg_.segments().size() - 1;
-    openSidecars();
+void Writer::writeObs(const std::shared_ptr<mrpt::obs::CObservation>& o) {
+  if (seg_) {
+    seg_->write(*o, wallNow());
+    if (seg_->segments().size() - 1 != sidecar_segment_) {
+      closeSidecars();
+      sidecar_segment_ = seg_->segments().size() - 1;
+      openSidecars();
+    }
   }
+  g_.writer.observations.fetch_add(1);
+  if (g_.tap) g_.tap(o);
 }
 
 void Writer::writeSweep(const SensorItem& it) {
   const SensorParams& sp = g_.params.sensors[std::size_t(it.sensor)];
   const sources::RawlogWriter::Params& p = sp.scan;
-  CObservationVelodyneScan obs;
-  obs.sensorLabel = p.sensor_label;
-  obs.sensorPose = mrpt::poses::CPose3D(p.x_m, p.y_m, p.z_m, p.yaw_rad, p.pitch_rad, p.roll_rad);
-  obs.minRange = p.min_range_m;
-  obs.maxRange = p.max_range_m;
-  obs.calibration = calib_[std::size_t(it.sensor)];
-  obs.timestamp = mrpt::Clock::fromDouble(it.packets.front().stamp_s);
-  obs.originalReceivedTimestamp = obs.timestamp;
-  obs.scan_packets.resize(it.packets.size());
+  auto obs = std::make_shared<CObservationVelodyneScan>();
+  obs->sensorLabel = p.sensor_label;
+  obs->sensorPose = mrpt::poses::CPose3D(p.x_m, p.y_m, p.z_m, p.yaw_rad, p.pitch_rad, p.roll_rad);
+  obs->minRange = p.min_range_m;
+  obs->maxRange = p.max_range_m;
+  obs->calibration = calib_[std::size_t(it.sensor)];
+  obs->timestamp = mrpt::Clock::fromDouble(it.packets.front().stamp_s);
+  obs->originalReceivedTimestamp = obs->timestamp;
+  obs->scan_packets.resize(it.packets.size());
   for (std::size_t i = 0; i < it.packets.size(); ++i)
-    std::memcpy(&obs.scan_packets[i], it.packets[i].payload.data(), velodyne::kDataPacketSize);
+    std::memcpy(&obs->scan_packets[i], it.packets[i].payload.data(), velodyne::kDataPacketSize);
   writeObs(obs);
   g_.writer.sweeps.fetch_add(1);
   g_.writer.packets.fetch_add(it.packets.size());
@@ -256,8 +262,8 @@ void Writer::writePosition(const SensorItem& it) {
   velodyne::PositionPacket pos;
   if (!velodyne::decodePositionPacket(pkt.payload.data(), pkt.payload.size(), pos) || !pos.has_fix)
     return;  // kept in the pcap sidecar; nothing to put in an MRPT GPS record
-  mrpt::obs::CObservationGPS obs;
-  sources::fillGpsObservation(pos.fix, pkt.stamp_s, g_.params.sensors[std::size_t(it.sensor)].scan.gps_label, obs);
+  auto obs = std::make_shared<mrpt::obs::CObservationGPS>();
+  sources::fillGpsObservation(pos.fix, pkt.stamp_s, g_.params.sensors[std::size_t(it.sensor)].scan.gps_label, *obs);
   writeObs(obs);
   g_.writer.gps.fetch_add(1);
 }
@@ -270,32 +276,32 @@ void Writer::writeVehicle(const can::CanFrame& f) {
   if (!mask) return;
   const auto t = mrpt::Clock::fromDouble(f.timeSeconds());
   if (dr_->update(vstate_, mask)) {
-    mrpt::obs::CObservationOdometry odo;
-    odo.sensorLabel = "CAN_ODOMETRY";
-    odo.timestamp = t;
+    auto odo = std::make_shared<mrpt::obs::CObservationOdometry>();
+    odo->sensorLabel = "CAN_ODOMETRY";
+    odo->timestamp = t;
     const vehicle::Pose2D& p = dr_->pose();
-    odo.odometry = mrpt::poses::CPose2D(p.x_m, p.y_m, p.yaw_rad);
-    odo.hasVelocities = true;
-    odo.velocityLocal = mrpt::math::TTwist2D(p.v_mps, 0.0, p.w_radps);
+    odo->odometry = mrpt::poses::CPose2D(p.x_m, p.y_m, p.yaw_rad);
+    odo->hasVelocities = true;
+    odo->velocityLocal = mrpt::math::TTwist2D(p.v_mps, 0.0, p.w_radps);
     writeObs(odo);
     g_.can->vehicle_obs.fetch_add(1);
   }
   constexpr vehicle::UpdateMask kImu =
       bit(Quantity::kYawRate) | bit(Quantity::kAccelX) | bit(Quantity::kAccelY);
   if (mask & kImu) {
-    mrpt::obs::CObservationIMU imu;
-    imu.sensorLabel = "CAN_IMU";
-    imu.timestamp = t;
-    if (mask & bit(Quantity::kYawRate)) imu.set(mrpt::obs::IMU_WZ, vstate_.value(Quantity::kYawRate));
-    if (mask & bit(Quantity::kAccelX)) imu.set(mrpt::obs::IMU_X_ACC, vstate_.value(Quantity::kAccelX));
-    if (mask & bit(Quantity::kAccelY)) imu.set(mrpt::obs::IMU_Y_ACC, vstate_.value(Quantity::kAccelY));
+    auto imu = std::make_shared<mrpt::obs::CObservationIMU>();
+    imu->sensorLabel = "CAN_IMU";
+    imu->timestamp = t;
+    if (mask & bit(Quantity::kYawRate)) imu->set(mrpt::obs::IMU_WZ, vstate_.value(Quantity::kYawRate));
+    if (mask & bit(Quantity::kAccelX)) imu->set(mrpt::obs::IMU_X_ACC, vstate_.value(Quantity::kAccelX));
+    if (mask & bit(Quantity::kAccelY)) imu->set(mrpt::obs::IMU_Y_ACC, vstate_.value(Quantity::kAccelY));
     writeObs(imu);
     g_.can->vehicle_obs.fetch_add(1);
   }
 }
 
 void Writer::flushAll() {
-  guarded([&] { seg_.syncFlush(); });
+  if (seg_) guarded([&] { seg_->syncFlush(); });
   guarded([&] {
     for (auto& p : pcap_) p->flush();
   });
@@ -304,11 +310,12 @@ void Writer::flushAll() {
 }
 
 void Writer::updateCounters() {
-  g_.writer.bytes = seg_.totalBytes();
-  g_.writer.segments = seg_.segments().size();
   g_.writer.pending = pending_.size();
+  if (!seg_) return;
+  g_.writer.bytes = seg_->totalBytes();
+  g_.writer.segments = seg_->segments().size();
   std::lock_guard<std::mutex> lock(g_.writer.text_mutex);
-  if (!seg_.segments().empty()) g_.writer.current_segment = seg_.segments().back();
+  if (!seg_->segments().empty()) g_.writer.current_segment = seg_->segments().back();
 }
 
 }  // namespace

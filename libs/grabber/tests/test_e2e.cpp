@@ -9,6 +9,7 @@
 #include <cstring>
 #include <fstream>
 #include <map>
+#include <mutex>
 #include <nlohmann/json.hpp>
 
 #include <mrpt/core/Clock.h>
@@ -284,4 +285,54 @@ TEST(GrabBadInput, SecondSenderOnTheSamePortLockedOut) {
   EXPECT_EQ(s.foreign, 100u);
   EXPECT_EQ(s.missing, 0u);
   EXPECT_TRUE(test::readRawlog(dir.str() + "/grab_000.rawlog") == test::dataPayloads(pkts));
+}
+
+// Monitoring (roadslam-view --udp): no out folder, nothing written; the tap receives every sweep
+// with the same packets the recorder would have written, in time order. Oracle: the sweep
+// assembler over the simulator's packets, and the packets themselves.
+TEST(GrabMonitor, TapReceivesEverySweepAndNothingIsWritten) {
+  const auto& pkts = test::simPackets(1.0);
+  const auto expected = test::dataPayloads(pkts);
+  test::TempDir cwd("monitor");
+  const auto before = std::filesystem::current_path();
+  std::filesystem::current_path(cwd.path);  // a stray relative write would land here
+  std::vector<std::shared_ptr<mrpt::obs::CObservation>> tapped;
+  std::mutex m;
+  {
+    Grabber g(test::paramsFromText(test::testIni()), "");
+    g.setObservationTap([&](const std::shared_ptr<mrpt::obs::CObservation>& o) {
+      std::lock_guard<std::mutex> lock(m);
+      tapped.push_back(o);
+    });
+    g.start();
+    {
+      sim::UdpStreamer streamer("127.0.0.1", g.dataPort(0), 4.0);
+      for (const auto& p : pkts)
+        if (p.port == 2368) streamer.packet(p.capture_s, p.port, p.bytes.data(), p.bytes.size());
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    g.stop();
+    EXPECT_EQ(g.status().writer.segments, 0u);
+    EXPECT_THROW(g.setObservationTap({}), std::logic_error);
+  }
+  std::filesystem::current_path(before);
+  EXPECT_TRUE(std::filesystem::is_empty(cwd.path)) << "monitoring wrote a file";
+  std::vector<std::vector<uint8_t>> got;
+  double last = -1;
+  for (const auto& o : tapped) {
+    const auto scan = std::dynamic_pointer_cast<mrpt::obs::CObservationVelodyneScan>(o);
+    ASSERT_TRUE(scan) << o->GetRuntimeClass()->className;
+    const double t = mrpt::Clock::toDouble(scan->timestamp);
+    EXPECT_GE(t, last);
+    last = t;
+    for (const auto& p : scan->scan_packets) {
+      const auto* b = reinterpret_cast<const uint8_t*>(&p);
+      got.emplace_back(b, b + velodyne::kDataPacketSize);
+    }
+  }
+  velodyne::SweepAssembler a;
+  for (const auto& p : expected) a.addPacket(p.data(), p.size(), 0);
+  a.finish();
+  EXPECT_EQ(tapped.size(), a.stats().sweeps);
+  EXPECT_TRUE(got == expected) << got.size() << " of " << expected.size() << " packets";
 }

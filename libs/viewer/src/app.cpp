@@ -34,12 +34,19 @@ std::pair<int, int> parseSize(const std::string& text) {
 
 std::string summaryLine(const ViewerModel& m) {
   const auto& idx = m.recording();
+  std::string name = m.inputs().recording, how = " (live)";
+  if (const auto* r = m.rawlog()) {
+    char text[64];
+    std::snprintf(text, sizeof text, " (index %s, %.0f ms)", r->openInfo().from_cache ? "cached" : "built",
+                  r->openInfo().seconds * 1e3);
+    name = r->path();
+    how = text;
+  }
   char buf[600];
   std::snprintf(buf, sizeof buf,
-                "%s: %zu observations over %.1f s (index %s, %.0f ms); %zu frames, %zu loops, %zu map points, "
+                "%s: %zu observations over %.1f s%s; %zu frames, %zu loops, %zu map points, "
                 "%zu boundary sweeps, %zu ground-truth poses, %zu CAN samples, %zu OctoMap voxels",
-                idx.path().c_str(), idx.size(), m.endTime() - m.startTime(),
-                idx.openInfo().from_cache ? "cached" : "built", idx.openInfo().seconds * 1e3, m.frames().size(),
+                name.c_str(), idx.size(), m.endTime() - m.startTime(), how.c_str(), m.frames().size(),
                 m.loops().size(), m.mapPoints().size(), m.boundaries().size(), m.groundTruth().size(), m.can().size(), m.octoVoxels().size());
   return buf;
 }
@@ -120,9 +127,10 @@ void encodeVideo(const std::string& png_dir, const std::string& mp4, double fps)
 }
 
 int runView(const ViewRequest& req, std::ostream& out, std::ostream& err) {
+  if (req.isLive()) return runLiveView(req, out, err);
   const auto [w, h] = parseSize(req.size);
   const bool headless = !req.render_png.empty() || !req.sequence_dir.empty() || !req.video.empty();
-  const WindowOptions window{w, h, req.script};
+  const WindowOptions window{w, h, req.script, {}};
   if (!headless) checkWindowRequest(window);
   ViewerInputs in = req.inputs;
   in.recording = recordingToOpen(in.recording, err);

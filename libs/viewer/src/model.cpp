@@ -18,6 +18,9 @@
 #include <stdexcept>
 #include <unordered_set>
 
+#include <mrpt/obs/CObservationIMU.h>
+#include <mrpt/obs/CObservationOdometry.h>
+
 #include "roadslam/datasets/trajectory_io.h"
 
 namespace roadslam::viewer {
@@ -69,18 +72,61 @@ std::vector<Eigen::Vector3f> readPlyPoints(const std::string& path, double voxel
 }
 
 ViewerModel::ViewerModel(const ViewerInputs& in) : in_(in) {
-  index_ = sources::RawlogIndex::open(in.recording, in.index);
-  if (index_->size() == 0)
+  auto idx = sources::RawlogIndex::open(in.recording, in.index);
+  if (idx->size() == 0)
     throw std::runtime_error("recording '" + in.recording + "' holds no readable observation" +
-                             (index_->complete() ? std::string() : ": " + index_->stopMessage()));
-  if (!index_->complete()) warnings_.push_back("recording damaged: " + index_->stopMessage());
-  for (const auto& [cls, n] : index_->unknownClasses())
+                             (idx->complete() ? std::string() : ": " + idx->stopMessage()));
+  if (!idx->complete()) warnings_.push_back("recording damaged: " + idx->stopMessage());
+  for (const auto& [cls, n] : idx->unknownClasses())
     warnings_.push_back("recording: " + std::to_string(n) + " observations of unknown class " + cls + " skipped");
-  if (!index_->openInfo().cache_note.empty()) warnings_.push_back(index_->openInfo().cache_note);
-  if (!in.map_dir.empty()) loadMapFolder(in.map_dir);
-  if (!in.bounds_dir.empty()) loadBounds(in.bounds_dir);
-  if (!in.ground_truth.empty()) loadGroundTruth(in.ground_truth);
-  if (!in.can_log.empty()) loadCan(in.can_log, in.vehicle_ini);
+  if (!idx->openInfo().cache_note.empty()) warnings_.push_back(idx->openInfo().cache_note);
+  rawlog_ = idx.get();
+  index_ = std::move(idx);
+  loadResults();
+}
+
+ViewerModel::ViewerModel(const ViewerInputs& in, std::unique_ptr<sources::LiveObservations> live) : in_(in) {
+  if (!live) throw std::invalid_argument("ViewerModel: no live source");
+  live_ = live.get();
+  index_ = std::move(live);
+  loadResults();
+}
+
+void ViewerModel::loadResults() {
+  if (!in_.map_dir.empty()) loadMapFolder(in_.map_dir);
+  if (!in_.bounds_dir.empty()) loadBounds(in_.bounds_dir);
+  if (!in_.ground_truth.empty()) loadGroundTruth(in_.ground_truth);
+  if (!in_.can_log.empty()) loadCan(in_.can_log, in_.vehicle_ini);
+}
+
+std::size_t ViewerModel::poll() {
+  if (!live_) return 0;
+  const std::size_t first = live_->poll();
+  for (std::size_t i = first; i < live_->size(); ++i) {
+    const std::string& cls = live_->className(i);
+    if (cls != "CObservationOdometry" && cls != "CObservationIMU") continue;
+    const auto obs = live_->load(i);
+    CanSample c;
+    c.t_s = live_->entry(i).stamp_s;
+    if (const auto* odo = dynamic_cast<const mrpt::obs::CObservationOdometry*>(obs.get())) {
+      if (!odo->hasVelocities) continue;
+      c.speed_mps = odo->velocityLocal.vx;
+      c.yaw_rate_rad_s = odo->velocityLocal.omega;
+    } else if (const auto* imu = dynamic_cast<const mrpt::obs::CObservationIMU*>(obs.get())) {
+      if (!imu->has(mrpt::obs::IMU_WZ)) continue;
+      c.yaw_rate_rad_s = imu->get(mrpt::obs::IMU_WZ);
+      if (!can_.empty()) c.speed_mps = can_.back().speed_mps;
+    }
+    addCanSample(c);
+  }
+  return live_->size() - first;
+}
+
+// 20 Hz is plenty for a plot, and bounds the memory of long logs and live sessions.
+void ViewerModel::addCanSample(const CanSample& c) {
+  if (!std::isfinite(c.t_s)) return;
+  if (!can_.empty() && c.t_s - can_.back().t_s < 0.05) return;
+  can_.push_back(c);
 }
 
 ViewerModel::~ViewerModel() = default;
@@ -164,19 +210,17 @@ void ViewerModel::loadCan(const std::string& log, const std::string& vehicle_ini
   can::CandumpReader reader(log);
   vehicle::VehicleState state;
   can::CanFrame frame;
-  double last = -1e300;
   while (reader.next(frame)) {
     if (!decoder.process(frame, state)) continue;
     const double t = static_cast<double>(frame.t_us) * 1e-6;
-    if (t - last < 0.05) continue;  // 20 Hz is plenty for a plot, and bounds the memory of long logs
-    last = t;
+    if (!can_.empty() && t - can_.back().t_s < 0.05) continue;
     CanSample c;
     c.t_s = t;
     const bool wheels = state.has(vehicle::Quantity::kWheelFL) || state.has(vehicle::Quantity::kVehicleSpeed);
     if (wheels) c.speed_mps = state.speed();
     if (state.has(vehicle::Quantity::kYawRate)) c.yaw_rate_rad_s = state.value(vehicle::Quantity::kYawRate);
     if (state.has(vehicle::Quantity::kSteeringAngle)) c.steering_rad = state.value(vehicle::Quantity::kSteeringAngle);
-    can_.push_back(c);
+    addCanSample(c);
   }
   const auto& st = reader.stats();
   if (st.bad > 0) warnings_.push_back("CAN log '" + log + "': " + std::to_string(st.bad) + " of " + std::to_string(st.lines) + " lines unreadable, skipped");

@@ -37,10 +37,14 @@ const std::vector<std::pair<std::string, std::string>>& shortcuts() {
   return s;
 }
 
-Replay::Replay(ViewerModel& model) : model_(model), t_s_(model.startTime()) {}
+Replay::Replay(ViewerModel& model)
+    : model_(model), t_s_(model.live() ? model.endTime() : model.startTime()), playing_(model.live() != nullptr) {}
 Replay::~Replay() = default;
 
-void Replay::seek(double t_s) { t_s_ = std::clamp(t_s, model_.startTime(), model_.endTime()); }
+void Replay::seek(double t_s) {
+  t_s_ = std::clamp(t_s, model_.startTime(), model_.endTime());
+  if (model_.live()) playing_ = false;  // looking back: the live edge moves on without the picture
+}
 
 void Replay::jumpToObservation(std::size_t i) {
   if (i >= model_.recording().size()) return;
@@ -80,11 +84,20 @@ void Replay::changeSpeed(int direction) { setSpeed(direction > 0 ? speed_ * 2 : 
 
 void Replay::advance(double wall_s) {
   if (!playing_) return;
+  if (model_.live()) {
+    t_s_ = model_.endTime();  // the live edge
+    return;
+  }
   seek(t_s_ + wall_s * speed_);
   if (t_s_ >= model_.endTime()) playing_ = false;
 }
 
 bool Replay::handleKey(Key key) {
+  if (model_.live() && key == Key::End) {
+    playing_ = true;
+    t_s_ = model_.endTime();
+    return true;
+  }
   switch (key) {
     case Key::Space: playing_ = !playing_; return true;
     case Key::Right: stepSweep(+1); return true;

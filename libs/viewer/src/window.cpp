@@ -44,7 +44,7 @@ std::optional<Key> keyOf(int glfw_key) {
   }
 }
 
-std::string rowText(const sources::RawlogIndex& idx, std::size_t i, double t0) {
+std::string rowText(const sources::ObservationIndex& idx, std::size_t i, double t0) {
   char buf[160];
   const auto& e = idx.entry(i);
   std::snprintf(buf, sizeof buf, "%6zu  %9.3f s  %-10s %-26s %7.1f kB", i, e.stamp_s - t0, idx.label(i).c_str(),
@@ -106,7 +106,7 @@ class CapturingWindow : public mrpt::gui::CDisplayWindowGUI {
 class ViewerWindow {
  public:
   ViewerWindow(Replay& replay, const WindowOptions& opt, std::ostream& out, std::ostream& err)
-      : replay_(replay), out_(out), err_(err) {
+      : replay_(replay), out_(out), err_(err), status_fn_(opt.status) {
     if (!opt.script.empty()) script_ = readScript(opt.script);
     win_ = std::make_shared<CapturingWindow>("roadslam-view: " + replay.model().inputs().recording,
                                              unsigned(opt.width_px), unsigned(opt.height_px));
@@ -161,6 +161,10 @@ class ViewerWindow {
       replay_.seek(m.startTime() + double(v) * (m.endTime() - m.startTime()));
     });
     time_ = w->add<nanogui::Label>("");
+    if (status_fn_) {
+      status_ = w->add<nanogui::Label>("live: waiting for the first status");
+      status_->setFixedWidth(420);
+    }
     auto* jump = w->add<nanogui::Widget>();
     jump->setLayout(new nanogui::BoxLayout(nanogui::Orientation::Horizontal, nanogui::Alignment::Middle, 0, 4));
     jump->add<nanogui::Label>("jump to obs");
@@ -175,14 +179,18 @@ class ViewerWindow {
     t->setCallback([this](float s) { replay_.seek(replay_.model().startTime() + double(s)); });
   }
 
+  std::string listHeader() const {
+    const auto& m = replay_.model();
+    const bool damaged = m.rawlog() && !m.rawlog()->complete();
+    return std::to_string(m.recording().size()) + " observations, " + std::to_string(m.recording().labels().size()) +
+           " sensor labels" + (damaged ? " (damaged: see stderr)" : m.live() ? " (live)" : "");
+  }
+
   void buildList(int width_px) {
     auto* w = new nanogui::Window(win_.get(), "Observations");
     w->setPosition({std::max(10, width_px - 470), 40});
     w->setLayout(new nanogui::GroupLayout(6, 2));
-    const auto& idx = replay_.model().recording();
-    w->add<nanogui::Label>(std::to_string(idx.size()) + " observations, " +
-                           std::to_string(idx.labels().size()) + " sensor labels" +
-                           (idx.complete() ? "" : " (damaged: see stderr)"));
+    list_header_ = w->add<nanogui::Label>(listHeader());
     w->add<nanogui::Label>("   index  time        label      type                          size");
     for (int r = 0; r < kListRows; ++r) {
       auto* b = w->add<nanogui::Button>("");
@@ -250,6 +258,7 @@ class ViewerWindow {
     const std::size_t n = m.recording().size(), c = pinned_.value_or(cur.value_or(0));
     const std::size_t first = c > kListRows / 2 ? std::min(c - kListRows / 2, n > kListRows ? n - kListRows : 0) : 0;
     rows_index_.clear();
+    if (m.live()) list_header_->setCaption(listHeader());
     for (int r = 0; r < kListRows; ++r) {
       const std::size_t i = first + std::size_t(r);
       rows_[std::size_t(r)]->setVisible(i < n);
@@ -282,6 +291,11 @@ class ViewerWindow {
     const auto now = std::chrono::steady_clock::now();
     const double dt = last_tick_ ? std::chrono::duration<double>(now - *last_tick_).count() : 0.0;
     last_tick_ = now;
+    if (replay_.model().poll() > 0) dirty_ = true;  // a live view: what the sensors sent since
+    if (status_fn_ && (!last_status_ || now - *last_status_ > std::chrono::seconds(1))) {
+      last_status_ = now;
+      status_->setCaption(status_fn_());
+    }
     replay_.advance(dt);
     if (replay_.model().takePosted() > 0) dirty_ = true;  // results streamed in by another thread
     refresh(false);
@@ -351,7 +365,10 @@ class ViewerWindow {
   std::string last_key_;
   bool dirty_ = false;
   int frames_since_change_ = 0;
-  std::optional<std::chrono::steady_clock::time_point> last_tick_;
+  std::optional<std::chrono::steady_clock::time_point> last_tick_, last_status_;
+  std::function<std::string()> status_fn_;
+  nanogui::Label* status_ = nullptr;
+  nanogui::Label* list_header_ = nullptr;
   std::vector<ScriptCommand> script_;
   std::size_t next_ = 0;
   std::chrono::steady_clock::time_point wait_until_{};

@@ -13,6 +13,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <thread>
@@ -20,7 +21,15 @@
 
 #include "roadslam/grabber/params.h"
 
+namespace mrpt::obs {
+class CObservation;
+}
+
 namespace roadslam::grabber {
+
+/// Receives every observation the writer emits, in time order, on the writer thread (it must not
+/// block: the viewer's live mode queues it for its drawing thread).
+using ObservationTap = std::function<void(const std::shared_ptr<mrpt::obs::CObservation>&)>;
 
 /// Counters of one LiDAR (a consistent-enough snapshot: each field is read atomically).
 struct SensorStatus {
@@ -85,7 +94,12 @@ class Grabber {
   /// Validates the parameters, creates \p out_dir, opens the sockets, the CAN source and the
   /// first rawlog segment, writes the session files (params_used.ini, calibrations). Throws
   /// naming the port, interface or file on failure. Nothing is received until start().
+  /// An empty \p out_dir monitors without recording: no file is written (no rawlog, sidecars or
+  /// summary.json), the observations only go to the tap (roadslam-view --udp / --grab).
   Grabber(const GrabParams& params, const std::string& out_dir);
+  /// Every observation written (or, monitoring, that would be) also goes to \p tap; call before
+  /// start().
+  void setObservationTap(ObservationTap tap);
   /// Replaces the CAN source by an open datagram socket carrying struct can_frame (socketpair
   /// tests); call before start().
   void useCanSocket(int fd, const std::string& interface_name);

@@ -23,22 +23,9 @@
 #include <utility>
 #include <vector>
 
-namespace mrpt::obs {
-class CObservation;
-}
+#include "roadslam/sources/observation_index.h"
 
 namespace roadslam::sources {
-
-/// One observation of the rawlog.
-struct RawlogEntry {
-  uint64_t offset = 0;   ///< uncompressed byte offset of the record holding it [bytes]
-  uint32_t size = 0;     ///< uncompressed bytes of that record [bytes]
-  int32_t sub = -1;      ///< position inside a CSensoryFrame record; -1: the record is the observation
-  double stamp_s = 0;    ///< CObservation::timestamp [s, Unix epoch]; NaN when the record has none
-  uint16_t label = 0;    ///< index into RawlogIndex::labels() (sensorLabel)
-  uint16_t cls = 0;      ///< index into RawlogIndex::classNames()
-  bool known = true;     ///< false: a class this build cannot read (listed, skipped)
-};
 
 struct RawlogIndexOptions {
   uint64_t span_bytes = 4u << 20;  ///< gzip: uncompressed bytes between access points [bytes]
@@ -57,24 +44,22 @@ struct RawlogOpenInfo {
   double seconds = 0;          ///< wall time of open() [s]
 };
 
-class RawlogIndex {
+class RawlogIndex : public ObservationIndex {
  public:
   /// Opens \p path (throws std::runtime_error naming it when it does not exist or cannot be read at
   /// all) and indexes it, or reads its fresh sidecar.
   static std::unique_ptr<RawlogIndex> open(const std::string& path, const RawlogIndexOptions& options = {});
-  ~RawlogIndex();
+  ~RawlogIndex() override;
 
   /// Sidecar path for \p rawlog_path: "<rawlog_path>.idx".
   static std::string sidecarPath(const std::string& rawlog_path);
 
   const std::string& path() const;
   const RawlogOpenInfo& openInfo() const;
-  std::size_t size() const;
-  const RawlogEntry& entry(std::size_t i) const;
-  const std::vector<std::string>& labels() const;
-  const std::vector<std::string>& classNames() const;
-  const std::string& label(std::size_t i) const { return labels()[entry(i).label]; }
-  const std::string& className(std::size_t i) const { return classNames()[entry(i).cls]; }
+  std::size_t size() const override;
+  const RawlogEntry& entry(std::size_t i) const override;
+  const std::vector<std::string>& labels() const override;
+  const std::vector<std::string>& classNames() const override;
 
   /// False when reading stopped at damage (a truncated or corrupt file) before the end.
   bool complete() const;
@@ -90,17 +75,17 @@ class RawlogIndex {
   std::size_t accessPoints() const;
 
   /// First and last finite stamps [s]; both 0 for a rawlog without any.
-  double firstStamp() const;
-  double lastStamp() const;
+  double firstStamp() const override;
+  double lastStamp() const override;
   /// The observation shown at time \p t_s: the last one (in time order) stamped at or before it,
   /// else the first; nullopt when no observation has a stamp.
-  std::optional<std::size_t> findAtTime(double t_s) const;
+  std::optional<std::size_t> findAtTime(double t_s) const override;
   /// Indices of the observations whose stamp lies in [t0_s, t1_s), in time order.
-  std::vector<std::size_t> findInRange(double t0_s, double t1_s) const;
+  std::vector<std::size_t> findInRange(double t0_s, double t1_s) const override;
 
   /// Reads observation \p i from the file. Throws std::runtime_error naming the rawlog and the
   /// index when it cannot be read (an unknown class, an I/O error, the file changed).
-  std::shared_ptr<mrpt::obs::CObservation> load(std::size_t i);
+  std::shared_ptr<mrpt::obs::CObservation> load(std::size_t i) override;
 
  private:
   struct Impl;

@@ -6,6 +6,7 @@
 #include <ostream>
 #include <string>
 
+#include "roadslam/viewer/live_feed.h"
 #include "roadslam/viewer/model.h"
 #include "roadslam/viewer/scene.h"
 
@@ -25,6 +26,11 @@ struct ViewRequest {
   double fps = 10;           ///< --fps of the video [1/s]
   std::string run_slam_ini;  ///< --run-slam INI: the odometry runs over the recording while it replays
   bool no_index_cache = false;
+  LiveRequest live;          ///< --udp / --grab (+ --record): a live view instead of a recording
+  std::size_t live_sweeps = 3;    ///< live --render: render once this many sweeps arrived [count]
+  double live_timeout_s = 10;     ///< live --render: give up after this long without them [s]
+  double live_keep_s = 30;        ///< live: sweeps kept for stepping back [s]
+  bool isLive() const { return live.udp_port >= 0 || !live.grab_ini.empty(); }
 };
 
 /// Parses "WxH" [pixels]; throws std::invalid_argument naming the text.
@@ -44,5 +50,9 @@ void encodeVideo(const std::string& png_dir, const std::string& mp4, double fps)
 
 /// Runs the request; returns the exit code (0 done, 1 a problem named on \p err).
 int runView(const ViewRequest& req, std::ostream& out, std::ostream& err);
+
+/// The live view (req.isLive()): the window follows the sensors; --render writes the newest sweep
+/// once req.live_sweeps arrived (exit 1 naming the source when none came within the timeout).
+int runLiveView(const ViewRequest& req, std::ostream& out, std::ostream& err);
 
 }  // namespace roadslam::viewer

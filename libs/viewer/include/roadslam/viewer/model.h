@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "roadslam/sources/live_observations.h"
 #include "roadslam/sources/rawlog_index.h"
 
 namespace roadslam::viewer {
@@ -71,10 +72,20 @@ class ViewerModel {
   /// Opens everything named in \p in; throws std::runtime_error naming the file that cannot be read.
   /// Soft problems (a damaged recording, results whose times miss the recording) go to warnings().
   explicit ViewerModel(const ViewerInputs& in);
+  /// A live view: the observations come from \p live (a grabber's tap) as they arrive; poll() takes
+  /// them in. \p in names no recording.
+  ViewerModel(const ViewerInputs& in, std::unique_ptr<sources::LiveObservations> live);
   ~ViewerModel();
 
-  sources::RawlogIndex& recording() { return *index_; }
-  const sources::RawlogIndex& recording() const { return *index_; }
+  sources::ObservationIndex& recording() { return *index_; }
+  const sources::ObservationIndex& recording() const { return *index_; }
+  /// The rawlog opened (nullptr in a live view) and the live source (nullptr in a replay).
+  const sources::RawlogIndex* rawlog() const { return rawlog_; }
+  sources::LiveObservations* live() { return live_; }
+  const sources::LiveObservations* live() const { return live_; }
+  /// Live view: takes in what arrived (the car's odometry and IMU observations also feed can());
+  /// returns how many observations came. A replay: 0.
+  std::size_t poll();
   const ViewerInputs& inputs() const { return in_; }
   const std::vector<std::string>& warnings() const { return warnings_; }
 
@@ -104,18 +115,23 @@ class ViewerModel {
   const std::vector<Eigen::Vector3d>& groundTruth() const { return gt_positions_; }
   const std::vector<BoundaryFrame>& boundaries() const { return bounds_; }
   const BoundaryFrame* boundaryNear(double t_s, double tolerance_s = 0.06) const;
-  /// CAN signals every 50 ms (the latest values then), when a log was given.
+  /// CAN signals every 50 ms (the latest values then), when a log was given or, live, from the
+  /// car's odometry (speed, yaw rate) and IMU (yaw rate) observations.
   const std::vector<CanSample>& can() const { return can_; }
 
  private:
   void loadMapFolder(const std::string& dir);
   void loadBounds(const std::string& dir);
   void loadGroundTruth(const std::string& path);
+  void loadResults();
   void loadCan(const std::string& log, const std::string& vehicle_ini);
+  void addCanSample(const CanSample& c);
   void checkOverlap(const std::string& what, double t0, double t1);
 
   ViewerInputs in_;
-  std::unique_ptr<sources::RawlogIndex> index_;
+  std::unique_ptr<sources::ObservationIndex> index_;
+  const sources::RawlogIndex* rawlog_ = nullptr;
+  sources::LiveObservations* live_ = nullptr;
   std::vector<std::string> warnings_;
   std::vector<FrameResult> frames_;
   std::mutex posted_mutex_;

@@ -4,6 +4,10 @@
 /// time, play/pause, speed (0.1x-10x), stepping sweep by sweep, jumps, the colour and camera modes,
 /// and the keyboard shortcuts as named keys (so a script and a test drive exactly what a user does).
 /// The observation at the current time is loaded lazily through the rawlog index.
+///
+/// A live view (ViewerModel::live()) plays by following the newest observation: pausing freezes
+/// the picture (the data keep arriving behind it), playing or End goes back to the live edge, and
+/// a seek or a step pauses.
 
 #include <memory>
 #include <optional>
@@ -52,6 +56,7 @@ class Replay {
   void changeSpeed(int direction);
   void setSpeed(double s);
   /// Advances the time by \p wall_s of wall time times the speed when playing; stops at the end.
+  /// Live: when playing, moves to the newest observation.
   void advance(double wall_s);
   /// Applies a shortcut; returns false for a key without an action.
   bool handleKey(Key key);

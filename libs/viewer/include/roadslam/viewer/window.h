@@ -11,6 +11,7 @@
 ///   quit              close the window
 /// Lines starting with '#' and empty lines are ignored.
 
+#include <functional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -22,6 +23,8 @@ class Replay;
 struct WindowOptions {
   int width_px = 1280, height_px = 720;
   std::string script;  ///< command file; empty: interactive
+  /// Live view: a status line (the grabber's counters) shown under the timeline, once a second.
+  std::function<std::string()> status;
 };
 
 struct ScriptCommand {

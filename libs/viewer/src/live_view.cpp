@@ -1,0 +1,87 @@
+// roadslam-view --udp / --grab: the live view (live_feed.h) in the window, or one headless render.
+#include <chrono>
+#include <thread>
+
+#include "roadslam/viewer/app.h"
+#include "roadslam/viewer/render.h"
+#include "roadslam/viewer/replay.h"
+#include "roadslam/viewer/window.h"
+
+namespace roadslam::viewer {
+
+namespace {
+
+std::size_t sweepsIn(const sources::ObservationIndex& idx, std::size_t from, std::size_t count) {
+  for (std::size_t i = from; i < idx.size(); ++i) {
+    const auto& cls = idx.className(i);
+    count += cls == "CObservationVelodyneScan" || cls == "CObservationPointCloud";
+  }
+  return count;
+}
+
+/// Polls until \p wanted sweeps arrived or \p timeout_s passed; returns the sweeps seen.
+std::size_t waitForSweeps(ViewerModel& model, std::size_t wanted, double timeout_s) {
+  const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  std::size_t sweeps = 0;
+  while (sweeps < wanted && std::chrono::steady_clock::now() < until) {
+    const std::size_t first = model.recording().size();
+    model.poll();
+    sweeps = sweepsIn(model.recording(), first, sweeps);
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return sweeps;
+}
+
+}  // namespace
+
+int runLiveView(const ViewRequest& req, std::ostream& out, std::ostream& err) {
+  if (!req.sequence_dir.empty() || !req.video.empty())
+    throw std::runtime_error("--render-sequence and --video need a recording; a live view renders one picture (--render)");
+  if (!req.run_slam_ini.empty()) throw std::runtime_error("--run-slam replays a recording; it does not run on a live view");
+  if (!req.inputs.map_dir.empty() || !req.inputs.bounds_dir.empty() || !req.inputs.ground_truth.empty() ||
+      !req.inputs.can_log.empty())
+    throw std::runtime_error("--map, --bounds, --gt and --can belong to a recording, not to a live view");
+  const auto [w, h] = parseSize(req.size);
+  WindowOptions window{w, h, req.script, {}};
+  const bool headless = !req.render_png.empty();
+  if (!headless) checkWindowRequest(window);
+
+  auto live = std::make_unique<sources::LiveObservations>("live view", req.live_keep_s);
+  sources::LiveObservations& sink = *live;
+  ViewerInputs in = req.inputs;
+  in.recording = req.live.grab_ini.empty() ? "udp:" + std::to_string(req.live.udp_port) : req.live.grab_ini;
+  ViewerModel model(in, std::move(live));
+  LiveFeed feed(req.live, sink);  // declared after the model: stopped before it goes
+  err << "roadslam-view: live from " << feed.name() << "\n";
+  Replay replay(model);
+  replay.options().color_by = req.color_by;
+  replay.options().camera = req.camera;
+  if (!headless) {
+    window.status = [&feed] { return feed.statusLine(); };
+    const int code = runWindow(replay, window, out, err);
+    feed.stop();
+    out << feed.statusLine() << "\n";
+    return code;
+  }
+  const std::size_t sweeps = waitForSweeps(model, req.live_sweeps, req.live_timeout_s);
+  // Rendered before the feed stops: stopping flushes the sweep in progress, a partial one.
+  out << feed.statusLine() << "\n";
+  if (sweeps == 0) {
+    err << "roadslam-view: no sweep arrived from " << feed.name() << " within " << req.live_timeout_s
+        << " s (is the sensor on, and sending to this host's address?)\n";
+    return 1;
+  }
+  if (sweeps < req.live_sweeps)
+    err << "roadslam-view: warning: " << sweeps << " of " << req.live_sweeps << " sweeps within " << req.live_timeout_s
+        << " s\n";
+  out << summaryLine(model) << "\n";
+  replay.advance(0);  // to the live edge
+  PngRenderer renderer(w, h);
+  renderCurrent(replay, renderer, req.render_png);
+  out << req.render_png << ": live, observation "
+      << (replay.currentObservation() ? std::to_string(*replay.currentObservation()) : "-") << "\n";
+  feed.stop();
+  return 0;
+}
+
+}  // namespace roadslam::viewer
