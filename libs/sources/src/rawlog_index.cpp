@@ -88,12 +88,20 @@ bool RawlogIndex::Impl::resync(uint64_t from) {
   }
 }
 
-void RawlogIndex::Impl::build(uint64_t span) {
+void RawlogIndex::Impl::build(uint64_t span, const std::function<bool(const Impl&)>& progress) {
+  constexpr std::size_t kReportEvery = 32;  // records (~3 MB of VLP-16 sweeps) between progress calls
   stream = std::make_unique<SeekableStream>(path);
   gzip = stream->gzip();
   stream->recordAccessPoints(span);
   auto arch = mrpt::serialization::archiveFrom(*stream);
-  for (;;) {
+  for (std::size_t reported = 0;;) {
+    if (progress && entries.size() >= reported + kReportEvery) {
+      reported = entries.size();
+      if (!progress(*this)) {
+        abandoned = true;
+        return;
+      }
+    }
     const uint64_t start = stream->getPosition();
     const uint64_t zstart = stream->compressedPosition();
     mrpt::serialization::CSerializable::Ptr rec;
@@ -156,6 +164,11 @@ void RawlogIndex::Impl::finish() {
 std::string RawlogIndex::sidecarPath(const std::string& rawlog_path) { return rawlog_path + ".idx"; }
 
 std::unique_ptr<RawlogIndex> RawlogIndex::open(const std::string& path, const RawlogIndexOptions& opt) {
+  return open(path, opt, {});
+}
+
+std::unique_ptr<RawlogIndex> RawlogIndex::open(const std::string& path, const RawlogIndexOptions& opt,
+                                               const std::function<bool(const Impl&)>& progress) {
   const auto t0 = std::chrono::steady_clock::now();
   auto impl = std::make_unique<Impl>();
   impl->path = path;
@@ -177,7 +190,8 @@ std::unique_ptr<RawlogIndex> RawlogIndex::open(const std::string& path, const Ra
     impl->classes.clear();
     impl->class_ids.clear();
     if (opt.on_build) opt.on_build(path);
-    impl->build(opt.span_bytes);
+    impl->build(opt.span_bytes, progress);
+    if (impl->abandoned) return nullptr;
     if (opt.write_cache) {
       try {
         writeFileAtomically(side, impl->serialize());
@@ -242,12 +256,19 @@ std::vector<std::size_t> RawlogIndex::findInRange(double t0_s, double t1_s) cons
 
 std::shared_ptr<mrpt::obs::CObservation> RawlogIndex::load(std::size_t i) {
   const RawlogEntry& e = entry(i);
-  const std::string where = impl_->path + ": observation " + std::to_string(i);
-  if (!e.known) throw std::runtime_error(where + " is of class '" + className(i) + "', unknown to this build");
+  if (!e.known)
+    throw std::runtime_error(impl_->path + ": observation " + std::to_string(i) + " is of class '" + className(i) +
+                             "', unknown to this build");
   if (!(detail::stampOf(impl_->path) == impl_->stamp)) throw std::runtime_error(impl_->path + " changed since it was indexed");
+  return detail::loadEntry(*impl_->stream, e, impl_->path, i);
+}
+
+std::shared_ptr<mrpt::obs::CObservation> detail::loadEntry(SeekableStream& stream, const RawlogEntry& e,
+                                                           const std::string& path, std::size_t i) {
+  const std::string where = path + ": observation " + std::to_string(i);
   try {
-    impl_->stream->Seek(int64_t(e.offset));
-    const auto rec = mrpt::serialization::archiveFrom(*impl_->stream).ReadObject();
+    stream.Seek(int64_t(e.offset));
+    const auto rec = mrpt::serialization::archiveFrom(stream).ReadObject();
     if (e.sub >= 0) {
       auto sf = std::dynamic_pointer_cast<mrpt::obs::CSensoryFrame>(rec);
       if (!sf || std::size_t(e.sub) >= sf->size()) throw std::runtime_error("not the sensory frame indexed");

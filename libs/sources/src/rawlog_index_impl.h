@@ -6,6 +6,7 @@
 #include <mrpt/obs/CObservation.h>
 
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <map>
 #include <memory>
@@ -25,6 +26,9 @@ struct FileStamp {
 };
 /// Throws std::runtime_error naming \p path when it does not exist.
 FileStamp stampOf(const std::string& path);
+/// Reads entry \p e (observation \p i of \p path) from \p stream; throws naming both on failure.
+std::shared_ptr<mrpt::obs::CObservation> loadEntry(SeekableStream& stream, const RawlogEntry& e,
+                                                   const std::string& path, std::size_t i);
 }  // namespace detail
 
 struct RawlogIndex::Impl {
@@ -62,7 +66,10 @@ struct RawlogIndex::Impl {
     e.known = known;
     entries.push_back(e);
   }
-  void build(uint64_t span);
+  /// Reads the whole file; \p progress (may be empty) sees the state every few records and may
+  /// abandon the build by returning false (then `abandoned`).
+  void build(uint64_t span, const std::function<bool(const Impl&)>& progress = {});
+  bool abandoned = false;
   bool resync(uint64_t from);
   void finish();
   std::string serialize() const;

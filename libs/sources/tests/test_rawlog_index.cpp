@@ -21,6 +21,7 @@
 #include <random>
 #include <thread>
 
+#include "roadslam/sources/background_rawlog_index.h"
 #include "roadslam/sources/rawlog_index.h"
 #include "roadslam/sources/rawlog_writer.h"
 #include "test_packets.h"
@@ -320,4 +321,54 @@ TEST(RawlogIndex, SensoryFramesAndActionsAsMrptCRawlogWritesThem) {
   EXPECT_EQ(o->sensorLabel, "GPS_B");
   EXPECT_NEAR(mrpt::Clock::toDouble(o->timestamp), kT0 + 2.25, 1e-6);
   EXPECT_EQ(*idx->findAtTime(kT0 + 1.3), 5u);
+}
+
+// The viewer's way of opening: the index grows on a thread while what is indexed is already
+// listed and loaded. Oracles: MRPT's own sequential read, and the index built in one go.
+TEST(BackgroundRawlogIndex, GrowsWhileIndexingAndEndsAsTheFullIndex) {
+  const fs::path path = tempDir() / "background.rawlog";
+  writeRecording(path, 200, 76);  // 400 observations, ~18 MB uncompressed
+  const std::string side = RawlogIndex::sidecarPath(path.string());
+  fs::remove(side);
+  const auto seq = sequentialRead(path);
+  auto bg = BackgroundRawlogIndex::open(path.string(), smallSpan());
+  std::size_t partial_polls = 0, loads = 0;
+  std::mt19937 rng(3);
+  while (!bg->done()) {
+    bg->poll();
+    if (bg->done()) break;
+    ASSERT_TRUE(bg->error().empty()) << bg->error();
+    EXPECT_LE(bg->progress(), 1.0);
+    if (bg->size() == 0) continue;
+    ++partial_polls;
+    for (int k = 0; k < 3; ++k) {  // what is visible loads as MRPT reads it
+      const std::size_t i = std::uniform_int_distribution<std::size_t>(0, bg->size() - 1)(rng);
+      ASSERT_EQ(bytesOf(*bg->load(i)), seq[i]) << "observation " << i << " of " << bg->size() << " indexed so far";
+      ++loads;
+    }
+    EXPECT_LE(bg->firstStamp(), bg->lastStamp());
+  }
+  EXPECT_GT(partial_polls, 0u) << "the index was never seen growing";
+  EXPECT_GT(loads, 0u);
+  EXPECT_DOUBLE_EQ(bg->progress(), 1.0);
+  ASSERT_EQ(bg->size(), seq.size());
+  EXPECT_TRUE(fs::exists(side)) << "the finished build writes the sidecar";
+  RawlogIndexOptions fresh = smallSpan();
+  fresh.use_cache = fresh.write_cache = false;
+  const auto full = RawlogIndex::open(path.string(), fresh);
+  for (std::size_t i = 0; i < full->size(); ++i) {
+    ASSERT_EQ(bg->entry(i).offset, full->entry(i).offset) << i;
+    ASSERT_EQ(bg->className(i), full->className(i)) << i;
+    ASSERT_EQ(bg->label(i), full->label(i)) << i;
+  }
+  EXPECT_EQ(bytesOf(*bg->load(seq.size() - 1)), seq.back());
+
+  const auto again = BackgroundRawlogIndex::open(path.string(), smallSpan());
+  ASSERT_TRUE(again->done()) << "a fresh sidecar: complete at once";
+  EXPECT_TRUE(again->done()->openInfo().from_cache);
+
+  fs::remove(side);
+  BackgroundRawlogIndex::open(path.string(), smallSpan()).reset();  // closed while indexing
+  EXPECT_FALSE(fs::exists(side)) << "an abandoned build writes no sidecar";
+  EXPECT_THROW(BackgroundRawlogIndex::open((tempDir() / "nope.rawlog").string()), std::runtime_error);
 }

@@ -34,8 +34,12 @@ std::pair<int, int> parseSize(const std::string& text) {
 
 std::string summaryLine(const ViewerModel& m) {
   const auto& idx = m.recording();
-  std::string name = m.inputs().recording, how = " (live)";
-  if (const auto* r = m.rawlog()) {
+  std::string name = m.inputs().recording, how = m.live() ? " (live)" : "";
+  if (m.indexing()) {
+    char text[64];
+    std::snprintf(text, sizeof text, " so far (indexing in the background: %.0f %%)", 100 * m.indexProgress());
+    how = text;
+  } else if (const auto* r = m.rawlog()) {
     char text[64];
     std::snprintf(text, sizeof text, " (index %s, %.0f ms)", r->openInfo().from_cache ? "cached" : "built",
                   r->openInfo().seconds * 1e3);
@@ -140,6 +144,7 @@ int runView(const ViewRequest& req, std::ostream& out, std::ostream& err) {
         << (req.no_index_cache ? "" : " (kept in " + sources::RawlogIndex::sidecarPath(path) + ")") << " ...\n";
   };
   ViewerModel model(in);
+  if (headless) model.waitForIndex();  // renders may need any time of the recording
   for (const auto& warning : model.warnings()) err << "roadslam-view: warning: " << warning << "\n";
   out << summaryLine(model) << "\n";
   if (!model.can().empty()) {

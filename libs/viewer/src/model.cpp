@@ -9,7 +9,9 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <thread>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -72,17 +74,39 @@ std::vector<Eigen::Vector3f> readPlyPoints(const std::string& path, double voxel
 }
 
 ViewerModel::ViewerModel(const ViewerInputs& in) : in_(in) {
-  auto idx = sources::RawlogIndex::open(in.recording, in.index);
-  if (idx->size() == 0)
-    throw std::runtime_error("recording '" + in.recording + "' holds no readable observation" +
-                             (idx->complete() ? std::string() : ": " + idx->stopMessage()));
-  if (!idx->complete()) warnings_.push_back("recording damaged: " + idx->stopMessage());
-  for (const auto& [cls, n] : idx->unknownClasses())
-    warnings_.push_back("recording: " + std::to_string(n) + " observations of unknown class " + cls + " skipped");
-  if (!idx->openInfo().cache_note.empty()) warnings_.push_back(idx->openInfo().cache_note);
-  rawlog_ = idx.get();
+  sources::RawlogIndexOptions opt = in.index;
+  opt.on_build = nullptr;  // told here, on this thread, not from the indexing one
+  auto idx = sources::BackgroundRawlogIndex::open(in.recording, opt);
+  background_ = idx.get();
   index_ = std::move(idx);
+  if (!background_->done() && in.index.on_build) in.index.on_build(in.recording);
+  while (!background_->done() && background_->size() == 0 && background_->error().empty()) {
+    background_->poll();
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  if (!background_->error().empty()) throw std::runtime_error(background_->error());
+  if (background_->done()) indexDone();
   loadResults();
+}
+
+// The checks that need the whole recording.
+void ViewerModel::indexDone() {
+  const sources::RawlogIndex& idx = *background_->done();
+  if (idx.size() == 0)
+    throw std::runtime_error("recording '" + in_.recording + "' holds no readable observation" +
+                             (idx.complete() ? std::string() : ": " + idx.stopMessage()));
+  if (!idx.complete()) warnings_.push_back("recording damaged: " + idx.stopMessage());
+  for (const auto& [cls, n] : idx.unknownClasses())
+    warnings_.push_back("recording: " + std::to_string(n) + " observations of unknown class " + cls + " skipped");
+  if (!idx.openInfo().cache_note.empty()) warnings_.push_back(idx.openInfo().cache_note);
+  for (const auto& o : deferred_overlaps_) checkOverlap(o.what, o.t0, o.t1);
+  deferred_overlaps_.clear();
+}
+
+void ViewerModel::waitForIndex() {
+  if (!indexing()) return;
+  background_->waitUntilDone();
+  indexDone();
 }
 
 ViewerModel::ViewerModel(const ViewerInputs& in, std::unique_ptr<sources::LiveObservations> live) : in_(in) {
@@ -100,6 +124,16 @@ void ViewerModel::loadResults() {
 }
 
 std::size_t ViewerModel::poll() {
+  if (indexing()) {
+    const std::size_t n = background_->poll();
+    if (!background_->error().empty()) {
+      warnings_.push_back(background_->error());
+      background_ = nullptr;  // what was indexed stays; nothing more comes
+    } else if (background_->done()) {
+      indexDone();
+    }
+    return n;
+  }
   if (!live_) return 0;
   const std::size_t first = live_->poll();
   for (std::size_t i = first; i < live_->size(); ++i) {
@@ -141,6 +175,10 @@ double ViewerModel::endTime() const {
 }
 
 void ViewerModel::checkOverlap(const std::string& what, double t0, double t1) {
+  if (indexing()) {
+    deferred_overlaps_.push_back({what, t0, t1});
+    return;
+  }
   if (index_->lastStamp() <= 0) return;
   if (t1 < index_->firstStamp() || t0 > index_->lastStamp()) {
     char buf[200];

@@ -106,7 +106,7 @@ class CapturingWindow : public mrpt::gui::CDisplayWindowGUI {
 class ViewerWindow {
  public:
   ViewerWindow(Replay& replay, const WindowOptions& opt, std::ostream& out, std::ostream& err)
-      : replay_(replay), out_(out), err_(err), status_fn_(opt.status) {
+      : replay_(replay), out_(out), err_(err), status_fn_(opt.status), warned_(replay.model().warnings().size()) {
     if (!opt.script.empty()) script_ = readScript(opt.script);
     win_ = std::make_shared<CapturingWindow>("roadslam-view: " + replay.model().inputs().recording,
                                              unsigned(opt.width_px), unsigned(opt.height_px));
@@ -182,8 +182,10 @@ class ViewerWindow {
   std::string listHeader() const {
     const auto& m = replay_.model();
     const bool damaged = m.rawlog() && !m.rawlog()->complete();
+    std::string state = damaged ? " (damaged: see stderr)" : m.live() ? " (live)" : "";
+    if (m.indexing()) state = " (indexing: " + std::to_string(int(100 * m.indexProgress())) + " %)";
     return std::to_string(m.recording().size()) + " observations, " + std::to_string(m.recording().labels().size()) +
-           " sensor labels" + (damaged ? " (damaged: see stderr)" : m.live() ? " (live)" : "");
+           " sensor labels" + state;
   }
 
   void buildList(int width_px) {
@@ -258,7 +260,7 @@ class ViewerWindow {
     const std::size_t n = m.recording().size(), c = pinned_.value_or(cur.value_or(0));
     const std::size_t first = c > kListRows / 2 ? std::min(c - kListRows / 2, n > kListRows ? n - kListRows : 0) : 0;
     rows_index_.clear();
-    if (m.live()) list_header_->setCaption(listHeader());
+    if (m.live() || list_header_->caption() != listHeader()) list_header_->setCaption(listHeader());
     for (int r = 0; r < kListRows; ++r) {
       const std::size_t i = first + std::size_t(r);
       rows_[std::size_t(r)]->setVisible(i < n);
@@ -291,7 +293,9 @@ class ViewerWindow {
     const auto now = std::chrono::steady_clock::now();
     const double dt = last_tick_ ? std::chrono::duration<double>(now - *last_tick_).count() : 0.0;
     last_tick_ = now;
-    if (replay_.model().poll() > 0) dirty_ = true;  // a live view: what the sensors sent since
+    if (replay_.model().poll() > 0) dirty_ = true;  // live, or indexed in the background, since
+    for (const auto& w = replay_.model().warnings(); warned_ < w.size(); ++warned_)
+      err_ << "roadslam-view: warning: " << w[warned_] << "\n";  // found once the index is done
     if (status_fn_ && (!last_status_ || now - *last_status_ > std::chrono::seconds(1))) {
       last_status_ = now;
       status_->setCaption(status_fn_());
@@ -369,6 +373,7 @@ class ViewerWindow {
   std::function<std::string()> status_fn_;
   nanogui::Label* status_ = nullptr;
   nanogui::Label* list_header_ = nullptr;
+  std::size_t warned_;  // model warnings printed so far
   std::vector<ScriptCommand> script_;
   std::size_t next_ = 0;
   std::chrono::steady_clock::time_point wait_until_{};

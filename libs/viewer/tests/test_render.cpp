@@ -4,7 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <mrpt/img/CImage.h>
+#include <mrpt/io/CFileGZOutputStream.h>
+#include <mrpt/obs/CObservationOdometry.h>
 #include <mrpt/opengl/COpenGLScene.h>
+#include <mrpt/serialization/CArchive.h>
 
 #include <filesystem>
 #include <fstream>
@@ -255,4 +258,49 @@ TEST(ViewerModel, FramesPostedFromAnotherThreadAreTakenInOrder) {
   for (std::size_t i = 0; i < 10; ++i) EXPECT_EQ(model.frames()[i].T_map_lidar.translation().x(), double(i));
   EXPECT_EQ(model.framesUpTo(t0 + 0.12), 3u);
   EXPECT_EQ(model.takePosted(), 0u);
+}
+
+// A recording without an index opens while it is indexed in the background; the checks that need
+// all of it (the map folder's times against the recording's) wait for the end of the indexing.
+// Oracle: the index built in one go.
+TEST(ViewerModel, IndexedInTheBackgroundEndsAsTheWholeRecording) {
+  const fs::path rec = tempDir() / "long.rawlog", dir = tempDir() / "map_elsewhere_long";
+  {
+    mrpt::io::CFileGZOutputStream f(rec.string());
+    auto ar = mrpt::serialization::archiveFrom(f);
+    for (int i = 0; i < 20000; ++i) {  // 20000 odometry records, 200 s at 100 Hz
+      mrpt::obs::CObservationOdometry o;
+      o.sensorLabel = "CAN_ODOMETRY";
+      o.timestamp = mrpt::Clock::fromDouble(1000.0 + 0.01 * i);
+      o.odometry = mrpt::poses::CPose2D(0.1 * i, 0, 0);
+      ar << o;
+    }
+  }
+  fs::remove(roadslam::sources::RawlogIndex::sidecarPath(rec.string()));
+  fs::create_directories(dir);
+  std::ofstream(dir / "trajectory.tum") << "100.0 0 0 0 0 0 0 1\n100.1 1 0 0 0 0 0 1\n";
+  ViewerInputs in;
+  in.recording = rec.string();
+  in.map_dir = dir.string();
+  ViewerModel model(in);
+  ASSERT_GT(model.recording().size(), 0u);
+  const auto overlapWarned = [&] {
+    for (const auto& w : model.warnings())
+      if (w.find("do not overlap the recording") != std::string::npos) return true;
+    return false;
+  };
+  const bool was_indexing = model.indexing();
+  if (was_indexing) {
+    EXPECT_FALSE(overlapWarned()) << "checked against a part of the recording";
+  }
+  for (int k = 0; model.indexing() && k < 20000; ++k) {
+    model.poll();
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  ASSERT_FALSE(model.indexing());
+  EXPECT_EQ(model.recording().size(), 20000u);
+  EXPECT_DOUBLE_EQ(model.endTime(), 1000.0 + 0.01 * 19999);
+  EXPECT_TRUE(overlapWarned());
+  ASSERT_NE(model.rawlog(), nullptr);
+  EXPECT_TRUE(fs::exists(roadslam::sources::RawlogIndex::sidecarPath(rec.string())));
 }

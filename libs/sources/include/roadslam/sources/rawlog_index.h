@@ -88,7 +88,12 @@ class RawlogIndex : public ObservationIndex {
   std::shared_ptr<mrpt::obs::CObservation> load(std::size_t i) override;
 
  private:
+  friend class BackgroundRawlogIndex;
   struct Impl;
+  /// open(), reporting the index as it grows: \p progress runs on the calling thread every few
+  /// records; returning false abandons the build (nullptr is returned, no sidecar written).
+  static std::unique_ptr<RawlogIndex> open(const std::string& path, const RawlogIndexOptions& options,
+                                           const std::function<bool(const Impl&)>& progress);
   explicit RawlogIndex(std::unique_ptr<Impl> impl);
   std::unique_ptr<Impl> impl_;
 };

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "roadslam/sources/background_rawlog_index.h"
 #include "roadslam/sources/live_observations.h"
 #include "roadslam/sources/rawlog_index.h"
 
@@ -71,6 +72,9 @@ class ViewerModel {
  public:
   /// Opens everything named in \p in; throws std::runtime_error naming the file that cannot be read.
   /// Soft problems (a damaged recording, results whose times miss the recording) go to warnings().
+  /// A recording without a fresh index returns as soon as its first observation is indexed; the
+  /// rest is indexed in the background (sources::BackgroundRawlogIndex): poll() takes it in, and the
+  /// checks that need the whole recording (damage, time overlap of the results) warn once it is done.
   explicit ViewerModel(const ViewerInputs& in);
   /// A live view: the observations come from \p live (a grabber's tap) as they arrive; poll() takes
   /// them in. \p in names no recording.
@@ -79,12 +83,18 @@ class ViewerModel {
 
   sources::ObservationIndex& recording() { return *index_; }
   const sources::ObservationIndex& recording() const { return *index_; }
-  /// The rawlog opened (nullptr in a live view) and the live source (nullptr in a replay).
-  const sources::RawlogIndex* rawlog() const { return rawlog_; }
+  /// The rawlog opened, once wholly indexed (nullptr while indexing and in a live view), and the
+  /// live source (nullptr in a replay).
+  const sources::RawlogIndex* rawlog() const { return background_ ? background_->done() : nullptr; }
+  /// True while the recording is still being indexed; indexProgress() in [0, 1].
+  bool indexing() const { return background_ && !background_->done(); }
+  double indexProgress() const { return background_ ? background_->progress() : 1.0; }
+  /// Blocks until the recording is wholly indexed (headless renders need all of it).
+  void waitForIndex();
   sources::LiveObservations* live() { return live_; }
   const sources::LiveObservations* live() const { return live_; }
-  /// Live view: takes in what arrived (the car's odometry and IMU observations also feed can());
-  /// returns how many observations came. A replay: 0.
+  /// Takes in what arrived: live, the sensors' observations (the car's odometry and IMU ones also
+  /// feed can()); a replay still being indexed, the observations indexed since. Returns how many.
   std::size_t poll();
   const ViewerInputs& inputs() const { return in_; }
   const std::vector<std::string>& warnings() const { return warnings_; }
@@ -124,13 +134,19 @@ class ViewerModel {
   void loadBounds(const std::string& dir);
   void loadGroundTruth(const std::string& path);
   void loadResults();
+  void indexDone();
   void loadCan(const std::string& log, const std::string& vehicle_ini);
   void addCanSample(const CanSample& c);
   void checkOverlap(const std::string& what, double t0, double t1);
 
   ViewerInputs in_;
   std::unique_ptr<sources::ObservationIndex> index_;
-  const sources::RawlogIndex* rawlog_ = nullptr;
+  sources::BackgroundRawlogIndex* background_ = nullptr;
+  struct Overlap {
+    std::string what;
+    double t0, t1;
+  };
+  std::vector<Overlap> deferred_overlaps_;  // checked once the recording is wholly indexed
   sources::LiveObservations* live_ = nullptr;
   std::vector<std::string> warnings_;
   std::vector<FrameResult> frames_;
