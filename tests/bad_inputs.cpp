@@ -221,6 +221,12 @@ const Row kTable[] = {
   // roadslam-grab
   {"grab-typo-key",        "roadslam-grab --config {W}/grab-typo.ini --out {O} --duration 0.1", 1, "segmnet_mb"},
   {"grab-missing",         "roadslam-grab --config {W}/nope.ini --out {O}", 105, "File does not exist"},
+  // roadslam-view live
+  {"view-live-silent",     "roadslam-view --udp 0 --render {O}/x.png --timeout 0.3", 1, "no sweep arrived from UDP port"},
+  {"view-live-and-rec",    "roadslam-view {W}/truncated.pcap --udp 0", 2, "give one of a recording, --udp PORT or --grab INI"},
+  {"view-record-replay",   "roadslam-view {W}/truncated.pcap --record {O}", 2, "--record belongs to a live view"},
+  {"view-live-typo-key",   "roadslam-view --grab {W}/grab-typo.ini --render {O}/x.png", 1, "segmnet_mb"},
+  {"view-live-sequence",   "roadslam-view --udp 0 --render-sequence {O}/seq", 1, "--render-sequence and --video need a recording"},
 };
 // clang-format on
 
