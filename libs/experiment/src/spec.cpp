@@ -111,6 +111,8 @@ void readDatasets(const CheckedConfig& cfg, const std::string& dir, ExperimentSp
       if (!path.empty() && !fs::exists(path)) pr.add(sec, key, "[" + sec + "] " + key + " '" + path + "' does not exist");
     }
     if (d.duration_s < 0) pr.add(sec, "duration_s", "[" + sec + "] duration_s must be >= 0");
+    if (!d.input.empty() && cfg.keyExists(sec, "duration_s"))  // never silently ignored
+      pr.add(sec, "duration_s", "[" + sec + "] duration_s cuts a simulated drive (scenario); a recording (input) is used whole");
     spec.datasets.push_back(d);
   }
   if (spec.datasets.empty()) pr.list.push_back(cfg.path() + ": no [dataset.NAME] section: an experiment needs a recording");

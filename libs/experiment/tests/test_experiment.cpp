@@ -212,6 +212,12 @@ TEST(Experiment, BadExperimentsStopBeforeAnyJobNamingFileAndLine) {
   EXPECT_NE(e3.find("do not overlap"), std::string::npos) << e3;
   EXPECT_FALSE(fs::exists(dir + "/out3/jobs"));
 
+  const std::string cut = dir + "/cut.ini";  // duration_s on a recording: an error, not ignored
+  std::ofstream(cut) << "[experiment]\nbase_config = " << kSrc << "/ini/default.ini\n[dataset.rec]\ninput = " << drive()
+                     << "/velodyne.pcap\nduration_s = 5\n";
+  EXPECT_NE(errorOf(request(cut, dir + "/out5")).find(cut + ":5: [dataset.rec] duration_s cuts a simulated drive"),
+            std::string::npos);
+
   const std::string zip = writeExp(dir, "[sweep]\nmode = zip\nodometry.registration_voxel_m = 0.5, 1.0\nodometry.map_voxel_m = 1.0\n");
   EXPECT_NE(errorOf(request(zip, dir + "/out4")).find("mode = zip"), std::string::npos);
 }
