@@ -23,6 +23,7 @@
 
 #include "roadslam/datasets/kitti_scans.h"
 #include "roadslam/sources/rawlog_index.h"
+#include "roadslam/sources/rawlog_session.h"
 #include "roadslam/sources/recording.h"
 
 namespace fs = std::filesystem;
@@ -427,7 +428,8 @@ TEST(RoadslamViewLive, UdpShowsWhatTheSimulatorSends) {
 }
 
 // --grab INI --record DIR: the grab ini's LiDAR and its CAN source (the simulator's CAN log
-// replayed at its pace), shown live and recorded; the recording holds what was shown.
+// replayed at its pace), shown live and recorded; the recording holds what was shown, and its
+// session folder (segments cut every second) replays as one recording.
 TEST(RoadslamViewLive, GrabIniWithCanShowsAndRecords) {
   const auto& f = fixture();
   const std::string bin = fs::path(kBin).parent_path().string(), src = ROADSLAM_SOURCE_DIR;
@@ -437,7 +439,7 @@ TEST(RoadslamViewLive, GrabIniWithCanShowsAndRecords) {
                          can_sim.string() + " > /dev/null 2>&1").c_str()), 0);
   const int port = freeUdpPort();
   const fs::path ini = dir / "grab.ini";
-  std::ofstream(ini) << "[grab]\nsensors = lidar\ncan = can\nflush_period_ms = 200\n"
+  std::ofstream(ini) << "[grab]\nsensors = lidar\ncan = can\nflush_period_ms = 200\nrotate_period_s = 1\n"
                      << "[lidar]\ndata_port = " << port << "\nposition_port = 0\nbind_address = 127.0.0.1\n"
                      << "model = vlp16\nsensor_label = VELODYNE\n"
                      << "[can]\nsource = candump\ncandump_file = " << (can_sim / "can.log").string()
@@ -454,15 +456,25 @@ TEST(RoadslamViewLive, GrabIniWithCanShowsAndRecords) {
   EXPECT_GT(can_samples, 40u) << "the car's odometry at 20 Hz for 3 s: " << view.out;
   const std::size_t shown = liveObservations(view.out, ini.string());
   ASSERT_GT(shown, 50u) << view.out;
-  auto recorded = roadslam::sources::RawlogIndex::open((rec / "grab_000.rawlog").string());
-  EXPECT_GE(recorded->size(), shown) << "the recording holds what was shown, and what came until it stopped";
-  std::size_t odometry = 0, sweeps = 0;
-  for (std::size_t i = 0; i < recorded->size(); ++i) {
-    odometry += recorded->className(i) == "CObservationOdometry";
-    sweeps += recorded->className(i) == "CObservationVelodyneScan";
+  std::size_t observations = 0, odometry = 0, sweeps = 0, segments = 0;
+  for (const auto& seg : roadslam::sources::RawlogSession::segmentsOf(rec.string())) {  // cut every second
+    auto recorded = roadslam::sources::RawlogIndex::open(seg);
+    ++segments;
+    observations += recorded->size();
+    for (std::size_t i = 0; i < recorded->size(); ++i) {
+      odometry += recorded->className(i) == "CObservationOdometry";
+      sweeps += recorded->className(i) == "CObservationVelodyneScan";
+    }
   }
+  EXPECT_GE(segments, 3u);
+  EXPECT_GE(observations, shown) << "the recording holds what was shown, and what came until it stopped";
   EXPECT_GT(odometry, 0u);
   EXPECT_GE(sweeps, 19u);
+  // the session folder replays as one recording, its segments in order
+  const AppRun replay = run(rec.string() + " --render " + (dir / "session.png").string() + " --at 1 --size 320x240");
+  ASSERT_EQ(replay.status, 0) << replay.out;
+  EXPECT_EQ(liveObservations(replay.out, rec.string()), observations) << replay.out;
+  EXPECT_NE(replay.out.find("(" + std::to_string(segments) + " segments)"), std::string::npos) << replay.out;
   EXPECT_TRUE(fs::exists(rec / "summary.json")) << "recorded as roadslam-grab records";
   mrpt::img::CImage img;
   ASSERT_TRUE(img.loadFromFile(png.string()));

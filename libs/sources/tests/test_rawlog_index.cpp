@@ -23,6 +23,7 @@
 
 #include "roadslam/sources/background_rawlog_index.h"
 #include "roadslam/sources/rawlog_index.h"
+#include "roadslam/sources/rawlog_session.h"
 #include "roadslam/sources/rawlog_writer.h"
 #include "test_packets.h"
 
@@ -41,9 +42,9 @@ fs::path tempDir() {
 constexpr double kT0 = 1453364282.0;
 
 // \p sweeps sweeps of \p packets packets with a GPS record after every one: 2 * sweeps observations.
-void writeRecording(const fs::path& path, int sweeps, int packets, uint32_t seed = 7) {
+void writeRecording(const fs::path& path, int sweeps, int packets, uint32_t seed = 7, uint32_t first_packet = 0) {
   RawlogWriter w(path.string(), RawlogWriter::Params{});
-  uint32_t k = 0;
+  uint32_t k = first_packet;
   for (int s = 0; s < sweeps; ++s) {
     std::vector<roadslam::velodyne::RawPacket> sweep;
     for (int i = 0; i < packets; ++i, ++k) {
@@ -371,4 +372,56 @@ TEST(BackgroundRawlogIndex, GrowsWhileIndexingAndEndsAsTheFullIndex) {
   BackgroundRawlogIndex::open(path.string(), smallSpan()).reset();  // closed while indexing
   EXPECT_FALSE(fs::exists(side)) << "an abandoned build writes no sidecar";
   EXPECT_THROW(BackgroundRawlogIndex::open((tempDir() / "nope.rawlog").string()), std::runtime_error);
+}
+
+// A roadslam-grab session folder: segments shown in order as one recording. Oracle: the segments
+// concatenated into one multi-member gzip file, indexed as one rawlog.
+TEST(RawlogSession, SegmentsReadAsTheirConcatenation) {
+  const fs::path dir = tempDir() / "session";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::string joined;
+  for (int s = 0; s < 3; ++s) {  // grab_000 .. grab_002, times continuing across them
+    const fs::path seg = dir / ("grab_00" + std::to_string(s) + ".rawlog");
+    writeRecording(seg, 30, 76, 7, uint32_t(s * 30 * 76));
+    std::ifstream f(seg, std::ios::binary);
+    joined.append(std::istreambuf_iterator<char>(f), {});
+  }
+  std::ofstream(dir / "notes.txt") << "not a segment\n";
+  std::ofstream(dir / "other_000.rawlog") << "another prefix, later in the order\n";
+  const auto segments = RawlogSession::segmentsOf(dir.string());
+  ASSERT_EQ(segments.size(), 3u);
+  EXPECT_EQ(fs::path(segments[2]).filename(), "grab_002.rawlog");
+  const fs::path all = tempDir() / "session_all.rawlog";
+  std::ofstream(all, std::ios::binary) << joined;
+  RawlogIndexOptions no_cache;
+  no_cache.use_cache = no_cache.write_cache = false;
+  const auto one = RawlogIndex::open(all.string(), no_cache);
+
+  auto session = RawlogSession::open(segments, no_cache);
+  std::size_t last = 0;
+  while (!session->done()) {
+    session->poll();
+    EXPECT_GE(session->size(), last) << "indices only grow at the end";
+    last = session->size();
+  }
+  ASSERT_EQ(session->size(), one->size());
+  EXPECT_DOUBLE_EQ(session->progress(), 1.0);
+  EXPECT_DOUBLE_EQ(session->firstStamp(), one->firstStamp());
+  EXPECT_DOUBLE_EQ(session->lastStamp(), one->lastStamp());
+  for (std::size_t i = 0; i < one->size(); ++i) {
+    ASSERT_EQ(session->className(i), one->className(i)) << i;
+    ASSERT_EQ(session->label(i), one->label(i)) << i;
+    ASSERT_EQ(session->entry(i).stamp_s, one->entry(i).stamp_s) << i;
+  }
+  const double mid = 0.5 * (one->firstStamp() + one->lastStamp());
+  EXPECT_EQ(session->findAtTime(mid), one->findAtTime(mid));
+  EXPECT_EQ(session->findInRange(mid - 0.3, mid + 0.3), one->findInRange(mid - 0.3, mid + 0.3));
+  std::mt19937 rng(5);
+  for (int k = 0; k < 20; ++k) {
+    const std::size_t i = std::uniform_int_distribution<std::size_t>(0, one->size() - 1)(rng);
+    ASSERT_EQ(bytesOf(*session->load(i)), bytesOf(*one->load(i))) << "observation " << i;
+  }
+  EXPECT_THROW(RawlogSession::open({}), std::runtime_error);
+  EXPECT_TRUE(RawlogSession::segmentsOf((tempDir() / "nope").string()).empty());
 }

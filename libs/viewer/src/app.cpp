@@ -15,6 +15,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "roadslam/sources/rawlog_session.h"
 #include "roadslam/sources/recording.h"
 #include "roadslam/sources/scan_source.h"
 #include "roadslam/viewer/live_slam.h"
@@ -35,7 +36,12 @@ std::pair<int, int> parseSize(const std::string& text) {
 std::string summaryLine(const ViewerModel& m) {
   const auto& idx = m.recording();
   std::string name = m.inputs().recording, how = m.live() ? " (live)" : "";
-  if (m.indexing()) {
+  if (m.session() && m.session()->segments() > 1) {
+    char text[96];
+    std::snprintf(text, sizeof text, " (%zu segments%s)", m.session()->segments(),
+                  m.indexing() ? ", indexing in the background" : "");
+    how = text;
+  } else if (m.indexing()) {
     char text[64];
     std::snprintf(text, sizeof text, " so far (indexing in the background: %.0f %%)", 100 * m.indexProgress());
     how = text;
@@ -89,6 +95,7 @@ void kittiToRawlog(const std::string& folder, const std::string& out) {
 
 std::string recordingToOpen(const std::string& path, std::ostream& err) {
   namespace fs = std::filesystem;
+  if (fs::is_directory(path) && !sources::RawlogSession::segmentsOf(path).empty()) return path;  // a grab session
   if (fs::is_directory(path)) {
     const std::string folder = fs::path(path).lexically_normal().string();
     std::string out = (folder.back() == '/' ? folder.substr(0, folder.size() - 1) : folder) + ".rawlog";
@@ -156,6 +163,9 @@ int runView(const ViewRequest& req, std::ostream& out, std::ostream& err) {
     out << line << "\n";
   }
   std::unique_ptr<LiveSlam> slam;
+  if (!req.run_slam_ini.empty() && std::filesystem::is_directory(in.recording))
+    throw std::runtime_error("--run-slam reads one rawlog, not the session folder '" + in.recording +
+                             "': give a segment, or join them (cat grab_*.rawlog > all.rawlog: segments are gzip members)");
   if (!req.run_slam_ini.empty()) slam = std::make_unique<LiveSlam>(req.run_slam_ini, in.recording, model);
   Replay replay(model);
   replay.options().color_by = req.color_by;

@@ -75,37 +75,48 @@ std::vector<Eigen::Vector3f> readPlyPoints(const std::string& path, double voxel
 
 ViewerModel::ViewerModel(const ViewerInputs& in) : in_(in) {
   sources::RawlogIndexOptions opt = in.index;
-  opt.on_build = nullptr;  // told here, on this thread, not from the indexing one
-  auto idx = sources::BackgroundRawlogIndex::open(in.recording, opt);
-  background_ = idx.get();
+  opt.on_build = nullptr;  // told here, on this thread, not from the indexing ones
+  std::vector<std::string> segments = fs::is_directory(in.recording) ? sources::RawlogSession::segmentsOf(in.recording)
+                                                                     : std::vector<std::string>{in.recording};
+  if (segments.empty()) throw std::runtime_error("folder '" + in.recording + "' holds no rawlog segment (NAME_000.rawlog)");
+  auto idx = sources::RawlogSession::open(segments, opt);
+  session_ = idx.get();
   index_ = std::move(idx);
-  if (!background_->done() && in.index.on_build) in.index.on_build(in.recording);
-  while (!background_->done() && background_->size() == 0 && background_->error().empty()) {
-    background_->poll();
+  if (!session_->done() && in.index.on_build) in.index.on_build(in.recording);
+  while (!session_->done() && session_->size() == 0 && session_->errors().empty()) {
+    session_->poll();
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
-  if (!background_->error().empty()) throw std::runtime_error(background_->error());
-  if (background_->done()) indexDone();
+  if (session_->size() == 0 && !session_->errors().empty()) throw std::runtime_error(session_->errors().front());
+  if (session_->done()) indexDone();
   loadResults();
 }
 
 // The checks that need the whole recording.
 void ViewerModel::indexDone() {
-  const sources::RawlogIndex& idx = *background_->done();
-  if (idx.size() == 0)
+  const bool one = session_->segments() == 1;
+  for (std::size_t k = 0; k < session_->segments(); ++k) {
+    const sources::RawlogIndex* idx = session_->segment(k).done();
+    if (!idx) continue;  // its indexing stopped: in errors()
+    const std::string what = one ? "recording" : "segment " + idx->path();
+    if (!idx->complete()) warnings_.push_back(what + " damaged: " + idx->stopMessage());
+    for (const auto& [cls, n] : idx->unknownClasses())
+      warnings_.push_back(what + ": " + std::to_string(n) + " observations of unknown class " + cls + " skipped");
+    if (!idx->openInfo().cache_note.empty()) warnings_.push_back(idx->openInfo().cache_note);
+  }
+  for (const auto& e : session_->errors()) warnings_.push_back(e);
+  if (session_->size() == 0) {
+    const sources::RawlogIndex* first = session_->segment(0).done();
     throw std::runtime_error("recording '" + in_.recording + "' holds no readable observation" +
-                             (idx.complete() ? std::string() : ": " + idx.stopMessage()));
-  if (!idx.complete()) warnings_.push_back("recording damaged: " + idx.stopMessage());
-  for (const auto& [cls, n] : idx.unknownClasses())
-    warnings_.push_back("recording: " + std::to_string(n) + " observations of unknown class " + cls + " skipped");
-  if (!idx.openInfo().cache_note.empty()) warnings_.push_back(idx.openInfo().cache_note);
+                             (first && !first->complete() ? ": " + first->stopMessage() : std::string()));
+  }
   for (const auto& o : deferred_overlaps_) checkOverlap(o.what, o.t0, o.t1);
   deferred_overlaps_.clear();
 }
 
 void ViewerModel::waitForIndex() {
   if (!indexing()) return;
-  background_->waitUntilDone();
+  session_->waitUntilDone();
   indexDone();
 }
 
@@ -125,13 +136,8 @@ void ViewerModel::loadResults() {
 
 std::size_t ViewerModel::poll() {
   if (indexing()) {
-    const std::size_t n = background_->poll();
-    if (!background_->error().empty()) {
-      warnings_.push_back(background_->error());
-      background_ = nullptr;  // what was indexed stays; nothing more comes
-    } else if (background_->done()) {
-      indexDone();
-    }
+    const std::size_t n = session_->poll();
+    if (session_->done()) indexDone();
     return n;
   }
   if (!live_) return 0;

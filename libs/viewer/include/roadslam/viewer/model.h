@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "roadslam/sources/background_rawlog_index.h"
+#include "roadslam/sources/rawlog_session.h"
 #include "roadslam/sources/live_observations.h"
 #include "roadslam/sources/rawlog_index.h"
 
@@ -57,7 +57,7 @@ struct CanSample {
 };
 
 struct ViewerInputs {
-  std::string recording;    ///< MRPT rawlog
+  std::string recording;    ///< MRPT rawlog, or a roadslam-grab session folder of rawlog segments
   std::string map_dir;      ///< roadslam-map output folder (optional)
   std::string bounds_dir;   ///< roadslam-bounds output folder (optional)
   std::string ground_truth; ///< TUM trajectory T_world_lidar (optional)
@@ -85,10 +85,15 @@ class ViewerModel {
   const sources::ObservationIndex& recording() const { return *index_; }
   /// The rawlog opened, once wholly indexed (nullptr while indexing and in a live view), and the
   /// live source (nullptr in a replay).
-  const sources::RawlogIndex* rawlog() const { return background_ ? background_->done() : nullptr; }
+  const sources::RawlogIndex* rawlog() const {
+    return session_ && session_->done() && session_->segments() == 1 ? session_->segment(0).done() : nullptr;
+  }
+  /// The recording as segments (one for a rawlog file, several for a roadslam-grab session folder);
+  /// nullptr in a live view.
+  const sources::RawlogSession* session() const { return session_; }
   /// True while the recording is still being indexed; indexProgress() in [0, 1].
-  bool indexing() const { return background_ && !background_->done(); }
-  double indexProgress() const { return background_ ? background_->progress() : 1.0; }
+  bool indexing() const { return session_ && !session_->done(); }
+  double indexProgress() const { return session_ ? session_->progress() : 1.0; }
   /// Blocks until the recording is wholly indexed (headless renders need all of it).
   void waitForIndex();
   sources::LiveObservations* live() { return live_; }
@@ -141,7 +146,7 @@ class ViewerModel {
 
   ViewerInputs in_;
   std::unique_ptr<sources::ObservationIndex> index_;
-  sources::BackgroundRawlogIndex* background_ = nullptr;
+  sources::RawlogSession* session_ = nullptr;
   struct Overlap {
     std::string what;
     double t0, t1;
