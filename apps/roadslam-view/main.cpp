@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
   app.add_option("--map", req.inputs.map_dir, "roadslam-map output folder")->check(CLI::ExistingDirectory);
   app.add_option("--bounds", req.inputs.bounds_dir, "roadslam-bounds output folder")->check(CLI::ExistingDirectory);
   app.add_option("--gt", req.inputs.ground_truth, "ground-truth trajectory (TUM)")->check(CLI::ExistingFile);
+  app.add_flag("--grid", req.inputs.grid, "draw the map folder's occupancy grid (grid.gridmap) on the ground under the car");
   app.add_flag("--octomap", req.inputs.octomap, "draw the map folder's OctoMap (map.bt) occupied voxels instead of its point map");
   app.add_option("--can", req.inputs.can_log, "candump log of the same drive: speed and yaw rate plotted under the view")
       ->check(CLI::ExistingFile);

@@ -141,6 +141,31 @@ TEST(RoadslamViewApp, OpensRealMapAndBoundsFolders) {
   EXPECT_EQ(o.status, 0) << o.out;
   EXPECT_NE(o.out.find(" 0 map points, "), std::string::npos) << o.out;
   EXPECT_EQ(o.out.find(" 0 OctoMap voxels"), std::string::npos) << "the box room's walls are occupied: " << o.out;
+  // --grid: the occupancy grid on the ground; its occupied cells as roadslam-map counted them
+  const AppRun g = run(f.rawlog.string() + " --map " + map.string() + " --grid --camera top --size 320x240 --render " +
+                       (f.dir / "grid.png").string() + " --at 0.3");
+  ASSERT_EQ(g.status, 0) << g.out;
+  const std::string summary = slurp(map / "summary.json");
+  const auto key = summary.find("\"grid_occupied_cells\":");
+  ASSERT_NE(key, std::string::npos) << summary;
+  const std::size_t occupied = std::stoul(summary.substr(summary.find(':', key) + 1));
+  ASSERT_GT(occupied, 0u);
+  EXPECT_NE(g.out.find(" " + std::to_string(occupied) + " grid cells occupied"), std::string::npos) << g.out;
+  const AppRun ng = run(f.rawlog.string() + " --map " + map.string() + " --camera top --size 320x240 --render " +
+                        (f.dir / "nogrid.png").string() + " --at 0.3");
+  ASSERT_EQ(ng.status, 0) << ng.out;
+  const auto amber = [](const fs::path& png) {  // SceneColors::grid_occupied, exactly
+    mrpt::img::CImage img;
+    EXPECT_TRUE(img.loadFromFile(png.string()));
+    int n = 0;
+    for (int y = 30; y < 240; ++y)
+      for (int x = 0; x < 320; ++x) {
+        const auto* p = img.ptr<uint8_t>(x, y);  // BGR
+        n += p[2] == 255 && p[1] == 200 && p[0] == 0;
+      }
+    return n;
+  };
+  EXPECT_GT(amber(f.dir / "grid.png"), amber(f.dir / "nogrid.png") + 20) << "occupied cells (the walls) seen from above";
 }
 
 // --run-slam: the pipeline's odometry over the replayed recording posts one frame per sweep, as many

@@ -55,9 +55,10 @@ std::string summaryLine(const ViewerModel& m) {
   char buf[600];
   std::snprintf(buf, sizeof buf,
                 "%s: %zu observations over %.1f s%s; %zu frames, %zu loops, %zu map points, "
-                "%zu boundary sweeps, %zu ground-truth poses, %zu CAN samples, %zu OctoMap voxels",
+                "%zu boundary sweeps, %zu ground-truth poses, %zu CAN samples, %zu OctoMap voxels, %zu grid cells occupied",
                 name.c_str(), idx.size(), m.endTime() - m.startTime(), how.c_str(), m.frames().size(),
-                m.loops().size(), m.mapPoints().size(), m.boundaries().size(), m.groundTruth().size(), m.can().size(), m.octoVoxels().size());
+                m.loops().size(), m.mapPoints().size(), m.boundaries().size(), m.groundTruth().size(), m.can().size(), m.octoVoxels().size(),
+                m.grid() ? m.grid()->occupied : std::size_t(0));
   return buf;
 }
 

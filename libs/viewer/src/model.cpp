@@ -20,10 +20,15 @@
 #include <stdexcept>
 #include <unordered_set>
 
+#include <mrpt/config/CConfigFile.h>
+#include <mrpt/io/CFileGZInputStream.h>
+#include <mrpt/maps/COccupancyGridMap2D.h>
 #include <mrpt/obs/CObservationIMU.h>
+#include <mrpt/serialization/CArchive.h>
 #include <mrpt/obs/CObservationOdometry.h>
 
 #include "roadslam/datasets/trajectory_io.h"
+#include "roadslam/viewer/scene.h"
 
 namespace roadslam::viewer {
 namespace fs = std::filesystem;
@@ -332,6 +337,43 @@ void ViewerModel::loadMapFolder(const std::string& dir) {
   } else if (fs::exists(dir + "/map.ply")) {
     map_points_ = readPlyPoints(dir + "/map.ply", in_.map_voxel_m);
   }
+  if (in_.grid) loadGrid(dir);
+}
+
+void ViewerModel::loadGrid(const std::string& dir) {
+  const std::string path = dir + "/grid.gridmap";
+  if (!fs::exists(path)) throw std::runtime_error("--grid: map folder '" + dir + "' has no grid.gridmap");
+  mrpt::maps::COccupancyGridMap2D g;
+  try {
+    mrpt::io::CFileGZInputStream f(path);
+    mrpt::serialization::archiveFrom(f) >> g;
+  } catch (const std::exception& e) {
+    throw std::runtime_error("cannot read the grid '" + path + "': " + std::string(e.what()).substr(0, 200));
+  }
+  GridLayer L;
+  L.x_min = g.getXMin();
+  L.x_max = g.getXMax();
+  L.y_min = g.getYMin();
+  L.y_max = g.getYMax();
+  const int w = int(g.getSizeX()), h = int(g.getSizeY());
+  L.rgb.resize(w, h, mrpt::img::CH_RGB);
+  L.alpha.resize(w, h, mrpt::img::CH_GRAY);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const float p = g.getCell(x, y);  // probability of free: 0 occupied, 1 free, 0.5 unknown
+      const bool occ = p < 0.3f, fre = p > 0.7f;
+      L.occupied += occ;
+      L.free += fre;
+      const unsigned char* c = occ ? SceneColors::grid_occupied : SceneColors::grid_free;
+      auto* px = L.rgb.ptr<uint8_t>(x, h - 1 - y);  // image row 0 is the grid's top (y_max); BGR
+      px[0] = c[2];
+      px[1] = c[1];
+      px[2] = c[0];
+      *L.alpha.ptr<uint8_t>(x, h - 1 - y) = occ ? 255 : fre ? 150 : 0;
+    }
+  mrpt::config::CConfigFile cfg(dir + "/config_used.ini");  // the height the grid was made with
+  L.lidar_height_m = cfg.read_double("grid", "lidar_height_m", L.lidar_height_m);
+  grid_ = std::move(L);
 }
 
 void ViewerModel::loadBounds(const std::string& dir) {

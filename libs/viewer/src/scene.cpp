@@ -8,6 +8,7 @@
 #include <mrpt/opengl/CPointCloud.h>
 #include <mrpt/opengl/CPointCloudColoured.h>
 #include <mrpt/opengl/CSetOfLines.h>
+#include <mrpt/opengl/CTexturedPlane.h>
 #include <mrpt/opengl/stock_objects.h>
 #include <mrpt/poses/CPose3D.h>
 
@@ -125,6 +126,13 @@ CameraView buildScene(const ViewerModel& model, const SceneState& st, const Scen
     for (const auto& v : model.octoVoxels())
       voxels->push_back_Voxel(0, COctoMapVoxels::TVoxel({v.x(), v.y(), v.z()}, v.w(), rgb(SceneColors::map)));
     scene.insert(voxels);
+  }
+  if (o.show_map && model.grid()) {  // on the ground below the car: the grid is 2D
+    const GridLayer& g = *model.grid();
+    auto plane = CTexturedPlane::Create(float(g.x_min), float(g.x_max), float(g.y_min), float(g.y_max));
+    plane->assignImage(g.rgb, g.alpha);
+    plane->setLocation(0, 0, T_map_lidar.translation().z() - g.lidar_height_m - 0.05);
+    scene.insert(plane);
   }
   if (o.show_map && !model.mapPoints().empty()) {
     auto map = CPointCloud::Create();

@@ -11,6 +11,7 @@
 /// current time by the scene builder.
 
 #include <Eigen/Geometry>
+#include <mrpt/img/CImage.h>
 
 #include <cmath>
 #include <memory>
@@ -56,6 +57,15 @@ struct CanSample {
   double steering_rad = std::nan("");
 };
 
+/// The map folder's 2D occupancy grid (grid.gridmap) as a picture to lay on the ground: occupied
+/// cells in SceneColors::grid_occupied, free ones in grid_free, unknown ones transparent.
+struct GridLayer {
+  mrpt::img::CImage rgb, alpha;          ///< row 0 at y_max (image rows go down)
+  double x_min = 0, x_max = 0, y_min = 0, y_max = 0;  ///< map frame [m]
+  double lidar_height_m = 1.9;           ///< [grid] lidar_height_m of the run: the ground is this far below the lidar [m]
+  std::size_t occupied = 0, free = 0;    ///< cells [count]
+};
+
 struct ViewerInputs {
   std::string recording;    ///< MRPT rawlog, or a roadslam-grab session folder of rawlog segments
   std::string map_dir;      ///< roadslam-map output folder (optional)
@@ -65,6 +75,7 @@ struct ViewerInputs {
   std::string vehicle_ini;  ///< the car's vehicle ini (ini/vehicles/...): its DBC and signal mapping
   double map_voxel_m = 0.5; ///< the point map is decimated to one point per voxel of this size [m]
   bool octomap = false;     ///< the map folder's OctoMap (map.bt) occupied voxels instead of its point map
+  bool grid = false;        ///< the map folder's occupancy grid (grid.gridmap) on the ground under the car
   sources::RawlogIndexOptions index;
 };
 
@@ -126,6 +137,8 @@ class ViewerModel {
   const std::vector<Eigen::Vector3f>& mapPoints() const { return map_points_; }  ///< decimated, map frame
   /// Occupied OctoMap leaves (centre, map frame [m]) and their side [m], with ViewerInputs::octomap.
   const std::vector<Eigen::Vector4f>& octoVoxels() const { return octo_voxels_; }
+  /// The occupancy grid, with ViewerInputs::grid.
+  const std::optional<GridLayer>& grid() const { return grid_; }
   const std::vector<double>& groundTruthStamps() const { return gt_stamps_; }
   const std::vector<Eigen::Vector3d>& groundTruth() const { return gt_positions_; }
   const std::vector<BoundaryFrame>& boundaries() const { return bounds_; }
@@ -136,6 +149,7 @@ class ViewerModel {
 
  private:
   void loadMapFolder(const std::string& dir);
+  void loadGrid(const std::string& dir);
   void loadBounds(const std::string& dir);
   void loadGroundTruth(const std::string& path);
   void loadResults();
@@ -160,6 +174,7 @@ class ViewerModel {
   std::vector<LoopEdge> loops_;
   std::vector<Eigen::Vector3f> map_points_;
   std::vector<Eigen::Vector4f> octo_voxels_;
+  std::optional<GridLayer> grid_;
   std::vector<double> gt_stamps_;
   std::vector<Eigen::Vector3d> gt_positions_;
   std::vector<BoundaryFrame> bounds_;

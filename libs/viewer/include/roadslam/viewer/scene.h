@@ -58,6 +58,8 @@ struct SceneColors {
   static constexpr unsigned char right[3] = {60, 160, 255};
   static constexpr unsigned char free_space[3] = {60, 200, 60};
   static constexpr unsigned char map[3] = {120, 120, 130};
+  static constexpr unsigned char grid_occupied[3] = {255, 200, 0};  // amber
+  static constexpr unsigned char grid_free[3] = {45, 60, 75};
   static constexpr unsigned char background[3] = {25, 25, 30};
 };
 
