@@ -9,13 +9,6 @@ namespace {
 
 mrpt::img::TColor rgb(const unsigned char c[3]) { return {c[0], c[1], c[2]}; }
 
-double maxOf(const std::vector<FrameResult>& frames, double FrameResult::*field) {
-  double m = 0;
-  for (const auto& f : frames)
-    if (std::isfinite(f.*field)) m = std::max(m, f.*field);
-  return m;
-}
-
 }  // namespace
 
 bool hasFramePlots(const ViewerModel& model) {
@@ -33,41 +26,42 @@ mrpt::img::CImage framePlots(const ViewerModel& model, double t_s, int width, in
   const auto X = [&](double t) { return left + static_cast<int>(std::lround((t - t0) / (t1 - t0) * (right - left))); };
   img.rectangle(left, top, right, bottom, mrpt::img::TColor(70, 70, 80));
   const auto& frames = model.frames();
-  const double ms_max = maxOf(frames, &FrameResult::ms), in_max = maxOf(frames, &FrameResult::inliers);
-  // One series: a polyline through the frames' values scaled to the strip's height.
-  const auto series = [&](double FrameResult::*field, double vmax, const unsigned char c[3]) {
-    if (!(vmax > 0)) return;
-    int px = -1, py = -1;
-    for (const auto& f : frames) {
-      if (!std::isfinite(f.*field)) continue;
-      const int x = X(f.stamp_s), y = bottom - static_cast<int>(std::lround(f.*field / vmax * (bottom - top - 2)));
-      if (px >= 0) img.line(px, py, x, y, rgb(c), 2);
-      px = x, py = y;
-    }
-  };
-  series(&FrameResult::inliers, in_max, PlotColors::inliers);
-  series(&FrameResult::ms, ms_max, PlotColors::ms);
-  // CAN: speed from the bottom, yaw rate around the middle (left turns up)
-  double v_max = 0, w_max = 0;
-  for (const auto& c : model.can()) {
-    if (std::isfinite(c.speed_mps)) v_max = std::max(v_max, std::abs(c.speed_mps));
-    if (std::isfinite(c.yaw_rate_rad_s)) w_max = std::max(w_max, std::abs(c.yaw_rate_rad_s));
-  }
-  const auto canSeries = [&](double CanSample::*field, double vmax, bool centred, const unsigned char c[3]) {
-    if (!(vmax > 0)) return;
-    int px = -1, py = -1;
+  // One series: a polyline through (time, value) scaled to the strip's height, from the bottom or,
+  // centred, around the middle (signed values: left turns up). The scale is the largest value but
+  // at least \p floor, so a straight drive's noise stays a flat line.
+  const auto series = [&](const std::vector<std::pair<double, double>>& tv, bool centred, const unsigned char c[3],
+                          double floor = 0.0) {
+    double vmax = 0;
+    for (const auto& [t, v] : tv) vmax = std::max(vmax, std::abs(v));
+    if (!(vmax > 0)) return 0.0;
+    const double scale = std::max(vmax, floor);
     const double span = bottom - top - 2, mid = 0.5 * (top + bottom);
-    for (const auto& s : model.can()) {
-      if (!std::isfinite(s.*field)) continue;
-      const int x = X(s.t_s);
-      const int y = centred ? static_cast<int>(std::lround(mid - 0.5 * s.*field / vmax * span))
-                            : bottom - static_cast<int>(std::lround(s.*field / vmax * span));
+    int px = -1, py = -1;
+    for (const auto& [t, v] : tv) {
+      const int x = X(t), y = static_cast<int>(std::lround(centred ? mid - 0.5 * v / scale * span : bottom - v / scale * span));
       if (px >= 0) img.line(px, py, x, y, rgb(c), 2);
       px = x, py = y;
     }
+    return vmax;
   };
-  canSeries(&CanSample::speed_mps, v_max, false, PlotColors::speed);
-  canSeries(&CanSample::yaw_rate_rad_s, w_max, true, PlotColors::yaw_rate);
+  const auto ofFrames = [&](double FrameResult::*field) {
+    std::vector<std::pair<double, double>> tv;
+    for (const auto& f : frames)
+      if (std::isfinite(f.*field)) tv.emplace_back(f.stamp_s, f.*field);
+    return tv;
+  };
+  const auto ofCan = [&](double CanSample::*field) {
+    std::vector<std::pair<double, double>> tv;
+    for (const auto& c : model.can())
+      if (std::isfinite(c.*field)) tv.emplace_back(c.t_s, c.*field);
+    return tv;
+  };
+  const double in_max = series(ofFrames(&FrameResult::inliers), false, PlotColors::inliers);
+  const double ms_max = series(ofFrames(&FrameResult::ms), false, PlotColors::ms);
+  const double v_max = series(ofCan(&CanSample::speed_mps), false, PlotColors::speed);
+  // full scale at least a brisk turn: 0.3 rad/s (17 deg/s) of yaw rate, 0.3 rad of steering
+  const double w_max = series(ofCan(&CanSample::yaw_rate_rad_s), true, PlotColors::yaw_rate, 0.3);
+  const double d_max = series(ofCan(&CanSample::steering_rad), true, PlotColors::steering, 0.3);
   for (const auto& f : frames) {
     const bool failed = f.status == "not_converged" || f.status == "empty";
     if (failed || f.status == "degenerate") {
@@ -81,8 +75,10 @@ mrpt::img::CImage framePlots(const ViewerModel& model, double t_s, int width, in
   if (model.can().empty()) {
     std::snprintf(text, sizeof text, "ms/frame (max %.1f)   inliers (max %.0f)   failed | degenerate", ms_max, in_max);
   } else {
-    std::snprintf(text, sizeof text, "ms/frame (max %.1f)   inliers (max %.0f)   CAN speed (max %.1f m/s)   yaw rate (max %.1f deg/s)",
-                  ms_max, in_max, v_max, w_max * 180.0 / M_PI);
+    std::snprintf(text, sizeof text,
+                  "ms/frame (max %.1f)   inliers (max %.0f)   CAN speed (max %.1f m/s)   yaw rate (max %.1f deg/s)"
+                  "   steering (max %.1f deg)",
+                  ms_max, in_max, v_max, w_max * 180.0 / M_PI, d_max * 180.0 / M_PI);
   }
   img.textOut(left + 2, 3, text, mrpt::img::TColor(220, 220, 220));
   return img;

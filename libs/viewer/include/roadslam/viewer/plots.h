@@ -2,7 +2,7 @@
 /// \file plots.h
 /// The strip of plots under the 3D view: the odometry's per-frame figures over the recording's time
 /// (ms per frame, registration inliers; frames that failed or were degenerate marked on top) and the
-/// car's CAN speed and yaw rate, with a cursor at the replay's time. Drawn into an image (the same in the window and headless renders).
+/// car's CAN speed, yaw rate and steering angle, with a cursor at the replay's time. Drawn into an image (the same in the window and headless renders).
 
 #include <mrpt/img/CImage.h>
 
@@ -19,6 +19,7 @@ struct PlotColors {
   static constexpr unsigned char cursor[3] = {255, 255, 255};
   static constexpr unsigned char speed[3] = {80, 230, 80};        // CAN speed: green
   static constexpr unsigned char yaw_rate[3] = {210, 130, 255};   // CAN yaw rate: violet, 0 mid-height
+  static constexpr unsigned char steering[3] = {255, 110, 170};   // CAN steering angle: pink, 0 mid-height
 };
 
 /// True when the model has something to plot: frames with figures (a map folder's frames.csv,
