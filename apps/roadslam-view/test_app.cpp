@@ -76,6 +76,19 @@ const Fixture& fixture() {
   return f;
 }
 
+// Green pixels (PlotColors::speed) in the bottom fifth of a picture: the CAN speed curve.
+int speedCurvePixels(const fs::path& png) {
+  mrpt::img::CImage img;
+  EXPECT_TRUE(img.loadFromFile(png.string()));
+  int green = 0;
+  for (int y = static_cast<int>(img.getHeight()) * 4 / 5; y < static_cast<int>(img.getHeight()); ++y)
+    for (int x = 0; x < static_cast<int>(img.getWidth()); ++x) {
+      const auto* p = img.ptr<uint8_t>(x, y);  // BGR
+      green += p[1] > 150 && p[0] < 120 && p[2] < 120;
+    }
+  return green;
+}
+
 struct Pixels {
   int magenta = 0, coloured = 0, bright = 0;
 };
@@ -300,14 +313,7 @@ TEST(RoadslamViewApp, CanSignalsOfTheDriveArePlotted) {
   ASSERT_EQ(std::sscanf(r.out.c_str() + at, "CAN: %zu samples over %lf s, speed up to %lf m/s", &samples, &span, &v), 3) << r.out;
   EXPECT_NEAR(static_cast<double>(samples), 80.0, 5.0) << "4 s at 20 Hz";
   EXPECT_NEAR(v, v_gt, 0.05 * v_gt + 0.2) << "the simulator writes a wheel-speed scale error of a few per cent";
-  mrpt::img::CImage img;
-  ASSERT_TRUE(img.loadFromFile(png.string()));
-  int green = 0;
-  for (int y = static_cast<int>(img.getHeight()) * 4 / 5; y < static_cast<int>(img.getHeight()); ++y)
-    for (int x = 0; x < static_cast<int>(img.getWidth()); ++x) {
-      const auto* p = img.ptr<uint8_t>(x, y);  // BGR
-      green += p[1] > 150 && p[0] < 120 && p[2] < 120;
-    }
+  const int green = speedCurvePixels(png);
   EXPECT_GT(green, 10) << "the speed curve";
 }
 
@@ -501,14 +507,7 @@ TEST(RoadslamViewLive, GrabIniWithCanShowsAndRecords) {
   EXPECT_EQ(liveObservations(replay.out, rec.string()), observations) << replay.out;
   EXPECT_NE(replay.out.find("(" + std::to_string(segments) + " segments)"), std::string::npos) << replay.out;
   EXPECT_TRUE(fs::exists(rec / "summary.json")) << "recorded as roadslam-grab records";
-  mrpt::img::CImage img;
-  ASSERT_TRUE(img.loadFromFile(png.string()));
-  int green = 0;
-  for (int y = static_cast<int>(img.getHeight()) * 4 / 5; y < static_cast<int>(img.getHeight()); ++y)
-    for (int x = 0; x < static_cast<int>(img.getWidth()); ++x) {
-      const auto* p = img.ptr<uint8_t>(x, y);  // BGR
-      green += p[1] > 150 && p[0] < 120 && p[2] < 120;
-    }
+  const int green = speedCurvePixels(png);
   EXPECT_GT(green, 10) << "the speed curve under the view";
 }
 

@@ -62,8 +62,8 @@ bool BackgroundRawlogIndex::publish(const RawlogIndex::Impl& im) {
   std::lock_guard<std::mutex> lock(mutex_);
   pending_.insert(pending_.end(), im.entries.begin() + long(published_entries_), im.entries.end());
   published_entries_ = im.entries.size();
-  if (im.labels.size() != pending_labels_.size()) pending_labels_ = im.labels;
-  if (im.classes.size() != pending_classes_.size()) pending_classes_ = im.classes;
+  if (im.labels.names().size() != pending_labels_.size()) pending_labels_ = im.labels.names();
+  if (im.classes.names().size() != pending_classes_.size()) pending_classes_ = im.classes.names();
   for (; published_points_ < pts.size(); ++published_points_)
     pending_points_.push_back(std::make_shared<detail::GzAccessPoint>(pts[published_points_]));
   return true;
@@ -77,7 +77,7 @@ std::size_t BackgroundRawlogIndex::poll() {
     if (finished_) {
       full_ = std::move(finished_);
       entries_.clear();
-      by_time_.clear();
+      time_.clear();
       points_.clear();
       stream_.reset();
       return full_->size() - std::min(before, full_->size());
@@ -87,10 +87,7 @@ std::size_t BackgroundRawlogIndex::poll() {
   for (const auto& e : pending_) {
     const auto i = uint32_t(entries_.size());
     entries_.push_back(e);
-    if (!std::isfinite(e.stamp_s)) continue;
-    const auto at = std::upper_bound(by_time_.begin(), by_time_.end(), e.stamp_s,
-                                     [&](double t, uint32_t k) { return t < entries_[k].stamp_s; });
-    by_time_.insert(at, i);
+    time_.add(i, e.stamp_s);
   }
   pending_.clear();
   if (!pending_labels_.empty()) labels_ = pending_labels_;
@@ -121,30 +118,13 @@ const std::vector<std::string>& BackgroundRawlogIndex::labels() const { return f
 const std::vector<std::string>& BackgroundRawlogIndex::classNames() const {
   return full_ ? full_->classNames() : classes_;
 }
-double BackgroundRawlogIndex::firstStamp() const {
-  if (full_) return full_->firstStamp();
-  return by_time_.empty() ? 0.0 : entries_[by_time_.front()].stamp_s;
-}
-double BackgroundRawlogIndex::lastStamp() const {
-  if (full_) return full_->lastStamp();
-  return by_time_.empty() ? 0.0 : entries_[by_time_.back()].stamp_s;
-}
-
+double BackgroundRawlogIndex::firstStamp() const { return full_ ? full_->firstStamp() : time_.first(); }
+double BackgroundRawlogIndex::lastStamp() const { return full_ ? full_->lastStamp() : time_.last(); }
 std::optional<std::size_t> BackgroundRawlogIndex::findAtTime(double t_s) const {
-  if (full_) return full_->findAtTime(t_s);
-  if (by_time_.empty()) return std::nullopt;
-  const auto it = std::upper_bound(by_time_.begin(), by_time_.end(), t_s,
-                                   [&](double t, uint32_t k) { return t < entries_[k].stamp_s; });
-  return it == by_time_.begin() ? by_time_.front() : *(it - 1);
+  return full_ ? full_->findAtTime(t_s) : time_.atTime(t_s);
 }
-
 std::vector<std::size_t> BackgroundRawlogIndex::findInRange(double t0_s, double t1_s) const {
-  if (full_) return full_->findInRange(t0_s, t1_s);
-  auto lo = std::lower_bound(by_time_.begin(), by_time_.end(), t0_s,
-                             [&](uint32_t k, double t) { return entries_[k].stamp_s < t; });
-  std::vector<std::size_t> out;
-  for (; lo != by_time_.end() && entries_[*lo].stamp_s < t1_s; ++lo) out.push_back(*lo);
-  return out;
+  return full_ ? full_->findInRange(t0_s, t1_s) : time_.inRange(t0_s, t1_s);
 }
 
 std::shared_ptr<mrpt::obs::CObservation> BackgroundRawlogIndex::load(std::size_t i) {

@@ -30,32 +30,19 @@ std::size_t LiveObservations::posted() const {
   return posted_;
 }
 
-uint16_t LiveObservations::intern(std::vector<std::string>& names, std::map<std::string, uint16_t>& ids,
-                                  const std::string& s) {
-  const auto it = ids.find(s);
-  if (it != ids.end()) return it->second;
-  if (names.size() >= 0xffff) return 0;
-  names.push_back(s);
-  return ids[s] = uint16_t(names.size() - 1);
-}
-
 void LiveObservations::append(Posted& p) {
   RawlogEntry e;
   e.size = p.bytes;
   e.stamp_s = p.obs->timestamp != INVALID_TIMESTAMP ? mrpt::Clock::toDouble(p.obs->timestamp)
                                                     : std::numeric_limits<double>::quiet_NaN();
-  e.label = intern(labels_, label_ids_, p.obs->sensorLabel);
+  e.label = labels_.id(p.obs->sensorLabel);
   std::string cls = p.obs->GetRuntimeClass()->className;
   const auto colons = cls.rfind("::");
-  e.cls = intern(classes_, class_ids_, colons == std::string::npos ? cls : cls.substr(colons + 2));
+  e.cls = classes_.id(colons == std::string::npos ? cls : cls.substr(colons + 2));
   const auto i = uint32_t(entries_.size());
   entries_.push_back(e);
   payload_.push_back(std::move(p.obs));
-  if (!std::isfinite(e.stamp_s)) return;
-  // Arrivals are in time order but for the writer's late ones: insert those where they belong.
-  const auto at = std::upper_bound(by_time_.begin(), by_time_.end(), e.stamp_s,
-                                   [&](double t, uint32_t k) { return t < entries_[k].stamp_s; });
-  by_time_.insert(at, i);
+  time_.add(i, e.stamp_s);  // in time order but for the writer's late ones
 }
 
 std::size_t LiveObservations::poll() {
@@ -72,24 +59,6 @@ std::size_t LiveObservations::poll() {
     payload_[freed_++].reset();
   }
   return first_new;
-}
-
-double LiveObservations::firstStamp() const { return by_time_.empty() ? 0.0 : entries_[by_time_.front()].stamp_s; }
-double LiveObservations::lastStamp() const { return by_time_.empty() ? 0.0 : entries_[by_time_.back()].stamp_s; }
-
-std::optional<std::size_t> LiveObservations::findAtTime(double t_s) const {
-  if (by_time_.empty()) return std::nullopt;
-  const auto it = std::upper_bound(by_time_.begin(), by_time_.end(), t_s,
-                                   [&](double t, uint32_t k) { return t < entries_[k].stamp_s; });
-  return it == by_time_.begin() ? by_time_.front() : *(it - 1);
-}
-
-std::vector<std::size_t> LiveObservations::findInRange(double t0_s, double t1_s) const {
-  auto lo = std::lower_bound(by_time_.begin(), by_time_.end(), t0_s,
-                             [&](uint32_t k, double t) { return entries_[k].stamp_s < t; });
-  std::vector<std::size_t> out;
-  for (; lo != by_time_.end() && entries_[*lo].stamp_s < t1_s; ++lo) out.push_back(*lo);
-  return out;
 }
 
 std::shared_ptr<mrpt::obs::CObservation> LiveObservations::load(std::size_t i) {

@@ -154,11 +154,7 @@ void RawlogIndex::Impl::build(uint64_t span, const std::function<bool(const Impl
 
 void RawlogIndex::Impl::finish() {
   by_time.clear();
-  for (uint32_t i = 0; i < entries.size(); ++i)
-    if (std::isfinite(entries[i].stamp_s)) by_time.push_back(i);
-  std::stable_sort(by_time.begin(), by_time.end(), [&](uint32_t a, uint32_t b) {
-    return entries[a].stamp_s < entries[b].stamp_s;
-  });
+  for (uint32_t i = 0; i < entries.size(); ++i) by_time.add(i, entries[i].stamp_s);
 }
 
 std::string RawlogIndex::sidecarPath(const std::string& rawlog_path) { return rawlog_path + ".idx"; }
@@ -186,9 +182,7 @@ std::unique_ptr<RawlogIndex> RawlogIndex::open(const std::string& path, const Ra
   }
   if (!loaded) {
     impl->labels.clear();
-    impl->label_ids.clear();
     impl->classes.clear();
-    impl->class_ids.clear();
     if (opt.on_build) opt.on_build(path);
     impl->build(opt.span_bytes, progress);
     if (impl->abandoned) return nullptr;
@@ -214,8 +208,8 @@ const std::string& RawlogIndex::path() const { return impl_->path; }
 const RawlogOpenInfo& RawlogIndex::openInfo() const { return impl_->info; }
 std::size_t RawlogIndex::size() const { return impl_->entries.size(); }
 const RawlogEntry& RawlogIndex::entry(std::size_t i) const { return impl_->entries.at(i); }
-const std::vector<std::string>& RawlogIndex::labels() const { return impl_->labels; }
-const std::vector<std::string>& RawlogIndex::classNames() const { return impl_->classes; }
+const std::vector<std::string>& RawlogIndex::labels() const { return impl_->labels.names(); }
+const std::vector<std::string>& RawlogIndex::classNames() const { return impl_->classes.names(); }
 bool RawlogIndex::complete() const { return impl_->complete; }
 const std::string& RawlogIndex::stopMessage() const { return impl_->stop; }
 bool RawlogIndex::gzip() const { return impl_->gzip; }
@@ -225,33 +219,15 @@ std::size_t RawlogIndex::accessPoints() const { return impl_->stream->accessPoin
 std::vector<std::pair<std::string, std::size_t>> RawlogIndex::unknownClasses() const {
   std::map<std::string, std::size_t> n;
   for (const auto& e : impl_->entries)
-    if (!e.known) ++n[impl_->classes[e.cls]];
+    if (!e.known) ++n[impl_->classes.names()[e.cls]];
   return {n.begin(), n.end()};
 }
 
-double RawlogIndex::firstStamp() const {
-  return impl_->by_time.empty() ? 0.0 : impl_->entries[impl_->by_time.front()].stamp_s;
-}
-double RawlogIndex::lastStamp() const {
-  return impl_->by_time.empty() ? 0.0 : impl_->entries[impl_->by_time.back()].stamp_s;
-}
-
-std::optional<std::size_t> RawlogIndex::findAtTime(double t_s) const {
-  const auto& bt = impl_->by_time;
-  if (bt.empty()) return std::nullopt;
-  const auto it = std::upper_bound(bt.begin(), bt.end(), t_s, [&](double t, uint32_t i) {
-    return t < impl_->entries[i].stamp_s;
-  });
-  return it == bt.begin() ? bt.front() : *(it - 1);
-}
-
+double RawlogIndex::firstStamp() const { return impl_->by_time.first(); }
+double RawlogIndex::lastStamp() const { return impl_->by_time.last(); }
+std::optional<std::size_t> RawlogIndex::findAtTime(double t_s) const { return impl_->by_time.atTime(t_s); }
 std::vector<std::size_t> RawlogIndex::findInRange(double t0_s, double t1_s) const {
-  const auto& bt = impl_->by_time;
-  auto lo = std::lower_bound(bt.begin(), bt.end(), t0_s,
-                             [&](uint32_t i, double t) { return impl_->entries[i].stamp_s < t; });
-  std::vector<std::size_t> out;
-  for (; lo != bt.end() && impl_->entries[*lo].stamp_s < t1_s; ++lo) out.push_back(*lo);
-  return out;
+  return impl_->by_time.inRange(t0_s, t1_s);
 }
 
 std::shared_ptr<mrpt::obs::CObservation> RawlogIndex::load(std::size_t i) {

@@ -36,22 +36,13 @@ struct RawlogIndex::Impl {
   detail::FileStamp stamp;
   RawlogOpenInfo info;
   std::vector<RawlogEntry> entries;
-  std::vector<std::string> labels, classes;
-  std::map<std::string, uint16_t> label_ids, class_ids;
-  std::vector<uint32_t> by_time;  // entries with a finite stamp, in time order
+  NameIds labels, classes;
+  TimeOrder by_time;
   bool complete = true, gzip = false;
   std::string stop;
   uint64_t uncompressed = 0;
   std::unique_ptr<detail::SeekableStream> stream;
 
-  uint16_t intern(std::vector<std::string>& names, std::map<std::string, uint16_t>& ids,
-                  const std::string& s) {
-    const auto it = ids.find(s);
-    if (it != ids.end()) return it->second;
-    if (names.size() >= 0xffff) return 0;
-    names.push_back(s);
-    return ids[s] = uint16_t(names.size() - 1);
-  }
   void add(uint64_t offset, uint64_t size, int32_t sub, const mrpt::obs::CObservation* o,
            const std::string& cls, bool known) {
     RawlogEntry e;
@@ -60,9 +51,9 @@ struct RawlogIndex::Impl {
     e.sub = sub;
     e.stamp_s = o && o->timestamp != INVALID_TIMESTAMP ? mrpt::Clock::toDouble(o->timestamp)
                                                          : std::numeric_limits<double>::quiet_NaN();
-    e.label = intern(labels, label_ids, o ? o->sensorLabel : std::string());
+    e.label = labels.id(o ? o->sensorLabel : std::string());
     const auto colons = cls.rfind("::");  // "mrpt::obs::CObservationGPS" -> "CObservationGPS"
-    e.cls = intern(classes, class_ids, colons == std::string::npos ? cls : cls.substr(colons + 2));
+    e.cls = classes.id(colons == std::string::npos ? cls : cls.substr(colons + 2));
     e.known = known;
     entries.push_back(e);
   }

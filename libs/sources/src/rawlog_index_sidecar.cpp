@@ -57,10 +57,10 @@ std::string RawlogIndex::Impl::serialize() const {
   o.put(uint8_t(complete));
   o.put(uncompressed);
   o.str(stop);
-  o.put(uint32_t(labels.size()));
-  for (const auto& s : labels) o.str(s);
-  o.put(uint32_t(classes.size()));
-  for (const auto& s : classes) o.str(s);
+  o.put(uint32_t(labels.names().size()));
+  for (const auto& s : labels.names()) o.str(s);
+  o.put(uint32_t(classes.names().size()));
+  for (const auto& s : classes.names()) o.str(s);
   o.put(uint64_t(entries.size()));
   for (const auto& e : entries) {
     o.put(e.offset);
@@ -106,10 +106,12 @@ bool RawlogIndex::Impl::deserialize(const std::string& buf, std::string& why) {
     complete = in.get<uint8_t>() != 0;
     uncompressed = in.get<uint64_t>();
     stop = in.str();
-    labels.resize(in.get<uint32_t>());
-    for (auto& l : labels) l = in.str();
-    classes.resize(in.get<uint32_t>());
-    for (auto& c : classes) c = in.str();
+    for (auto* table : {&labels, &classes}) {
+      const auto n = in.get<uint32_t>();
+      if (n > buf.size()) throw std::runtime_error("bad name count");
+      for (uint32_t k = 0; k < n; ++k)
+        if (table->id(in.str()) != k) throw std::runtime_error("a name listed twice");
+    }
     const auto n = in.get<uint64_t>();
     if (n > buf.size()) throw std::runtime_error("bad entry count");
     entries.resize(n);
@@ -121,7 +123,8 @@ bool RawlogIndex::Impl::deserialize(const std::string& buf, std::string& why) {
       e.label = in.get<uint16_t>();
       e.cls = in.get<uint16_t>();
       e.known = in.get<uint8_t>() != 0;
-      if (e.label >= std::max<std::size_t>(labels.size(), 1) || e.cls >= std::max<std::size_t>(classes.size(), 1))
+      if (e.label >= std::max<std::size_t>(labels.names().size(), 1) ||
+          e.cls >= std::max<std::size_t>(classes.names().size(), 1))
         throw std::runtime_error("bad name id");
     }
     const auto np = in.get<uint64_t>();

@@ -44,13 +44,6 @@ std::unique_ptr<RawlogSession> RawlogSession::open(const std::vector<std::string
 
 RawlogSession::~RawlogSession() = default;
 
-uint16_t RawlogSession::intern(std::vector<std::string>& names, const std::string& s) {
-  const auto it = std::find(names.begin(), names.end(), s);
-  if (it != names.end()) return uint16_t(it - names.begin());
-  names.push_back(s);
-  return uint16_t(names.size() - 1);
-}
-
 std::size_t RawlogSession::poll() {
   const std::size_t before = entries_.size();
   for (auto& p : parts_) p->poll();
@@ -58,15 +51,12 @@ std::size_t RawlogSession::poll() {
     BackgroundRawlogIndex& part = *parts_[shown_];
     for (; taken_ < part.size(); ++taken_) {
       RawlogEntry e = part.entry(taken_);
-      e.label = intern(labels_, part.label(taken_));
-      e.cls = intern(classes_, part.className(taken_));
+      e.label = labels_.id(part.label(taken_));
+      e.cls = classes_.id(part.className(taken_));
       const auto i = uint32_t(entries_.size());
       entries_.push_back(e);
       where_.emplace_back(uint32_t(shown_), uint32_t(taken_));
-      if (!std::isfinite(e.stamp_s)) continue;
-      const auto at = std::upper_bound(by_time_.begin(), by_time_.end(), e.stamp_s,
-                                       [&](double t, uint32_t k) { return t < entries_[k].stamp_s; });
-      by_time_.insert(at, i);
+      time_.add(i, e.stamp_s);
     }
     if (!part.done() && part.error().empty()) break;  // the next segment waits for this one
     ++shown_;
@@ -96,24 +86,6 @@ std::vector<std::string> RawlogSession::errors() const {
   std::vector<std::string> out;
   for (const auto& p : parts_)
     if (!p->error().empty()) out.push_back(p->error());
-  return out;
-}
-
-double RawlogSession::firstStamp() const { return by_time_.empty() ? 0.0 : entries_[by_time_.front()].stamp_s; }
-double RawlogSession::lastStamp() const { return by_time_.empty() ? 0.0 : entries_[by_time_.back()].stamp_s; }
-
-std::optional<std::size_t> RawlogSession::findAtTime(double t_s) const {
-  if (by_time_.empty()) return std::nullopt;
-  const auto it = std::upper_bound(by_time_.begin(), by_time_.end(), t_s,
-                                   [&](double t, uint32_t k) { return t < entries_[k].stamp_s; });
-  return it == by_time_.begin() ? by_time_.front() : *(it - 1);
-}
-
-std::vector<std::size_t> RawlogSession::findInRange(double t0_s, double t1_s) const {
-  auto lo = std::lower_bound(by_time_.begin(), by_time_.end(), t0_s,
-                             [&](uint32_t k, double t) { return entries_[k].stamp_s < t; });
-  std::vector<std::size_t> out;
-  for (; lo != by_time_.end() && entries_[*lo].stamp_s < t1_s; ++lo) out.push_back(*lo);
   return out;
 }
 

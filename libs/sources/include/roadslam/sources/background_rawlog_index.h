@@ -79,7 +79,7 @@ class BackgroundRawlogIndex : public ObservationIndex {
   // visible while building (reader's thread)
   std::vector<RawlogEntry> entries_;
   std::vector<std::string> labels_, classes_;
-  std::vector<uint32_t> by_time_;
+  TimeOrder time_;
   std::unique_ptr<detail::SeekableStream> stream_;
   std::vector<detail::GzAccessPoint> points_;
   std::string error_;

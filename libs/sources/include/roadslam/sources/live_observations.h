@@ -10,7 +10,6 @@
 /// newest `keep_s` seconds; load() of an older one says so.
 
 #include <deque>
-#include <map>
 #include <mutex>
 
 #include "roadslam/sources/observation_index.h"
@@ -34,12 +33,12 @@ class LiveObservations : public ObservationIndex {
 
   std::size_t size() const override { return entries_.size(); }
   const RawlogEntry& entry(std::size_t i) const override { return entries_.at(i); }
-  const std::vector<std::string>& labels() const override { return labels_; }
-  const std::vector<std::string>& classNames() const override { return classes_; }
-  double firstStamp() const override;
-  double lastStamp() const override;
-  std::optional<std::size_t> findAtTime(double t_s) const override;
-  std::vector<std::size_t> findInRange(double t0_s, double t1_s) const override;
+  const std::vector<std::string>& labels() const override { return labels_.names(); }
+  const std::vector<std::string>& classNames() const override { return classes_.names(); }
+  double firstStamp() const override { return time_.first(); }
+  double lastStamp() const override { return time_.last(); }
+  std::optional<std::size_t> findAtTime(double t_s) const override { return time_.atTime(t_s); }
+  std::vector<std::size_t> findInRange(double t0_s, double t1_s) const override { return time_.inRange(t0_s, t1_s); }
   /// The payload of \p i; throws naming the source, the index and the keep window when it was
   /// freed.
   std::shared_ptr<mrpt::obs::CObservation> load(std::size_t i) override;
@@ -49,7 +48,6 @@ class LiveObservations : public ObservationIndex {
     std::shared_ptr<mrpt::obs::CObservation> obs;
     uint32_t bytes = 0;
   };
-  uint16_t intern(std::vector<std::string>& names, std::map<std::string, uint16_t>& ids, const std::string& s);
   void append(Posted& p);
 
   std::string name_;
@@ -61,9 +59,8 @@ class LiveObservations : public ObservationIndex {
   std::vector<RawlogEntry> entries_;
   std::deque<std::shared_ptr<mrpt::obs::CObservation>> payload_;  // parallel to entries_
   std::size_t freed_ = 0;                 // payloads [0, freed_) released (arrival order)
-  std::vector<uint32_t> by_time_;         // entries with a finite stamp, in time order
-  std::vector<std::string> labels_, classes_;
-  std::map<std::string, uint16_t> label_ids_, class_ids_;
+  TimeOrder time_;
+  NameIds labels_, classes_;
 };
 
 }  // namespace roadslam::sources

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -26,6 +27,39 @@ struct RawlogEntry {
   uint16_t label = 0;    ///< index into labels() (sensorLabel)
   uint16_t cls = 0;      ///< index into classNames()
   bool known = true;     ///< false: a class this build cannot read (listed, skipped)
+};
+
+/// Observations' indices in time order (those with a finite stamp): the time lookups every
+/// ObservationIndex answers.
+class TimeOrder {
+ public:
+  /// Observation \p i stamped \p t_s (NaN: not on the timeline); one that arrives late goes where
+  /// it belongs (amortized O(1) for observations in time order).
+  void add(uint32_t i, double t_s);
+  void clear() { by_time_.clear(); }
+  bool empty() const { return by_time_.empty(); }
+  double first() const { return by_time_.empty() ? 0.0 : by_time_.front().first; }
+  double last() const { return by_time_.empty() ? 0.0 : by_time_.back().first; }
+  /// The last observation stamped at or before \p t_s, else the first; nullopt when empty.
+  std::optional<std::size_t> atTime(double t_s) const;
+  /// Observations stamped in [t0_s, t1_s), in time order.
+  std::vector<std::size_t> inRange(double t0_s, double t1_s) const;
+
+ private:
+  std::vector<std::pair<double, uint32_t>> by_time_;
+};
+
+/// Sensor labels or class names, each stored once and referred to by a 16-bit id.
+class NameIds {
+ public:
+  /// The id of \p s, added when new (past 65535 names every new one shares id 0).
+  uint16_t id(const std::string& s);
+  const std::vector<std::string>& names() const { return names_; }
+  void clear();
+
+ private:
+  std::vector<std::string> names_;
+  std::map<std::string, uint16_t> ids_;
 };
 
 class ObservationIndex {

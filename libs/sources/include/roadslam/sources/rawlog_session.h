@@ -40,17 +40,16 @@ class RawlogSession : public ObservationIndex {
 
   std::size_t size() const override { return entries_.size(); }
   const RawlogEntry& entry(std::size_t i) const override { return entries_.at(i); }
-  const std::vector<std::string>& labels() const override { return labels_; }
-  const std::vector<std::string>& classNames() const override { return classes_; }
-  double firstStamp() const override;
-  double lastStamp() const override;
-  std::optional<std::size_t> findAtTime(double t_s) const override;
-  std::vector<std::size_t> findInRange(double t0_s, double t1_s) const override;
+  const std::vector<std::string>& labels() const override { return labels_.names(); }
+  const std::vector<std::string>& classNames() const override { return classes_.names(); }
+  double firstStamp() const override { return time_.first(); }
+  double lastStamp() const override { return time_.last(); }
+  std::optional<std::size_t> findAtTime(double t_s) const override { return time_.atTime(t_s); }
+  std::vector<std::size_t> findInRange(double t0_s, double t1_s) const override { return time_.inRange(t0_s, t1_s); }
   std::shared_ptr<mrpt::obs::CObservation> load(std::size_t i) override;
 
  private:
   RawlogSession() = default;
-  uint16_t intern(std::vector<std::string>& names, const std::string& s);
 
   std::vector<std::unique_ptr<BackgroundRawlogIndex>> parts_;
   std::vector<uint64_t> sizes_;         // bytes per segment (progress)
@@ -58,8 +57,8 @@ class RawlogSession : public ObservationIndex {
   std::size_t taken_ = 0;               // entries of segment shown_ taken so far
   std::vector<RawlogEntry> entries_;    // renumbered labels and classes
   std::vector<std::pair<uint32_t, uint32_t>> where_;  // session index -> (segment, index in it)
-  std::vector<uint32_t> by_time_;
-  std::vector<std::string> labels_, classes_;
+  TimeOrder time_;
+  NameIds labels_, classes_;
 };
 
 }  // namespace roadslam::sources
