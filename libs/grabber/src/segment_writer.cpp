@@ -1,15 +1,21 @@
 #include "roadslam/grabber/segment_writer.h"
 
 #include <mrpt/io/CMemoryStream.h>
+#include <mrpt/obs/CObservation.h>
 #include <mrpt/serialization/CArchive.h>
 #include <mrpt/serialization/CSerializable.h>
 #include <sys/stat.h>
 #include <zlib.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <cstring>
 #include <stdexcept>
 
 namespace roadslam::grabber {
+namespace {
+constexpr std::size_t kWindow = 32768;  // deflate's history (RFC 1951): an access point's dictionary
+}
 
 SegmentWriter::SegmentWriter(std::string dir, std::string prefix, const SegmentPolicy& policy)
     : dir_(std::move(dir)), prefix_(std::move(prefix)), policy_(policy) {
@@ -34,6 +40,9 @@ void SegmentWriter::openNext(double now_s) {
   segments_.push_back(path);
   opened_s_ = now_s;
   first_ = true;
+  segment_raw_ = 0;
+  history_.assign(kWindow, 0);
+  index_.clear();
 }
 
 void SegmentWriter::closeCurrent() {
@@ -43,6 +52,11 @@ void SegmentWriter::closeCurrent() {
   struct stat st {};
   if (::stat(segments_.back().c_str(), &st) == 0) closed_bytes_ += std::uint64_t(st.st_size);
   if (rc != Z_OK) throw std::runtime_error("error closing rawlog segment '" + segments_.back() + "'");
+  try {
+    index_.write(segments_.back(), segment_raw_);
+  } catch (const std::exception& e) {
+    throw std::runtime_error("rawlog segment '" + segments_.back() + "' closed, its index not written: " + e.what());
+  }
 }
 
 std::uint64_t SegmentWriter::currentSegmentBytes() const {
@@ -68,14 +82,23 @@ void SegmentWriter::write(const mrpt::serialization::CSerializable& obj, double 
   const auto n = mem.getTotalBytesCount();
   const int w = gzwrite(static_cast<gzFile>(gz_), mem.getRawBufferData(), unsigned(n));
   if (w != int(n)) throw std::runtime_error("write error on rawlog segment '" + segments_.back() + "'");
+  if (const auto* o = dynamic_cast<const mrpt::obs::CObservation*>(&obj)) index_.add(segment_raw_, n, *o);
+  const auto* bytes = static_cast<const std::uint8_t*>(mem.getRawBufferData());
+  for (std::size_t k = n > kWindow ? n - kWindow : 0; k < n; ++k)  // the last 32 KiB, circular
+    history_[(segment_raw_ + k) % kWindow] = bytes[k];
   ++objects_;
   raw_bytes_ += n;
+  segment_raw_ += n;
 }
 
 void SegmentWriter::syncFlush() {
   if (!gz_) return;
   if (gzflush(static_cast<gzFile>(gz_), Z_SYNC_FLUSH) != Z_OK)
     throw std::runtime_error("flush error on rawlog segment '" + segments_.back() + "'");
+  // Byte-aligned at a block boundary now: the file's size is where a raw inflate can restart.
+  std::vector<std::uint8_t> window(kWindow);
+  for (std::size_t k = 0; k < kWindow; ++k) window[k] = history_[(segment_raw_ + k) % kWindow];
+  index_.addAccessPoint(segment_raw_, currentSegmentBytes(), window.data());
 }
 
 void SegmentWriter::close() { closeCurrent(); }

@@ -21,6 +21,7 @@
 #include "roadslam/can/candump.h"
 #include "roadslam/grabber/grabber.h"
 #include "roadslam/pcap/pcap_reader.h"
+#include "roadslam/sources/rawlog_index.h"
 #include "roadslam/sim/outputs.h"
 #include "roadslam/velodyne/sweep_assembler.h"
 
@@ -335,4 +336,56 @@ TEST(GrabMonitor, TapReceivesEverySweepAndNothingIsWritten) {
   a.finish();
   EXPECT_EQ(tapped.size(), a.stats().sweeps);
   EXPECT_TRUE(got == expected) << got.size() << " of " << expected.size() << " packets";
+}
+
+// Every closed segment carries its index sidecar, so its first open reads no more than the
+// sidecar. Oracle: the index RawlogIndex builds by reading the segment itself; observations loaded
+// through the grabber's access points equal those loaded through the built index's.
+TEST(GrabIndex, EachClosedSegmentCarriesItsIndex) {
+  const auto& pkts = test::simPackets(2.0);
+  test::TempDir dir("index");
+  Grabber g(test::paramsFromText(test::testIni("rotate_period_s = 0.7\nflush_period_ms = 100\n")), dir.str());
+  g.start();
+  {
+    sim::UdpStreamer streamer("127.0.0.1", g.dataPort(0), 2.0);
+    for (const auto& p : pkts)
+      if (p.port == 2368) streamer.packet(p.capture_s, p.port, p.bytes.data(), p.bytes.size());
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  g.stop();
+  const auto segments = test::segmentFiles(dir.str(), "grab", ".rawlog");
+  ASSERT_GE(segments.size(), 2u);
+  std::size_t points = 0, observations = 0;
+  for (const auto& seg : segments) {
+    ASSERT_TRUE(std::filesystem::exists(sources::RawlogIndex::sidecarPath(seg))) << seg;
+    const auto cached = sources::RawlogIndex::open(seg);
+    EXPECT_TRUE(cached->openInfo().from_cache) << seg << ": " << cached->openInfo().cache_note;
+    sources::RawlogIndexOptions read;
+    read.use_cache = read.write_cache = false;
+    read.span_bytes = 1u << 20;
+    const auto built = sources::RawlogIndex::open(seg, read);
+    ASSERT_EQ(cached->size(), built->size()) << seg;
+    EXPECT_TRUE(cached->complete());
+    EXPECT_EQ(cached->uncompressedBytes(), built->uncompressedBytes());
+    for (std::size_t i = 0; i < built->size(); ++i) {
+      ASSERT_EQ(cached->entry(i).offset, built->entry(i).offset) << seg << " #" << i;
+      ASSERT_EQ(cached->entry(i).size, built->entry(i).size) << seg << " #" << i;
+      ASSERT_EQ(cached->entry(i).stamp_s, built->entry(i).stamp_s) << seg << " #" << i;
+      ASSERT_EQ(cached->label(i), built->label(i));
+      ASSERT_EQ(cached->className(i), built->className(i));
+    }
+    points += cached->accessPoints();
+    observations += built->size();
+    for (std::size_t i = built->size(); i-- > 0;) {  // backwards: every load seeks through a point
+      const auto a = std::dynamic_pointer_cast<mrpt::obs::CObservationVelodyneScan>(cached->load(i));
+      const auto b = std::dynamic_pointer_cast<mrpt::obs::CObservationVelodyneScan>(built->load(i));
+      ASSERT_TRUE(a && b) << seg << " #" << i;
+      ASSERT_EQ(a->scan_packets.size(), b->scan_packets.size());
+      ASSERT_EQ(0, std::memcmp(a->scan_packets.data(), b->scan_packets.data(),
+                               a->scan_packets.size() * sizeof(a->scan_packets[0])))
+          << seg << " #" << i;
+    }
+  }
+  EXPECT_EQ(observations, g.status().writer.observations);
+  EXPECT_GT(points, 0u) << "access points at the sync flushes (every 4 MB of data)";
 }

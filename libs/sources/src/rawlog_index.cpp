@@ -6,6 +6,7 @@
 #include <mrpt/rtti/CObject.h>
 #include <mrpt/serialization/CArchive.h>
 #include <sys/stat.h>
+#include <zlib.h>
 
 #include <algorithm>
 #include <cctype>
@@ -254,6 +255,54 @@ std::shared_ptr<mrpt::obs::CObservation> detail::loadEntry(SeekableStream& strea
   } catch (const std::exception& ex) {
     throw std::runtime_error(where + " (byte " + std::to_string(e.offset) + "): " + innermostMessage(ex.what()));
   }
+}
+
+}  // namespace roadslam::sources
+
+namespace roadslam::sources {
+
+RawlogIndexRecorder::RawlogIndexRecorder() : impl_(std::make_unique<RawlogIndex::Impl>()) {}
+RawlogIndexRecorder::~RawlogIndexRecorder() = default;
+
+void RawlogIndexRecorder::add(uint64_t offset, uint64_t size, const mrpt::obs::CObservation& obs) {
+  impl_->add(offset, size, -1, &obs, obs.GetRuntimeClass()->className, true);
+}
+
+void RawlogIndexRecorder::addAccessPoint(uint64_t out, uint64_t in, const uint8_t* window, uint64_t span_bytes) {
+  if (out < SeekableStream::kWindow) return;  // the dictionary must be a full window of history
+  if (!points_out_in_.empty() && out - points_out_in_.back()[0] < span_bytes) return;
+  uLongf zlen = compressBound(SeekableStream::kWindow);
+  std::vector<uint8_t> z(zlen);
+  compress2(z.data(), &zlen, window, SeekableStream::kWindow, 1);
+  z.resize(zlen);
+  points_out_in_.push_back({out, in});
+  windows_z_.push_back(std::move(z));
+}
+
+void RawlogIndexRecorder::write(const std::string& rawlog_path, uint64_t uncompressed) const {
+  RawlogIndex::Impl& im = *impl_;
+  im.path = rawlog_path;
+  im.stamp = detail::stampOf(rawlog_path);
+  im.gzip = true;
+  im.complete = true;
+  im.uncompressed = uncompressed;
+  im.stream = std::make_unique<SeekableStream>(rawlog_path);
+  std::vector<GzAccessPoint> pts(points_out_in_.size());
+  for (std::size_t k = 0; k < pts.size(); ++k) {
+    pts[k].out = points_out_in_[k][0];
+    pts[k].in = points_out_in_[k][1];
+    pts[k].bits = 0;  // byte-aligned after a sync flush
+    pts[k].window_z = windows_z_[k];
+  }
+  im.stream->setAccessPoints(std::move(pts));
+  writeFileAtomically(RawlogIndex::sidecarPath(rawlog_path), im.serialize());
+  im.stream.reset();
+}
+
+void RawlogIndexRecorder::clear() {
+  impl_ = std::make_unique<RawlogIndex::Impl>();
+  points_out_in_.clear();
+  windows_z_.clear();
 }
 
 }  // namespace roadslam::sources

@@ -9,11 +9,18 @@
 /// after a SIGKILL or a power cut a reader decodes every object written before the last sync
 /// flush and then sees a truncated stream (no gzip trailer). close() writes the trailer.
 /// Segments concatenate: `cat grab_*.rawlog > all.rawlog` is a valid multi-member gzip rawlog.
+///
+/// Each closed segment gets its index sidecar "<segment>.idx" (sources::RawlogIndexRecorder: every
+/// observation's offset, size, time, label and class, and a gzip access point at the sync flushes
+/// every 4 MB), so the first open of a recording (roadslam-view) reads the sidecar, not the whole
+/// file. A segment cut short by a crash has none and is indexed when opened.
 
 #include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
+
+#include "roadslam/sources/rawlog_index.h"
 
 namespace mrpt::serialization {
 class CSerializable;
@@ -40,7 +47,8 @@ class SegmentWriter {
   void write(const mrpt::serialization::CSerializable& obj, double now_s);
   /// Z_SYNC_FLUSH of the current segment, handed to the kernel with write(2) (see the file comment).
   void syncFlush();
-  /// Writes the gzip trailer of the current segment and closes it; idempotent.
+  /// Writes the gzip trailer of the current segment, closes it and writes its index sidecar;
+  /// idempotent. Throws naming the segment when either fails.
   void close();
 
   const std::vector<std::string>& segments() const { return segments_; }  ///< paths so far
@@ -62,6 +70,9 @@ class SegmentWriter {
   bool first_ = true;
   std::vector<std::string> segments_;
   std::uint64_t objects_ = 0, raw_bytes_ = 0, closed_bytes_ = 0;
+  std::uint64_t segment_raw_ = 0;          // uncompressed bytes of the current segment
+  std::vector<std::uint8_t> history_;      // its last 32 KiB, circular: the access points' dictionary
+  sources::RawlogIndexRecorder index_;
 };
 
 }  // namespace roadslam::grabber

@@ -15,6 +15,7 @@
 ///
 /// Not thread-safe: load() moves the single read position.
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -24,6 +25,10 @@
 #include <vector>
 
 #include "roadslam/sources/observation_index.h"
+
+namespace mrpt::obs {
+class CObservation;
+}
 
 namespace roadslam::sources {
 
@@ -89,6 +94,7 @@ class RawlogIndex : public ObservationIndex {
 
  private:
   friend class BackgroundRawlogIndex;
+  friend class RawlogIndexRecorder;
   struct Impl;
   /// open(), reporting the index as it grows: \p progress runs on the calling thread every few
   /// records; returning false abandons the build (nullptr is returned, no sidecar written).
@@ -96,6 +102,37 @@ class RawlogIndex : public ObservationIndex {
                                            const std::function<bool(const Impl&)>& progress);
   explicit RawlogIndex(std::unique_ptr<Impl> impl);
   std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace roadslam::sources
+
+namespace roadslam::sources {
+
+/// The index of a gzip rawlog kept by the program that writes it (roadslam-grab's segments), written
+/// as the "<rawlog>.idx" sidecar RawlogIndex reads, so even the first open of a recording reads the
+/// sidecar instead of the whole file. The writer reports each record and, after each gzip
+/// Z_SYNC_FLUSH (the stream is byte-aligned at a block boundary there: RFC 1951, 3.2.4), an access
+/// point with the 32 KiB of data before it.
+class RawlogIndexRecorder {
+ public:
+  RawlogIndexRecorder();
+  ~RawlogIndexRecorder();
+  /// \p obs was serialized as the record at uncompressed \p offset, \p size bytes long [bytes].
+  void add(uint64_t offset, uint64_t size, const mrpt::obs::CObservation& obs);
+  /// After a sync flush: \p out uncompressed bytes written, \p in compressed bytes in the file,
+  /// \p window the last 32768 uncompressed bytes. Points closer than \p span_bytes to the last
+  /// one are not kept.
+  void addAccessPoint(uint64_t out, uint64_t in, const uint8_t* window, uint64_t span_bytes = 4u << 20);
+  /// Writes the sidecar of the closed rawlog \p rawlog_path (\p uncompressed bytes in all),
+  /// stamped with its size and modification time; throws naming the file on failure.
+  void write(const std::string& rawlog_path, uint64_t uncompressed) const;
+  /// Forgets everything (the next segment).
+  void clear();
+
+ private:
+  std::unique_ptr<RawlogIndex::Impl> impl_;
+  std::vector<std::array<uint64_t, 2>> points_out_in_;
+  std::vector<std::vector<uint8_t>> windows_z_;
 };
 
 }  // namespace roadslam::sources
