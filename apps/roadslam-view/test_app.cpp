@@ -501,11 +501,16 @@ TEST(RoadslamViewLive, GrabIniWithCanShowsAndRecords) {
   EXPECT_GE(observations, shown) << "the recording holds what was shown, and what came until it stopped";
   EXPECT_GT(odometry, 0u);
   EXPECT_GE(sweeps, 19u);
-  // the session folder replays as one recording, its segments in order
-  const AppRun replay = run(rec.string() + " --render " + (dir / "session.png").string() + " --at 1 --size 320x240");
+  // the session folder replays as one recording, its segments in order, and the odometry runs on it
+  // (a sequence waits for the odometry to finish the whole recording)
+  const AppRun replay = run(rec.string() + " --render-sequence " + (dir / "session").string() + " --every 50 --size 320x240" +
+                            " --run-slam " + src + "/ini/default.ini");
   ASSERT_EQ(replay.status, 0) << replay.out;
   EXPECT_EQ(liveObservations(replay.out, rec.string()), observations) << replay.out;
   EXPECT_NE(replay.out.find("(" + std::to_string(segments) + " segments)"), std::string::npos) << replay.out;
+  const auto slam = replay.out.find("odometry (--run-slam): ");
+  ASSERT_NE(slam, std::string::npos) << replay.out;
+  EXPECT_GE(std::stoul(replay.out.substr(slam + 23)), sweeps - 1) << "every sweep of every segment: " << replay.out;
   EXPECT_TRUE(fs::exists(rec / "summary.json")) << "recorded as roadslam-grab records";
   const int green = speedCurvePixels(png);
   EXPECT_GT(green, 10) << "the speed curve under the view";

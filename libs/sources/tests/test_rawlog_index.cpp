@@ -3,6 +3,7 @@
 // indexed up to the damage, unknown classes listed and skipped.
 #include <gtest/gtest.h>
 
+#include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/io/CFileGZInputStream.h>
 #include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/io/CFileOutputStream.h>
@@ -24,6 +25,7 @@
 #include "roadslam/sources/background_rawlog_index.h"
 #include "roadslam/sources/rawlog_index.h"
 #include "roadslam/sources/rawlog_session.h"
+#include "roadslam/sources/scan_source.h"
 #include "roadslam/sources/rawlog_writer.h"
 #include "test_packets.h"
 
@@ -424,4 +426,23 @@ TEST(RawlogSession, SegmentsReadAsTheirConcatenation) {
   }
   EXPECT_THROW(RawlogSession::open({}), std::runtime_error);
   EXPECT_TRUE(RawlogSession::segmentsOf((tempDir() / "nope").string()).empty());
+
+  // the jobs' input: the session folder gives the sweeps of the joined file, point for point
+  mrpt::config::CConfigFileMemory no_ini;
+  auto a = openScanSource(dir.string(), no_ini), b = openScanSource(all.string(), no_ini);
+  EXPECT_NE(a->describe().find("(3 segments)"), std::string::npos) << a->describe();
+  std::size_t sweeps = 0;
+  for (;;) {
+    auto sa = a->next(), sb = b->next();
+    ASSERT_EQ(sa.has_value(), sb.has_value()) << "sweep " << sweeps;
+    if (!sa) break;
+    ++sweeps;
+    ASSERT_EQ(sa->stamp_s, sb->stamp_s) << "sweep " << sweeps;
+    ASSERT_EQ(sa->points.size(), sb->points.size()) << "sweep " << sweeps;
+    for (std::size_t k = 0; k < sa->points.size(); k += 97) ASSERT_EQ(sa->points[k].x, sb->points[k].x);
+  }
+  EXPECT_GE(sweeps, 89u) << "90 sweeps written, the last may be partial";
+  EXPECT_TRUE(a->finished());
+  EXPECT_EQ(a->stats().packets, b->stats().packets);
+  EXPECT_TRUE(a->errorMessage().empty()) << a->errorMessage();
 }

@@ -164,9 +164,6 @@ int runView(const ViewRequest& req, std::ostream& out, std::ostream& err) {
     out << line << "\n";
   }
   std::unique_ptr<LiveSlam> slam;
-  if (!req.run_slam_ini.empty() && std::filesystem::is_directory(in.recording))
-    throw std::runtime_error("--run-slam reads one rawlog, not the session folder '" + in.recording +
-                             "': give a segment, or join them (cat grab_*.rawlog > all.rawlog: segments are gzip members)");
   if (!req.run_slam_ini.empty()) slam = std::make_unique<LiveSlam>(req.run_slam_ini, in.recording, model);
   Replay replay(model);
   replay.options().color_by = req.color_by;

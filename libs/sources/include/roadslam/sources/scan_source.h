@@ -54,7 +54,8 @@ class ScanSource {
 };
 
 /// Opens the recording \p path by what it is: a .pcap/.pcapng (Velodyne UDP capture), a .rawlog or
-/// .gz (MRPT, CObservationVelodyneScan packets), or a folder of KITTI NNNNNN.bin sweeps. The decoder
+/// .gz (MRPT, CObservationVelodyneScan packets), a roadslam-grab session folder (its rawlog segments
+/// read in order: segmented_source.h), or a folder of KITTI NNNNNN.bin sweeps. The decoder
 /// reads the [velodyne] section of \p cfg (model, calibration, ...), a KITTI folder the [kitti]
 /// section (datasets::KittiParams). \p times_path: the times file of a KITTI folder (one stamp [s]
 /// per line) when it is not times.txt beside the .bin files or one level up; empty = search there.
