@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -537,4 +538,44 @@ TEST(RoadslamViewWindow, LiveWindowShowsTheSweepsAsTheyArrive) {
   ASSERT_TRUE(a.loadFromFile(shot.string()));
   EXPECT_GT(count(a, 0, 40, 480, 350).coloured, 300) << "sweep points in the 3D view";
   EXPECT_GT(count(a, 500, 60, 960, 480).bright, 1500) << "observation rows";
+}
+
+// --run-slam on a live sensor: the odometry runs on the sweeps as they arrive. Oracle: roadslam-map
+// over the simulator's pcap of the same stream; the live frames are the same poses (the packets are
+// the same bytes; only their host receive stamps differ from the capture's).
+TEST(RoadslamViewLive, OdometryOnTheLiveSensorEqualsTheRecordedRun) {
+  const auto& f = fixture();
+  const fs::path dir = f.dir / "live_slam";
+  fs::create_directories(dir);
+  const std::string bin = fs::path(kBin).parent_path().string(), src = ROADSLAM_SOURCE_DIR;
+  const int port = freeUdpPort();
+  const auto [view, sent] = viewWhileStreaming("--udp " + std::to_string(port) + " --run-slam " + src +
+                                                   "/ini/default.ini --render " + (dir / "slam.png").string() +
+                                                   " --size 320x240 --sweeps 32 --timeout 10",
+                                               "", port, dir / "sim", 0.7, 4.5);
+  ASSERT_EQ(view.status, 0) << view.out;
+  const auto at = view.out.find("odometry (--run-slam): ");
+  ASSERT_NE(at, std::string::npos) << view.out;
+  std::size_t sweeps = 0, frames = 0;
+  double x = 0, y = 0, z = 0;
+  ASSERT_EQ(std::sscanf(view.out.c_str() + at, "odometry (--run-slam): %zu sweeps, %zu frames posted, the last at %lf %lf %lf m",
+                        &sweeps, &frames, &x, &y, &z), 5) << view.out;
+  EXPECT_GE(frames, 31u) << view.out;
+  ASSERT_EQ(std::system((bin + "/roadslam-map --config " + src + "/ini/default.ini --input " + (dir / "sim/velodyne.pcap").string() +
+                         " --out " + (dir / "map").string() + " --quiet").c_str()), 0);
+  std::ifstream tum(dir / "map/trajectory_odometry.tum");
+  std::vector<std::array<double, 3>> poses;
+  for (std::string line; std::getline(tum, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream ss(line);
+    double t, px, py, pz;
+    ss >> t >> px >> py >> pz;
+    poses.push_back({px, py, pz});
+  }
+  ASSERT_GE(poses.size(), frames);
+  const auto& p = poses[frames - 1];
+  EXPECT_NEAR(x, p[0], 0.01) << "frame " << frames - 1;
+  EXPECT_NEAR(y, p[1], 0.01);
+  EXPECT_NEAR(z, p[2], 0.01);
+  EXPECT_GT(std::hypot(p[0], p[1]), 0.5) << "the car moved (it starts from standing)";
 }

@@ -65,6 +65,8 @@ Pipeline::Pipeline(std::unique_ptr<sources::ScanSource> source, Stages stages)
 
 Pipeline::~Pipeline() = default;
 
+bool Pipeline::finished() const { return source_->finished(); }
+
 std::optional<PipelineFrame> Pipeline::next() {
   PipelineFrame f;
   auto t = Clock::now();

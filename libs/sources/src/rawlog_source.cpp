@@ -105,20 +105,8 @@ bool RawlogPacketSource::readMore() {
   if (auto v = std::dynamic_pointer_cast<CObservationVelodyneScan>(obs)) {
     ++scans_;
     scan_label_ = v->sensorLabel;
-    const auto t0 = v->originalReceivedTimestamp != INVALID_TIMESTAMP ? v->originalReceivedTimestamp
-                                                                       : v->timestamp;
-    const double stamp0 = mrpt::Clock::toDouble(t0);
-    const double counter0 = v->scan_packets.empty() ? 0 : packetCounter_us(v->scan_packets[0]) * 1e-6;
-    for (const auto& raw : v->scan_packets) {
-      velodyne::RawPacket pkt;
-      double dt = packetCounter_us(raw) * 1e-6 - counter0;
-      if (dt < -kHour_s / 2) dt += kHour_s;  // sensor counter wraps at the top of the hour
-      pkt.stamp_s = stamp0 + dt;
-      pkt.dst_port = ports_.data_port;
-      const auto* b = reinterpret_cast<const uint8_t*>(&raw);
-      pkt.payload.assign(b, b + velodyne::kDataPacketSize);
+    for (auto& pkt : packetsOfScan(*v, ports_.data_port))
       if (accountPacket(ports_, pkt, stats_, gaps_)) queue_.push_back(std::move(pkt));
-    }
   } else if (auto g = std::dynamic_pointer_cast<mrpt::obs::CObservationGPS>(obs)) {
     if (g->hasMsgClass<mrpt::obs::gnss::Message_NMEA_RMC>()) {
       gps_.push_back(fixFromObservation(*g));
@@ -152,6 +140,25 @@ std::optional<velodyne::RawPacket> RawlogPacketSource::next() {
   velodyne::RawPacket p = std::move(queue_.front());
   queue_.pop_front();
   return p;
+}
+
+std::vector<velodyne::RawPacket> packetsOfScan(const CObservationVelodyneScan& v, uint16_t data_port) {
+  const auto t0 = v.originalReceivedTimestamp != INVALID_TIMESTAMP ? v.originalReceivedTimestamp : v.timestamp;
+  const double stamp0 = mrpt::Clock::toDouble(t0);
+  const double counter0 = v.scan_packets.empty() ? 0 : packetCounter_us(v.scan_packets[0]) * 1e-6;
+  std::vector<velodyne::RawPacket> out;
+  out.reserve(v.scan_packets.size());
+  for (const auto& raw : v.scan_packets) {
+    velodyne::RawPacket pkt;
+    double dt = packetCounter_us(raw) * 1e-6 - counter0;
+    if (dt < -kHour_s / 2) dt += kHour_s;  // sensor counter wraps at the top of the hour
+    pkt.stamp_s = stamp0 + dt;
+    pkt.dst_port = data_port;
+    const auto* b = reinterpret_cast<const uint8_t*>(&raw);
+    pkt.payload.assign(b, b + velodyne::kDataPacketSize);
+    out.push_back(std::move(pkt));
+  }
+  return out;
 }
 
 }  // namespace roadslam::sources

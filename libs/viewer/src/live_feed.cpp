@@ -22,10 +22,13 @@ grabber::GrabParams liveParams(const LiveRequest& req) {
   return p;
 }
 
-LiveFeed::LiveFeed(const LiveRequest& req, sources::LiveObservations& sink) {
+LiveFeed::LiveFeed(const LiveRequest& req, sources::LiveObservations& sink, grabber::ObservationTap also) {
   const auto params = liveParams(req);
   grabber_ = std::make_unique<grabber::Grabber>(params, req.record_dir);
-  grabber_->setObservationTap([&sink](const std::shared_ptr<mrpt::obs::CObservation>& o) { sink.post(o); });
+  grabber_->setObservationTap([&sink, also](const std::shared_ptr<mrpt::obs::CObservation>& o) {
+    sink.post(o);
+    if (also) also(o);
+  });
   if (req.grab_ini.empty()) name_ = "UDP port " + std::to_string(grabber_->dataPort(0));
   else name_ = "grab ini " + req.grab_ini;
   if (!req.record_dir.empty()) name_ += ", recording into " + req.record_dir;

@@ -1,37 +1,73 @@
 #include "roadslam/viewer/live_slam.h"
 
+#include <algorithm>
 #include <chrono>
 
 #include "roadslam/common/config.h"
 #include "roadslam/datasets/kitti_scans.h"
 #include "roadslam/pipeline/pipeline.h"
+#include "roadslam/sources/observation_packet_source.h"
+#include "roadslam/sources/sweep_source.h"
 #include "roadslam/velodyne/decoder_params.h"
 
 namespace roadslam::viewer {
 
 struct LiveSlam::Impl {
   std::unique_ptr<pipeline::Pipeline> pipe;
+  sources::ObservationPacketSource* live = nullptr;  // owned by the pipeline's source
 };
+
+namespace {
+// The config, with the keys of every component the odometry's source and stage read checked.
+struct Config {
+  std::unique_ptr<CheckedConfig> cfg;
+  odometry::Params odometry;
+  velodyne::DecoderParams decoder;
+  explicit Config(const std::string& path) : cfg(loadIniFile(path)) {
+    odometry.loadFromConfigFile(*cfg);
+    decoder.loadFromConfigFile(*cfg, "velodyne");
+    datasets::KittiParams kp;  // read by a KITTI source; loaded so that its keys are checked too
+    kp.loadFromConfigFile(*cfg, "kitti");
+  }
+};
+}  // namespace
 
 LiveSlam::LiveSlam(const std::string& config_ini, const std::string& recording, ViewerModel& model)
     : model_(model), impl_(std::make_unique<Impl>()) {
-  const auto cfg = loadIniFile(config_ini);
-  odometry::Params op;
-  op.loadFromConfigFile(*cfg);
-  velodyne::DecoderParams dp;  // read by the source; loaded here so that its keys are checked too
-  dp.loadFromConfigFile(*cfg, "velodyne");
-  datasets::KittiParams kp;
-  kp.loadFromConfigFile(*cfg, "kitti");
-  auto source = pipeline::openNonEmptySource(recording, *cfg);
-  cfg->checkEntries(false);
+  Config c(config_ini);
+  auto source = pipeline::openNonEmptySource(recording, *c.cfg);
+  c.cfg->checkEntries(false);
   pipeline::Stages stages;
-  stages.poses = std::make_unique<pipeline::OdometryPoses>(op, false);
+  stages.poses = std::make_unique<pipeline::OdometryPoses>(c.odometry, false);
   impl_->pipe = std::make_unique<pipeline::Pipeline>(std::move(source), std::move(stages));
   thread_ = std::thread([this] { run(*impl_); });
 }
 
+LiveSlam::LiveSlam(const std::string& config_ini, const std::string& sensor_label, const std::string& name,
+                   ViewerModel& model)
+    : model_(model), impl_(std::make_unique<Impl>()) {
+  Config c(config_ini);
+  c.cfg->checkEntries(false);
+  auto packets = std::make_unique<sources::ObservationPacketSource>(sensor_label, name);
+  impl_->live = packets.get();
+  auto sweeps = std::make_unique<sources::SweepSource>(std::move(packets), c.decoder);
+  pipeline::Stages stages;
+  stages.poses = std::make_unique<pipeline::OdometryPoses>(c.odometry, false);
+  impl_->pipe = std::make_unique<pipeline::Pipeline>(std::move(sweeps), std::move(stages));
+  thread_ = std::thread([this] { run(*impl_); });
+}
+
+void LiveSlam::post(const std::shared_ptr<mrpt::obs::CObservation>& obs) {
+  if (impl_->live) impl_->live->post(obs);
+}
+
+void LiveSlam::close() {
+  if (impl_->live) impl_->live->close();
+}
+
 LiveSlam::~LiveSlam() {
   stop_ = true;
+  close();
   if (thread_.joinable()) thread_.join();
 }
 
@@ -39,7 +75,8 @@ void LiveSlam::run(Impl& impl) {
   try {
     while (!stop_) {
       const auto f = impl.pipe->next();
-      if (!f) break;
+      if (!f && impl.pipe->finished()) break;
+      if (!f) continue;  // live: no sweep ready yet
       const auto& r = *f->pose.odometry;
       FrameResult out;
       out.stamp_s = r.stamp_s;
@@ -59,8 +96,13 @@ void LiveSlam::run(Impl& impl) {
   done_ = true;
 }
 
-void LiveSlam::waitUntil(double t_s) {
-  while (!done_ && last_stamp_s_ < t_s) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+bool LiveSlam::waitUntil(double t_s, double timeout_s) {
+  const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(std::min(timeout_s, 1e7));
+  while (!done_ && last_stamp_s_ < t_s) {
+    if (std::chrono::steady_clock::now() > until) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  return true;
 }
 
 std::string LiveSlam::error() const {

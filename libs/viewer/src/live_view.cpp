@@ -1,8 +1,10 @@
 // roadslam-view --udp / --grab: the live view (live_feed.h) in the window, or one headless render.
 #include <chrono>
+#include <cstdio>
 #include <thread>
 
 #include "roadslam/viewer/app.h"
+#include "roadslam/viewer/live_slam.h"
 #include "roadslam/viewer/render.h"
 #include "roadslam/viewer/replay.h"
 #include "roadslam/viewer/window.h"
@@ -37,7 +39,6 @@ std::size_t waitForSweeps(ViewerModel& model, std::size_t wanted, double timeout
 int runLiveView(const ViewRequest& req, std::ostream& out, std::ostream& err) {
   if (!req.sequence_dir.empty() || !req.video.empty())
     throw std::runtime_error("--render-sequence and --video need a recording; a live view renders one picture (--render)");
-  if (!req.run_slam_ini.empty()) throw std::runtime_error("--run-slam replays a recording; it does not run on a live view");
   if (!req.inputs.map_dir.empty() || !req.inputs.bounds_dir.empty() || !req.inputs.ground_truth.empty() ||
       !req.inputs.can_log.empty())
     throw std::runtime_error("--map, --bounds, --gt and --can belong to a recording, not to a live view");
@@ -51,8 +52,14 @@ int runLiveView(const ViewRequest& req, std::ostream& out, std::ostream& err) {
   ViewerInputs in = req.inputs;
   in.recording = req.live.grab_ini.empty() ? "udp:" + std::to_string(req.live.udp_port) : req.live.grab_ini;
   ViewerModel model(in, std::move(live));
-  LiveFeed feed(req.live, sink);  // declared after the model: stopped before it goes
-  err << "roadslam-view: live from " << feed.name() << "\n";
+  std::unique_ptr<LiveSlam> slam;  // the odometry on the first LiDAR's sweeps, as they arrive
+  if (!req.run_slam_ini.empty())
+    slam = std::make_unique<LiveSlam>(req.run_slam_ini, LiveFeed::firstSensorLabel(req.live), in.recording, model);
+  LiveSlam* odometry = slam.get();
+  LiveFeed feed(req.live, sink, [odometry](const std::shared_ptr<mrpt::obs::CObservation>& o) {
+    if (odometry) odometry->post(o);
+  });  // declared after the model and the odometry: stopped before they go
+  err << "roadslam-view: live from " << feed.name() << (slam ? ", odometry running" : "") << "\n";
   Replay replay(model);
   replay.options().color_by = req.color_by;
   replay.options().camera = req.camera;
@@ -61,6 +68,7 @@ int runLiveView(const ViewRequest& req, std::ostream& out, std::ostream& err) {
     const int code = runWindow(replay, window, out, err);
     feed.stop();
     out << feed.statusLine() << "\n";
+    if (slam) out << "odometry (--run-slam): " << slam->frames() << " sweeps\n";
     return code;
   }
   const std::size_t sweeps = waitForSweeps(model, req.live_sweeps, req.live_timeout_s);
@@ -74,6 +82,19 @@ int runLiveView(const ViewRequest& req, std::ostream& out, std::ostream& err) {
   if (sweeps < req.live_sweeps)
     err << "roadslam-view: warning: " << sweeps << " of " << req.live_sweeps << " sweeps within " << req.live_timeout_s
         << " s\n";
+  if (slam) {  // the odometry catches up with the newest sweep (it needs the next one to close it)
+    slam->waitUntil(model.endTime() - 0.15, 5.0);
+    model.takePosted();
+    out << "odometry (--run-slam): " << slam->frames() << " sweeps, " << model.frames().size() << " frames posted";
+    if (!model.frames().empty()) {
+      const Eigen::Vector3d p = model.frames().back().T_map_lidar.translation();
+      char at[120];
+      std::snprintf(at, sizeof at, ", the last at %.3f %.3f %.3f m", p.x(), p.y(), p.z());
+      out << at;
+    }
+    out << "\n";
+    if (!slam->error().empty()) err << "roadslam-view: warning: the odometry stopped: " << slam->error() << "\n";
+  }
   out << summaryLine(model) << "\n";
   replay.advance(0);  // to the live edge
   PngRenderer renderer(w, h);

@@ -79,6 +79,9 @@ class Pipeline {
   /// came within the source's timeout: source().finished() tells them apart). Per-sweep problems come
   /// back in the frame (no pose, a failed registration); only a broken invariant throws.
   std::optional<PipelineFrame> next();
+  /// True once the source is exhausted (a live source: after it was closed and drained); a nullopt
+  /// from next() before that only means no sweep was ready yet.
+  bool finished() const;
 
   sources::ScanSource& source() { return *source_; }
   const sources::ScanSource& source() const { return *source_; }

@@ -13,7 +13,16 @@
 #include "roadslam/sources/gps_fix.h"
 #include "roadslam/sources/packet_source.h"
 
+namespace mrpt::obs {
+class CObservationVelodyneScan;
+}
+
 namespace roadslam::sources {
+
+/// The data packets of a recorded sweep, byte for byte, addressed to \p data_port and stamped as
+/// recorded: the observation's originalReceivedTimestamp (else timestamp) for the first, plus the
+/// sensor counter's advance (wrapping at the hour) for the following ones.
+std::vector<velodyne::RawPacket> packetsOfScan(const mrpt::obs::CObservationVelodyneScan& v, uint16_t data_port);
 
 class RawlogPacketSource : public PacketSource {
  public:

@@ -26,15 +26,17 @@ grabber::GrabParams liveParams(const LiveRequest& req);
 
 class LiveFeed {
  public:
-  /// Opens the sockets (and the CAN source) and starts receiving into \p sink; throws naming the
-  /// port, interface or file that cannot be opened.
-  LiveFeed(const LiveRequest& req, sources::LiveObservations& sink);
+  /// Opens the sockets (and the CAN source) and starts receiving into \p sink (and \p also, e.g. the
+  /// live odometry); throws naming the port, interface or file that cannot be opened.
+  LiveFeed(const LiveRequest& req, sources::LiveObservations& sink, grabber::ObservationTap also = {});
   ~LiveFeed();  ///< stops (and, recording, closes the session's files)
   LiveFeed(const LiveFeed&) = delete;
   LiveFeed& operator=(const LiveFeed&) = delete;
 
   /// "UDP port 2368" or "grab ini PATH" (+ ", recording into DIR").
   const std::string& name() const { return name_; }
+  /// The sensor label of the first LiDAR (the one a live odometry follows).
+  static std::string firstSensorLabel(const LiveRequest& req) { return liveParams(req).sensors.at(0).scan.sensor_label; }
   /// The grabber's one-line status (packets, sweeps, CAN frames, drops, silent sensors).
   std::string statusLine();
   grabber::GrabStatus status() { return grabber_->status(); }

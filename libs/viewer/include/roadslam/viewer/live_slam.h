@@ -11,6 +11,10 @@
 
 #include "roadslam/viewer/model.h"
 
+namespace mrpt::obs {
+class CObservation;
+}
+
 namespace roadslam::viewer {
 
 class LiveSlam {
@@ -18,14 +22,22 @@ class LiveSlam {
   /// Checks \p config_ini (unknown keys: an error with file and line) and opens the recording
   /// before returning; throws std::runtime_error naming the file on a problem. Then runs on a thread.
   LiveSlam(const std::string& config_ini, const std::string& recording, ViewerModel& model);
+  /// The odometry on a live sensor: \p sensor_label's sweeps as the live view's grabber taps them
+  /// (post them with post(); close() once the feed stopped). Decoded with the config's [velodyne].
+  LiveSlam(const std::string& config_ini, const std::string& sensor_label, const std::string& name, ViewerModel& model);
+  /// Live: hands an observation to the odometry's source (thread-safe; others than the sensor's
+  /// sweeps are ignored).
+  void post(const std::shared_ptr<mrpt::obs::CObservation>& obs);
+  /// Live: no more observations; the odometry finishes what it has.
+  void close();
   /// Stops the odometry between two sweeps and joins.
   ~LiveSlam();
   LiveSlam(const LiveSlam&) = delete;
   LiveSlam& operator=(const LiveSlam&) = delete;
 
   /// Blocks until a frame stamped at or after \p t_s was posted, or the recording ended (headless
-  /// renders of a time).
-  void waitUntil(double t_s);
+  /// renders of a time), or \p timeout_s passed; false on the timeout.
+  bool waitUntil(double t_s, double timeout_s = 1e9);
   bool done() const { return done_; }
   std::size_t frames() const { return frames_; }
   /// The problem that stopped the odometry, if one did (empty otherwise).
