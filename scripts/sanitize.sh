@@ -12,7 +12,7 @@ echo "== configuring and building the apps with -fsanitize=address,undefined in 
 cmake -S . -B "$SAN_DIR" -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O0 -g1" \
   -DROADSLAM_SANITIZE=ON -DROADSLAM_BUILD_TESTS=OFF -DROADSLAM_BUILD_BENCH=OFF > "$SAN_DIR/sanitize-configure.log"
 if ! cmake --build "$SAN_DIR" -j"$(nproc)" --target roadslam-map roadslam-bounds roadslam-can roadslam-rawlog \
-  roadslam-eval roadslam-sim roadslam-grab roadslam-experiment roadslam-report > "$SAN_DIR/sanitize-build.log" 2>&1; then
+  roadslam-eval roadslam-sim roadslam-grab roadslam-experiment roadslam-report roadslam-view > "$SAN_DIR/sanitize-build.log" 2>&1; then
   tail -30 "$SAN_DIR/sanitize-build.log"
   exit 1
 fi
