@@ -52,6 +52,9 @@ ObjectsFrame ObjectsStage::process(const Scan& scan, const Eigen::Isometry3d& T_
     f.object_track[static_cast<size_t>(t.last_detection)] = t.id;
     f.object_moving[static_cast<size_t>(t.last_detection)] = t.moving;
   }
+  for (const Track& t : tracker_.tracks()) {
+    if (t.moving && t.moving_since == t_s) f.retro.insert(f.retro.end(), t.history.begin(), t.history.end());
+  }
   f.ms_track = msSince(t0);
   f.objects = std::move(objs);
   f.stats = st;
@@ -84,6 +87,12 @@ size_t removeMovingPoints(std::vector<Eigen::Vector3d>& pts_lidar, const Objects
   };
   pts_lidar.erase(std::remove_if(pts_lidar.begin(), pts_lidar.end(), inside), pts_lidar.end());
   return before - pts_lidar.size();
+}
+
+bool insideBox(const BoxRecord& b, const Eigen::Vector3d& p_map, double margin_m) {
+  const double c = std::cos(b.yaw), s = std::sin(b.yaw), dx = p_map.x() - b.centre.x(), dy = p_map.y() - b.centre.y();
+  return std::abs(c * dx + s * dy) <= 0.5 * b.length + margin_m && std::abs(-s * dx + c * dy) <= 0.5 * b.width + margin_m &&
+         p_map.z() >= b.z_min - margin_m && p_map.z() <= b.z_max + margin_m;
 }
 
 std::string objectsCsvHeader() { return "frame,stamp_s,object,cx,cy,yaw_rad,length_m,width_m,z_min,z_max,points,track_id\n"; }

@@ -8,14 +8,23 @@ namespace roadslam::objects {
 namespace {
 
 constexpr double kUnassignable = 1e9;  // cost of a gated-out pair in the assignment
+constexpr double kInitHeadingSigma_rad = 0.35;  // CTRV: a new track heads along its box (v signed covers the ends)
 
 /// A detection in the map frame: its box's corners (x-y) and heading of its length axis.
 struct Detection {
   std::array<Eigen::Vector2d, 4> corners;
   Eigen::Vector2d centre;
   double yaw = 0;
+  double length = 0, width = 0;
   double z_min = 0, z_max = 0;
 };
+
+constexpr size_t kHistoryMax = 100;  // 10 s of detections at 10 Hz before a track is labelled moving
+
+void remember(Track& tr, const Detection& d, double t) {
+  if (tr.moving_since >= 0 || tr.history.size() >= kHistoryMax) return;
+  tr.history.push_back({t, d.centre, d.yaw, d.length, d.width, d.z_min, d.z_max});
+}
 
 Detection toMap(const Object& o, const Eigen::Isometry3d& T_map_lidar) {
   Detection d;
@@ -29,6 +38,7 @@ Detection toMap(const Object& o, const Eigen::Isometry3d& T_map_lidar) {
   d.centre = (T_map_lidar * Eigen::Vector3d(c.x(), c.y(), 0)).head<2>();
   const Eigen::Vector3d um = T_map_lidar.linear() * Eigen::Vector3d(u.x(), u.y(), 0);
   d.yaw = std::atan2(um.y(), um.x());
+  d.length = b.length, d.width = b.width;
   const double z0 = T_map_lidar.translation().z();
   d.z_min = o.z_min + z0, d.z_max = o.z_max + z0;
   return d;
@@ -60,7 +70,74 @@ Completed complete(const Detection& d, double h, double L, double W, const Eigen
 
 double wrapPi(double a) { return std::atan2(std::sin(a), std::cos(a)); }
 
+using Vec5 = Eigen::Matrix<double, 5, 1>;
+using Mat5 = Eigen::Matrix<double, 5, 5>;
+
+/// CTRV motion over \p dt (Schubert et al. 2008, eq. 9; the straight-line limit when omega ~ 0).
+Vec5 ctrvMove(const Vec5& s, double dt) {
+  Vec5 o = s;
+  const double v = s(2), psi = s(3), w = s(4);
+  if (std::abs(w) > 1e-4) {
+    o(0) += v / w * (std::sin(psi + w * dt) - std::sin(psi));
+    o(1) += v / w * (std::cos(psi) - std::cos(psi + w * dt));
+  } else {
+    o(0) += v * std::cos(psi) * dt;
+    o(1) += v * std::sin(psi) * dt;
+  }
+  o(3) = wrapPi(psi + w * dt);
+  return o;
+}
+
+/// The CV view [x, y, vx, vy] of a CTRV state and its covariance (first-order).
+void ctrvView(Track& tr) {
+  const double v = tr.s(2), c = std::cos(tr.s(3)), sn = std::sin(tr.s(3));
+  tr.x << tr.s(0), tr.s(1), v * c, v * sn;
+  Eigen::Matrix<double, 4, 5> J = Eigen::Matrix<double, 4, 5>::Zero();
+  J(0, 0) = J(1, 1) = 1;
+  J(2, 2) = c, J(2, 3) = -v * sn;
+  J(3, 2) = sn, J(3, 3) = v * c;
+  tr.P = J * tr.S * J.transpose();
+}
+
 }  // namespace
+
+void Tracker::predictCtrv(Track& tr, double dt) const {
+  // F: numerical Jacobian of ctrvMove (central differences)
+  Mat5 F;
+  for (int k = 0; k < 5; ++k) {
+    Vec5 d = Vec5::Zero();
+    d(k) = 1e-6;
+    Vec5 diff = ctrvMove(tr.s + d, dt) - ctrvMove(tr.s - d, dt);
+    diff(3) = wrapPi(diff(3));
+    F.col(k) = diff / 2e-6;
+  }
+  // noise: longitudinal acceleration a and yaw acceleration alpha, G = d(state)/d(a, alpha)
+  Eigen::Matrix<double, 5, 2> G = Eigen::Matrix<double, 5, 2>::Zero();
+  G(0, 0) = 0.5 * dt * dt * std::cos(tr.s(3)), G(1, 0) = 0.5 * dt * dt * std::sin(tr.s(3)), G(2, 0) = dt;
+  G(3, 1) = 0.5 * dt * dt, G(4, 1) = dt;
+  const Eigen::Vector2d q(p_.ctrv.accel_sigma_mps2 * p_.ctrv.accel_sigma_mps2,
+                          p_.ctrv.yaw_accel_sigma_radps2 * p_.ctrv.yaw_accel_sigma_radps2);
+  tr.s = ctrvMove(tr.s, dt);
+  tr.S = F * tr.S * F.transpose() + G * q.asDiagonal() * G.transpose();
+  ctrvView(tr);
+}
+
+void Tracker::correct(Track& tr, const Eigen::Vector2d& z) const {
+  const Eigen::Matrix2d R = Eigen::Matrix2d::Identity() * p_.meas_sigma_m * p_.meas_sigma_m;
+  if (p_.motion_model == MotionModel::Ctrv) {
+    // H = [I 0]: K = S H^T (H S H^T + R)^-1
+    const Eigen::Matrix<double, 5, 2> K = tr.S.leftCols<2>() * (tr.S.topLeftCorner<2, 2>() + R).inverse();
+    tr.s += K * (z - tr.s.head<2>());
+    tr.s(3) = wrapPi(tr.s(3));
+    tr.S = (Mat5::Identity() - K * Eigen::Matrix<double, 2, 5>::Identity()) * tr.S;
+    ctrvView(tr);
+    return;
+  }
+  // Kalman update with H = [I 0]: K = P H^T (H P H^T + R)^-1
+  const Eigen::Matrix<double, 4, 2> K = tr.P.leftCols<2>() * (tr.P.topLeftCorner<2, 2>() + R).inverse();
+  tr.x += K * (z - tr.x.head<2>());
+  tr.P = (Eigen::Matrix4d::Identity() - K * Eigen::Matrix<double, 2, 4>::Identity()) * tr.P;
+}
 
 void Tracker::predict(double t) {
   const double dt = std::max(0.0, t - t_);
@@ -74,6 +151,10 @@ void Tracker::predict(double t) {
   Q(0, 2) = Q(2, 0) = Q(1, 3) = Q(3, 1) = b;
   Q(2, 2) = Q(3, 3) = c;
   for (Track& tr : tracks_) {
+    if (p_.motion_model == MotionModel::Ctrv) {
+      if (dt > 0) predictCtrv(tr, dt);
+      continue;
+    }
     tr.x = F * tr.x;
     tr.P = F * tr.P * F.transpose() + Q;
   }
@@ -149,16 +230,12 @@ void Tracker::update(double t, const Eigen::Isometry3d& T_map_lidar, const std::
     }
     taken[static_cast<size_t>(j)] = true;
     const Completed& c = comp[i][static_cast<size_t>(j)];
-    // Kalman update with H = [I 0]: K = P H^T (H P H^T + R)^-1
-    const Eigen::Matrix<double, 4, 2> PHt = tr.P.leftCols<2>();
-    const Eigen::Matrix2d S = tr.P.topLeftCorner<2, 2>() + R;
-    const Eigen::Matrix<double, 4, 2> K = PHt * S.inverse();
-    tr.x += K * (c.centre - tr.x.head<2>());
-    tr.P = (Eigen::Matrix4d::Identity() - K * Eigen::Matrix<double, 2, 4>::Identity()) * tr.P;
+    correct(tr, c.centre);
     tr.length = std::max(tr.length, c.along);
     tr.width = std::max(tr.width, c.across);
     ++tr.hits, tr.misses = 0, tr.t_last = t, tr.last_detection = j;
     tr.z_min = dets[static_cast<size_t>(j)].z_min, tr.z_max = dets[static_cast<size_t>(j)].z_max;
+    remember(tr, dets[static_cast<size_t>(j)], t);
     if (tr.hits >= p_.confirm_hits) tr.state = TrackState::Confirmed;
     const double v = tr.speed();
     const double travel = (tr.x.head<2>() - tr.birth_xy).norm();
@@ -167,6 +244,7 @@ void Tracker::update(double t, const Eigen::Isometry3d& T_map_lidar, const std::
                              std::min(tr.length, tr.width) <= p_.moving_max_width_m &&
                              std::min(tr.length, tr.width) >= p_.moving_min_width_m;
       if (v > p_.moving_speed_mps && travel > p_.moving_min_travel_m && tr.hits >= p_.moving_min_hits && car_sized) {
+        if (tr.moving_since < 0) tr.moving_since = t;
         tr.moving = true;
       }
       if (v < 0.5 * p_.moving_speed_mps || !car_sized) tr.moving = false;
@@ -189,10 +267,17 @@ void Tracker::update(double t, const Eigen::Isometry3d& T_map_lidar, const std::
                            p_.init_speed_sigma_mps * p_.init_speed_sigma_mps)
                .asDiagonal();
     tr.heading = dets[j].yaw;
+    tr.s << dets[j].centre, 0, dets[j].yaw, 0;
+    tr.S = Vec5(p_.meas_sigma_m * p_.meas_sigma_m, p_.meas_sigma_m * p_.meas_sigma_m,
+                p_.init_speed_sigma_mps * p_.init_speed_sigma_mps, kInitHeadingSigma_rad * kInitHeadingSigma_rad,
+                p_.ctrv.init_yaw_rate_sigma_radps * p_.ctrv.init_yaw_rate_sigma_radps)
+               .asDiagonal();
+    if (p_.motion_model == MotionModel::Ctrv) ctrvView(tr);
     const Completed c = complete(dets[j], tr.heading, 0, 0, s);
     tr.length = c.along, tr.width = c.across;
     tr.z_min = dets[j].z_min, tr.z_max = dets[j].z_max;
     tr.hits = 1, tr.t_birth = tr.t_last = t, tr.birth_xy = dets[j].centre, tr.last_detection = static_cast<int>(j);
+    remember(tr, dets[j], t);
     if (tr.hits >= p_.confirm_hits) tr.state = TrackState::Confirmed;
     tracks_.push_back(tr);
   }

@@ -95,11 +95,13 @@ struct ObjectsOutput {
   std::vector<double> ms_ground;
   size_t n_objects = 0;
   size_t moving_points_removed = 0;
+  size_t retro_points_removed = 0;  ///< from earlier keyframes, when their track was labelled moving
   std::map<std::string, int> end_reasons;
 
   void add(const PipelineFrame& f, objects::ObjectsStage& stage) {
     if (!f.objects) return;
     moving_points_removed += f.moving_points_removed;
+    retro_points_removed += f.retro_points_removed;
     const objects::ObjectsFrame& o = *f.objects;
     const double t = f.pose.ok ? f.pose.t_ref : f.pose.stamp_s;  // the time the tracks are at
     if (f.pose.ok) {
@@ -127,7 +129,8 @@ struct ObjectsOutput {
     };
     int confirmed_alive = 0;
     for (const auto& t : stage.tracker().tracks()) confirmed_alive += t.state == objects::TrackState::Confirmed;
-    return {{"objects", n_objects}, {"tracks_alive_at_end", confirmed_alive}, {"moving_points_removed_from_maps", moving_points_removed}, {"tracks_ended", end_reasons},
+    return {{"objects", n_objects}, {"tracks_alive_at_end", confirmed_alive}, {"moving_points_removed_from_maps", moving_points_removed},
+            {"earlier_points_removed_from_keyframes", retro_points_removed}, {"tracks_ended", end_reasons},
             {"ms_segment_track_per_frame", stats(ms)}, {"ms_ground_per_frame", stats(ms_ground)}};
   }
 };
@@ -169,6 +172,8 @@ MapOutcome runMapJob(const MapRequest& req) {
   stages.octomap_keyframe_spacing_m = params.maps.octomap.keyframe_spacing_m;
   stages.objects = objects_stage.get();
   stages.remove_moving_from_maps = params.objects.remove_moving_from_maps;
+  stages.removal_margin_m = params.objects.removal_margin_m;
+  if (params.objects.enabled && params.objects.remove_moving_from_maps) stages.octomap_delay_s = params.objects.map_delay_s;
   Pipeline pipe(std::move(source), std::move(stages));
   const sources::ScanSource* stream = &pipe.source();
   ProgressBar bar("roadslam-map", stream->sizeHint());
@@ -181,6 +186,7 @@ MapOutcome runMapJob(const MapRequest& req) {
     out.frames.push_back(std::move(*f->pose.odometry));
     if (req.progress) bar.update(out.frames.size());
   }
+  pipe.flushMaps();
   bar.finish();
   out.interrupted = stopRequested();
   if (req.maps) {

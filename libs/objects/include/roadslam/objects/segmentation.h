@@ -43,7 +43,8 @@ Box2 fitLShape(const std::vector<Eigen::Vector2d>& xy, double step_rad);
 
 /// Objects among \p pts (lidar frame, sensor at the origin). \p height_above_ground_m (NaN where
 /// unknown: z + sensor height is used) and \p ground (1 = ground) come from
-/// preprocess::segmentGroundWithHeights. Points without rings (has_rings false) use the Euclidean method.
+/// preprocess::segmentGroundWithHeights. Points without rings (has_rings false) use the Euclidean method
+/// when the range image is asked for.
 std::vector<Object> segmentObjects(const std::vector<ScanPoint>& pts, bool has_rings, const std::vector<uint8_t>& ground,
                                    const std::vector<float>& height_above_ground_m, const ClusterParams& p,
                                    SegmentationStats* stats = nullptr);

@@ -26,6 +26,9 @@ struct ObjectsFrame {
   std::vector<Track> tracks;       ///< confirmed tracks after the update (map frame)
   std::vector<int> object_track;   ///< per object: the id of the track that took it, -1 none
   std::vector<char> object_moving; ///< per object: its track is labelled moving
+  /// Tracks labelled moving at this sweep: the boxes of the detections they took before (map frame,
+  /// with their sweep times), for taking their points out of the maps afterwards (retroactively).
+  std::vector<BoxRecord> retro;
   SegmentationStats stats;
   double ms_ground = 0, ms_segment = 0, ms_track = 0;  ///< wall time [ms]
 };
@@ -52,6 +55,9 @@ class ObjectsStage {
 /// Removes from \p pts_lidar (the sweep's points in the same lidar frame as \p f's objects) the points
 /// inside the boxes of \p f's moving objects grown by \p margin_m; returns how many it removed.
 size_t removeMovingPoints(std::vector<Eigen::Vector3d>& pts_lidar, const ObjectsFrame& f, double margin_m);
+
+/// Whether \p p_map (map frame) lies inside \p b grown by \p margin_m (x-y and z).
+bool insideBox(const BoxRecord& b, const Eigen::Vector3d& p_map, double margin_m);
 
 /// CSV headers and rows (formats in the file comment); \p T_map_lidar places the objects in the map.
 std::string objectsCsvHeader();
