@@ -15,6 +15,8 @@
 namespace roadslam::eval {
 namespace {
 
+constexpr long long kStampTolerance_us = 5;
+
 struct GtCar {
   int id = 0;
   std::vector<double> t, x, y;
@@ -172,7 +174,10 @@ MotMetrics evaluateMotFiles(const std::string& gt_objects_json, const std::strin
     }
     m.dont_care += dc.size();
     std::vector<Hyp> hyps;
-    const auto it = tracks.find(std::llround(t * 1e6));
+    // tracks.csv's %.6f stamp and the TUM file's 9 decimals can round apart by a microsecond at
+    // epoch times (1e15 us: a double's step is 0.25 us): the nearest row time within 5 us
+    auto it = tracks.lower_bound(std::llround(t * 1e6) - kStampTolerance_us);
+    if (it != tracks.end() && std::abs(it->first - std::llround(t * 1e6)) > kStampTolerance_us) it = tracks.end();
     if (it != tracks.end()) {
       for (const Hyp& y : it->second) {
         const Eigen::Vector3d pl = T_lidar_map * Eigen::Vector3d(y.p_map.x(), y.p_map.y(), est.poses[k].translation().z());

@@ -241,11 +241,13 @@ std::vector<Object> segmentObjects(const std::vector<ScanPoint>& pts, bool has_r
     for (uint32_t i : m) {
       const ScanPoint& q = pts[i];
       o.centroid += Eigen::Vector3d(q.x, q.y, q.z);
+      o.t_mean += q.t;
       o.z_min = std::min<double>(o.z_min, q.z), o.z_max = std::max<double>(o.z_max, q.z);
       o.top_height_m = std::max<double>(o.top_height_m, height[i]);
       xy.emplace_back(q.x, q.y);
     }
     o.centroid /= static_cast<double>(m.size());
+    o.t_mean /= static_cast<double>(m.size());
     if (o.top_height_m < p.min_top_height_m) continue;
     o.box = fitLShape(xy, p.lshape_step_rad);
     if (o.box.length > p.max_length_m || o.box.width > p.max_width_m) continue;

@@ -42,6 +42,8 @@ ObjectsFrame ObjectsStage::process(const Scan& scan, const Eigen::Isometry3d& T_
   SegmentationStats st;
   std::vector<Object> objs = segmentObjects(scan.points, scan.has_rings, g.ground, g.height_above_ground_m, p_, &st);
   const double ms_segment = msSince(t0);
+  // a moving object is seen when the beam sweeps over it, up to half a turn from the reference time
+  for (Object& o : objs) o.dt_s = scan.has_point_times ? scan.stamp_s + o.t_mean - t_s : 0.0;
   t0 = Clock::now();
   tracker_.update(t_s, T_map_lidar, objs);
   ObjectsFrame f = snapshot();

@@ -17,6 +17,7 @@ struct Detection {
   double yaw = 0;
   double length = 0, width = 0;
   double z_min = 0, z_max = 0;
+  double dt = 0;  // its points' time minus the sweep's reference time [s]
 };
 
 constexpr size_t kHistoryMax = 100;  // 10 s of detections at 10 Hz before a track is labelled moving
@@ -39,6 +40,7 @@ Detection toMap(const Object& o, const Eigen::Isometry3d& T_map_lidar) {
   const Eigen::Vector3d um = T_map_lidar.linear() * Eigen::Vector3d(u.x(), u.y(), 0);
   d.yaw = std::atan2(um.y(), um.x());
   d.length = b.length, d.width = b.width;
+  d.dt = std::isfinite(o.dt_s) && std::abs(o.dt_s) < 0.5 ? o.dt_s : 0.0;
   const double z0 = T_map_lidar.translation().z();
   d.z_min = o.z_min + z0, d.z_max = o.z_max + z0;
   return d;
@@ -122,21 +124,29 @@ void Tracker::predictCtrv(Track& tr, double dt) const {
   ctrvView(tr);
 }
 
-void Tracker::correct(Track& tr, const Eigen::Vector2d& z) const {
+void Tracker::correct(Track& tr, const Eigen::Vector2d& z, double dt) const {
+  // The detection is where the object was when the beam swept it, dt after the state's time:
+  // h(x) = position + dt * velocity (CV: H = [I, dt I], linear; CTRV: its Jacobian).
   const Eigen::Matrix2d R = Eigen::Matrix2d::Identity() * p_.meas_sigma_m * p_.meas_sigma_m;
   if (p_.motion_model == MotionModel::Ctrv) {
-    // H = [I 0]: K = S H^T (H S H^T + R)^-1
-    const Eigen::Matrix<double, 5, 2> K = tr.S.leftCols<2>() * (tr.S.topLeftCorner<2, 2>() + R).inverse();
-    tr.s += K * (z - tr.s.head<2>());
+    const double v = tr.s(2), c = std::cos(tr.s(3)), sn = std::sin(tr.s(3));
+    Eigen::Matrix<double, 2, 5> H = Eigen::Matrix<double, 2, 5>::Zero();
+    H(0, 0) = H(1, 1) = 1;
+    H(0, 2) = dt * c, H(0, 3) = -dt * v * sn;
+    H(1, 2) = dt * sn, H(1, 3) = dt * v * c;
+    const Eigen::Vector2d h(tr.s(0) + dt * v * c, tr.s(1) + dt * v * sn);
+    const Eigen::Matrix<double, 5, 2> K = tr.S * H.transpose() * (H * tr.S * H.transpose() + R).inverse();
+    tr.s += K * (z - h);
     tr.s(3) = wrapPi(tr.s(3));
-    tr.S = (Mat5::Identity() - K * Eigen::Matrix<double, 2, 5>::Identity()) * tr.S;
+    tr.S = (Mat5::Identity() - K * H) * tr.S;
     ctrvView(tr);
     return;
   }
-  // Kalman update with H = [I 0]: K = P H^T (H P H^T + R)^-1
-  const Eigen::Matrix<double, 4, 2> K = tr.P.leftCols<2>() * (tr.P.topLeftCorner<2, 2>() + R).inverse();
-  tr.x += K * (z - tr.x.head<2>());
-  tr.P = (Eigen::Matrix4d::Identity() - K * Eigen::Matrix<double, 2, 4>::Identity()) * tr.P;
+  Eigen::Matrix<double, 2, 4> H;
+  H << 1, 0, dt, 0, 0, 1, 0, dt;
+  const Eigen::Matrix<double, 4, 2> K = tr.P * H.transpose() * (H * tr.P * H.transpose() + R).inverse();
+  tr.x += K * (z - H * tr.x);
+  tr.P = (Eigen::Matrix4d::Identity() - K * H) * tr.P;
 }
 
 void Tracker::predict(double t) {
@@ -209,7 +219,7 @@ void Tracker::update(double t, const Eigen::Isometry3d& T_map_lidar, const std::
       if ((dets[j].centre - tr.x.head<2>()).norm() > p_.gate_m + p_.max_extent_growth_m) continue;
       comp[i][j] = complete(dets[j], tr.heading, std::min(tr.length, p_.max_extent_growth_m),
                             std::min(tr.width, p_.max_extent_growth_m), s);
-      const Eigen::Vector2d r = comp[i][j].centre - tr.x.head<2>();
+      const Eigen::Vector2d r = comp[i][j].centre - (tr.x.head<2>() + dets[j].dt * tr.x.tail<2>());
       const double d = r.norm(), m2 = r.dot(S_inv * r);
       if (d > p_.gate_m || m2 > p_.gate_sigma * p_.gate_sigma) continue;
       // extents seen now against the track's (capped: a car seen whole once is a car seen in part now)
@@ -230,7 +240,7 @@ void Tracker::update(double t, const Eigen::Isometry3d& T_map_lidar, const std::
     }
     taken[static_cast<size_t>(j)] = true;
     const Completed& c = comp[i][static_cast<size_t>(j)];
-    correct(tr, c.centre);
+    correct(tr, c.centre, dets[static_cast<size_t>(j)].dt);
     tr.length = std::max(tr.length, c.along);
     tr.width = std::max(tr.width, c.across);
     ++tr.hits, tr.misses = 0, tr.t_last = t, tr.last_detection = j;

@@ -28,6 +28,8 @@ struct Object {
   double z_min = 0, z_max = 0;  ///< [m]
   double top_height_m = 0;      ///< highest point above the local ground [m]
   size_t points = 0;
+  double t_mean = 0;            ///< mean firing time of the points, relative to Scan::stamp_s [s]
+  double dt_s = 0;              ///< ObjectsStage: t_mean on the tracks' clock minus the sweep's reference time [s]
   std::vector<uint32_t> indices;  ///< the points' indices in the sweep
 };
 
