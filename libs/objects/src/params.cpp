@@ -95,6 +95,12 @@ void TrackerParams::fields(ParamTable& t) {
   t.num("moving_max_width_m", moving_max_width_m);
   t.num("moving_min_width_m", moving_min_width_m);
   t.num("max_dt_s", max_dt_s);
+  t.num("car_length_m", car_length_m);
+  t.num("car_width_m", car_width_m);
+  t.num("car_prior_min_range_m", car_prior_min_range_m);
+  t.num("car_face_min_m", car_face_min_m);
+  t.num("car_face_max_m", car_face_max_m);
+  t.num("car_face_max_depth_m", car_face_max_depth_m);
 }
 
 void TrackerParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, const std::string& s) {

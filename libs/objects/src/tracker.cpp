@@ -72,6 +72,47 @@ Completed complete(const Detection& d, double h, double L, double W, const Eigen
 
 double wrapPi(double a) { return std::atan2(std::sin(a), std::cos(a)); }
 
+/// The car-size prior on a detection with no known heading: one face (thin along the line of sight,
+/// car_face_min_m..car_face_max_m across it) seen from car_prior_min_range_m or farther is a car's
+/// front or rear; the car reaches car_length_m away from the sensor (Zhang et al. 2017 fit the visible
+/// L; the hidden rest follows from the size). Returns the detection's centre moved so, or its own.
+bool isCarFace(const Detection& d, const Eigen::Vector2d& s, const TrackerParams& p, Eigen::Vector2d* centre = nullptr,
+               Eigen::Vector2d* los_dir = nullptr) {
+  const Eigen::Vector2d los = d.centre - s;
+  const double range = los.norm();
+  if (p.car_length_m <= 0 || range < p.car_prior_min_range_m) return false;
+  const Eigen::Vector2d u = los / range, v(-u.y(), u.x());
+  double lo_u = 1e300, hi_u = -1e300, lo_v = 1e300, hi_v = -1e300;
+  for (const auto& c : d.corners) {
+    lo_u = std::min(lo_u, c.dot(u)), hi_u = std::max(hi_u, c.dot(u));
+    lo_v = std::min(lo_v, c.dot(v)), hi_v = std::max(hi_v, c.dot(v));
+  }
+  const double depth = hi_u - lo_u, face = hi_v - lo_v;
+  if (depth > p.car_face_max_depth_m || face < p.car_face_min_m || face > p.car_face_max_m) return false;
+  if (centre) *centre = d.centre + u * 0.5 * std::max(0.0, p.car_length_m - depth);
+  if (los_dir) *los_dir = u;
+  return true;
+}
+
+Eigen::Vector2d lineOfSightCentre(const Detection& d, const Eigen::Vector2d& s, const TrackerParams& p) {
+  Eigen::Vector2d c = d.centre;
+  isCarFace(d, s, p, &c);
+  return c;
+}
+
+/// A track that takes a car's face: its extent along the line of sight is a car's length (the extents
+/// are along / across its heading; the face's direction is the heading of a track born on it).
+void growToCarBehindFace(Track& tr, const Detection& d, const Eigen::Vector2d& s, const TrackerParams& p) {
+  Eigen::Vector2d u;
+  if (tr.moving || !isCarFace(d, s, p, nullptr, &u)) return;
+  const Eigen::Vector2d h(std::cos(tr.heading), std::sin(tr.heading));
+  if (std::abs(h.dot(u)) < 0.5) {
+    tr.width = std::max(tr.width, p.car_length_m);  // the line of sight runs across the heading
+  } else {
+    tr.length = std::max(tr.length, p.car_length_m);
+  }
+}
+
 using Vec5 = Eigen::Matrix<double, 5, 1>;
 using Mat5 = Eigen::Matrix<double, 5, 5>;
 
@@ -99,6 +140,21 @@ void ctrvView(Track& tr) {
   J(2, 2) = c, J(2, 3) = -v * sn;
   J(3, 2) = sn, J(3, 3) = v * c;
   tr.P = J * tr.S * J.transpose();
+}
+
+
+/// The detection completed for \p tr: with a heading from its velocity (moving) and car-sized, to at
+/// least the car size; otherwise to the extents the track has seen (capped), and a single face with
+/// no heading known to a car behind it (lineOfSightCentre).
+Completed completeFor(const Track& tr, const Detection& d, const Eigen::Vector2d& s, const TrackerParams& p_) {
+  double L = std::min(tr.length, p_.max_extent_growth_m), W = std::min(tr.width, p_.max_extent_growth_m);
+  if (tr.moving) {
+    L = std::max(L, p_.car_length_m), W = std::max(W, p_.car_width_m);
+    return complete(d, tr.heading, L, W, s);
+  }
+  Completed c = complete(d, tr.heading, L, W, s);
+  if (L < p_.car_face_max_m) c.centre = lineOfSightCentre(d, s, p_);  // never seen longer than a car's face
+  return c;
 }
 
 }  // namespace
@@ -217,8 +273,7 @@ void Tracker::update(double t, const Eigen::Isometry3d& T_map_lidar, const std::
     for (size_t j = 0; j < dets.size(); ++j) {
       // completion moves a centre by at most half the capped extents: farther boxes cannot be in the gate
       if ((dets[j].centre - tr.x.head<2>()).norm() > p_.gate_m + p_.max_extent_growth_m) continue;
-      comp[i][j] = complete(dets[j], tr.heading, std::min(tr.length, p_.max_extent_growth_m),
-                            std::min(tr.width, p_.max_extent_growth_m), s);
+      comp[i][j] = completeFor(tr, dets[j], s, p_);
       const Eigen::Vector2d r = comp[i][j].centre - (tr.x.head<2>() + dets[j].dt * tr.x.tail<2>());
       const double d = r.norm(), m2 = r.dot(S_inv * r);
       if (d > p_.gate_m || m2 > p_.gate_sigma * p_.gate_sigma) continue;
@@ -243,6 +298,7 @@ void Tracker::update(double t, const Eigen::Isometry3d& T_map_lidar, const std::
     correct(tr, c.centre, dets[static_cast<size_t>(j)].dt);
     tr.length = std::max(tr.length, c.along);
     tr.width = std::max(tr.width, c.across);
+    growToCarBehindFace(tr, dets[static_cast<size_t>(j)], s, p_);
     ++tr.hits, tr.misses = 0, tr.t_last = t, tr.last_detection = j;
     tr.z_min = dets[static_cast<size_t>(j)].z_min, tr.z_max = dets[static_cast<size_t>(j)].z_max;
     remember(tr, dets[static_cast<size_t>(j)], t);
@@ -282,11 +338,16 @@ void Tracker::update(double t, const Eigen::Isometry3d& T_map_lidar, const std::
                 p_.init_speed_sigma_mps * p_.init_speed_sigma_mps, kInitHeadingSigma_rad * kInitHeadingSigma_rad,
                 p_.ctrv.init_yaw_rate_sigma_radps * p_.ctrv.init_yaw_rate_sigma_radps)
                .asDiagonal();
-    if (p_.motion_model == MotionModel::Ctrv) ctrvView(tr);
     const Completed c = complete(dets[j], tr.heading, 0, 0, s);
     tr.length = c.along, tr.width = c.across;
+    // a car's face: its centre is behind it, and it drives along the line of sight (CTRV's heading)
+    Eigen::Vector2d centre = dets[j].centre, los;
+    if (isCarFace(dets[j], s, p_, &centre, &los)) tr.s(3) = std::atan2(los.y(), los.x());
+    tr.x.head<2>() = tr.s.head<2>() = centre;
+    growToCarBehindFace(tr, dets[j], s, p_);
+    if (p_.motion_model == MotionModel::Ctrv) ctrvView(tr);
     tr.z_min = dets[j].z_min, tr.z_max = dets[j].z_max;
-    tr.hits = 1, tr.t_birth = tr.t_last = t, tr.birth_xy = dets[j].centre, tr.last_detection = static_cast<int>(j);
+    tr.hits = 1, tr.t_birth = tr.t_last = t, tr.birth_xy = tr.x.head<2>(), tr.last_detection = static_cast<int>(j);
     remember(tr, dets[j], t);
     if (tr.hits >= p_.confirm_hits) tr.state = TrackState::Confirmed;
     tracks_.push_back(tr);

@@ -94,6 +94,15 @@ struct TrackerParams {
   double moving_max_width_m = 3.0;       ///< ... or wider than this [m]
   double moving_min_width_m = 1.0;       ///< ... or never seen wider than this (a wall's face slides, a car shows two faces) [m]
   double max_dt_s = 1.0;                 ///< a gap longer than this between sweeps ends every track ("gap") [s]
+  /// Car-size prior of the box centre: a moving track's detections are completed to at least this
+  /// size away from the sensor (0 = off) ... [m]
+  double car_length_m = 4.5;
+  double car_width_m = 1.8;              ///< [m]
+  /// ... and, with no heading known yet, a single face seen from this range or farther (no side visible) ... [m]
+  double car_prior_min_range_m = 12.0;
+  double car_face_min_m = 1.2;           ///< ... this wide at least ... [m]
+  double car_face_max_m = 2.4;           ///< ... and at most (a front or rear; longer faces are sides) ... [m]
+  double car_face_max_depth_m = 0.6;     ///< ... and this thin along the line of sight is a car's face, its centre car_length_m/2 behind [m]
 
   void fields(ParamTable& t);
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section = "tracking");
