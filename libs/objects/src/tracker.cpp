@@ -8,6 +8,7 @@ namespace roadslam::objects {
 namespace {
 
 constexpr double kUnassignable = 1e9;  // cost of a gated-out pair in the assignment
+constexpr double kFaceMaxObliquity = 0.766;  // cos 40 deg: a car's front or rear seen roughly head-on
 constexpr double kInitHeadingSigma_rad = 0.35;  // CTRV: a new track heads along its box (v signed covers the ends)
 
 /// A detection in the map frame: its box's corners (x-y) and heading of its length axis.
@@ -72,32 +73,24 @@ Completed complete(const Detection& d, double h, double L, double W, const Eigen
 
 double wrapPi(double a) { return std::atan2(std::sin(a), std::cos(a)); }
 
-/// The car-size prior on a detection with no known heading: one face (thin along the line of sight,
-/// car_face_min_m..car_face_max_m across it) seen from car_prior_min_range_m or farther is a car's
-/// front or rear; the car reaches car_length_m away from the sensor (Zhang et al. 2017 fit the visible
-/// L; the hidden rest follows from the size). Returns the detection's centre moved so, or its own.
+/// The car-size prior on a detection with no known heading: one face (a box car_face_min_m..
+/// car_face_max_m long, at most car_face_max_depth_m wide, facing the sensor within 40 deg) seen from
+/// car_prior_min_range_m or farther is a car's front or rear; the car reaches car_length_m away from
+/// the sensor along the face's normal (Zhang et al. 2017 fit the visible L; the hidden rest follows
+/// from the size). \p centre: the detection's centre moved so; \p los_dir: the normal.
 bool isCarFace(const Detection& d, const Eigen::Vector2d& s, const TrackerParams& p, Eigen::Vector2d* centre = nullptr,
                Eigen::Vector2d* los_dir = nullptr) {
   const Eigen::Vector2d los = d.centre - s;
   const double range = los.norm();
   if (p.car_length_m <= 0 || range < p.car_prior_min_range_m) return false;
-  const Eigen::Vector2d u = los / range, v(-u.y(), u.x());
-  double lo_u = 1e300, hi_u = -1e300, lo_v = 1e300, hi_v = -1e300;
-  for (const auto& c : d.corners) {
-    lo_u = std::min(lo_u, c.dot(u)), hi_u = std::max(hi_u, c.dot(u));
-    lo_v = std::min(lo_v, c.dot(v)), hi_v = std::max(hi_v, c.dot(v));
-  }
-  const double depth = hi_u - lo_u, face = hi_v - lo_v;
-  if (depth > p.car_face_max_depth_m || face < p.car_face_min_m || face > p.car_face_max_m) return false;
-  if (centre) *centre = d.centre + u * 0.5 * std::max(0.0, p.car_length_m - depth);
-  if (los_dir) *los_dir = u;
+  if (d.width > p.car_face_max_depth_m || d.length < p.car_face_min_m || d.length > p.car_face_max_m) return false;
+  // the face's normal, away from the sensor, within 40 deg of the line of sight
+  Eigen::Vector2d n(-std::sin(d.yaw), std::cos(d.yaw));
+  if (n.dot(los) < 0) n = -n;
+  if (n.dot(los) < kFaceMaxObliquity * range) return false;
+  if (centre) *centre = d.centre + n * 0.5 * std::max(0.0, p.car_length_m - d.width);
+  if (los_dir) *los_dir = n;
   return true;
-}
-
-Eigen::Vector2d lineOfSightCentre(const Detection& d, const Eigen::Vector2d& s, const TrackerParams& p) {
-  Eigen::Vector2d c = d.centre;
-  isCarFace(d, s, p, &c);
-  return c;
 }
 
 /// A track that takes a car's face: its extent along the line of sight is a car's length (the extents
@@ -145,7 +138,7 @@ void ctrvView(Track& tr) {
 
 /// The detection completed for \p tr: with a heading from its velocity (moving) and car-sized, to at
 /// least the car size; otherwise to the extents the track has seen (capped), and a single face with
-/// no heading known to a car behind it (lineOfSightCentre).
+/// no heading known to a car behind it (isCarFace).
 Completed completeFor(const Track& tr, const Detection& d, const Eigen::Vector2d& s, const TrackerParams& p_) {
   double L = std::min(tr.length, p_.max_extent_growth_m), W = std::min(tr.width, p_.max_extent_growth_m);
   if (tr.moving) {
@@ -153,7 +146,8 @@ Completed completeFor(const Track& tr, const Detection& d, const Eigen::Vector2d
     return complete(d, tr.heading, L, W, s);
   }
   Completed c = complete(d, tr.heading, L, W, s);
-  if (L < p_.car_face_max_m) c.centre = lineOfSightCentre(d, s, p_);  // never seen longer than a car's face
+  Eigen::Vector2d face_centre;
+  if (L < p_.car_face_max_m && isCarFace(d, s, p_, &face_centre)) c.centre = face_centre;  // never seen longer than a face
   return c;
 }
 
