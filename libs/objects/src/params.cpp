@@ -94,6 +94,7 @@ void TrackerParams::fields(ParamTable& t) {
   t.num("moving_max_length_m", moving_max_length_m);
   t.num("moving_max_width_m", moving_max_width_m);
   t.num("moving_min_width_m", moving_min_width_m);
+  t.num("moving_max_height_m", moving_max_height_m);
   t.num("max_dt_s", max_dt_s);
   t.num("car_length_m", car_length_m);
   t.num("car_width_m", car_width_m);

@@ -19,6 +19,7 @@ struct Detection {
   double length = 0, width = 0;
   double z_min = 0, z_max = 0;
   double dt = 0;  // its points' time minus the sweep's reference time [s]
+  double top = 0;  // highest point above the local ground [m]
 };
 
 constexpr size_t kHistoryMax = 100;  // 10 s of detections at 10 Hz before a track is labelled moving
@@ -41,6 +42,7 @@ Detection toMap(const Object& o, const Eigen::Isometry3d& T_map_lidar) {
   const Eigen::Vector3d um = T_map_lidar.linear() * Eigen::Vector3d(u.x(), u.y(), 0);
   d.yaw = std::atan2(um.y(), um.x());
   d.length = b.length, d.width = b.width;
+  d.top = o.top_height_m;
   d.dt = std::isfinite(o.dt_s) && std::abs(o.dt_s) < 0.5 ? o.dt_s : 0.0;
   const double z0 = T_map_lidar.translation().z();
   d.z_min = o.z_min + z0, d.z_max = o.z_max + z0;
@@ -296,13 +298,15 @@ void Tracker::update(double t, const Eigen::Isometry3d& T_map_lidar, const std::
     ++tr.hits, tr.misses = 0, tr.t_last = t, tr.last_detection = j;
     tr.z_min = dets[static_cast<size_t>(j)].z_min, tr.z_max = dets[static_cast<size_t>(j)].z_max;
     remember(tr, dets[static_cast<size_t>(j)], t);
+    tr.top_height = std::max(tr.top_height, dets[static_cast<size_t>(j)].top);
     if (tr.hits >= p_.confirm_hits) tr.state = TrackState::Confirmed;
     const double v = tr.speed();
     const double travel = (tr.x.head<2>() - tr.birth_xy).norm();
     if (tr.state == TrackState::Confirmed) {
       const bool car_sized = std::max(tr.length, tr.width) <= p_.moving_max_length_m &&
                              std::min(tr.length, tr.width) <= p_.moving_max_width_m &&
-                             std::min(tr.length, tr.width) >= p_.moving_min_width_m;
+                             std::min(tr.length, tr.width) >= p_.moving_min_width_m &&
+                             tr.top_height <= p_.moving_max_height_m;
       if (v > p_.moving_speed_mps && travel > p_.moving_min_travel_m && tr.hits >= p_.moving_min_hits && car_sized) {
         if (tr.moving_since < 0) tr.moving_since = t;
         tr.moving = true;
@@ -340,7 +344,7 @@ void Tracker::update(double t, const Eigen::Isometry3d& T_map_lidar, const std::
     tr.x.head<2>() = tr.s.head<2>() = centre;
     growToCarBehindFace(tr, dets[j], s, p_);
     if (p_.motion_model == MotionModel::Ctrv) ctrvView(tr);
-    tr.z_min = dets[j].z_min, tr.z_max = dets[j].z_max;
+    tr.z_min = dets[j].z_min, tr.z_max = dets[j].z_max, tr.top_height = dets[j].top;
     tr.hits = 1, tr.t_birth = tr.t_last = t, tr.birth_xy = tr.x.head<2>(), tr.last_detection = static_cast<int>(j);
     remember(tr, dets[j], t);
     if (tr.hits >= p_.confirm_hits) tr.state = TrackState::Confirmed;

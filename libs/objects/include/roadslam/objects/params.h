@@ -93,6 +93,7 @@ struct TrackerParams {
   double moving_max_length_m = 7.0;      ///< tracks ever seen longer than this (walls seen in parts) are never moving [m]
   double moving_max_width_m = 3.0;       ///< ... or wider than this [m]
   double moving_min_width_m = 1.0;       ///< ... or never seen wider than this (a wall's face slides, a car shows two faces) [m]
+  double moving_max_height_m = 2.3;      ///< ... or ever seen higher above the ground (walls, hedges; cars and SUVs stay below, vans and trucks not) [m]
   double max_dt_s = 1.0;                 ///< a gap longer than this between sweeps ends every track ("gap") [s]
   /// Car-size prior of the box centre: a moving track's detections are completed to at least this
   /// size away from the sensor (0 = off) ... [m]

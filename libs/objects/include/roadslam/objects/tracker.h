@@ -41,6 +41,7 @@ struct Track {
   double length = 0, width = 0;       ///< largest extents seen along / across the heading [m]
   double heading = 0;                 ///< [rad], from the velocity once moving, else the box's
   double z_min = 0, z_max = 0;        ///< last detection's heights, map frame [m]
+  double top_height = 0;              ///< highest point above the local ground of any detection [m]
   int hits = 0, misses = 0;           ///< detections associated; consecutive sweeps without one
   double t_birth = 0, t_last = 0;     ///< first and last detection [s]
   Eigen::Vector2d birth_xy = Eigen::Vector2d::Zero();
