@@ -231,7 +231,7 @@ void Tracker::endAll(double t, const std::string& reason) {
 void Tracker::prune(double t, const std::string& reason) {
   std::vector<Track> keep;
   for (Track& tr : tracks_) {
-    const bool dead = tr.state == TrackState::Tentative ? tr.misses > 0 : tr.misses > p_.max_misses;
+    const bool dead = tr.state == TrackState::Tentative ? tr.misses > p_.tentative_max_misses : tr.misses > p_.max_misses;
     if (dead || !tr.x.allFinite()) {
       ended_.push_back({tr, tr.x.allFinite() ? reason : "diverged", t});
     } else {

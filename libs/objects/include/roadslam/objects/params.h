@@ -86,6 +86,9 @@ struct TrackerParams {
   double init_speed_sigma_mps = 10.0;    ///< speed uncertainty of a new track [m/s]
   int confirm_hits = 3;                  ///< hits that confirm a tentative track [-]
   int max_misses = 5;                    ///< consecutive misses (sweeps) that end a confirmed track [-]
+  /// consecutive misses a tentative track survives (a far car's face is seen every other sweep when
+  /// one ring hits it too low for an object) [-]
+  int tentative_max_misses = 1;
   double moving_speed_mps = 4.0;         ///< a confirmed track faster than this (14 km/h; slower cars stay static) ... [m/s]
   double moving_min_travel_m = 3.0;      ///< ... that has moved this far from its birth ... [m]
   int moving_min_hits = 10;              ///< ... and was detected this many times is labelled moving [-]
