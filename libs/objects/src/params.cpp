@@ -48,6 +48,7 @@ void ClusterParams::fields(ParamTable& t) {
   t.flag("remove_moving_from_maps", remove_moving_from_maps);
   t.num("removal_margin_m", removal_margin_m);
   t.num("map_delay_s", map_delay_s);
+  t.num("retro_extrapolate_s", retro_extrapolate_s);
 }
 
 void ClusterParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, const std::string& s,
@@ -58,10 +59,10 @@ void ClusterParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, c
     throw std::runtime_error("[" + s + "] " + e.what());
   }
   if (azimuth_bins < 16 || azimuth_window < 1 || ring_window < 0 || cluster_distance_m <= 0 || min_points < 1 ||
-      dbscan_min_points < 1 || lshape_step_rad <= 0 || lshape_step_rad > M_PI / 4 || map_delay_s < 0) {
+      dbscan_min_points < 1 || lshape_step_rad <= 0 || lshape_step_rad > M_PI / 4 || map_delay_s < 0 || retro_extrapolate_s < 0) {
     throw std::runtime_error("[" + s + "] azimuth_bins >= 16, azimuth_window >= 1, ring_window >= 0, "
                              "cluster_distance_m > 0, min_points >= 1, dbscan_min_points >= 1, "
-                             "0 < lshape_step_deg <= 45 and map_delay_s >= 0 are required");
+                             "0 < lshape_step_deg <= 45, map_delay_s >= 0 and retro_extrapolate_s >= 0 are required");
   }
   ground.loadFromConfigFile(c, ground_section);
 }

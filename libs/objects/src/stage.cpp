@@ -12,6 +12,9 @@ namespace roadslam::objects {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+constexpr double kHalfSweep_s = 0.05;
+constexpr double kRetroStep_s = 0.1;   // extrapolated boxes every sweep at 10 Hz (the keyframes match within half)  // half a turn at 10 Hz: how far from the sweep's time a point may be
+
 double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
 std::string fmt(const char* f, ...) __attribute__((format(printf, 1, 2)));
@@ -28,8 +31,17 @@ std::string fmt(const char* f, ...) {
 
 ObjectsFrame ObjectsStage::snapshot() const {
   ObjectsFrame f;
+  const TrackerParams& tp = tracker_.params();
   for (const Track& t : tracker_.tracks()) {
-    if (t.state == TrackState::Confirmed) f.tracks.push_back(t);
+    if (t.state != TrackState::Confirmed) continue;
+    f.tracks.push_back(t);
+    if (!t.moving) continue;
+    BoxRecord b;
+    b.t = t.t_last, b.centre = t.x.head<2>(), b.yaw = t.heading;
+    b.length = std::max(t.length, tp.car_length_m) + 2 * t.speed() * kHalfSweep_s;
+    b.width = std::max(t.width, tp.car_width_m);
+    b.z_min = t.z_min, b.z_max = t.z_max;
+    f.moving_boxes.push_back(b);
   }
   return f;
 }
@@ -55,7 +67,21 @@ ObjectsFrame ObjectsStage::process(const Scan& scan, const Eigen::Isometry3d& T_
     f.object_moving[static_cast<size_t>(t.last_detection)] = t.moving;
   }
   for (const Track& t : tracker_.tracks()) {
-    if (t.moving && t.moving_since == t_s) f.retro.insert(f.retro.end(), t.history.begin(), t.history.end());
+    if (!t.moving || t.moving_since != t_s) continue;
+    f.retro.insert(f.retro.end(), t.history->begin(), t.history->end());
+    // before its birth the car drove where its velocity leads back (seen too far or too sparse for an
+    // object): car-sized boxes along that path, for p_.retro_extrapolate_s
+    const TrackerParams& tp = tracker_.params();
+    for (double dt = kRetroStep_s; dt <= p_.retro_extrapolate_s + 1e-9; dt += kRetroStep_s) {
+      BoxRecord b;
+      b.t = t.t_birth - dt;
+      b.centre = t.x.head<2>() - t.x.tail<2>() * (t_s - b.t);
+      b.yaw = t.heading;
+      b.length = std::max(t.length, tp.car_length_m) + 2 * t.speed() * kHalfSweep_s;
+      b.width = std::max(t.width, tp.car_width_m);
+      b.z_min = t.z_min, b.z_max = t.z_max;
+      f.retro.push_back(b);
+    }
   }
   f.ms_track = msSince(t0);
   f.objects = std::move(objs);
@@ -69,12 +95,13 @@ ObjectsFrame ObjectsStage::coast(double t_s) {
   return snapshot();
 }
 
-size_t removeMovingPoints(std::vector<Eigen::Vector3d>& pts_lidar, const ObjectsFrame& f, double margin_m) {
+size_t removeMovingPoints(std::vector<Eigen::Vector3d>& pts_lidar, const ObjectsFrame& f, double margin_m,
+                          const Eigen::Isometry3d& T_map_lidar) {
   std::vector<const Object*> moving;
   for (size_t k = 0; k < f.objects.size() && k < f.object_moving.size(); ++k) {
     if (f.object_moving[k]) moving.push_back(&f.objects[k]);
   }
-  if (moving.empty()) return 0;
+  if (moving.empty() && f.moving_boxes.empty()) return 0;
   const size_t before = pts_lidar.size();
   auto inside = [&](const Eigen::Vector3d& q) {
     for (const Object* o : moving) {
@@ -84,6 +111,11 @@ size_t removeMovingPoints(std::vector<Eigen::Vector3d>& pts_lidar, const Objects
           q.z() >= o->z_min - margin_m && q.z() <= o->z_max + margin_m) {
         return true;
       }
+    }
+    if (f.moving_boxes.empty()) return false;
+    const Eigen::Vector3d q_map = T_map_lidar * q;
+    for (const BoxRecord& b : f.moving_boxes) {
+      if (insideBox(b, q_map, margin_m)) return true;
     }
     return false;
   };

@@ -25,8 +25,8 @@ struct Detection {
 constexpr size_t kHistoryMax = 100;  // 10 s of detections at 10 Hz before a track is labelled moving
 
 void remember(Track& tr, const Detection& d, double t) {
-  if (tr.moving_since >= 0 || tr.history.size() >= kHistoryMax) return;
-  tr.history.push_back({t, d.centre, d.yaw, d.length, d.width, d.z_min, d.z_max});
+  if (tr.moving_since >= 0 || tr.history->size() >= kHistoryMax) return;
+  tr.history->push_back({t, d.centre, d.yaw, d.length, d.width, d.z_min, d.z_max});
 }
 
 Detection toMap(const Object& o, const Eigen::Isometry3d& T_map_lidar) {

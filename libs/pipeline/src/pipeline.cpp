@@ -74,6 +74,8 @@ void Pipeline::feedOctoMap(bool loop, double now_s, bool flush) {
   }
 }
 
+constexpr double kRetroMatch_s = 0.049;  // a box applies to the keyframe within half a sweep (10 Hz) of its time
+
 /// Drops from the keyframes the points inside \p boxes (map frame, grown by removal_margin_m) of the
 /// keyframes made at the boxes' times (a keyframe's stamp is its odometry frame's, the objects' time).
 size_t Pipeline::removeRetro(const std::vector<objects::BoxRecord>& boxes) {
@@ -82,11 +84,11 @@ size_t Pipeline::removeRetro(const std::vector<objects::BoxRecord>& boxes) {
   double t_first = boxes.front().t;
   for (const auto& b : boxes) t_first = std::min(t_first, b.t);
   size_t removed = 0;
-  for (size_t k = kfs.size(); k-- > 0 && kfs[k].stamp_s >= t_first - 1e-6;) {
+  for (size_t k = kfs.size(); k-- > 0 && kfs[k].stamp_s >= t_first - kRetroMatch_s;) {
     const Eigen::Isometry3d T_odom_lidar = kfs[k].T_odom_lidar;
     std::vector<const objects::BoxRecord*> here;
     for (const auto& b : boxes) {
-      if (std::abs(b.t - kfs[k].stamp_s) < 1e-6) here.push_back(&b);
+      if (std::abs(b.t - kfs[k].stamp_s) < kRetroMatch_s) here.push_back(&b);
     }
     if (here.empty()) continue;
     removed += stages_.mapper->erasePoints(k, [&](const Eigen::Vector3f& q) {
@@ -136,7 +138,7 @@ std::optional<PipelineFrame> Pipeline::next() {
     if (f.pose.T_baseprev_basecurr) wheel = mapping::WheelMotion{*f.pose.T_baseprev_basecurr, f.pose.T_base_lidar};
     if (stages_.remove_moving_from_maps && f.objects && f.pose.ok) {
       std::vector<Eigen::Vector3d> pts = *f.pose.points_lidar;
-      f.moving_points_removed = objects::removeMovingPoints(pts, *f.objects, stages_.removal_margin_m);
+      f.moving_points_removed = objects::removeMovingPoints(pts, *f.objects, stages_.removal_margin_m, f.pose.ref);
       f.loop_closed = stages_.mapper->addFrame(*f.pose.odometry, pts, wheel);
       f.retro_points_removed = removeRetro(f.objects->retro);
     } else {

@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -48,9 +49,10 @@ struct Track {
   bool moving = false;
   int last_detection = -1;            ///< index of the detection it took in the last update, -1 none
   double moving_since = -1;           ///< time it was first labelled moving [s], -1 never
-  /// The detections it took until it was labelled moving (at most TrackerParams::history_max), so
-  /// that the maps can drop its points from the sweeps before the label (ObjectsFrame::retro).
-  std::vector<BoxRecord> history;
+  /// The detections it took until it was labelled moving (at most 100), so that the maps can drop
+  /// its points from the sweeps before the label (ObjectsFrame::retro); shared: copies of a track
+  /// (the stage's snapshots) do not copy it.
+  std::shared_ptr<std::vector<BoxRecord>> history = std::make_shared<std::vector<BoxRecord>>();
   double speed() const { return x.tail<2>().norm(); }
 };
 
