@@ -8,6 +8,7 @@
 
 #include "roadslam/objects/stage.h"
 #include "roadslam/objects/tracker.h"
+#include "synthetic_boxes.h"
 
 using namespace roadslam::objects;
 
@@ -166,4 +167,39 @@ TEST(Tracker, AnOncomingCarSeenByItsFrontFaceIsTrackedAtItsCentre) {
     EXPECT_NEAR(t.x(0), 35.0 + v * 2.0, 0.4);
     EXPECT_NEAR(t.x(2), v, 0.5);
   }
+}
+
+// The stage on ray-cast sweeps of a car driving past at 10 m/s: the sweep that labels its track
+// moving hands out the boxes of its earlier detections (each on the car at its time) and car-sized
+// boxes along the path before its birth; from then on, the track's own box covers the car.
+TEST(ObjectsStage, ACarLabelledMovingHandsOutItsEarlierBoxes) {
+  ClusterParams cp;
+  cp.min_points = 4;
+  ObjectsStage stage(cp, TrackerParams{});
+  const double v = 10.0;
+  size_t retro_frames = 0;
+  for (int k = 0; k < 25; ++k) {
+    const double t = 0.1 * k, xc = -12.0 + v * t;
+    roadslam::Scan scan = test::castSweep({{xc, 6.0, 0.0, 4.5, 1.8, 1.5}});
+    const ObjectsFrame f = stage.process(scan, Eigen::Isometry3d::Identity(), t);
+    if (!f.retro.empty()) {
+      ++retro_frames;
+      double t_first = t;
+      for (const BoxRecord& b : f.retro) {
+        EXPECT_LE(b.t, t + 1e-9);
+        EXPECT_NEAR(b.centre.x(), -12.0 + v * b.t, 1.5) << "box at " << b.t;  // the detections' own boxes are partial
+        EXPECT_NEAR(b.centre.y(), 6.0, 1.0);
+        t_first = std::min(t_first, b.t);
+      }
+      // retro_extrapolate_s = 2 s before the birth (the first detection's time), one box per 0.1 s
+      size_t before_birth = 0;
+      for (const BoxRecord& b : f.retro) before_birth += b.t < t_first + 2.0 - 1e-6;
+      EXPECT_EQ(before_birth, 20u);
+    }
+    if (k == 24) {
+      ASSERT_EQ(f.moving_boxes.size(), 1u);
+      EXPECT_TRUE(insideBox(f.moving_boxes[0], Eigen::Vector3d(xc + 2.0, 6.0, -1.0), 0.3));
+    }
+  }
+  EXPECT_EQ(retro_frames, 1u);
 }
