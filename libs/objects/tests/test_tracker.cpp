@@ -179,7 +179,7 @@ TEST(ObjectsStage, ACarLabelledMovingHandsOutItsEarlierBoxes) {
   const double v = 10.0;
   size_t retro_frames = 0;
   for (int k = 0; k < 25; ++k) {
-    const double t = 0.1 * k, xc = -12.0 + v * t;
+    const double t = 0.1 * k, xc = -12.0 + v * t;  // the boxes before birth lie on the extended path
     roadslam::Scan scan = test::castSweep({{xc, 6.0, 0.0, 4.5, 1.8, 1.5}});
     const ObjectsFrame f = stage.process(scan, Eigen::Isometry3d::Identity(), t);
     if (!f.retro.empty()) {
@@ -191,10 +191,11 @@ TEST(ObjectsStage, ACarLabelledMovingHandsOutItsEarlierBoxes) {
         EXPECT_NEAR(b.centre.y(), 6.0, 1.0);
         t_first = std::min(t_first, b.t);
       }
-      // retro_extrapolate_s = 2 s before the birth (the first detection's time), one box per 0.1 s
+      // retro_extrapolate_s before the birth (the first detection's time), one box per 0.1 s
+      const double back = cp.retro_extrapolate_s;
       size_t before_birth = 0;
-      for (const BoxRecord& b : f.retro) before_birth += b.t < t_first + 2.0 - 1e-6;
-      EXPECT_EQ(before_birth, 20u);
+      for (const BoxRecord& b : f.retro) before_birth += b.t < t_first + back - 1e-6;
+      EXPECT_EQ(before_birth, static_cast<size_t>(std::lround(back / 0.1)));
     }
     if (k == 24) {
       ASSERT_EQ(f.moving_boxes.size(), 1u);

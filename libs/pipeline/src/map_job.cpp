@@ -97,6 +97,7 @@ struct ObjectsOutput {
   size_t moving_points_removed = 0;
   size_t retro_points_removed = 0;  ///< from earlier keyframes, when their track was labelled moving
   std::map<std::string, int> end_reasons;
+  std::map<int, mapping::TopViewBox> last_moving;  ///< each moving track's last box, for map_top.png
 
   void add(const PipelineFrame& f, objects::ObjectsStage& stage) {
     if (!f.objects) return;
@@ -111,6 +112,9 @@ struct ObjectsOutput {
       n_objects += o.objects.size();
     }
     tracks += objects::tracksCsvRows(f.index, t, o);
+    for (const objects::Track& tr : o.tracks) {
+      if (tr.moving) last_moving[tr.id] = {tr.id, tr.x.head<2>(), tr.heading, tr.length, tr.width, tr.x.tail<2>()};
+    }
     take(stage);
   }
   void take(objects::ObjectsStage& stage) {
@@ -238,8 +242,10 @@ MapOutcome runMapJob(const MapRequest& req) {
     out.summary["loops"] = loops;
     out.summary["can_edges"] = mapper.canEdges();
     out.summary["ms_mapping_total"] = pipe.totals().maps;
+    std::vector<mapping::TopViewBox> boxes;
+    for (const auto& [id, b] : objects_out.last_moving) boxes.push_back(b);
     const auto ms = mapping::writeMaps(req.out_dir, mapper, {out.T_map_lidar.begin(), out.T_map_lidar.end()},
-                                       params.maps, octo.get());
+                                       params.maps, octo.get(), boxes);
     out.summary["maps"] = {{"points", ms.points}, {"octomap_keyframes", ms.octomap_keyframes},
                            {"octomap_leafs", ms.octomap_leafs}, {"octomap_ms_per_keyframe", ms.octomap_ms_per_keyframe},
                            {"grid_occupied_cells", ms.grid_occupied}, {"grid_free_cells", ms.grid_free},

@@ -52,11 +52,11 @@ struct ClusterParams {
   double removal_margin_m = 0.3;         ///< around a moving object's box, x-y and z [m]
   /// With the removal: keyframes reach the OctoMap this long after their sweep, so that the points of a
   /// car labelled moving later (its first sweeps, before the label) leave the keyframes first [s]
-  double map_delay_s = 2.0;
+  double map_delay_s = 6.0;
   /// When a track is labelled moving, the keyframes also lose the points inside car-sized boxes along
   /// the path its velocity leads back for this long before its birth (a car seen too far or sparse
   /// for an object) [s]
-  double retro_extrapolate_s = 2.0;
+  double retro_extrapolate_s = 4.0;
   preprocess::GroundSegParams ground;    ///< ground labels: read from [preprocess] seg_* (the odometry's), not saved here
 
   void fields(ParamTable& t);
