@@ -69,12 +69,14 @@ ObjectsFrame ObjectsStage::process(const Scan& scan, const Eigen::Isometry3d& T_
   for (const Track& t : tracker_.tracks()) {
     if (!t.moving || t.moving_since != t_s) continue;
     f.retro.insert(f.retro.end(), t.history->begin(), t.history->end());
-    // before its birth the car drove where its velocity leads back (seen too far or too sparse for an
-    // object): car-sized boxes along that path, for p_.retro_extrapolate_s
+    // the car drove where its velocity leads back: car-sized boxes along that path since its birth (the
+    // parts of the car its detections missed) and for p_.retro_extrapolate_s before (seen too far or
+    // too sparse for an object)
     const TrackerParams& tp = tracker_.params();
-    for (double dt = kRetroStep_s; dt <= p_.retro_extrapolate_s + 1e-9; dt += kRetroStep_s) {
+    const int steps = static_cast<int>(std::floor((t_s - t.t_birth + p_.retro_extrapolate_s) / kRetroStep_s + 1e-9));
+    for (int k = 1; k <= steps; ++k) {
       BoxRecord b;
-      b.t = t.t_birth - dt;
+      b.t = t_s - k * kRetroStep_s;
       b.centre = t.x.head<2>() - t.x.tail<2>() * (t_s - b.t);
       b.yaw = t.heading;
       b.length = std::max(t.length, tp.car_length_m) + 2 * t.speed() * kHalfSweep_s;
