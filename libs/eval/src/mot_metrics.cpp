@@ -259,8 +259,9 @@ MotMetrics evaluateMotFiles(const std::string& gt_objects_json, const std::strin
   return m;
 }
 
-GhostCount countGhostPoints(const std::string& gt_objects_json, const std::string& gt_trajectory_tum,
-                            const std::string& run_trajectory_tum, const std::string& map_ply, double margin_m) {
+GhostCount countGhostsAmong(const std::string& gt_objects_json, const std::string& gt_trajectory_tum,
+                            const std::string& run_trajectory_tum, const std::vector<Eigen::Vector3f>& points_map,
+                            double margin_m) {
   std::ifstream fo(gt_objects_json);
   if (!fo) throw std::runtime_error("cannot read '" + gt_objects_json + "'");
   const auto j = nlohmann::json::parse(fo, nullptr, false);
@@ -271,17 +272,6 @@ GhostCount countGhostPoints(const std::string& gt_objects_json, const std::strin
   Eigen::Isometry3d T_world_lidar;
   if (!poseAt(gt, est.stamps_s[0], T_world_lidar)) throw std::runtime_error("the GT trajectory does not cover the run's first pose");
   const Eigen::Isometry3d T_world_map = T_world_lidar * est.poses[0].inverse();
-  // the map's points (binary little-endian float xyz, as roadslam-map writes map.ply)
-  std::ifstream fp(map_ply, std::ios::binary);
-  if (!fp) throw std::runtime_error("cannot read '" + map_ply + "'");
-  std::string line;
-  size_t n = 0;
-  while (std::getline(fp, line) && line != "end_header") {
-    if (line.rfind("element vertex ", 0) == 0) n = std::stoul(line.substr(15));
-  }
-  std::vector<float> xyz(3 * n);
-  fp.read(reinterpret_cast<char*>(xyz.data()), static_cast<std::streamsize>(xyz.size() * sizeof(float)));
-  if (static_cast<size_t>(fp.gcount()) != xyz.size() * sizeof(float)) throw std::runtime_error("'" + map_ply + "' is truncated");
   // swept boxes on a 1 m grid of the world for a quick lookup
   struct SweptBox {
     double x, y, z0, z1, c, s, hl, hw;
@@ -300,9 +290,9 @@ GhostCount countGhostPoints(const std::string& gt_objects_json, const std::strin
     }
   }
   GhostCount out;
-  out.map_points = n;
-  for (size_t i = 0; i < n; ++i) {
-    const Eigen::Vector3d w = T_world_map * Eigen::Vector3d(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+  out.map_points = points_map.size();
+  for (const auto& p : points_map) {
+    const Eigen::Vector3d w = T_world_map * p.cast<double>();
     const auto it = grid.find({static_cast<long>(std::floor(w.x())), static_cast<long>(std::floor(w.y()))});
     if (it == grid.end()) continue;
     for (const SweptBox& b : it->second) {
@@ -314,6 +304,24 @@ GhostCount countGhostPoints(const std::string& gt_objects_json, const std::strin
     }
   }
   return out;
+}
+
+GhostCount countGhostPoints(const std::string& gt_objects_json, const std::string& gt_trajectory_tum,
+                            const std::string& run_trajectory_tum, const std::string& map_ply, double margin_m) {
+  // the map's points (binary little-endian float xyz, as roadslam-map writes map.ply)
+  std::ifstream fp(map_ply, std::ios::binary);
+  if (!fp) throw std::runtime_error("cannot read '" + map_ply + "'");
+  std::string line;
+  size_t n = 0;
+  while (std::getline(fp, line) && line != "end_header") {
+    if (line.rfind("element vertex ", 0) == 0) n = std::stoul(line.substr(15));
+  }
+  std::vector<float> xyz(3 * n);
+  fp.read(reinterpret_cast<char*>(xyz.data()), static_cast<std::streamsize>(xyz.size() * sizeof(float)));
+  if (static_cast<size_t>(fp.gcount()) != xyz.size() * sizeof(float)) throw std::runtime_error("'" + map_ply + "' is truncated");
+  std::vector<Eigen::Vector3f> pts(n);
+  for (size_t i = 0; i < n; ++i) pts[i] = {xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]};
+  return countGhostsAmong(gt_objects_json, gt_trajectory_tum, run_trajectory_tum, pts, margin_m);
 }
 
 nlohmann::json toJson(const MotMetrics& m) {

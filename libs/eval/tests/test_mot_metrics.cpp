@@ -9,6 +9,8 @@
 
 #include <unistd.h>
 
+#include <octomap/OcTree.h>
+
 #include "roadslam/eval/mot_metrics.h"
 
 using namespace roadslam;
@@ -128,5 +130,27 @@ TEST(MotMetrics, HiddenAndFarCarsAreDontCare) {
   const auto all = eval::evaluateMotFiles(d + "/gt_objects.json", d + "/gt_trajectory.tum", d, p);
   EXPECT_EQ(all.gt, 41u);
   EXPECT_EQ(all.matches, 36u);
+  std::filesystem::remove_all(d);
+}
+
+// Ghost voxels: an OctoMap with one occupied voxel on a car's swept path (0.8 m above its ground,
+// inside its box) and one beside the lane; the map frame is the world (identity poses).
+TEST(MotMetrics, GhostVoxelsAreTheOccupiedLeavesOnTheSweptPaths) {
+  const std::string d = tmpDir();
+  nlohmann::json track = nlohmann::json::array();
+  for (int k = 0; k <= 10; ++k) track.push_back({1000.0 + 0.1 * k, 1.0 * k, 0.0, 0.0, 0.0, 50, 5.0});
+  const nlohmann::json gt = {{"frame", "world"},
+                             {"moving_cars", {{{"id", 0}, {"length_m", 4.5}, {"width_m", 1.8}, {"height_m", 1.5}, {"track", track}}}}};
+  std::ofstream(d + "/gt_objects.json") << gt.dump();
+  std::ofstream(d + "/gt_trajectory.tum") << "1000 0 0 0 0 0 0 1\n1001 0 0 0 0 0 0 1\n";
+  std::ofstream(d + "/trajectory.tum") << "1000 0 0 0 0 0 0 1\n";
+  octomap::OcTree tree(0.2);
+  tree.updateNode(octomap::point3d(5.0f, 0.3f, 0.8f), true);   // on the path
+  tree.updateNode(octomap::point3d(5.0f, 6.0f, 0.8f), true);   // beside it
+  tree.updateNode(octomap::point3d(5.0f, -6.0f, 0.8f), false); // free
+  ASSERT_TRUE(tree.writeBinary(d + "/map.bt"));
+  const auto g = eval::countGhostVoxels(d + "/gt_objects.json", d + "/gt_trajectory.tum", d + "/trajectory.tum", d + "/map.bt");
+  EXPECT_EQ(g.map_points, 2u);
+  EXPECT_EQ(g.ghost_points, 1u);
   std::filesystem::remove_all(d);
 }

@@ -20,6 +20,7 @@
 /// The GT holds only moving cars: an unmatched hypothesis is a false positive only when it is
 /// labelled moving (static tracks on parked cars, poles and walls are nobody's mistake here).
 
+#include <Eigen/Core>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -80,6 +81,15 @@ struct GhostCount {
 };
 GhostCount countGhostPoints(const std::string& gt_objects_json, const std::string& gt_trajectory_tum,
                             const std::string& run_trajectory_tum, const std::string& map_ply, double margin_m = 0.3);
+/// The same test on any points of the map frame (\p points_map).
+GhostCount countGhostsAmong(const std::string& gt_objects_json, const std::string& gt_trajectory_tum,
+                            const std::string& run_trajectory_tum, const std::vector<Eigen::Vector3f>& points_map,
+                            double margin_m = 0.3);
+/// Ghost voxels of an OctoMap (\p map_bt, roadslam-map's map.bt): its occupied leaves' centres are
+/// the points (map_points = occupied leaves, ghost_points = those on the swept paths; pruned leaves
+/// count once, at their centre).
+GhostCount countGhostVoxels(const std::string& gt_objects_json, const std::string& gt_trajectory_tum,
+                            const std::string& run_trajectory_tum, const std::string& map_bt, double margin_m = 0.3);
 
 nlohmann::json toJson(const MotMetrics& m);
 std::string toText(const MotMetrics& m);
