@@ -53,19 +53,35 @@ int main(int argc, char** argv) {
   objects->add_option("--range", mp.max_range_m, "GT cars within this range of the lidar [m]");
   objects->add_option("--match-distance", mp.match_distance_m, "largest centre distance of a match [m]");
   objects->add_option("--speed-after", mp.speed_after_s, "speed error counted for tracks this old [s]");
+  objects->add_option("--min-returns", mp.min_returns,
+                      "GT cars with fewer lidar points in the turn (gt_objects.json returns) are don't care");
+  std::string o_events;
+  objects->add_option("--events", o_events, "also write every miss, false positive and id switch as CSV");
   objects->add_flag("--json", json, "print JSON instead of text");
   bool o_ghosts = false;
-  objects->add_flag("--ghosts", o_ghosts, "also count the map's points (RUN/map.ply) on the moving cars' swept paths");
+  objects->add_flag("--ghosts", o_ghosts,
+                    "also count the map's points (RUN/map.ply) and OctoMap leaves (RUN/map.bt) on the moving cars' swept paths");
   CLI11_PARSE(app, argc, argv);
   try {
     if (*objects) {
+      mp.keep_events = !o_events.empty();
       const auto m = roadslam::eval::evaluateMotFiles(o_gt, o_traj, o_run, mp);
+      if (!o_events.empty()) {
+        std::ofstream out(o_events);
+        if (!(out << roadslam::eval::eventsCsv(m))) throw std::runtime_error("cannot write '" + o_events + "'");
+      }
       auto j = roadslam::eval::toJson(m);
       std::string text = roadslam::eval::toText(m);
       if (o_ghosts) {
         const auto g = roadslam::eval::countGhostPoints(o_gt, o_traj, o_run + "/trajectory.tum", o_run + "/map.ply");
         j["map_points"] = g.map_points, j["ghost_points"] = g.ghost_points;
         text += "ghost points        " + std::to_string(g.ghost_points) + " of " + std::to_string(g.map_points) + " map points\n";
+        if (std::ifstream(o_run + "/map.bt")) {
+          const auto v = roadslam::eval::countGhostVoxels(o_gt, o_traj, o_run + "/trajectory.tum", o_run + "/map.bt");
+          j["octomap_occupied_leaves"] = v.map_points, j["octomap_ghost_leaves"] = v.ghost_points;
+          text += "ghost voxels        " + std::to_string(v.ghost_points) + " of " + std::to_string(v.map_points) +
+                  " occupied OctoMap leaves (map.bt)\n";
+        }
       }
       std::cout << (json ? j.dump(2) + "\n" : text);
       return 0;

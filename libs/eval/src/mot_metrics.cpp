@@ -15,9 +15,12 @@
 namespace roadslam::eval {
 namespace {
 
+constexpr long long kStampTolerance_us = 5;
+
 struct GtCar {
   int id = 0;
   std::vector<double> t, x, y;
+  std::vector<int> returns;  ///< per sample, -1 when the file has none
 };
 
 struct Hyp {
@@ -38,6 +41,7 @@ std::vector<GtCar> readGtCars(const std::string& path) {
     g.id = c["id"].get<int>();
     for (const auto& s : c["track"]) {
       g.t.push_back(s[0].get<double>()), g.x.push_back(s[1].get<double>()), g.y.push_back(s[2].get<double>());
+      g.returns.push_back(s.size() > 5 ? s[5].get<int>() : -1);
     }
     if (g.t.size() >= 2) out.push_back(std::move(g));
   }
@@ -54,6 +58,14 @@ bool carAt(const GtCar& c, double t, Eigen::Vector2d& p, Eigen::Vector2d& v) {
   p = {(1 - u) * c.x[k - 1] + u * c.x[k], (1 - u) * c.y[k - 1] + u * c.y[k]};
   v = {(c.x[k] - c.x[k - 1]) / dt, (c.y[k] - c.y[k - 1]) / dt};
   return true;
+}
+
+/// The car's returns in the sample nearest to \p t (-1 unknown).
+int returnsAt(const GtCar& c, double t) {
+  const size_t k = std::upper_bound(c.t.begin(), c.t.end(), t) - c.t.begin();
+  if (k == 0) return c.returns.front();
+  if (k >= c.t.size()) return c.returns.back();
+  return (t - c.t[k - 1] < c.t[k] - t) ? c.returns[k - 1] : c.returns[k];
 }
 
 /// The pose of \p tr at \p t (linear translation, slerp rotation); false outside it.
@@ -140,21 +152,32 @@ MotMetrics evaluateMotFiles(const std::string& gt_objects_json, const std::strin
     const double dt = std::isfinite(prev_t) ? std::min(t - prev_t, 0.5) : 0.1;
     prev_t = t;
     ++m.frames;
-    // GT cars and hypotheses in the lidar frame of time t
-    std::vector<Eigen::Vector2d> g, gv, h, hv;
-    std::vector<int> g_id;
+    // GT cars and hypotheses in the lidar frame of time t; dc: the don't-care cars (hidden or far)
+    std::vector<Eigen::Vector2d> g, gv, h, hv, dc;
+    std::vector<int> g_id, g_ret;
     for (const auto& c : cars) {
       Eigen::Vector2d pw, vw;
       if (!carAt(c, t, pw, vw)) continue;
       const Eigen::Vector3d pl = T_lidar_world * Eigen::Vector3d(pw.x(), pw.y(), T_world_lidar.translation().z());
-      if (pl.head<2>().norm() > p.max_range_m) continue;
+      const double r = pl.head<2>().norm();
+      if (r > p.max_range_m + p.dont_care_margin_m) continue;
+      const int ret = returnsAt(c, t);
+      if (r > p.max_range_m || (ret >= 0 && ret < p.min_returns)) {
+        dc.push_back(pl.head<2>());
+        continue;
+      }
       g.push_back(pl.head<2>());
       gv.push_back((T_lidar_world.linear() * Eigen::Vector3d(vw.x(), vw.y(), 0)).head<2>());
       g_id.push_back(c.id);
+      g_ret.push_back(ret);
       seen.insert(c.id);
     }
+    m.dont_care += dc.size();
     std::vector<Hyp> hyps;
-    const auto it = tracks.find(std::llround(t * 1e6));
+    // tracks.csv's %.6f stamp and the TUM file's 9 decimals can round apart by a microsecond at
+    // epoch times (1e15 us: a double's step is 0.25 us): the nearest row time within 5 us
+    auto it = tracks.lower_bound(std::llround(t * 1e6) - kStampTolerance_us);
+    if (it != tracks.end() && std::abs(it->first - std::llround(t * 1e6)) > kStampTolerance_us) it = tracks.end();
     if (it != tracks.end()) {
       for (const Hyp& y : it->second) {
         const Eigen::Vector3d pl = T_lidar_map * Eigen::Vector3d(y.p_map.x(), y.p_map.y(), est.poses[k].translation().z());
@@ -178,10 +201,16 @@ MotMetrics evaluateMotFiles(const std::string& gt_objects_json, const std::strin
         }
       }
     }
+    auto event = [&](const char* kind, int gi, int hj, double range, int ret, double nearest) {
+      if (p.keep_events) m.events.push_back({t, kind, gi, hj, range, ret, nearest});
+    };
     for (const auto& [i, j] : assign(g, h, g_free, h_free, p.match_distance_m)) {
       matched.emplace_back(i, j), g_free[i] = h_free[j] = 0;
       const auto lm = last_match.find(g_id[i]);
-      if (lm != last_match.end() && lm->second != hyps[j].id) ++m.id_switches;
+      if (lm != last_match.end() && lm->second != hyps[j].id) {
+        ++m.id_switches;
+        event("id_switch", g_id[i], hyps[j].id, g[i].norm(), g_ret[i], (g[i] - h[j]).norm());
+      }
     }
     for (const auto& [i, j] : matched) {
       last_match[g_id[i]] = hyps[j].id;
@@ -192,8 +221,26 @@ MotMetrics evaluateMotFiles(const std::string& gt_objects_json, const std::strin
     }
     m.matches += matched.size();
     m.misses += g.size() - matched.size();
+    // tracks on don't-care cars are neither matches nor false positives
+    const std::vector<char> dc_free(dc.size(), 1);
+    for (const auto& [i, j] : assign(dc, h, dc_free, h_free, p.match_distance_m)) h_free[j] = 0, ++m.dont_care_matches;
+    auto nearest = [](const Eigen::Vector2d& q, const std::vector<Eigen::Vector2d>& a, const std::vector<Eigen::Vector2d>& b) {
+      double d = -1;
+      for (const auto* v : {&a, &b}) {
+        for (const auto& x : *v) d = (d < 0 || (x - q).norm() < d) ? (x - q).norm() : d;
+      }
+      return d;
+    };
+    if (p.keep_events) {
+      for (size_t i = 0; i < g.size(); ++i) {
+        if (g_free[i]) event("miss", g_id[i], -1, g[i].norm(), g_ret[i], nearest(g[i], h, {}));
+      }
+    }
     for (size_t j = 0; j < h.size(); ++j) {
-      if (h_free[j] && hyps[j].moving && h[j].norm() <= p.max_range_m) ++m.false_positives;
+      if (h_free[j] && hyps[j].moving && h[j].norm() <= p.max_range_m) {
+        ++m.false_positives;
+        event("false_positive", -1, hyps[j].id, h[j].norm(), -1, nearest(h[j], g, dc));
+      }
     }
   }
   m.mota = m.gt ? 1.0 - double(m.misses + m.false_positives + m.id_switches) / m.gt : 0.0;
@@ -212,8 +259,9 @@ MotMetrics evaluateMotFiles(const std::string& gt_objects_json, const std::strin
   return m;
 }
 
-GhostCount countGhostPoints(const std::string& gt_objects_json, const std::string& gt_trajectory_tum,
-                            const std::string& run_trajectory_tum, const std::string& map_ply, double margin_m) {
+GhostCount countGhostsAmong(const std::string& gt_objects_json, const std::string& gt_trajectory_tum,
+                            const std::string& run_trajectory_tum, const std::vector<Eigen::Vector3f>& points_map,
+                            double margin_m) {
   std::ifstream fo(gt_objects_json);
   if (!fo) throw std::runtime_error("cannot read '" + gt_objects_json + "'");
   const auto j = nlohmann::json::parse(fo, nullptr, false);
@@ -224,17 +272,6 @@ GhostCount countGhostPoints(const std::string& gt_objects_json, const std::strin
   Eigen::Isometry3d T_world_lidar;
   if (!poseAt(gt, est.stamps_s[0], T_world_lidar)) throw std::runtime_error("the GT trajectory does not cover the run's first pose");
   const Eigen::Isometry3d T_world_map = T_world_lidar * est.poses[0].inverse();
-  // the map's points (binary little-endian float xyz, as roadslam-map writes map.ply)
-  std::ifstream fp(map_ply, std::ios::binary);
-  if (!fp) throw std::runtime_error("cannot read '" + map_ply + "'");
-  std::string line;
-  size_t n = 0;
-  while (std::getline(fp, line) && line != "end_header") {
-    if (line.rfind("element vertex ", 0) == 0) n = std::stoul(line.substr(15));
-  }
-  std::vector<float> xyz(3 * n);
-  fp.read(reinterpret_cast<char*>(xyz.data()), static_cast<std::streamsize>(xyz.size() * sizeof(float)));
-  if (static_cast<size_t>(fp.gcount()) != xyz.size() * sizeof(float)) throw std::runtime_error("'" + map_ply + "' is truncated");
   // swept boxes on a 1 m grid of the world for a quick lookup
   struct SweptBox {
     double x, y, z0, z1, c, s, hl, hw;
@@ -253,9 +290,9 @@ GhostCount countGhostPoints(const std::string& gt_objects_json, const std::strin
     }
   }
   GhostCount out;
-  out.map_points = n;
-  for (size_t i = 0; i < n; ++i) {
-    const Eigen::Vector3d w = T_world_map * Eigen::Vector3d(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+  out.map_points = points_map.size();
+  for (const auto& p : points_map) {
+    const Eigen::Vector3d w = T_world_map * p.cast<double>();
     const auto it = grid.find({static_cast<long>(std::floor(w.x())), static_cast<long>(std::floor(w.y()))});
     if (it == grid.end()) continue;
     for (const SweptBox& b : it->second) {
@@ -269,13 +306,31 @@ GhostCount countGhostPoints(const std::string& gt_objects_json, const std::strin
   return out;
 }
 
+GhostCount countGhostPoints(const std::string& gt_objects_json, const std::string& gt_trajectory_tum,
+                            const std::string& run_trajectory_tum, const std::string& map_ply, double margin_m) {
+  // the map's points (binary little-endian float xyz, as roadslam-map writes map.ply)
+  std::ifstream fp(map_ply, std::ios::binary);
+  if (!fp) throw std::runtime_error("cannot read '" + map_ply + "'");
+  std::string line;
+  size_t n = 0;
+  while (std::getline(fp, line) && line != "end_header") {
+    if (line.rfind("element vertex ", 0) == 0) n = std::stoul(line.substr(15));
+  }
+  std::vector<float> xyz(3 * n);
+  fp.read(reinterpret_cast<char*>(xyz.data()), static_cast<std::streamsize>(xyz.size() * sizeof(float)));
+  if (static_cast<size_t>(fp.gcount()) != xyz.size() * sizeof(float)) throw std::runtime_error("'" + map_ply + "' is truncated");
+  std::vector<Eigen::Vector3f> pts(n);
+  for (size_t i = 0; i < n; ++i) pts[i] = {xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]};
+  return countGhostsAmong(gt_objects_json, gt_trajectory_tum, run_trajectory_tum, pts, margin_m);
+}
+
 nlohmann::json toJson(const MotMetrics& m) {
   return {{"frames", m.frames}, {"gt", m.gt}, {"matches", m.matches}, {"misses", m.misses},
           {"false_positives", m.false_positives}, {"id_switches", m.id_switches}, {"mota", m.mota},
           {"motp_m", m.motp_m}, {"speed_samples", m.speed_samples}, {"speed_error_mean_mps", m.speed_error_mean_mps},
           {"speed_error_p95_mps", m.speed_error_p95_mps}, {"tracked_s", m.tracked_s},
           {"id_switches_per_100s", m.id_switches_per_100s}, {"moving_label_fraction", m.moving_label_fraction},
-          {"gt_cars_seen", m.gt_cars_seen}};
+          {"gt_cars_seen", m.gt_cars_seen}, {"dont_care", m.dont_care}, {"dont_care_matches", m.dont_care_matches}};
 }
 
 std::string toText(const MotMetrics& m) {
@@ -284,11 +339,23 @@ std::string toText(const MotMetrics& m) {
                 "frames              %zu\nGT objects          %zu (%zu cars)\nmatches             %zu\n"
                 "misses              %zu\nfalse positives     %zu\nid switches         %zu (%.2f per 100 tracked s)\n"
                 "MOTA                %.3f\nMOTP                %.3f m\nspeed error         %.2f m/s mean, %.2f m/s p95 (%zu samples)\n"
-                "labelled moving     %.1f %% of matches\n",
+                "labelled moving     %.1f %% of matches\n"
+                "don't care          %zu car-frames (hidden or far), %zu tracks on them\n",
                 m.frames, m.gt, m.gt_cars_seen, m.matches, m.misses, m.false_positives, m.id_switches,
                 m.id_switches_per_100s, m.mota, m.motp_m, m.speed_error_mean_mps, m.speed_error_p95_mps,
-                m.speed_samples, 100 * m.moving_label_fraction);
+                m.speed_samples, 100 * m.moving_label_fraction, m.dont_care, m.dont_care_matches);
   return buf;
+}
+
+std::string eventsCsv(const MotMetrics& m) {
+  std::string out = "t,kind,gt_id,track_id,range_m,returns,nearest_m\n";
+  char buf[256];
+  for (const MotEvent& e : m.events) {
+    std::snprintf(buf, sizeof(buf), "%.6f,%s,%d,%d,%.2f,%d,%.2f\n", e.t, e.kind.c_str(), e.gt_id, e.track_id, e.range_m,
+                  e.returns, e.nearest_m);
+    out += buf;
+  }
+  return out;
 }
 
 }  // namespace roadslam::eval

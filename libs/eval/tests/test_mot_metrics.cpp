@@ -9,6 +9,8 @@
 
 #include <unistd.h>
 
+#include <octomap/OcTree.h>
+
 #include "roadslam/eval/mot_metrics.h"
 
 using namespace roadslam;
@@ -77,5 +79,78 @@ TEST(MotMetrics, AMissingTracksFileIsAnErrorNamingIt) {
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("tracks.csv"), std::string::npos) << e.what();
   }
+  std::filesystem::remove_all(d);
+}
+
+// Visibility: a car with returns per sample, hidden (3 returns < min_returns 10) in frames 0..9, always
+// within 40 m. A moving track follows it except in frames 20..24: its frames on the hidden car are don't
+// care (no match, no false positive), the five frames without it are misses; the events list them.
+TEST(MotMetrics, HiddenAndFarCarsAreDontCare) {
+  const std::string d = tmpDir();
+  const double t0 = 1000.0;
+  {
+    nlohmann::json track = nlohmann::json::array();
+    for (int k = 0; k <= 40; ++k) {
+      const double x = -20.0 + 1.1 * k;
+      track.push_back({t0 + 0.1 * k, x, 5.0, 0.0, 0.0, k < 10 ? 3 : 50, std::hypot(x, 5.0)});
+    }
+    const nlohmann::json gt = {{"frame", "world"},
+                               {"moving_cars", {{{"id", 0}, {"length_m", 4.5}, {"width_m", 1.8}, {"height_m", 1.5}, {"track", track}}}}};
+    std::ofstream(d + "/gt_objects.json") << gt.dump();
+    std::ofstream g(d + "/gt_trajectory.tum"), e(d + "/trajectory_odometry.tum"), tr(d + "/tracks.csv");
+    tr << "frame,stamp_s,track_id,x,y,vx,vy,speed_mps,heading_rad,length_m,width_m,z_min,z_max,moving,hits,misses,age_s\n";
+    for (int k = 0; k <= 40; ++k) {
+      const double t = t0 + 0.1 * k;
+      char line[256];
+      std::snprintf(line, sizeof(line), "%.6f 0 0 0 0 0 0 1\n", t);
+      g << line;
+      e << line;
+      if (k >= 20 && k < 25) continue;  // five frames without a track: five misses
+      std::snprintf(line, sizeof(line), "%d,%.6f,1,%.3f,5.0,11,0,11,0,4.5,1.8,-1,0.5,1,%d,0,%.2f\n", k, t, -20.0 + 1.1 * k,
+                    k + 3, 0.1 * k);
+      tr << line;
+    }
+  }
+  eval::MotParams p;
+  p.keep_events = true;
+  const auto m = eval::evaluateMotFiles(d + "/gt_objects.json", d + "/gt_trajectory.tum", d, p);
+  EXPECT_EQ(m.gt, 31u);
+  EXPECT_EQ(m.dont_care, 10u);
+  EXPECT_EQ(m.dont_care_matches, 10u);
+  EXPECT_EQ(m.matches, 26u);
+  EXPECT_EQ(m.misses, 5u);
+  EXPECT_EQ(m.false_positives, 0u);
+  EXPECT_EQ(m.id_switches, 0u);
+  ASSERT_EQ(m.events.size(), 5u);
+  EXPECT_EQ(m.events[0].kind, "miss");
+  EXPECT_EQ(m.events[0].returns, 50);
+  EXPECT_NE(eval::eventsCsv(m).find("miss"), std::string::npos);
+  // the same without visibility (min_returns 0): the hidden frames are matches
+  p.min_returns = 0;
+  const auto all = eval::evaluateMotFiles(d + "/gt_objects.json", d + "/gt_trajectory.tum", d, p);
+  EXPECT_EQ(all.gt, 41u);
+  EXPECT_EQ(all.matches, 36u);
+  std::filesystem::remove_all(d);
+}
+
+// Ghost voxels: an OctoMap with one occupied voxel on a car's swept path (0.8 m above its ground,
+// inside its box) and one beside the lane; the map frame is the world (identity poses).
+TEST(MotMetrics, GhostVoxelsAreTheOccupiedLeavesOnTheSweptPaths) {
+  const std::string d = tmpDir();
+  nlohmann::json track = nlohmann::json::array();
+  for (int k = 0; k <= 10; ++k) track.push_back({1000.0 + 0.1 * k, 1.0 * k, 0.0, 0.0, 0.0, 50, 5.0});
+  const nlohmann::json gt = {{"frame", "world"},
+                             {"moving_cars", {{{"id", 0}, {"length_m", 4.5}, {"width_m", 1.8}, {"height_m", 1.5}, {"track", track}}}}};
+  std::ofstream(d + "/gt_objects.json") << gt.dump();
+  std::ofstream(d + "/gt_trajectory.tum") << "1000 0 0 0 0 0 0 1\n1001 0 0 0 0 0 0 1\n";
+  std::ofstream(d + "/trajectory.tum") << "1000 0 0 0 0 0 0 1\n";
+  octomap::OcTree tree(0.2);
+  tree.updateNode(octomap::point3d(5.0f, 0.3f, 0.8f), true);   // on the path
+  tree.updateNode(octomap::point3d(5.0f, 6.0f, 0.8f), true);   // beside it
+  tree.updateNode(octomap::point3d(5.0f, -6.0f, 0.8f), false); // free
+  ASSERT_TRUE(tree.writeBinary(d + "/map.bt"));
+  const auto g = eval::countGhostVoxels(d + "/gt_objects.json", d + "/gt_trajectory.tum", d + "/trajectory.tum", d + "/map.bt");
+  EXPECT_EQ(g.map_points, 2u);
+  EXPECT_EQ(g.ghost_points, 1u);
   std::filesystem::remove_all(d);
 }

@@ -21,7 +21,7 @@ void MapOutputParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg) const
 }
 
 MapOutputStats writeMaps(const std::string& dir, const Mapper& mapper, const PoseVector& trajectory,
-                         const MapOutputParams& p, OctoMapWorker* octomap) {
+                         const MapOutputParams& p, OctoMapWorker* octomap, const std::vector<TopViewBox>& boxes) {
   const auto t0 = std::chrono::steady_clock::now();
   MapOutputStats st;
   const auto& kfs = mapper.keyframes();
@@ -60,7 +60,7 @@ MapOutputStats writeMaps(const std::string& dir, const Mapper& mapper, const Pos
   for (const auto& l : mapper.loopResults()) {
     if (l.accepted) loops.emplace_back(T_map_kf[l.query].translation(), T_map_kf[l.match].translation());
   }
-  drawTopView(dir + "/map_top.png", points, trajectory, loops);
+  drawTopView(dir + "/map_top.png", points, trajectory, loops, 1600, boxes);
   std::tie(st.octomap_keyframes, st.octomap_leafs, st.octomap_ms_per_keyframe) = octo.get();
   st.ms_total = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return st;

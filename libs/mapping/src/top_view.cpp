@@ -20,7 +20,8 @@ mrpt::img::TColor heightColour(double t) {
 }  // namespace
 
 void drawTopView(const std::string& png_path, const std::vector<Eigen::Vector3f>& pts, const PoseVector& traj,
-                 const std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>>& loops, int max_px) {
+                 const std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>>& loops, int max_px,
+                 const std::vector<TopViewBox>& boxes) {
   Eigen::Vector2d lo(1e18, 1e18), hi(-1e18, -1e18);
   for (const auto& T : traj) {
     lo = lo.cwiseMin(T.translation().head<2>());
@@ -58,10 +59,35 @@ void drawTopView(const std::string& png_path, const std::vector<Eigen::Vector3f>
     img.line(a.x(), a.y(), b.x(), b.y(), mrpt::img::TColor(255, 0, 255), 2);
     img.drawCircle(a.x(), a.y(), 6, mrpt::img::TColor(255, 0, 255), 2);
   }
+  const mrpt::img::TColor yellow(255, 220, 0);
+  for (const TopViewBox& b : boxes) {
+    const Eigen::Vector2d u(std::cos(b.yaw), std::sin(b.yaw)), v(-u.y(), u.x());
+    const double hl = 0.5 * b.length, hw = 0.5 * b.width;
+    const Eigen::Vector2d c[4] = {b.centre + hl * u + hw * v, b.centre + hl * u - hw * v, b.centre - hl * u - hw * v,
+                                  b.centre - hl * u + hw * v};
+    for (int k = 0; k < 4; ++k) {
+      const auto a = px(c[k]), e = px(c[(k + 1) % 4]);
+      img.line(a.x(), a.y(), e.x(), e.y(), yellow, 2);
+    }
+    // velocity arrow: 1 s of travel, head 30 deg either side
+    const auto a = px(b.centre), e = px(b.centre + b.velocity);
+    img.line(a.x(), a.y(), e.x(), e.y(), yellow, 2);
+    const double speed = b.velocity.norm();
+    if (speed > 0.5) {
+      const Eigen::Vector2d d = b.velocity / speed, n(-d.y(), d.x()), tip = b.centre + b.velocity;
+      const double head = std::min(2.0, 0.3 * speed);
+      for (double side : {-1.0, 1.0}) {
+        const auto h = px(tip - head * (std::cos(M_PI / 6) * d + side * std::sin(M_PI / 6) * n));
+        img.line(e.x(), e.y(), h.x(), h.y(), yellow, 2);
+      }
+    }
+    img.textOut(a.x() + 6, a.y() - 14, std::to_string(b.id), yellow);
+  }
   const int bar_px = static_cast<int>(50 * scale);  // 50 m scale bar
   img.filledRectangle(10, h - 25, 10 + bar_px, h - 20, mrpt::img::TColor(255, 255, 255));
   img.textOut(15 + bar_px, h - 32, "50 m   white: trajectory, magenta: " + std::to_string(loops.size()) +
-                                       " loop closures, points coloured by height",
+                                       " loop closures, points coloured by height" +
+                                       (boxes.empty() ? std::string() : ", yellow: moving tracks (last box, id, 1 s arrow)"),
               mrpt::img::TColor(255, 255, 255));
   const std::string tmp = tempPathFor(png_path) + ".png";
   if (!img.saveToFile(tmp)) throw std::runtime_error("cannot write top view '" + png_path + "'");

@@ -36,8 +36,10 @@ void BM_GroundLabels(benchmark::State& st) {
 void BM_ClusterAndTrack(benchmark::State& st) {
   const auto& s = sweep();
   ClusterParams p;
-  p.method = st.range(0) ? ClusterMethod::Euclidean : ClusterMethod::RangeImage;
-  Tracker tr;
+  p.method = static_cast<ClusterMethod>(st.range(0));
+  TrackerParams tp;
+  tp.motion_model = st.range(1) ? MotionModel::Ctrv : MotionModel::ConstantVelocity;
+  Tracker tr(tp);
   double t = 0;
   size_t objects = 0;
   for (auto _ : st) {
@@ -46,11 +48,12 @@ void BM_ClusterAndTrack(benchmark::State& st) {
     objects = objs.size();
   }
   st.counters["objects"] = static_cast<double>(objects);
-  st.SetLabel(toString(p.method));
+  st.SetLabel(toString(p.method) + " + " + toString(tp.motion_model));
 }
 
 }  // namespace
 
 BENCHMARK(BM_GroundLabels)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_ClusterAndTrack)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+// method: 0 range image, 1 Euclidean, 2 DBSCAN; motion model: 0 CV, 1 CTRV
+BENCHMARK(BM_ClusterAndTrack)->Args({0, 0})->Args({1, 0})->Args({2, 0})->Args({0, 1})->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();

@@ -76,27 +76,78 @@ int rangeImageComponents(const std::vector<ScanPoint>& pts, const std::vector<ui
   });
 }
 
-/// Euclidean clusters: x-y grid of cluster_distance_m cells, components of points within
-/// cluster_distance_m of each other (the 3 x 3 cells around a point hold every such neighbour).
-int euclideanComponents(const std::vector<ScanPoint>& pts, const std::vector<uint32_t>& cand, const ClusterParams& p,
-                        Labels& label) {
-  const double cell = p.cluster_distance_m;
-  auto key = [&](double x, double y) {
-    const int64_t ix = static_cast<int64_t>(std::floor(x / cell)), iy = static_cast<int64_t>(std::floor(y / cell));
-    return (ix << 32) ^ (iy & 0xffffffff);
-  };
-  std::unordered_map<int64_t, std::vector<uint32_t>> grid;
-  grid.reserve(cand.size());
-  for (uint32_t i : cand) grid[key(pts[i].x, pts[i].y)].push_back(i);
-  return floodComponents(pts, cand, cell, label, [&](uint32_t i, auto&& visit) {
-    for (int dx = -1; dx <= 1; ++dx) {
-      for (int dy = -1; dy <= 1; ++dy) {
-        const auto it = grid.find(key(pts[i].x + dx * cell, pts[i].y + dy * cell));
-        if (it == grid.end()) continue;
+/// The candidates on an x-y grid of \p cell metres: forCell(i, visit) offers every point of the 3 x 3
+/// cells around point i, which hold every point within \p cell of it.
+class XyGrid {
+ public:
+  XyGrid(const std::vector<ScanPoint>& pts, const std::vector<uint32_t>& cand, double cell) : pts_(pts), cell_(cell) {
+    grid_.reserve(cand.size());
+    for (uint32_t i : cand) grid_[key(cellOf(pts[i].x), cellOf(pts[i].y))].push_back(i);
+  }
+  template <class Visit>
+  void forNeighbours(uint32_t i, Visit&& visit) const {
+    // integer cells: offsets of the coordinate (x +- cell) can round into one cell twice or skip one
+    const int64_t ix = cellOf(pts_[i].x), iy = cellOf(pts_[i].y);
+    for (int64_t dx = -1; dx <= 1; ++dx) {
+      for (int64_t dy = -1; dy <= 1; ++dy) {
+        const auto it = grid_.find(key(ix + dx, iy + dy));
+        if (it == grid_.end()) continue;
         for (uint32_t j : it->second) visit(j);
       }
     }
+  }
+
+ private:
+  int64_t cellOf(double v) const { return static_cast<int64_t>(std::floor(v / cell_)); }
+  static int64_t key(int64_t ix, int64_t iy) { return (ix << 32) ^ (iy & 0xffffffff); }
+  const std::vector<ScanPoint>& pts_;
+  double cell_;
+  std::unordered_map<int64_t, std::vector<uint32_t>> grid_;
+};
+
+/// Euclidean clusters: components of points within cluster_distance_m of each other.
+int euclideanComponents(const std::vector<ScanPoint>& pts, const std::vector<uint32_t>& cand, const ClusterParams& p,
+                        Labels& label) {
+  const XyGrid grid(pts, cand, p.cluster_distance_m);
+  return floodComponents(pts, cand, p.cluster_distance_m, label,
+                         [&](uint32_t i, auto&& visit) { grid.forNeighbours(i, visit); });
+}
+
+/// DBSCAN (Ester et al., KDD 1996) in x-y with eps = cluster_distance_m, MinPts = dbscan_min_points:
+/// clusters grow through core points (>= MinPts points within eps, itself included); a non-core point
+/// within eps of a core joins its cluster (border) without growing it; the rest is noise (label -1).
+int dbscanComponents(const std::vector<ScanPoint>& pts, const std::vector<uint32_t>& cand, const ClusterParams& p,
+                     Labels& label) {
+  const double eps2 = p.cluster_distance_m * p.cluster_distance_m;
+  const XyGrid grid(pts, cand, p.cluster_distance_m);
+  std::vector<char> core(pts.size(), 0);
+  for (uint32_t i : cand) {
+    int n = 0;
+    grid.forNeighbours(i, [&](uint32_t j) {
+      const double dx = pts[j].x - pts[i].x, dy = pts[j].y - pts[i].y;
+      n += dx * dx + dy * dy <= eps2;
+    });
+    core[i] = n >= p.dbscan_min_points;
+  }
+  std::vector<uint32_t> cores;
+  for (uint32_t i : cand) {
+    if (core[i]) cores.push_back(i);
+  }
+  // components of the core points, then each border point to the cluster of a core within eps
+  const int n = floodComponents(pts, cores, p.cluster_distance_m, label, [&](uint32_t i, auto&& visit) {
+    grid.forNeighbours(i, [&](uint32_t j) {
+      if (core[j]) visit(j);
+    });
   });
+  for (uint32_t i : cand) {
+    if (core[i]) continue;
+    grid.forNeighbours(i, [&](uint32_t j) {
+      if (label[i] >= 0 || !core[j]) return;
+      const double dx = pts[j].x - pts[i].x, dy = pts[j].y - pts[i].y;
+      if (dx * dx + dy * dy <= eps2) label[i] = label[j];
+    });
+  }
+  return n;
 }
 
 }  // namespace
@@ -173,10 +224,13 @@ std::vector<Object> segmentObjects(const std::vector<ScanPoint>& pts, bool has_r
     cand.push_back(static_cast<uint32_t>(i));
   }
   Labels label(pts.size(), -1);
-  const int n = (has_rings && p.method == ClusterMethod::RangeImage) ? rangeImageComponents(pts, cand, p, label)
+  const int n = p.method == ClusterMethod::Dbscan                 ? dbscanComponents(pts, cand, p, label)
+                : (has_rings && p.method == ClusterMethod::RangeImage) ? rangeImageComponents(pts, cand, p, label)
                                                                        : euclideanComponents(pts, cand, p, label);
   std::vector<std::vector<uint32_t>> members(static_cast<size_t>(n));
-  for (uint32_t i : cand) members[static_cast<size_t>(label[i])].push_back(i);
+  for (uint32_t i : cand) {
+    if (label[i] >= 0) members[static_cast<size_t>(label[i])].push_back(i);  // DBSCAN's noise is -1
+  }
   std::vector<Object> out;
   std::vector<Eigen::Vector2d> xy;
   for (auto& m : members) {
@@ -187,11 +241,13 @@ std::vector<Object> segmentObjects(const std::vector<ScanPoint>& pts, bool has_r
     for (uint32_t i : m) {
       const ScanPoint& q = pts[i];
       o.centroid += Eigen::Vector3d(q.x, q.y, q.z);
+      o.t_mean += q.t;
       o.z_min = std::min<double>(o.z_min, q.z), o.z_max = std::max<double>(o.z_max, q.z);
       o.top_height_m = std::max<double>(o.top_height_m, height[i]);
       xy.emplace_back(q.x, q.y);
     }
     o.centroid /= static_cast<double>(m.size());
+    o.t_mean /= static_cast<double>(m.size());
     if (o.top_height_m < p.min_top_height_m) continue;
     o.box = fitLShape(xy, p.lshape_step_rad);
     if (o.box.length > p.max_length_m || o.box.width > p.max_width_m) continue;

@@ -12,6 +12,9 @@ namespace roadslam::objects {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+constexpr double kHalfSweep_s = 0.05;
+constexpr double kRetroStep_s = 0.1;   // extrapolated boxes every sweep at 10 Hz (the keyframes match within half)  // half a turn at 10 Hz: how far from the sweep's time a point may be
+
 double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
 std::string fmt(const char* f, ...) __attribute__((format(printf, 1, 2)));
@@ -28,8 +31,17 @@ std::string fmt(const char* f, ...) {
 
 ObjectsFrame ObjectsStage::snapshot() const {
   ObjectsFrame f;
+  const TrackerParams& tp = tracker_.params();
   for (const Track& t : tracker_.tracks()) {
-    if (t.state == TrackState::Confirmed) f.tracks.push_back(t);
+    if (t.state != TrackState::Confirmed) continue;
+    f.tracks.push_back(t);
+    if (!t.moving) continue;
+    BoxRecord b;
+    b.t = t.t_last, b.centre = t.x.head<2>(), b.yaw = t.heading;
+    b.length = std::max(t.length, tp.car_length_m) + 2 * t.speed() * kHalfSweep_s;
+    b.width = std::max(t.width, tp.car_width_m);
+    b.z_min = t.z_min, b.z_max = t.z_max;
+    f.moving_boxes.push_back(b);
   }
   return f;
 }
@@ -42,6 +54,8 @@ ObjectsFrame ObjectsStage::process(const Scan& scan, const Eigen::Isometry3d& T_
   SegmentationStats st;
   std::vector<Object> objs = segmentObjects(scan.points, scan.has_rings, g.ground, g.height_above_ground_m, p_, &st);
   const double ms_segment = msSince(t0);
+  // a moving object is seen when the beam sweeps over it, up to half a turn from the reference time
+  for (Object& o : objs) o.dt_s = scan.has_point_times ? scan.stamp_s + o.t_mean - t_s : 0.0;
   t0 = Clock::now();
   tracker_.update(t_s, T_map_lidar, objs);
   ObjectsFrame f = snapshot();
@@ -51,6 +65,25 @@ ObjectsFrame ObjectsStage::process(const Scan& scan, const Eigen::Isometry3d& T_
     if (t.last_detection < 0 || t.state != TrackState::Confirmed) continue;
     f.object_track[static_cast<size_t>(t.last_detection)] = t.id;
     f.object_moving[static_cast<size_t>(t.last_detection)] = t.moving;
+  }
+  for (const Track& t : tracker_.tracks()) {
+    if (!t.moving || t.moving_since != t_s) continue;
+    f.retro.insert(f.retro.end(), t.history->begin(), t.history->end());
+    // the car drove where its velocity leads back: car-sized boxes along that path since its birth (the
+    // parts of the car its detections missed) and for p_.retro_extrapolate_s before (seen too far or
+    // too sparse for an object)
+    const TrackerParams& tp = tracker_.params();
+    const int steps = static_cast<int>(std::floor((t_s - t.t_birth + p_.retro_extrapolate_s) / kRetroStep_s + 1e-9));
+    for (int k = 1; k <= steps; ++k) {
+      BoxRecord b;
+      b.t = t_s - k * kRetroStep_s;
+      b.centre = t.x.head<2>() - t.x.tail<2>() * (t_s - b.t);
+      b.yaw = t.heading;
+      b.length = std::max(t.length, tp.car_length_m) + 2 * t.speed() * kHalfSweep_s;
+      b.width = std::max(t.width, tp.car_width_m);
+      b.z_min = t.z_min, b.z_max = t.z_max;
+      f.retro.push_back(b);
+    }
   }
   f.ms_track = msSince(t0);
   f.objects = std::move(objs);
@@ -64,12 +97,13 @@ ObjectsFrame ObjectsStage::coast(double t_s) {
   return snapshot();
 }
 
-size_t removeMovingPoints(std::vector<Eigen::Vector3d>& pts_lidar, const ObjectsFrame& f, double margin_m) {
+size_t removeMovingPoints(std::vector<Eigen::Vector3d>& pts_lidar, const ObjectsFrame& f, double margin_m,
+                          const Eigen::Isometry3d& T_map_lidar) {
   std::vector<const Object*> moving;
   for (size_t k = 0; k < f.objects.size() && k < f.object_moving.size(); ++k) {
     if (f.object_moving[k]) moving.push_back(&f.objects[k]);
   }
-  if (moving.empty()) return 0;
+  if (moving.empty() && f.moving_boxes.empty()) return 0;
   const size_t before = pts_lidar.size();
   auto inside = [&](const Eigen::Vector3d& q) {
     for (const Object* o : moving) {
@@ -80,10 +114,21 @@ size_t removeMovingPoints(std::vector<Eigen::Vector3d>& pts_lidar, const Objects
         return true;
       }
     }
+    if (f.moving_boxes.empty()) return false;
+    const Eigen::Vector3d q_map = T_map_lidar * q;
+    for (const BoxRecord& b : f.moving_boxes) {
+      if (insideBox(b, q_map, margin_m)) return true;
+    }
     return false;
   };
   pts_lidar.erase(std::remove_if(pts_lidar.begin(), pts_lidar.end(), inside), pts_lidar.end());
   return before - pts_lidar.size();
+}
+
+bool insideBox(const BoxRecord& b, const Eigen::Vector3d& p_map, double margin_m) {
+  const double c = std::cos(b.yaw), s = std::sin(b.yaw), dx = p_map.x() - b.centre.x(), dy = p_map.y() - b.centre.y();
+  return std::abs(c * dx + s * dy) <= 0.5 * b.length + margin_m && std::abs(-s * dx + c * dy) <= 0.5 * b.width + margin_m &&
+         p_map.z() >= b.z_min - margin_m && p_map.z() <= b.z_max + margin_m;
 }
 
 std::string objectsCsvHeader() { return "frame,stamp_s,object,cx,cy,yaw_rad,length_m,width_m,z_min,z_max,points,track_id\n"; }

@@ -8,14 +8,26 @@ namespace roadslam::objects {
 namespace {
 
 constexpr double kUnassignable = 1e9;  // cost of a gated-out pair in the assignment
+constexpr double kFaceMaxObliquity = 0.766;  // cos 40 deg: a car's front or rear seen roughly head-on
+constexpr double kInitHeadingSigma_rad = 0.35;  // CTRV: a new track heads along its box (v signed covers the ends)
 
 /// A detection in the map frame: its box's corners (x-y) and heading of its length axis.
 struct Detection {
   std::array<Eigen::Vector2d, 4> corners;
   Eigen::Vector2d centre;
   double yaw = 0;
+  double length = 0, width = 0;
   double z_min = 0, z_max = 0;
+  double dt = 0;  // its points' time minus the sweep's reference time [s]
+  double top = 0;  // highest point above the local ground [m]
 };
+
+constexpr size_t kHistoryMax = 100;  // 10 s of detections at 10 Hz before a track is labelled moving
+
+void remember(Track& tr, const Detection& d, double t) {
+  if (tr.moving_since >= 0 || tr.history->size() >= kHistoryMax) return;
+  tr.history->push_back({t, d.centre, d.yaw, d.length, d.width, d.z_min, d.z_max});
+}
 
 Detection toMap(const Object& o, const Eigen::Isometry3d& T_map_lidar) {
   Detection d;
@@ -29,6 +41,9 @@ Detection toMap(const Object& o, const Eigen::Isometry3d& T_map_lidar) {
   d.centre = (T_map_lidar * Eigen::Vector3d(c.x(), c.y(), 0)).head<2>();
   const Eigen::Vector3d um = T_map_lidar.linear() * Eigen::Vector3d(u.x(), u.y(), 0);
   d.yaw = std::atan2(um.y(), um.x());
+  d.length = b.length, d.width = b.width;
+  d.top = o.top_height_m;
+  d.dt = std::isfinite(o.dt_s) && std::abs(o.dt_s) < 0.5 ? o.dt_s : 0.0;
   const double z0 = T_map_lidar.translation().z();
   d.z_min = o.z_min + z0, d.z_max = o.z_max + z0;
   return d;
@@ -60,7 +75,131 @@ Completed complete(const Detection& d, double h, double L, double W, const Eigen
 
 double wrapPi(double a) { return std::atan2(std::sin(a), std::cos(a)); }
 
+/// The car-size prior on a detection with no known heading: one face (a box car_face_min_m..
+/// car_face_max_m long, at most car_face_max_depth_m wide, facing the sensor within 40 deg) seen from
+/// car_prior_min_range_m or farther is a car's front or rear; the car reaches car_length_m away from
+/// the sensor along the face's normal (Zhang et al. 2017 fit the visible L; the hidden rest follows
+/// from the size). \p centre: the detection's centre moved so; \p los_dir: the normal.
+bool isCarFace(const Detection& d, const Eigen::Vector2d& s, const TrackerParams& p, Eigen::Vector2d* centre = nullptr,
+               Eigen::Vector2d* los_dir = nullptr) {
+  const Eigen::Vector2d los = d.centre - s;
+  const double range = los.norm();
+  if (p.car_length_m <= 0 || range < p.car_prior_min_range_m) return false;
+  if (d.width > p.car_face_max_depth_m || d.length < p.car_face_min_m || d.length > p.car_face_max_m) return false;
+  // the face's normal, away from the sensor, within 40 deg of the line of sight
+  Eigen::Vector2d n(-std::sin(d.yaw), std::cos(d.yaw));
+  if (n.dot(los) < 0) n = -n;
+  if (n.dot(los) < kFaceMaxObliquity * range) return false;
+  if (centre) *centre = d.centre + n * 0.5 * std::max(0.0, p.car_length_m - d.width);
+  if (los_dir) *los_dir = n;
+  return true;
+}
+
+/// A track that takes a car's face: its extent along the line of sight is a car's length (the extents
+/// are along / across its heading; the face's direction is the heading of a track born on it).
+void growToCarBehindFace(Track& tr, const Detection& d, const Eigen::Vector2d& s, const TrackerParams& p) {
+  Eigen::Vector2d u;
+  if (tr.moving || !isCarFace(d, s, p, nullptr, &u)) return;
+  const Eigen::Vector2d h(std::cos(tr.heading), std::sin(tr.heading));
+  if (std::abs(h.dot(u)) < 0.5) {
+    tr.width = std::max(tr.width, p.car_length_m);  // the line of sight runs across the heading
+  } else {
+    tr.length = std::max(tr.length, p.car_length_m);
+  }
+}
+
+using Vec5 = Eigen::Matrix<double, 5, 1>;
+using Mat5 = Eigen::Matrix<double, 5, 5>;
+
+/// CTRV motion over \p dt (Schubert et al. 2008, eq. 9; the straight-line limit when omega ~ 0).
+Vec5 ctrvMove(const Vec5& s, double dt) {
+  Vec5 o = s;
+  const double v = s(2), psi = s(3), w = s(4);
+  if (std::abs(w) > 1e-4) {
+    o(0) += v / w * (std::sin(psi + w * dt) - std::sin(psi));
+    o(1) += v / w * (std::cos(psi) - std::cos(psi + w * dt));
+  } else {
+    o(0) += v * std::cos(psi) * dt;
+    o(1) += v * std::sin(psi) * dt;
+  }
+  o(3) = wrapPi(psi + w * dt);
+  return o;
+}
+
+/// The CV view [x, y, vx, vy] of a CTRV state and its covariance (first-order).
+void ctrvView(Track& tr) {
+  const double v = tr.s(2), c = std::cos(tr.s(3)), sn = std::sin(tr.s(3));
+  tr.x << tr.s(0), tr.s(1), v * c, v * sn;
+  Eigen::Matrix<double, 4, 5> J = Eigen::Matrix<double, 4, 5>::Zero();
+  J(0, 0) = J(1, 1) = 1;
+  J(2, 2) = c, J(2, 3) = -v * sn;
+  J(3, 2) = sn, J(3, 3) = v * c;
+  tr.P = J * tr.S * J.transpose();
+}
+
+
+/// The detection completed for \p tr: with a heading from its velocity (moving) and car-sized, to at
+/// least the car size; otherwise to the extents the track has seen (capped), and a single face with
+/// no heading known to a car behind it (isCarFace).
+Completed completeFor(const Track& tr, const Detection& d, const Eigen::Vector2d& s, const TrackerParams& p_) {
+  double L = std::min(tr.length, p_.max_extent_growth_m), W = std::min(tr.width, p_.max_extent_growth_m);
+  if (tr.moving) {
+    L = std::max(L, p_.car_length_m), W = std::max(W, p_.car_width_m);
+    return complete(d, tr.heading, L, W, s);
+  }
+  Completed c = complete(d, tr.heading, L, W, s);
+  Eigen::Vector2d face_centre;
+  if (L < p_.car_face_max_m && isCarFace(d, s, p_, &face_centre)) c.centre = face_centre;  // never seen longer than a face
+  return c;
+}
+
 }  // namespace
+
+void Tracker::predictCtrv(Track& tr, double dt) const {
+  // F: numerical Jacobian of ctrvMove (central differences)
+  Mat5 F;
+  for (int k = 0; k < 5; ++k) {
+    Vec5 d = Vec5::Zero();
+    d(k) = 1e-6;
+    Vec5 diff = ctrvMove(tr.s + d, dt) - ctrvMove(tr.s - d, dt);
+    diff(3) = wrapPi(diff(3));
+    F.col(k) = diff / 2e-6;
+  }
+  // noise: longitudinal acceleration a and yaw acceleration alpha, G = d(state)/d(a, alpha)
+  Eigen::Matrix<double, 5, 2> G = Eigen::Matrix<double, 5, 2>::Zero();
+  G(0, 0) = 0.5 * dt * dt * std::cos(tr.s(3)), G(1, 0) = 0.5 * dt * dt * std::sin(tr.s(3)), G(2, 0) = dt;
+  G(3, 1) = 0.5 * dt * dt, G(4, 1) = dt;
+  const Eigen::Vector2d q(p_.ctrv.accel_sigma_mps2 * p_.ctrv.accel_sigma_mps2,
+                          p_.ctrv.yaw_accel_sigma_radps2 * p_.ctrv.yaw_accel_sigma_radps2);
+  tr.s = ctrvMove(tr.s, dt);
+  tr.S = F * tr.S * F.transpose() + G * q.asDiagonal() * G.transpose();
+  ctrvView(tr);
+}
+
+void Tracker::correct(Track& tr, const Eigen::Vector2d& z, double dt) const {
+  // The detection is where the object was when the beam swept it, dt after the state's time:
+  // h(x) = position + dt * velocity (CV: H = [I, dt I], linear; CTRV: its Jacobian).
+  const Eigen::Matrix2d R = Eigen::Matrix2d::Identity() * p_.meas_sigma_m * p_.meas_sigma_m;
+  if (p_.motion_model == MotionModel::Ctrv) {
+    const double v = tr.s(2), c = std::cos(tr.s(3)), sn = std::sin(tr.s(3));
+    Eigen::Matrix<double, 2, 5> H = Eigen::Matrix<double, 2, 5>::Zero();
+    H(0, 0) = H(1, 1) = 1;
+    H(0, 2) = dt * c, H(0, 3) = -dt * v * sn;
+    H(1, 2) = dt * sn, H(1, 3) = dt * v * c;
+    const Eigen::Vector2d h(tr.s(0) + dt * v * c, tr.s(1) + dt * v * sn);
+    const Eigen::Matrix<double, 5, 2> K = tr.S * H.transpose() * (H * tr.S * H.transpose() + R).inverse();
+    tr.s += K * (z - h);
+    tr.s(3) = wrapPi(tr.s(3));
+    tr.S = (Mat5::Identity() - K * H) * tr.S;
+    ctrvView(tr);
+    return;
+  }
+  Eigen::Matrix<double, 2, 4> H;
+  H << 1, 0, dt, 0, 0, 1, 0, dt;
+  const Eigen::Matrix<double, 4, 2> K = tr.P * H.transpose() * (H * tr.P * H.transpose() + R).inverse();
+  tr.x += K * (z - H * tr.x);
+  tr.P = (Eigen::Matrix4d::Identity() - K * H) * tr.P;
+}
 
 void Tracker::predict(double t) {
   const double dt = std::max(0.0, t - t_);
@@ -74,6 +213,10 @@ void Tracker::predict(double t) {
   Q(0, 2) = Q(2, 0) = Q(1, 3) = Q(3, 1) = b;
   Q(2, 2) = Q(3, 3) = c;
   for (Track& tr : tracks_) {
+    if (p_.motion_model == MotionModel::Ctrv) {
+      if (dt > 0) predictCtrv(tr, dt);
+      continue;
+    }
     tr.x = F * tr.x;
     tr.P = F * tr.P * F.transpose() + Q;
   }
@@ -88,7 +231,7 @@ void Tracker::endAll(double t, const std::string& reason) {
 void Tracker::prune(double t, const std::string& reason) {
   std::vector<Track> keep;
   for (Track& tr : tracks_) {
-    const bool dead = tr.state == TrackState::Tentative ? tr.misses > 0 : tr.misses > p_.max_misses;
+    const bool dead = tr.state == TrackState::Tentative ? tr.misses > p_.tentative_max_misses : tr.misses > p_.max_misses;
     if (dead || !tr.x.allFinite()) {
       ended_.push_back({tr, tr.x.allFinite() ? reason : "diverged", t});
     } else {
@@ -126,9 +269,8 @@ void Tracker::update(double t, const Eigen::Isometry3d& T_map_lidar, const std::
     for (size_t j = 0; j < dets.size(); ++j) {
       // completion moves a centre by at most half the capped extents: farther boxes cannot be in the gate
       if ((dets[j].centre - tr.x.head<2>()).norm() > p_.gate_m + p_.max_extent_growth_m) continue;
-      comp[i][j] = complete(dets[j], tr.heading, std::min(tr.length, p_.max_extent_growth_m),
-                            std::min(tr.width, p_.max_extent_growth_m), s);
-      const Eigen::Vector2d r = comp[i][j].centre - tr.x.head<2>();
+      comp[i][j] = completeFor(tr, dets[j], s, p_);
+      const Eigen::Vector2d r = comp[i][j].centre - (tr.x.head<2>() + dets[j].dt * tr.x.tail<2>());
       const double d = r.norm(), m2 = r.dot(S_inv * r);
       if (d > p_.gate_m || m2 > p_.gate_sigma * p_.gate_sigma) continue;
       // extents seen now against the track's (capped: a car seen whole once is a car seen in part now)
@@ -149,24 +291,24 @@ void Tracker::update(double t, const Eigen::Isometry3d& T_map_lidar, const std::
     }
     taken[static_cast<size_t>(j)] = true;
     const Completed& c = comp[i][static_cast<size_t>(j)];
-    // Kalman update with H = [I 0]: K = P H^T (H P H^T + R)^-1
-    const Eigen::Matrix<double, 4, 2> PHt = tr.P.leftCols<2>();
-    const Eigen::Matrix2d S = tr.P.topLeftCorner<2, 2>() + R;
-    const Eigen::Matrix<double, 4, 2> K = PHt * S.inverse();
-    tr.x += K * (c.centre - tr.x.head<2>());
-    tr.P = (Eigen::Matrix4d::Identity() - K * Eigen::Matrix<double, 2, 4>::Identity()) * tr.P;
+    correct(tr, c.centre, dets[static_cast<size_t>(j)].dt);
     tr.length = std::max(tr.length, c.along);
     tr.width = std::max(tr.width, c.across);
+    growToCarBehindFace(tr, dets[static_cast<size_t>(j)], s, p_);
     ++tr.hits, tr.misses = 0, tr.t_last = t, tr.last_detection = j;
     tr.z_min = dets[static_cast<size_t>(j)].z_min, tr.z_max = dets[static_cast<size_t>(j)].z_max;
+    remember(tr, dets[static_cast<size_t>(j)], t);
+    tr.top_height = std::max(tr.top_height, dets[static_cast<size_t>(j)].top);
     if (tr.hits >= p_.confirm_hits) tr.state = TrackState::Confirmed;
     const double v = tr.speed();
     const double travel = (tr.x.head<2>() - tr.birth_xy).norm();
     if (tr.state == TrackState::Confirmed) {
       const bool car_sized = std::max(tr.length, tr.width) <= p_.moving_max_length_m &&
                              std::min(tr.length, tr.width) <= p_.moving_max_width_m &&
-                             std::min(tr.length, tr.width) >= p_.moving_min_width_m;
+                             std::min(tr.length, tr.width) >= p_.moving_min_width_m &&
+                             tr.top_height <= p_.moving_max_height_m;
       if (v > p_.moving_speed_mps && travel > p_.moving_min_travel_m && tr.hits >= p_.moving_min_hits && car_sized) {
+        if (tr.moving_since < 0) tr.moving_since = t;
         tr.moving = true;
       }
       if (v < 0.5 * p_.moving_speed_mps || !car_sized) tr.moving = false;
@@ -189,10 +331,22 @@ void Tracker::update(double t, const Eigen::Isometry3d& T_map_lidar, const std::
                            p_.init_speed_sigma_mps * p_.init_speed_sigma_mps)
                .asDiagonal();
     tr.heading = dets[j].yaw;
+    tr.s << dets[j].centre, 0, dets[j].yaw, 0;
+    tr.S = Vec5(p_.meas_sigma_m * p_.meas_sigma_m, p_.meas_sigma_m * p_.meas_sigma_m,
+                p_.init_speed_sigma_mps * p_.init_speed_sigma_mps, kInitHeadingSigma_rad * kInitHeadingSigma_rad,
+                p_.ctrv.init_yaw_rate_sigma_radps * p_.ctrv.init_yaw_rate_sigma_radps)
+               .asDiagonal();
     const Completed c = complete(dets[j], tr.heading, 0, 0, s);
     tr.length = c.along, tr.width = c.across;
-    tr.z_min = dets[j].z_min, tr.z_max = dets[j].z_max;
-    tr.hits = 1, tr.t_birth = tr.t_last = t, tr.birth_xy = dets[j].centre, tr.last_detection = static_cast<int>(j);
+    // a car's face: its centre is behind it, and it drives along the line of sight (CTRV's heading)
+    Eigen::Vector2d centre = dets[j].centre, los;
+    if (isCarFace(dets[j], s, p_, &centre, &los)) tr.s(3) = std::atan2(los.y(), los.x());
+    tr.x.head<2>() = tr.s.head<2>() = centre;
+    growToCarBehindFace(tr, dets[j], s, p_);
+    if (p_.motion_model == MotionModel::Ctrv) ctrvView(tr);
+    tr.z_min = dets[j].z_min, tr.z_max = dets[j].z_max, tr.top_height = dets[j].top;
+    tr.hits = 1, tr.t_birth = tr.t_last = t, tr.birth_xy = tr.x.head<2>(), tr.last_detection = static_cast<int>(j);
+    remember(tr, dets[j], t);
     if (tr.hits >= p_.confirm_hits) tr.state = TrackState::Confirmed;
     tracks_.push_back(tr);
   }

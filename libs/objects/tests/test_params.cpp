@@ -8,9 +8,10 @@ using namespace roadslam::objects;
 
 TEST(ObjectsParams, SaveLoadRoundTrip) {
   ClusterParams c;
-  c.enabled = true, c.method = ClusterMethod::Euclidean, c.cluster_distance_m = 0.8, c.lshape_step_rad = 0.02;
+  c.enabled = true, c.method = ClusterMethod::Dbscan, c.cluster_distance_m = 0.8, c.lshape_step_rad = 0.02;
+  c.dbscan_min_points = 6, c.map_delay_s = 1.5;
   TrackerParams t;
-  t.gate_m = 3.3, t.max_misses = 7;
+  t.gate_m = 3.3, t.max_misses = 7, t.motion_model = MotionModel::Ctrv, t.ctrv.yaw_accel_sigma_radps2 = 0.25;
   mrpt::config::CConfigFileMemory ini;
   c.saveToConfigFile(ini);
   t.saveToConfigFile(ini);
@@ -19,16 +20,20 @@ TEST(ObjectsParams, SaveLoadRoundTrip) {
   c2.loadFromConfigFile(ini);
   t2.loadFromConfigFile(ini);
   EXPECT_TRUE(c2.enabled);
-  EXPECT_EQ(c2.method, ClusterMethod::Euclidean);
+  EXPECT_EQ(c2.method, ClusterMethod::Dbscan);
+  EXPECT_EQ(c2.dbscan_min_points, 6);
+  EXPECT_DOUBLE_EQ(c2.map_delay_s, 1.5);
   EXPECT_DOUBLE_EQ(c2.cluster_distance_m, 0.8);
   EXPECT_NEAR(c2.lshape_step_rad, 0.02, 1e-7);  // saved in degrees, as text
   EXPECT_DOUBLE_EQ(t2.gate_m, 3.3);
   EXPECT_EQ(t2.max_misses, 7);
+  EXPECT_EQ(t2.motion_model, MotionModel::Ctrv);
+  EXPECT_NEAR(t2.ctrv.yaw_accel_sigma_radps2, 0.25, 1e-7);
 }
 
 TEST(ObjectsParams, BadValuesNameTheSection) {
   mrpt::config::CConfigFileMemory ini;
-  ini.write("objects", "method", std::string("dbscan"));
+  ini.write("objects", "method", std::string("kmeans"));
   ClusterParams c;
   try {
     c.loadFromConfigFile(ini);

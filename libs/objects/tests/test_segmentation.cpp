@@ -35,10 +35,10 @@ std::vector<int> objectsPerBox(const std::vector<test::SynthBox>& boxes, const s
 
 }  // namespace
 
-TEST(Segmentation, EachBoxOfAStreetIsOneObjectWithBothMethods) {
+TEST(Segmentation, EachBoxOfAStreetIsOneObjectWithEveryMethod) {
   const auto boxes = test::streetScene();
   const Scan scan = test::castSweep(boxes);
-  for (ClusterMethod m : {ClusterMethod::RangeImage, ClusterMethod::Euclidean}) {
+  for (ClusterMethod m : {ClusterMethod::RangeImage, ClusterMethod::Euclidean, ClusterMethod::Dbscan}) {
     ClusterParams p;
     p.method = m;
     p.min_points = 4;
@@ -67,6 +67,38 @@ TEST(Segmentation, TwoCarsCloserThanTheDistanceMergeFartherApartSplit) {
   }
 }
 
+// DBSCAN's noise: a lone point 0.5 m from a box joins it with the Euclidean method (a chain) but is
+// noise for DBSCAN when it has fewer than dbscan_min_points neighbours and no core within eps.
+TEST(Segmentation, DbscanLeavesIsolatedPointsOut) {
+  const std::vector<test::SynthBox> boxes = {{12, 3, 0, 4.5, 1.8, 1.5}};
+  Scan scan = test::castSweep(boxes);
+  ClusterParams p;
+  p.method = ClusterMethod::Dbscan;
+  const auto objs = segmentSweep(scan, p);
+  ASSERT_EQ(objs.size(), 1u);
+  // a stray point 2 m beyond the box's far end: Euclidean and DBSCAN both leave it out (no object of one);
+  // three strays in a row 0.5 m apart: one chain for Euclidean with min_points 3, noise for DBSCAN with MinPts 4
+  ScanPoint q = scan.points[objs[0].indices[0]];
+  for (int k = 0; k < 3; ++k) {
+    ScanPoint r = q;
+    r.x = 30.0f + 0.5f * k, r.y = -6.0f, r.z = -0.9f;  // 1 m above the ground
+    scan.points.push_back(r);
+  }
+  // heights from z (no ground labels: the strays alone in their cells would be their own ground)
+  const auto g = preprocess::segmentGroundWithHeights(scan.points, p.ground);
+  std::vector<uint8_t> ground = g.ground;
+  std::vector<float> height = g.height_above_ground_m;
+  ground.resize(scan.points.size(), 0);
+  height.resize(scan.points.size(), NAN);
+  for (size_t i = height.size() - 3; i < height.size(); ++i) ground[i] = 0, height[i] = NAN;
+  p.min_points = 3;
+  p.method = ClusterMethod::Euclidean;
+  EXPECT_EQ(segmentObjects(scan.points, true, ground, height, p).size(), 2u);
+  p.method = ClusterMethod::Dbscan;
+  p.dbscan_min_points = 4;  // each stray has at most 3 points within 0.6 m (itself included)
+  EXPECT_EQ(segmentObjects(scan.points, true, ground, height, p).size(), 1u);
+}
+
 TEST(Segmentation, EmptyAndOnePointSweepsGiveNoObjects) {
   ClusterParams p;
   Scan empty;
@@ -75,7 +107,10 @@ TEST(Segmentation, EmptyAndOnePointSweepsGiveNoObjects) {
   Scan one = empty;
   one.points.push_back({5, 5, 0, 0, 0, 8, 0});
   EXPECT_TRUE(segmentSweep(one, p).empty());
+  p.method = ClusterMethod::Dbscan;
+  EXPECT_TRUE(segmentSweep(one, p).empty());  // one point is no core: noise
   p.min_points = 1;
+  p.method = ClusterMethod::RangeImage;
   const auto objs = segmentSweep(one, p);
   ASSERT_EQ(objs.size(), 1u);
   EXPECT_TRUE(std::isfinite(objs[0].box.cx) && std::isfinite(objs[0].box.yaw));

@@ -95,11 +95,14 @@ struct ObjectsOutput {
   std::vector<double> ms_ground;
   size_t n_objects = 0;
   size_t moving_points_removed = 0;
+  size_t retro_points_removed = 0;  ///< from earlier keyframes, when their track was labelled moving
   std::map<std::string, int> end_reasons;
+  std::map<int, mapping::TopViewBox> last_moving;  ///< each moving track's last box, for map_top.png
 
   void add(const PipelineFrame& f, objects::ObjectsStage& stage) {
     if (!f.objects) return;
     moving_points_removed += f.moving_points_removed;
+    retro_points_removed += f.retro_points_removed;
     const objects::ObjectsFrame& o = *f.objects;
     const double t = f.pose.ok ? f.pose.t_ref : f.pose.stamp_s;  // the time the tracks are at
     if (f.pose.ok) {
@@ -109,6 +112,9 @@ struct ObjectsOutput {
       n_objects += o.objects.size();
     }
     tracks += objects::tracksCsvRows(f.index, t, o);
+    for (const objects::Track& tr : o.tracks) {
+      if (tr.moving) last_moving[tr.id] = {tr.id, tr.x.head<2>(), tr.heading, tr.length, tr.width, tr.x.tail<2>()};
+    }
     take(stage);
   }
   void take(objects::ObjectsStage& stage) {
@@ -127,7 +133,8 @@ struct ObjectsOutput {
     };
     int confirmed_alive = 0;
     for (const auto& t : stage.tracker().tracks()) confirmed_alive += t.state == objects::TrackState::Confirmed;
-    return {{"objects", n_objects}, {"tracks_alive_at_end", confirmed_alive}, {"moving_points_removed_from_maps", moving_points_removed}, {"tracks_ended", end_reasons},
+    return {{"objects", n_objects}, {"tracks_alive_at_end", confirmed_alive}, {"moving_points_removed_from_maps", moving_points_removed},
+            {"earlier_points_removed_from_keyframes", retro_points_removed}, {"tracks_ended", end_reasons},
             {"ms_segment_track_per_frame", stats(ms)}, {"ms_ground_per_frame", stats(ms_ground)}};
   }
 };
@@ -169,6 +176,8 @@ MapOutcome runMapJob(const MapRequest& req) {
   stages.octomap_keyframe_spacing_m = params.maps.octomap.keyframe_spacing_m;
   stages.objects = objects_stage.get();
   stages.remove_moving_from_maps = params.objects.remove_moving_from_maps;
+  stages.removal_margin_m = params.objects.removal_margin_m;
+  if (params.objects.enabled && params.objects.remove_moving_from_maps) stages.octomap_delay_s = params.objects.map_delay_s;
   Pipeline pipe(std::move(source), std::move(stages));
   const sources::ScanSource* stream = &pipe.source();
   ProgressBar bar("roadslam-map", stream->sizeHint());
@@ -181,6 +190,7 @@ MapOutcome runMapJob(const MapRequest& req) {
     out.frames.push_back(std::move(*f->pose.odometry));
     if (req.progress) bar.update(out.frames.size());
   }
+  pipe.flushMaps();
   bar.finish();
   out.interrupted = stopRequested();
   if (req.maps) {
@@ -232,8 +242,10 @@ MapOutcome runMapJob(const MapRequest& req) {
     out.summary["loops"] = loops;
     out.summary["can_edges"] = mapper.canEdges();
     out.summary["ms_mapping_total"] = pipe.totals().maps;
+    std::vector<mapping::TopViewBox> boxes;
+    for (const auto& [id, b] : objects_out.last_moving) boxes.push_back(b);
     const auto ms = mapping::writeMaps(req.out_dir, mapper, {out.T_map_lidar.begin(), out.T_map_lidar.end()},
-                                       params.maps, octo.get());
+                                       params.maps, octo.get(), boxes);
     out.summary["maps"] = {{"points", ms.points}, {"octomap_keyframes", ms.octomap_keyframes},
                            {"octomap_leafs", ms.octomap_leafs}, {"octomap_ms_per_keyframe", ms.octomap_ms_per_keyframe},
                            {"grid_occupied_cells", ms.grid_occupied}, {"grid_free_cells", ms.grid_free},

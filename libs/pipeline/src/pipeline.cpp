@@ -39,16 +39,6 @@ class PeekedSource : public sources::ScanSource {
 };
 
 /// The OctoMap follows the graph: a new keyframe is queued, a loop closure rebuilds it at the new poses.
-void feedOctoMap(mapping::OctoMapWorker& octo, const mapping::Mapper& mapper, size_t keyframes_before, bool loop,
-                 double spacing_m) {
-  const auto& kfs = mapper.keyframes();
-  if (loop) {
-    octo.rebuild(mapping::octoMapItems(kfs, mapper.keyframePoses(), spacing_m));
-  } else if (kfs.size() > keyframes_before && mapping::takesOctoMap(kfs, kfs.size() - 1, spacing_m)) {
-    octo.push({kfs.back().points_lidar, mapper.graph().pose(kfs.size() - 1)});
-  }
-}
-
 }  // namespace
 
 StageTimes& StageTimes::operator+=(const StageTimes& o) {
@@ -67,12 +57,62 @@ Pipeline::~Pipeline() = default;
 
 bool Pipeline::finished() const { return source_->finished(); }
 
+/// Keyframes go to the OctoMap once older than octomap_delay_s (every keyframe when \p flush); after a
+/// loop, the OctoMap is rebuilt from the keyframes decided on so far at their moved poses.
+void Pipeline::feedOctoMap(bool loop, double now_s, bool flush) {
+  if (!stages_.octomap || !stages_.mapper) return;
+  const mapping::Mapper& mapper = *stages_.mapper;
+  const auto& kfs = mapper.keyframes();
+  const double spacing = stages_.octomap_keyframe_spacing_m;
+  if (loop) {
+    mapping::PoseVector poses = mapper.keyframePoses();
+    poses.resize(std::min(poses.size(), octo_seen_));
+    stages_.octomap->rebuild(mapping::octoMapItems(kfs, poses, spacing));
+  }
+  for (; octo_seen_ < kfs.size() && (flush || kfs[octo_seen_].stamp_s <= now_s - stages_.octomap_delay_s); ++octo_seen_) {
+    if (mapping::takesOctoMap(kfs, octo_seen_, spacing)) {
+      stages_.octomap->push({kfs[octo_seen_].points_lidar, mapper.graph().pose(octo_seen_)});
+    }
+  }
+}
+
+constexpr double kRetroMatch_s = 0.049;  // a box applies to the keyframe within half a sweep (10 Hz) of its time
+
+/// Drops from the keyframes the points inside \p boxes (map frame, grown by removal_margin_m) of the
+/// keyframes made at the boxes' times (a keyframe's stamp is its odometry frame's, the objects' time).
+size_t Pipeline::removeRetro(const std::vector<objects::BoxRecord>& boxes) {
+  if (!stages_.mapper || boxes.empty()) return 0;
+  const auto& kfs = stages_.mapper->keyframes();
+  double t_first = boxes.front().t;
+  for (const auto& b : boxes) t_first = std::min(t_first, b.t);
+  size_t removed = 0;
+  for (size_t k = kfs.size(); k-- > 0 && kfs[k].stamp_s >= t_first - kRetroMatch_s;) {
+    const Eigen::Isometry3d T_odom_lidar = kfs[k].T_odom_lidar;
+    std::vector<const objects::BoxRecord*> here;
+    for (const auto& b : boxes) {
+      if (std::abs(b.t - kfs[k].stamp_s) < kRetroMatch_s) here.push_back(&b);
+    }
+    if (here.empty()) continue;
+    removed += stages_.mapper->erasePoints(k, [&](const Eigen::Vector3f& q) {
+      const Eigen::Vector3d p_map = T_odom_lidar * q.cast<double>();
+      for (const auto* b : here) {
+        if (objects::insideBox(*b, p_map, stages_.removal_margin_m)) return true;
+      }
+      return false;
+    });
+  }
+  return removed;
+}
+
 std::optional<PipelineFrame> Pipeline::next() {
   PipelineFrame f;
   auto t = Clock::now();
   std::optional<Scan> scan = source_->next();
   f.ms.source = msSince(t);
-  if (!scan) return std::nullopt;
+  if (!scan) {
+    if (source_->finished()) feedOctoMap(false, 0, true);
+    return std::nullopt;
+  }
   f.index = frames_++;
 
   t = Clock::now();
@@ -98,17 +138,15 @@ std::optional<PipelineFrame> Pipeline::next() {
     t = Clock::now();
     std::optional<mapping::WheelMotion> wheel;
     if (f.pose.T_baseprev_basecurr) wheel = mapping::WheelMotion{*f.pose.T_baseprev_basecurr, f.pose.T_base_lidar};
-    const size_t keyframes_before = stages_.mapper->keyframes().size();
     if (stages_.remove_moving_from_maps && f.objects && f.pose.ok) {
       std::vector<Eigen::Vector3d> pts = *f.pose.points_lidar;
-      f.moving_points_removed = objects::removeMovingPoints(pts, *f.objects, stages_.objects->params().removal_margin_m);
+      f.moving_points_removed = objects::removeMovingPoints(pts, *f.objects, stages_.removal_margin_m, f.pose.ref);
       f.loop_closed = stages_.mapper->addFrame(*f.pose.odometry, pts, wheel);
+      f.retro_points_removed = removeRetro(f.objects->retro);
     } else {
       f.loop_closed = stages_.mapper->addFrame(*f.pose.odometry, *f.pose.points_lidar, wheel);
     }
-    if (stages_.octomap) {
-      feedOctoMap(*stages_.octomap, *stages_.mapper, keyframes_before, f.loop_closed, stages_.octomap_keyframe_spacing_m);
-    }
+    feedOctoMap(f.loop_closed, f.pose.t_ref, false);
     f.ms.maps = msSince(t);
   }
 

@@ -42,6 +42,7 @@ LidarSimulator::LidarSimulator(const World& world, const Trajectory& trajectory,
   cos_max_inc_ = std::cos(p_.max_incidence_deg * kDeg);
   for (int i = 0; i < 3; ++i) jitter_phase_[i] = 2 * M_PI * uniform01(seed_ + 101 + i);
   cars_.resize(world.cars.size());
+  car_returns_.resize(world.cars.size());
 }
 
 double LidarSimulator::packetPeriod_s() { return kVlp16SequencesPerPacket * kVlp16SequencePeriod_s; }
@@ -177,8 +178,17 @@ bool LidarSimulator::fire(const Pose3& T_world_lidar, int i, double az_deg, uint
   echo.range_m = std::max(0.01, hit.t + cal.range_m + noise);
   echo.intensity = 100.0 * m.reflectivity * (0.3 + 0.7 * cos_inc);
   echo.p_world = {ray.o.x + hit.t * ray.d.x, ray.o.y + hit.t * ray.d.y, ray.o.z + hit.t * ray.d.z};
+  echo.car = hit.dynamic;
   ++counters_.returns;
   return true;
+}
+
+void LidarSimulator::countCarReturn(const Echo& e, double t_s) {
+  if (e.car < 0) return;
+  auto& per_sample = car_returns_[static_cast<std::size_t>(e.car)];
+  const auto k = static_cast<std::size_t>(std::max(0LL, std::llround(t_s / kCarSample_s)));
+  if (per_sample.size() <= k) per_sample.resize(k + 1, 0);
+  ++per_sample[k];
 }
 
 void LidarSimulator::simulatePacket(
@@ -204,6 +214,7 @@ void LidarSimulator::simulatePacket(
       out = {};
       Echo e;
       if (!fire(T_world_lidar, i, az, key, e)) continue;
+      countCarReturn(e, ti);
       out.range_m = static_cast<float>(e.range_m);
       // Calibrated reflectivity: 0-100 diffuse, 101-255 retro-reflectors (VLP-16 manual 7.2).
       out.intensity = static_cast<uint8_t>(std::clamp(e.intensity, 0.0, 255.0));
@@ -235,6 +246,7 @@ void LidarSimulator::simulateSweep(uint64_t k, Scan& scan, std::vector<TrueRetur
     for (int i = 0; i < 64; ++i) {
       Echo e;
       if (!fire(T_world_lidar, i, az, mix64(seed_ ^ 0x64BEA3ull ^ (c * 64 + static_cast<uint64_t>(i))), e)) continue;
+      countCarReturn(e, tc);
       const double el = elevationDegHdl64(i) * kDeg, r = e.range_m;
       ScanPoint pt;
       pt.x = static_cast<float>(r * std::cos(el) * std::cos(a));

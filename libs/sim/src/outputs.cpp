@@ -104,15 +104,22 @@ void writeObjects(const Simulator& sim, double duration_s, const std::string& pa
   for (std::size_t i = 0; i < w.cars.size(); ++i) {
     const MovingCar& c = w.cars[i];
     json track = json::array();
-    for (double t = 0; t <= duration_s + 1e-9; t += 0.1) {
+    const auto& returns = sim.lidar().carReturns()[i];
+    std::size_t k = 0;
+    for (double t = 0; t <= duration_s + 1e-9; t += 0.1, ++k) {  // t accumulates as before (same stamps)
       const CarPose p = w.carPose(c, t);
-      track.push_back({t0 + t, p.x, p.y, p.z, p.yaw});
+      const Pose3 T_world_lidar = sim.lidar().lidarPose(t);
+      const double range = std::hypot(p.x - T_world_lidar.t.x, p.y - T_world_lidar.t.y);
+      // returns: points on the car fired within 0.05 s of t (LidarSimulator::carReturns)
+      track.push_back({t0 + t, p.x, p.y, p.z, p.yaw, k < returns.size() ? returns[k] : 0u, range});
     }
     cars.push_back({{"id", i}, {"road", w.roads[static_cast<std::size_t>(c.road)].name},
                     {"length_m", c.length_m}, {"width_m", c.width_m}, {"height_m", c.height_m},
                     {"speed_mps", std::abs(c.speed_mps)}, {"track", track}});
   }
-  const json j = {{"frame", "world"}, {"track_fields", {"t", "x", "y", "z_ground", "yaw_rad"}},
+  const json j = {{"frame", "world"}, {"track_fields", {"t", "x", "y", "z_ground", "yaw_rad", "returns", "range_m"}},
+                  {"note", "returns: lidar points on the car fired within 0.05 s of t (0: hidden or out of range); "
+                           "range_m: x-y distance from the lidar (GT pose) to the car's centre"},
                   {"moving_cars", cars},
                   {"static", {{"prisms", w.prisms.size()}, {"cylinders", w.cylinders.size()},
                               {"spheres", w.spheres.size()}}}};

@@ -157,10 +157,19 @@ bool World::traceCell(const Ray& ray, const Cell& cell, int ix, int iy, double t
 bool World::raycast(const Ray& ray, double max_range, uint64_t ray_key, const Prism* dynamic,
                     std::size_t n_dynamic, Hit& hit) const {
   hit.valid = false;
-  for (std::size_t i = 0; i < n_dynamic; ++i) intersect(ray, dynamic[i], 1e-6, hit);
+  hit.dynamic = -1;
+  for (std::size_t i = 0; i < n_dynamic; ++i) {
+    if (intersect(ray, dynamic[i], 1e-6, hit)) hit.dynamic = static_cast<int>(i);
+  }
+  const double t_dynamic = hit.valid ? hit.t : -1.0;
+  // static surfaces only replace the hit when strictly nearer: an unchanged range is still the car's
+  auto done = [&] {
+    if (hit.dynamic >= 0 && hit.t != t_dynamic) hit.dynamic = -1;
+    return hit.valid && hit.t <= max_range;
+  };
   double fx = (ray.o.x - x0_) / cell_, fy = (ray.o.y - y0_) / cell_;
   int ix = static_cast<int>(std::floor(fx)), iy = static_cast<int>(std::floor(fy));
-  if (ix < 0 || iy < 0 || ix >= nx_ || iy >= ny_) return hit.valid && hit.t <= max_range;
+  if (ix < 0 || iy < 0 || ix >= nx_ || iy >= ny_) return done();
   // Amanatides & Woo (1987) 2D grid traversal.
   const double inf = std::numeric_limits<double>::infinity();
   const int sx = ray.d.x > 0 ? 1 : -1, sy = ray.d.y > 0 ? 1 : -1;
@@ -187,7 +196,7 @@ bool World::raycast(const Ray& ray, double max_range, uint64_t ray_key, const Pr
     }
     if (ix < 0 || iy < 0 || ix >= nx_ || iy >= ny_) break;
   }
-  return hit.valid && hit.t <= max_range;
+  return done();
 }
 
 void finalizeRoad(Road& road) {

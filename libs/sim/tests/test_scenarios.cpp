@@ -121,3 +121,41 @@ TEST(Scenarios, MovingCarsNeverDriveThroughTheSensor) {
     EXPECT_EQ(inside, 0);
   }
 }
+
+// Visibility ground truth (gt_objects.json `returns`): the returns the simulator counts on each moving
+// car per 0.1 s sample equal an independent count over the true returns (TrueReturn): the points
+// within 5 cm of the car's prism at their firing time, fired within 0.05 s of the sample.
+TEST(Scenarios, CarReturnsCountThePointsOnEachCar) {
+  auto p = ScenarioParams::fromFile(iniPath("urban-loop.ini"));
+  p.duration_s = 2.0;
+  Simulator sim(p);
+  struct Null : PacketSink {
+    void packet(double, uint16_t, const uint8_t*, std::size_t) override {}
+  } sink;
+  std::vector<TrueReturn> truth;
+  sim.run(sink, &truth);
+  const auto& counted = sim.lidar().carReturns();
+  ASSERT_EQ(counted.size(), sim.world().cars.size());
+  size_t total = 0, agree = 0, max_per_sample = 0;
+  for (std::size_t c = 0; c < sim.world().cars.size(); ++c) {
+    std::vector<uint32_t> oracle(21, 0);
+    for (const TrueReturn& r : truth) {
+      const Prism q = sim.world().carPrism(sim.world().cars[c], r.t_s);
+      const double dx = r.p_world.x - q.cx, dy = r.p_world.y - q.cy;
+      const double u = std::cos(q.yaw) * dx + std::sin(q.yaw) * dy, v = -std::sin(q.yaw) * dx + std::cos(q.yaw) * dy;
+      const double zb = q.zb + q.su * u + q.sv * v, zt = q.zt + q.su * u + q.sv * v;
+      if (std::abs(u) > q.hu + 0.05 || std::abs(v) > q.hv + 0.05 || r.p_world.z < zb - 0.05 || r.p_world.z > zt + 0.05) continue;
+      const auto k = static_cast<std::size_t>(std::llround(r.t_s / LidarSimulator::kCarSample_s));
+      if (k < oracle.size()) ++oracle[k];
+    }
+    for (std::size_t k = 0; k < oracle.size(); ++k) {
+      const uint32_t n = k < counted[c].size() ? counted[c][k] : 0;
+      total += oracle[k];
+      agree += std::min(oracle[k], n);
+      max_per_sample = std::max<size_t>(max_per_sample, n);
+      EXPECT_NEAR(double(n), double(oracle[k]), 0.01 * oracle[k] + 2) << "car " << c << " sample " << k;
+    }
+  }
+  EXPECT_GT(max_per_sample, 50u);  // some car is close and seen
+  EXPECT_GE(agree, 0.99 * total);
+}

@@ -5,9 +5,14 @@
 ///
 /// Per frame (each pose of the run's trajectory_odometry.tum, T_map_lidar at the tracks' state time),
 /// in the vehicle frame of that time: the ground truth is every moving car of gt_objects.json (world
-/// frame, interpolated at the time) whose centre is within max_range_m of the lidar, placed with the
-/// GT pose (gt_trajectory.tum, T_world_lidar); the hypotheses are tracks.csv's confirmed tracks,
-/// placed with the run's own pose. So odometry drift does not count: the score is the tracker's.
+/// frame, interpolated at the time) whose centre is within max_range_m of the lidar and that the
+/// sensor saw with at least min_returns points in the turn around that time (gt_objects.json's
+/// per-sample `returns`), placed with the GT pose (gt_trajectory.tum, T_world_lidar); the hypotheses
+/// are tracks.csv's confirmed tracks, placed with the run's own pose. So odometry drift does not count:
+/// the score is the tracker's. A car in range with fewer returns (hidden behind parked cars or
+/// buildings), or just beyond the range, is "don't care" (as nuScenes drops boxes without lidar points
+/// and KITTI tracking ignores occluded ones): it is no miss, and a track matched to it is neither a
+/// match nor a false positive. GT files without `returns` (older simulator outputs) count every car.
 /// Correspondences persist while within match_distance_m (Sec. 2.1.1), the rest are made greedily in
 /// order of x-y centre distance (optimal while cars stand farther apart than twice the match
 /// distance); a GT whose hypothesis changed is an id switch.
@@ -15,8 +20,10 @@
 /// The GT holds only moving cars: an unmatched hypothesis is a false positive only when it is
 /// labelled moving (static tracks on parked cars, poles and walls are nobody's mistake here).
 
+#include <Eigen/Core>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 namespace roadslam::eval {
 
@@ -24,6 +31,19 @@ struct MotParams {
   double max_range_m = 40.0;        ///< GT cars and hypotheses within this x-y range of the lidar [m]
   double match_distance_m = 2.0;    ///< a hypothesis farther from a GT centre is no match [m]
   double speed_after_s = 1.0;       ///< speed error counted once a track is this old [s]
+  int min_returns = 10;             ///< GT cars seen with fewer lidar points in the turn are don't care [-]
+  double dont_care_margin_m = 5.0;  ///< cars up to this far beyond max_range_m are don't care too [m]
+  bool keep_events = false;         ///< fill MotMetrics::events (one row per miss, false positive, switch)
+};
+
+/// One error of the score, for a diagnosis (roadslam-eval objects --events).
+struct MotEvent {
+  double t = 0;                     ///< frame time [s]
+  std::string kind;                 ///< miss | false_positive | id_switch
+  int gt_id = -1, track_id = -1;    ///< -1 none
+  double range_m = 0;               ///< x-y range of the GT car (miss, switch) or the track (false positive) [m]
+  int returns = -1;                 ///< the GT car's points in the turn (-1 unknown or no GT car)
+  double nearest_m = -1;            ///< miss: nearest confirmed track (any label); false positive: nearest GT car (any) [m]
 };
 
 struct MotMetrics {
@@ -36,8 +56,14 @@ struct MotMetrics {
   double tracked_s = 0;             ///< time GT cars were matched [s]
   double id_switches_per_100s = 0;
   double moving_label_fraction = 0;  ///< of the matches, the ones labelled moving
-  size_t gt_cars_seen = 0;          ///< distinct GT cars that came within range
+  size_t gt_cars_seen = 0;          ///< distinct GT cars that came within range (and were seen)
+  size_t dont_care = 0;             ///< GT car-frames in range (or just beyond) not counted: too few returns or far
+  size_t dont_care_matches = 0;     ///< tracks matched to them (neither matches nor false positives)
+  std::vector<MotEvent> events;     ///< with MotParams::keep_events
 };
+
+/// MotMetrics::events as CSV: t,kind,gt_id,track_id,range_m,returns,nearest_m
+std::string eventsCsv(const MotMetrics& m);
 
 /// Scores \p run_dir (tracks.csv, trajectory_odometry.tum of roadslam-map with [objects] enabled)
 /// against \p gt_objects_json and \p gt_trajectory_tum. Throws std::runtime_error naming a file it cannot read.
@@ -55,6 +81,15 @@ struct GhostCount {
 };
 GhostCount countGhostPoints(const std::string& gt_objects_json, const std::string& gt_trajectory_tum,
                             const std::string& run_trajectory_tum, const std::string& map_ply, double margin_m = 0.3);
+/// The same test on any points of the map frame (\p points_map).
+GhostCount countGhostsAmong(const std::string& gt_objects_json, const std::string& gt_trajectory_tum,
+                            const std::string& run_trajectory_tum, const std::vector<Eigen::Vector3f>& points_map,
+                            double margin_m = 0.3);
+/// Ghost voxels of an OctoMap (\p map_bt, roadslam-map's map.bt): its occupied leaves' centres are
+/// the points (map_points = occupied leaves, ghost_points = those on the swept paths; pruned leaves
+/// count once, at their centre).
+GhostCount countGhostVoxels(const std::string& gt_objects_json, const std::string& gt_trajectory_tum,
+                            const std::string& run_trajectory_tum, const std::string& map_bt, double margin_m = 0.3);
 
 nlohmann::json toJson(const MotMetrics& m);
 std::string toText(const MotMetrics& m);

@@ -36,8 +36,10 @@ struct MapOutputStats {
 
 /// Writes the files listed above into \p dir for \p mapper's keyframes at its optimised poses;
 /// \p trajectory (T_map_lidar of every frame) is drawn in the top view. The OctoMap is \p octomap's
-/// (built during the run) when given, else built here. Throws naming the file.
+/// (built during the run) when given, else built here; \p boxes (moving tracks) are drawn in the top
+/// view. Throws naming the file.
 MapOutputStats writeMaps(const std::string& dir, const Mapper& mapper, const PoseVector& trajectory,
-                         const MapOutputParams& p, OctoMapWorker* octomap = nullptr);
+                         const MapOutputParams& p, OctoMapWorker* octomap = nullptr,
+                         const std::vector<TopViewBox>& boxes = {});
 
 }  // namespace roadslam::mapping

@@ -6,6 +6,7 @@
 /// follows: T_map_lidar = T_map_kf * T_odom_kf^-1 * T_odom_lidar.
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <optional>
 #include <string>
 #include <vector>
@@ -55,6 +56,15 @@ class Mapper {
   size_t canEdges() const { return can_edges_; }  ///< keyframe edges that carry the CAN motion [-]
 
   const std::vector<Keyframe>& keyframes() const { return kfs_; }
+  /// Drops the points of keyframe \p kf for which \p drop (point in the keyframe's lidar frame) is
+  /// true (moving objects found after the keyframe was made); returns how many it dropped.
+  template <class Pred>
+  size_t erasePoints(size_t kf, Pred&& drop) {
+    auto& pts = kfs_.at(kf).points_lidar;
+    const size_t before = pts.size();
+    pts.erase(std::remove_if(pts.begin(), pts.end(), drop), pts.end());
+    return before - pts.size();
+  }
   PoseVector keyframePoses() const { return graph_.poses(); }  ///< optimised T_map_kf
   const std::vector<LoopResult>& loopResults() const { return loops_; }
   size_t acceptedLoops() const;

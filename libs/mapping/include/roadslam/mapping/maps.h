@@ -71,10 +71,18 @@ void writeGridMrpt(const std::string& path, const Grid2D& g);
 void writeSimpleMap(const std::string& path, const std::vector<Keyframe>& kfs, const PoseVector& T_map_kf,
                     double sigma_t_m = 0.1, double sigma_r_rad = 0.01);
 
+/// An object's box for the top view (map frame): a track's id, box and velocity.
+struct TopViewBox {
+  int id = 0;
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();    ///< [m]
+  double yaw = 0, length = 0, width = 0;               ///< length axis direction [rad], extents [m]
+  Eigen::Vector2d velocity = Eigen::Vector2d::Zero();  ///< [m/s]; drawn as the arrow of 1 s of travel
+};
+
 /// Top view (x east, y north up): points coloured by height, the trajectory, the accepted loops
-/// (lines between the two keyframes) and a scale bar.
+/// (lines between the two keyframes), \p boxes (yellow, with their ids and velocity arrows) and a scale bar.
 void drawTopView(const std::string& png_path, const std::vector<Eigen::Vector3f>& points_map,
                  const PoseVector& trajectory, const std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>>& loops,
-                 int max_px = 1600);
+                 int max_px = 1600, const std::vector<TopViewBox>& boxes = {});
 
 }  // namespace roadslam::mapping

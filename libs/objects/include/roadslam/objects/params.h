@@ -11,16 +11,25 @@ namespace mrpt::config {
 class CConfigFileBase;
 }
 
+namespace roadslam {
+class ParamTable;
+}
+
 namespace roadslam::objects {
 
-enum class ClusterMethod { RangeImage, Euclidean };
+enum class ClusterMethod { RangeImage, Euclidean, Dbscan };
 std::string toString(ClusterMethod m);
 ClusterMethod clusterMethodFromString(const std::string& s);  ///< throws std::invalid_argument
+
+/// Motion model of the tracks' Kalman filters: constant velocity (linear) or constant turn rate and
+/// velocity (extended KF).
+enum class MotionModel { ConstantVelocity, Ctrv };
+std::string toString(MotionModel m);
 
 /// Segmentation ([objects]).
 struct ClusterParams {
   bool enabled = false;                  ///< roadslam-map runs the objects stage and writes objects.csv, tracks.csv [-]
-  ClusterMethod method = ClusterMethod::RangeImage;  ///< range_image (ring x azimuth) or euclidean (xy grid) [-]
+  ClusterMethod method = ClusterMethod::RangeImage;  ///< range_image (ring x azimuth), euclidean (xy grid) or dbscan [-]
   int azimuth_bins = 1800;               ///< range-image columns over 360 deg (VLP-16 at 10 Hz: 0.2 deg) [-]
   int azimuth_window = 3;                ///< range image: neighbours searched this many columns either side [-]
   int ring_window = 2;                   ///< range image: ... and this many rings above and below [-]
@@ -30,6 +39,9 @@ struct ClusterParams {
   double min_range_m = 2.0;              ///< points nearer (x-y) are the own car's body, not segmented [m]
   double max_range_m = 50.0;             ///< points beyond (x-y distance from the lidar) are not segmented [m]
   int min_points = 8;                    ///< smaller clusters are no object [-]
+  /// dbscan: a core point has this many points (itself included) within cluster_distance_m (Ester et
+  /// al. 1996, MinPts; Open3D's cluster_dbscan min_points); other points join a core's cluster as its border [-]
+  int dbscan_min_points = 4;
   double min_top_height_m = 0.5;         ///< clusters whose highest point is lower above the ground (curbs) are no object [m]
   double max_length_m = 12.0;            ///< longer clusters (walls, hedges) are no object [m]
   double max_width_m = 4.0;              ///< wider clusters are no object [m]
@@ -38,16 +50,38 @@ struct ClusterParams {
   /// keyframes; not the odometry's own local map) [-]
   bool remove_moving_from_maps = true;
   double removal_margin_m = 0.3;         ///< around a moving object's box, x-y and z [m]
+  /// With the removal: keyframes reach the OctoMap this long after their sweep, so that the points of a
+  /// car labelled moving later (its first sweeps, before the label) leave the keyframes first [s]
+  double map_delay_s = 6.0;
+  /// When a track is labelled moving, the keyframes also lose the points inside car-sized boxes along
+  /// the path its velocity leads back for this long before its birth (a car seen too far or sparse
+  /// for an object) [s]
+  double retro_extrapolate_s = 4.0;
   preprocess::GroundSegParams ground;    ///< ground labels: read from [preprocess] seg_* (the odometry's), not saved here
 
+  void fields(ParamTable& t);
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section = "objects",
                           const std::string& ground_section = "preprocess");
   void saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& section = "objects") const;
 };
 
-/// Tracking ([tracking]): constant-velocity Kalman filter per track in the map frame, global
-/// nearest-neighbour association (Hungarian on gated x-y distances), birth, confirmation, death.
+/// The CTRV model's process noise ([tracking] ctrv_* keys): state x, y, v (speed), psi (heading),
+/// omega (turn rate); white noise on the longitudinal acceleration and the yaw acceleration
+/// (Schubert et al., "Comparison and Evaluation of Advanced Motion Models for Vehicle Tracking", FUSION 2008).
+struct CtrvParams {
+  double accel_sigma_mps2 = 1.5;         ///< longitudinal acceleration noise [m/s^2]
+  double yaw_accel_sigma_radps2 = 30.0 * 3.14159265358979323846 / 180.0;  ///< yaw acceleration noise; ini `yaw_accel_sigma_degps2` [rad/s^2]
+  double init_yaw_rate_sigma_radps = 20.0 * 3.14159265358979323846 / 180.0; ///< turn rate uncertainty of a new track; ini `init_yaw_rate_sigma_degps` [rad/s]
+
+  void fields(ParamTable& t);
+};
+
+/// Tracking ([tracking]): a Kalman filter per track in the map frame (constant velocity, or CTRV as
+/// an extended KF), global nearest-neighbour association (Hungarian on gated x-y distances), birth,
+/// confirmation, death.
 struct TrackerParams {
+  MotionModel motion_model = MotionModel::ConstantVelocity;  ///< cv or ctrv [-]
+  CtrvParams ctrv;                       ///< motion_model = ctrv: keys ctrv_*
   double gate_m = 2.5;                   ///< a detection farther than this from a track's prediction is no match [m]
   double gate_sigma = 3.0;               ///< ... or farther than this many standard deviations (innovation covariance) [-]
   double size_weight = 0.5;              ///< association cost per metre of extent difference (along + across) [-]
@@ -56,6 +90,9 @@ struct TrackerParams {
   double init_speed_sigma_mps = 10.0;    ///< speed uncertainty of a new track [m/s]
   int confirm_hits = 3;                  ///< hits that confirm a tentative track [-]
   int max_misses = 5;                    ///< consecutive misses (sweeps) that end a confirmed track [-]
+  /// consecutive misses a tentative track survives (a far car's face is seen every other sweep when
+  /// one ring hits it too low for an object) [-]
+  int tentative_max_misses = 1;
   double moving_speed_mps = 4.0;         ///< a confirmed track faster than this (14 km/h; slower cars stay static) ... [m/s]
   double moving_min_travel_m = 3.0;      ///< ... that has moved this far from its birth ... [m]
   int moving_min_hits = 10;              ///< ... and was detected this many times is labelled moving [-]
@@ -63,8 +100,19 @@ struct TrackerParams {
   double moving_max_length_m = 7.0;      ///< tracks ever seen longer than this (walls seen in parts) are never moving [m]
   double moving_max_width_m = 3.0;       ///< ... or wider than this [m]
   double moving_min_width_m = 1.0;       ///< ... or never seen wider than this (a wall's face slides, a car shows two faces) [m]
+  double moving_max_height_m = 2.3;      ///< ... or ever seen higher above the ground (walls, hedges; cars and SUVs stay below, vans and trucks not) [m]
   double max_dt_s = 1.0;                 ///< a gap longer than this between sweeps ends every track ("gap") [s]
+  /// Car-size prior of the box centre: a moving track's detections are completed to at least this
+  /// size away from the sensor (0 = off) ... [m]
+  double car_length_m = 4.5;
+  double car_width_m = 1.8;              ///< [m]
+  /// ... and, with no heading known yet, a single face seen from this range or farther (no side visible) ... [m]
+  double car_prior_min_range_m = 12.0;
+  double car_face_min_m = 1.2;           ///< ... this wide at least ... [m]
+  double car_face_max_m = 2.4;           ///< ... and at most (a front or rear; longer faces are sides) ... [m]
+  double car_face_max_depth_m = 0.6;     ///< ... and this thin along the line of sight is a car's face, its centre car_length_m/2 behind [m]
 
+  void fields(ParamTable& t);
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section = "tracking");
   void saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& section = "tracking") const;
 };

@@ -28,6 +28,8 @@ struct Object {
   double z_min = 0, z_max = 0;  ///< [m]
   double top_height_m = 0;      ///< highest point above the local ground [m]
   size_t points = 0;
+  double t_mean = 0;            ///< mean firing time of the points, relative to Scan::stamp_s [s]
+  double dt_s = 0;              ///< ObjectsStage: t_mean on the tracks' clock minus the sweep's reference time [s]
   std::vector<uint32_t> indices;  ///< the points' indices in the sweep
 };
 
@@ -43,7 +45,8 @@ Box2 fitLShape(const std::vector<Eigen::Vector2d>& xy, double step_rad);
 
 /// Objects among \p pts (lidar frame, sensor at the origin). \p height_above_ground_m (NaN where
 /// unknown: z + sensor height is used) and \p ground (1 = ground) come from
-/// preprocess::segmentGroundWithHeights. Points without rings (has_rings false) use the Euclidean method.
+/// preprocess::segmentGroundWithHeights. Points without rings (has_rings false) use the Euclidean method
+/// when the range image is asked for.
 std::vector<Object> segmentObjects(const std::vector<ScanPoint>& pts, bool has_rings, const std::vector<uint8_t>& ground,
                                    const std::vector<float>& height_above_ground_m, const ClusterParams& p,
                                    SegmentationStats* stats = nullptr);

@@ -1,7 +1,7 @@
 #pragma once
 /// \file tracker.h
-/// Multi-object tracking in the map frame: a constant-velocity Kalman filter per track on the box
-/// centre (state x, y, vx, vy), global nearest-neighbour association (Hungarian assignment on x-y
+/// Multi-object tracking in the map frame: a Kalman filter per track on the box centre, constant
+/// velocity (state x, y, vx, vy) or CTRV (x, y, v, psi, omega; an extended KF, TrackerParams::motion_model), global nearest-neighbour association (Hungarian assignment on x-y
 /// distances inside a gate), birth of a tentative track from an unmatched detection, confirmation
 /// after TrackerParams::confirm_hits hits, death after max_misses misses; stable ids; a static /
 /// moving label from the filtered speed and the distance travelled since birth.
@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -21,19 +22,37 @@ namespace roadslam::objects {
 
 enum class TrackState { Tentative, Confirmed };
 
+/// A detection a track took: its box in the map frame at the sweep's time (the points' box, not completed).
+struct BoxRecord {
+  double t = 0;                       ///< sweep reference time [s]
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();  ///< [m]
+  double yaw = 0, length = 0, width = 0;  ///< length axis direction [rad], extents [m]
+  double z_min = 0, z_max = 0;        ///< map frame [m]
+};
+
 struct Track {
   int id = 0;                         ///< stable, from 1
   TrackState state = TrackState::Tentative;
-  Eigen::Vector4d x = Eigen::Vector4d::Zero();  ///< [x, y, vx, vy], map frame [m, m/s]
+  Eigen::Vector4d x = Eigen::Vector4d::Zero();  ///< [x, y, vx, vy], map frame [m, m/s] (CTRV: its view of s)
   Eigen::Matrix4d P = Eigen::Matrix4d::Identity();
+  /// MotionModel::Ctrv: the filter's own state [x, y, v, psi, omega] (v signed: a car may be seen
+  /// driving along either end of its box) and covariance [m, m, m/s, rad, rad/s]
+  Eigen::Matrix<double, 5, 1> s = Eigen::Matrix<double, 5, 1>::Zero();
+  Eigen::Matrix<double, 5, 5> S = Eigen::Matrix<double, 5, 5>::Identity();
   double length = 0, width = 0;       ///< largest extents seen along / across the heading [m]
   double heading = 0;                 ///< [rad], from the velocity once moving, else the box's
   double z_min = 0, z_max = 0;        ///< last detection's heights, map frame [m]
+  double top_height = 0;              ///< highest point above the local ground of any detection [m]
   int hits = 0, misses = 0;           ///< detections associated; consecutive sweeps without one
   double t_birth = 0, t_last = 0;     ///< first and last detection [s]
   Eigen::Vector2d birth_xy = Eigen::Vector2d::Zero();
   bool moving = false;
   int last_detection = -1;            ///< index of the detection it took in the last update, -1 none
+  double moving_since = -1;           ///< time it was first labelled moving [s], -1 never
+  /// The detections it took until it was labelled moving (at most 100), so that the maps can drop
+  /// its points from the sweeps before the label (ObjectsFrame::retro); shared: copies of a track
+  /// (the stage's snapshots) do not copy it.
+  std::shared_ptr<std::vector<BoxRecord>> history = std::make_shared<std::vector<BoxRecord>>();
   double speed() const { return x.tail<2>().norm(); }
 };
 
@@ -61,6 +80,9 @@ class Tracker {
 
  private:
   void predict(double t);
+  void predictCtrv(Track& tr, double dt) const;
+  /// Kalman update of \p tr with the detection centre \p z seen \p dt after the state's time (either model).
+  void correct(Track& tr, const Eigen::Vector2d& z, double dt) const;
   void endAll(double t, const std::string& reason);
   void prune(double t, const std::string& reason);
 

@@ -46,13 +46,18 @@ struct Stages {
   mapping::Mapper* mapper = nullptr;              ///< maps stage; needs OdometryPoses (points, results)
   mapping::OctoMapWorker* octomap = nullptr;      ///< fed from the mapper's keyframes
   double octomap_keyframe_spacing_m = 0;          ///< [octomap] keyframe_spacing_m
+  /// Keyframes reach the OctoMap once this much older than the newest sweep (all of them at the end
+  /// of the source), so that the points of an object labelled moving later are out first [s]
+  double octomap_delay_s = 0;
   boundary::BoundaryDetector* boundaries = nullptr;
   BoundaryUse boundary_use = BoundaryUse::Detect;
   /// Objects stage (segmentation and tracking, libs/objects) on the deskewed sweep; needs a pose
   /// stage that leaves the scan untouched (OdometryPoses' keep_scans).
   objects::ObjectsStage* objects = nullptr;
-  /// With objects: the points of moving objects stay out of what the maps stage is given.
+  /// With objects: the points of moving objects stay out of what the maps stage is given, and those
+  /// of a track's earlier sweeps leave the keyframes when it is labelled moving (ObjectsFrame::retro).
   bool remove_moving_from_maps = false;
+  double removal_margin_m = 0.3;                  ///< [objects] removal_margin_m
 };
 
 /// One sweep through the stages.
@@ -63,6 +68,7 @@ struct PipelineFrame {
   std::optional<Scan> scan;
   bool loop_closed = false;  ///< the maps stage accepted a loop at this sweep (keyframe poses moved)
   size_t moving_points_removed = 0;  ///< points of moving objects kept out of the maps stage
+  size_t retro_points_removed = 0;   ///< points of earlier keyframes dropped when a track was labelled moving
   std::optional<boundary::BoundaryFrame> boundary;  ///< BoundaryUse::Detect and a pose
   /// With an objects stage: the sweep's objects (with a pose) and the confirmed tracks (coasting without one).
   std::optional<objects::ObjectsFrame> objects;
@@ -83,6 +89,10 @@ class Pipeline {
   /// from next() before that only means no sweep was ready yet.
   bool finished() const;
 
+  /// Hands the OctoMap the keyframes its delay still holds back (Stages::octomap_delay_s); next()
+  /// does it at the end of the source, a job that stops early calls it.
+  void flushMaps() { feedOctoMap(false, 0, true); }
+
   sources::ScanSource& source() { return *source_; }
   const sources::ScanSource& source() const { return *source_; }
   PoseStage& poses() { return *stages_.poses; }
@@ -92,8 +102,12 @@ class Pipeline {
  private:
   std::unique_ptr<sources::ScanSource> source_;
   Stages stages_;
+  void feedOctoMap(bool loop, double now_s, bool flush);
+  size_t removeRetro(const std::vector<objects::BoxRecord>& boxes);
+
   StageTimes totals_;
   size_t frames_ = 0;
+  size_t octo_seen_ = 0;  ///< keyframes the OctoMap feed has decided on
 };
 
 /// Opens the recording \p path (sources::openScanSource) and reads its first sweep: an input that

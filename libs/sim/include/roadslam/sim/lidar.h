@@ -142,6 +142,12 @@ class LidarSimulator {
   /// angles, intensity = KITTI reflectance [0..1], t relative to the stamp (sweepStamp_s) [s].
   void simulateSweep(uint64_t k, Scan& scan, std::vector<TrueReturn>* truth);
   const LidarCounters& counters() const { return counters_; }
+  /// Period of the ground truth's object samples (gt_objects.json) [s].
+  static constexpr double kCarSample_s = 0.1;
+  /// Returns (points in the output) on each moving car (World::cars order) fired within half a
+  /// sample period of each GT sample time k * kCarSample_s: [car][k], shorter when no later return.
+  /// At 10 Hz each window is one full turn of the sensor, the sweep that sees the car at that time.
+  const std::vector<std::vector<uint32_t>>& carReturns() const { return car_returns_; }
 
  private:
   /// One laser firing's outcome before the output format.
@@ -149,7 +155,10 @@ class LidarSimulator {
     double range_m = 0;     ///< reported range [m]
     double intensity = 0;   ///< calibrated reflectivity, 0-100 diffuse, > 100 retro-reflective [-]
     Vec3 p_world;           ///< noise-free point along the true centre ray [m]
+    int car = -1;           ///< the moving car it hit (World::cars index), -1 a static surface
   };
+  /// Counts a return of \p e fired at \p t_s in carReturns().
+  void countCarReturn(const Echo& e, double t_s);
   /// Casts laser \p laser at nominal azimuth \p az_deg from \p T_world_lidar; false (counted) when
   /// the return is lost.
   bool fire(const Pose3& T_world_lidar, int laser, double az_deg, uint64_t key, Echo& echo);
@@ -170,6 +179,7 @@ class LidarSimulator {
   std::vector<Prism> cars_;
   double jitter_phase_[3];
   LidarCounters counters_;
+  std::vector<std::vector<uint32_t>> car_returns_;
 };
 
 }  // namespace roadslam::sim

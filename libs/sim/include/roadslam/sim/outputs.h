@@ -12,7 +12,9 @@
 ///   gt_vehicle.csv      vehicle reference state every 10 ms: pose, speed, acceleration, yaw rate,
 ///                       rear wheel speeds, distance (header line names the columns and units)
 ///   gt_boundaries.json  per road: centreline and left/right curb polylines [x, y, z] (world frame)
-///   gt_objects.json     moving cars' tracks at 10 Hz [t, x, y, z, yaw]
+///   gt_objects.json     moving cars' tracks at 10 Hz [t, x, y, z, yaw, returns, range_m]: returns =
+///                       lidar points on the car fired within 0.05 s of t (its visibility; 0 when
+///                       hidden), range_m = x-y distance from the lidar to the car's centre
 ///   can.log             the car's CAN traffic in candump -l format (can_output.h), same clock
 ///   summary.json        scenario, seed, duration_s, packets, sweeps, points, distance_m,
 ///                       real_time_factor (packets_sent with UDP), can_frames and can_dbc

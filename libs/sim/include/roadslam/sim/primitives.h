@@ -36,6 +36,7 @@ struct Hit {
   Vec3 n;  ///< unit surface normal at the hit (world frame)
   Material material = Material::Terrain;
   bool valid = false;
+  int dynamic = -1;  ///< World::raycast: index of the dynamic prism (moving car) hit, -1 a static surface
 };
 
 /// A prism on an oriented rectangle: footprint centred at (cx, cy) with heading yaw [rad] and half
