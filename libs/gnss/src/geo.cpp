@@ -4,6 +4,7 @@
 #include <GeographicLib/LocalCartesian.hpp>
 #include <GeographicLib/UTMUPS.hpp>
 
+#include <cmath>
 #include <stdexcept>
 #include <vector>
 
@@ -33,6 +34,8 @@ Utm utmFromGeodetic(const Geodetic& g, int zone) {
     throw std::invalid_argument(std::string("UTM conversion: ") + e.what());
   }
   u.h_m = g.h_m;
+  u.convergence_rad = gamma * M_PI / 180;
+  u.scale = k;
   return u;
 }
 

@@ -28,6 +28,8 @@ struct Utm {
   double easting_m = 0;  ///< [m] (false easting 500 km included)
   double northing_m = 0; ///< [m] (false northing 10,000 km in the south included)
   double h_m = 0;        ///< height above the ellipsoid [m]
+  double convergence_rad = 0;  ///< meridian convergence: grid north's angle from true north, clockwise [rad]
+  double scale = 1;      ///< point scale factor k of the projection here [-]
   /// "32N" style zone name.
   std::string zoneName() const;
 };
