@@ -130,6 +130,7 @@ void GnssFusionParams::fields(ParamTable& t) {
   t.num("edge_sigma_t_per_m", edge_sigma_t_per_m);
   t.angle("edge_sigma_r_deg", edge_sigma_r_rad);
   t.angle("edge_sigma_r_deg_per_m", edge_sigma_r_rad_per_m);
+  t.num("edge_vertical_scale", edge_vertical_scale);
   t.choice("kernel", kernel, kernelNames());
   t.num("kernel_width", kernel_width);
   t.num("outlier_gate", outlier_gate);
@@ -146,9 +147,9 @@ void GnssFusionParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& c
   rejectUnknownKeys(cfg, s, fieldKeys<GnssFusionParams>());
   if (edge_sigma_t_m <= 0 || edge_sigma_r_rad <= 0 || edge_sigma_t_per_m < 0 || edge_sigma_r_rad_per_m < 0 ||
       kernel_width <= 0 || outlier_gate <= 0 || max_time_offset_s < 0 || attitude_prior_sigma_rad <= 0 ||
-      max_iterations < 1 || uere_m <= 0 || fallback_sigma_m <= 0) {
+      max_iterations < 1 || uere_m <= 0 || fallback_sigma_m <= 0 || edge_vertical_scale <= 0) {
     throw std::runtime_error("[" + s + "]: edge_sigma_t_m, edge_sigma_r_deg, kernel_width, outlier_gate, "
-                             "attitude_prior_sigma_deg, max_iterations, uere_m and fallback_sigma_m must be > 0, "
+                             "attitude_prior_sigma_deg, max_iterations, uere_m, fallback_sigma_m and edge_vertical_scale must be > 0, "
                              "the per-metre sigmas and max_time_offset_s >= 0");
   }
 }
@@ -217,7 +218,8 @@ GnssFusionResult fuseGnss(const std::vector<double>& st, const PoseVector& T_map
     const double vt = p.edge_sigma_t_m * p.edge_sigma_t_m + std::pow(p.edge_sigma_t_per_m * d, 2);
     const double vr = p.edge_sigma_r_rad * p.edge_sigma_r_rad + std::pow(p.edge_sigma_r_rad_per_m * d, 2);
     I[i].setZero();
-    I[i].diagonal() << Eigen::Vector3d::Constant(1 / vt), Eigen::Vector3d::Constant(1 / vr);
+    const double k2 = p.edge_vertical_scale * p.edge_vertical_scale;
+    I[i].diagonal() << 1 / vt, 1 / vt, 1 / (vt * k2), 1 / (vr * k2), 1 / (vr * k2), 1 / vr;
   }
   const double info_att = 1.0 / (p.attitude_prior_sigma_rad * p.attitude_prior_sigma_rad);
   std::vector<double> w(m.size(), 1.0);
@@ -283,7 +285,10 @@ GnssFusionResult fuseGnss(const std::vector<double>& st, const PoseVector& T_map
       max_step = std::max(max_step, d.head<3>().norm());
     }
     res.iterations = it + 1;
-    if (max_step < 1e-4 && it > 2) break;  // the weights settle in a few more iterations than the poses
+    if (max_step < 1e-4 && it > 2) {
+      res.converged = true;
+      break;
+    }  // the weights settle in a few more iterations than the poses
   }
   // 4. what each fix became, and the map -> ENU transform over the fused poses
   double sq = 0;

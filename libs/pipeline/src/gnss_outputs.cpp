@@ -100,6 +100,7 @@ nlohmann::json fuseAndWriteGnss(const std::string& dir, const std::vector<double
   j["fixes_rejected"] = r.rejected;
   j["fixes_unmatched"] = r.unmatched;
   j["iterations"] = r.iterations;
+  j["converged"] = r.converged;
   j["rms_horizontal_residual_m"] = r.rms_inlier_m;
   j["ms"] = r.ms;
   if (!r.ok) return j;

@@ -50,6 +50,9 @@ struct GnssFusionParams {
   double edge_sigma_t_per_m = 0.005;     ///< ... growing per metre between the nodes [m/m]
   double edge_sigma_r_rad = 0.01 * M_PI / 180;   ///< rotation std, sigma_0 [rad]; ini edge_sigma_r_deg
   double edge_sigma_r_rad_per_m = 0.002 * M_PI / 180;  ///< ... per metre [rad/m]; ini edge_sigma_r_deg_per_m
+  /// Multiplies the motion factors' std of z, roll and pitch (in the node frame): > 1 for a planar
+  /// odometry (CAN dead reckoning) that knows nothing of hills [-].
+  double edge_vertical_scale = 1.0;
   RobustKernel kernel = RobustKernel::Cauchy;  ///< robust kernel of the GNSS factors
   double kernel_width = 3.0;             ///< c, in Mahalanobis units [-]
   double outlier_gate = 6.0;             ///< a fix whose final Mahalanobis distance exceeds this is counted rejected [-]
@@ -84,6 +87,7 @@ struct GnssFusionResult {
   std::vector<FixUse> fix_use;  ///< per input fix
   size_t used = 0, rejected = 0, unmatched = 0;
   int iterations = 0;
+  bool converged = false;       ///< the last step moved no node by more than 0.1 mm (else max_iterations ran out)
   double rms_inlier_m = 0;      ///< rms horizontal residual of the used fixes [m]
   double ms = 0;                ///< wall time [ms]
 };
