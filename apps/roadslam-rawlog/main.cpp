@@ -65,6 +65,13 @@ int main(int argc, char** argv) {
   rec->add_option("--bind", udp.bind_address, "local IPv4 address to listen on (default: all)");
   rec->add_option("--source", udp.source_filter, "accept only this sensor IPv4 address");
 
+  std::string nmea_in, nmea_out, nmea_label = "GPS";
+  auto* nmea = app.add_subcommand("nmea", "NMEA 0183 log -> MRPT rawlog (CObservationGPS per receiver epoch)");
+  nmea->add_option("IN", nmea_in, "NMEA log: one sentence per line, optionally after its receive time [s]")
+      ->required()->check(CLI::ExistingFile);
+  nmea->add_option("OUT", nmea_out, "output .rawlog")->required();
+  nmea->add_option("--label", nmea_label, "sensorLabel of the observations")->capture_default_str();
+
   std::string box_out;
   auto* box = app.add_subcommand("make-boxroom", "Write the deterministic box-room VLP-16 capture");
   box->add_option("OUT", box_out, "output .pcap (bundled: rawlogs/boxroom-vlp16.pcap)")->required();
@@ -91,6 +98,14 @@ int main(int argc, char** argv) {
                  rec_out, r.packets, r.source.data_packets, r.source.position_packets,
                  r.source.kernel_drops, r.source.missing_packets, r.source.malformed_packets,
                  rx.grantedRcvbufBytes());
+    } else if (*nmea) {
+      const NmeaImportSummary s = nmeaLogToRawlog(nmea_in, nmea_out, nmea_label);
+      std::string counts;
+      for (const auto& [name, n] : s.counters.named())
+        if (n > 0 && name != "lines" && name != "sentences" && name != "epochs" && name != "fixes")
+          counts += fmt::format(", {} {}", n, name);
+      fmt::print("{}: {} GNSS epochs from {} lines{}\n", nmea_out, s.epochs, s.counters.lines, counts);
+      for (const auto& p : s.problems) fmt::print(stderr, "roadslam-rawlog: warning: {}\n", p);
     } else if (*box) {
       const BoxRoomSummary s = writeBoxRoomPcap(box_out);
       fmt::print("{}: {} data packets, {} position packets, {} points, {} complete sweeps\n",
