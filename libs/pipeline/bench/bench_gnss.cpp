@@ -247,7 +247,6 @@ int rav4Figures(int argc, char** argv) {
   fp.edge_sigma_r_rad_per_m = 0.01 * M_PI / 180;
   fp.attitude_prior_sigma_rad = 0.5 * M_PI / 180;
   fp.edge_vertical_scale = 100;  // planar: no height, roll or pitch
-  if (getenv("ITER")) fp.max_iterations = atoi(getenv("ITER"));
   std::printf("RAV4 drive: %zu reference poses over %.1f s, %zu dead-reckoning nodes (10 Hz), seed %llu; fixes = "
               "reference at 1 Hz + white noise (sigma horizontally, 1.5 sigma up)\n",
               rt.size(), rt.back() - rt.front(), raw.t.size(), static_cast<unsigned long long>(seed));
