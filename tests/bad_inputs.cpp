@@ -211,7 +211,7 @@ const Row kTable[] = {
   {"map-gnss-no-fix",      "roadslam-map --config {S}/ini/default.ini --input {W}/truncated.pcap --out {O} --gnss {W}/no-fix.nmea", 1, "holds no valid fix"},
   {"map-gnss-missing",     "roadslam-map --config {S}/ini/default.ini --input {W}/truncated.pcap --out {O} --gnss {W}/nope.nmea", 105, "File does not exist"},
   // roadslam-rawlog
-  {"rawlog-nmea-bad-lines","roadslam-rawlog nmea {W}/some-bad.nmea {O}/g.rawlog", 0, "2 bad checksum"},
+  {"rawlog-nmea-bad-lines","roadslam-rawlog nmea {W}/some-bad.nmea {W}/some-bad.rawlog", 0, "2 bad checksum"},
   {"rawlog-info-random",   "roadslam-rawlog info {W}/random.rawlog", 1, "not a readable MRPT rawlog"},
   {"rawlog-info-truncated","roadslam-rawlog info {W}/truncated.pcap", 1, "damaged at record 239 (byte 299344)"},
   {"rawlog-info-missing",  "roadslam-rawlog info {W}/nope.rawlog", 1, "nope.rawlog"},

@@ -47,6 +47,39 @@ GnssInput readGnssInput(const std::string& path, const mapping::GnssFusionParams
   return in;
 }
 
+GnssInput gnssInputFromFixes(const std::vector<sources::TimedGpsFix>& fixes, const std::string& describe,
+                             const mapping::GnssFusionParams& p) {
+  GnssInput in;
+  in.path = describe;
+  for (const auto& f : fixes) {
+    ++in.log.counters.epochs;
+    if (!f.fix.valid) {
+      ++in.log.counters.no_fix;
+      continue;
+    }
+    gnss::GnssFix g;
+    g.has_position = true;
+    g.rmc_status = 'A';
+    g.position = {f.fix.latitude_deg, f.fix.longitude_deg, 0.0};
+    g.t_receive_s = f.stamp_s;
+    g.t_receiver_s = f.fix.epochSeconds();
+    in.log.fixes.push_back(g);
+  }
+  in.log.counters.fixes = in.log.fixes.size();
+  if (in.log.fixes.empty()) throw std::runtime_error("the input carries no valid GPS fix (" + std::to_string(fixes.size()) + " fixes read)");
+  in.origin = in.log.fixes.front().position;
+  const gnss::EnuFrame enu(in.origin);
+  const double s = p.fallback_sigma_m;
+  for (const auto& f : in.log.fixes) {
+    mapping::GnssFactor g;
+    g.t_s = f.stamp(p.receiver_time);
+    g.p_enu = enu.toEnu(f.position);
+    g.cov = Eigen::Vector3d(s * s, s * s, 1e6).asDiagonal();
+    in.factors.push_back(g);
+  }
+  return in;
+}
+
 void writeGeoTrajectory(const std::string& dir, const std::vector<double>& st, const mapping::PoseVector& T,
                         const gnss::EnuFrame& enu) {
   std::string tum, csv = "t,lat_deg,lon_deg,h_m,utm_zone,easting_m,northing_m\n", coords, kml;

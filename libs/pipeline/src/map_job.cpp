@@ -153,7 +153,9 @@ MapOutcome runMapJob(const MapRequest& req) {
   if (!req.can_log_path.empty() && req.vehicle_ini_path.empty()) throw std::runtime_error("--can needs --vehicle (the car's vehicle ini)");
   auto source = openNonEmptySource(req.input_path, *cfg, req.times_path);
   std::optional<GnssInput> gnss_in;  // read before the run: a bad log fails before hours of processing
+  if (!req.gnss_path.empty() && req.gnss_from_input) throw std::runtime_error("--gnss and --gnss-from-input exclude each other");
   if (!req.gnss_path.empty()) gnss_in = readGnssInput(req.gnss_path, params.gnss_fusion);
+  std::vector<sources::TimedGpsFix> input_fixes;  // with gnss_from_input: taken from the source per sweep
   prepareOutDir(req.out_dir);
   writeFileAtomically(req.out_dir + "/config_used.ini", params.used());
 
@@ -184,6 +186,10 @@ MapOutcome runMapJob(const MapRequest& req) {
     if (req.max_frames && out.frames.size() >= req.max_frames) break;
     auto f = pipe.next();
     if (!f) break;
+    if (req.gnss_from_input) {
+      auto fx = pipe.source().takeGpsFixes();
+      input_fixes.insert(input_fixes.end(), fx.begin(), fx.end());
+    }
     if (objects_stage) objects_out.add(*f, *objects_stage);
     out.frames.push_back(std::move(*f->pose.odometry));
     if (req.progress) bar.update(out.frames.size());
@@ -245,6 +251,15 @@ MapOutcome runMapJob(const MapRequest& req) {
                            {"octomap_leafs", ms.octomap_leafs}, {"octomap_ms_per_keyframe", ms.octomap_ms_per_keyframe},
                            {"grid_occupied_cells", ms.grid_occupied}, {"grid_free_cells", ms.grid_free},
                            {"ms_total", ms.ms_total}};
+  }
+  if (req.gnss_from_input) {
+    auto fx = pipe.source().takeGpsFixes();
+    input_fixes.insert(input_fixes.end(), fx.begin(), fx.end());
+    try {
+      gnss_in = gnssInputFromFixes(input_fixes, "GPS fixes of " + stream->describe(), params.gnss_fusion);
+    } catch (const std::exception& e) {
+      out.summary["warnings"].push_back(std::string("GNSS fusion not done: ") + e.what());
+    }
   }
   if (gnss_in) {
     std::vector<double> stamps;

@@ -22,6 +22,7 @@
 #include "roadslam/gnss/geo.h"
 #include "roadslam/gnss/nmea.h"
 #include "roadslam/mapping/gnss_fusion.h"
+#include "roadslam/sources/gps_fix.h"
 
 namespace roadslam::pipeline {
 
@@ -35,6 +36,13 @@ struct GnssInput {
 
 /// Reads \p nmea_path; throws naming the file when it cannot be read or holds no valid fix.
 GnssInput readGnssInput(const std::string& nmea_path, const mapping::GnssFusionParams& p);
+
+/// The valid fixes an input carried (sources::ScanSource::takeGpsFixes: RMC only), in the ENU frame at
+/// the first: horizontal sigma fallback_sigma_m, the height unknown (sigma 1 km, the fix's height 0).
+/// Stamped with the fix's UTC time when p.receiver_time and it has a date, else the capture time.
+/// The "log" counts epochs, fixes and "no fix" (RMC 'V'). Throws when none is valid.
+GnssInput gnssInputFromFixes(const std::vector<sources::TimedGpsFix>& fixes, const std::string& describe,
+                             const mapping::GnssFusionParams& p);
 
 /// Fuses \p in into (\p stamps_s, \p T_map_lidar), writes the files above into \p out_dir and returns
 /// the summary's "gnss" object. A fusion that cannot run (too few fixes, no motion) writes nothing

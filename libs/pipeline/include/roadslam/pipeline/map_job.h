@@ -34,6 +34,10 @@ struct MapRequest {
   /// NMEA log of the same drive (libs/gnss/nmea.h format, optional): fused in batch at the end
   /// ([gnss_fusion]) into the geo-referenced outputs of pipeline/gnss_outputs.h
   std::string gnss_path;
+  /// Fuse the GPS fixes the input itself carries instead (Velodyne position packets' $GPRMC, as the
+  /// source hands them out: WGS84 latitude / longitude, no height, no accuracy) ([gnss_fusion]
+  /// fallback_sigma_m horizontally, height left free); exclusive with gnss_path
+  bool gnss_from_input = false;
   bool progress = true;     ///< progress bar when stderr is a terminal
   /// false: the odometry alone (no keyframe graph, loop closure or maps; trajectory.tum holds the
   /// odometry's poses), for runs that score only the odometry (experiments).
