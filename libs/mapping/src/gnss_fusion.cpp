@@ -171,6 +171,124 @@ Eigen::Isometry3d interpolatePose(const std::vector<double>& st, const PoseVecto
   return out;
 }
 
+namespace {
+
+/// The factors of one fusion: the fixes matched to nodes, the motion between nodes, the prior.
+class Problem {
+ public:
+  Problem(const std::vector<double>& st, const PoseVector& T_map, const std::vector<GnssFactor>& fixes,
+          const GnssFusionParams& p)
+      : p_(p), fixes_(fixes) {
+    matchFixes(st, T_map);
+    motionFactors(T_map);
+  }
+  const std::vector<Matched>& matched() const { return m_; }
+  void setAttitudePrior(const Eigen::Matrix3d& R0) { R0_prior_ = R0; }
+
+  /// One Gauss-Newton step on \p T with the kernel's weights at \p T (IRLS); false when the normal
+  /// equations are singular. \p max_step: the largest translation step [m].
+  bool step(PoseVector& T, double& max_step) const {
+    const size_t N = T.size();
+    const int n = static_cast<int>(6 * N);
+    std::vector<Eigen::Triplet<double>> trip;
+    trip.reserve(N * 36 * 4 + m_.size() * 36 + 4);
+    Eigen::VectorXd b = Eigen::VectorXd::Zero(n);
+    auto addBlock = [&](size_t r, size_t c, const Matrix6d& B) {
+      for (int x = 0; x < 6; ++x)
+        for (int y = 0; y < 6; ++y)
+          if (B(x, y) != 0) trip.emplace_back(static_cast<int>(6 * r) + x, static_cast<int>(6 * c) + y, B(x, y));
+    };
+    for (size_t i = 0; i + 1 < N; ++i) {  // motion factors
+      const Eigen::Isometry3d A = T[i].inverse() * T[i + 1];
+      const Eigen::Isometry3d E = Z_[i].inverse() * A;
+      Vec6 e;
+      e << E.translation(), rotvec(E.rotation());
+      const Matrix6d Ji = -adjoint(A.inverse());
+      const Matrix6d& L = I_[i];
+      addBlock(i, i, Ji.transpose() * L * Ji);
+      addBlock(i, i + 1, Ji.transpose() * L);
+      addBlock(i + 1, i, L * Ji);
+      addBlock(i + 1, i + 1, L);
+      b.segment<6>(static_cast<int>(6 * i)) += Ji.transpose() * L * e;
+      b.segment<6>(static_cast<int>(6 * (i + 1))) += L * e;
+    }
+    for (const auto& f : m_) {  // GNSS factors, reweighted
+      const Eigen::Matrix3d R = T[f.node].rotation();
+      const Eigen::Vector3d r = R * f.p + T[f.node].translation() - fixes_[f.fix].p_enu;
+      const double w = kernelWeight(p_.kernel, p_.kernel_width, std::sqrt(std::max(0.0, r.dot(f.info * r))));
+      Mat36 J;
+      J.leftCols<3>() = R;
+      J.rightCols<3>() = -R * skew(f.p);
+      const Eigen::Matrix3d L = w * f.info;
+      addBlock(f.node, f.node, J.transpose() * L * J);
+      b.segment<6>(static_cast<int>(6 * f.node)) += J.transpose() * L * r;
+    }
+    {  // roll / pitch of the first node (node-frame x and y of the rotation change since the start)
+      const double info_att = 1.0 / (p_.attitude_prior_sigma_rad * p_.attitude_prior_sigma_rad);
+      const Eigen::Vector3d e = rotvec(R0_prior_.transpose() * T[0].rotation());
+      Matrix6d B = Matrix6d::Zero();
+      B(3, 3) = B(4, 4) = info_att;
+      addBlock(0, 0, B);
+      b(3) += info_att * e.x();
+      b(4) += info_att * e.y();
+    }
+    for (int x = 0; x < n; ++x) trip.emplace_back(x, x, 1e-9);  // a yaw left free by a standstill stays finite
+    Eigen::SparseMatrix<double> H(n, n);
+    H.setFromTriplets(trip.begin(), trip.end());
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(H);
+    if (ldlt.info() != Eigen::Success) return false;
+    const Eigen::VectorXd dx = ldlt.solve(-b);
+    max_step = 0;
+    for (size_t i = 0; i < N; ++i) {
+      const Vec6 d = dx.segment<6>(static_cast<int>(6 * i));
+      T[i].translation() += T[i].rotation() * d.head<3>();
+      T[i].linear() = T[i].rotation() * expSO3(d.tail<3>());
+      max_step = std::max(max_step, d.head<3>().norm());
+    }
+    return true;
+  }
+
+ private:
+  /// Each fix on its nearest node in time, the antenna carried from the fix's time to the node's.
+  void matchFixes(const std::vector<double>& st, const PoseVector& T_map) {
+    const size_t N = T_map.size();
+    for (size_t k = 0; k < fixes_.size(); ++k) {
+      const double t = fixes_[k].t_s;
+      if (N == 0 || t < st.front() - p_.max_time_offset_s || t > st.back() + p_.max_time_offset_s) continue;
+      const size_t j = static_cast<size_t>(std::lower_bound(st.begin(), st.end(), t) - st.begin());
+      size_t i = std::min(j, N - 1);
+      if (j > 0 && (j == N || std::abs(st[j - 1] - t) < std::abs(st[j] - t))) i = j - 1;
+      if (std::abs(st[i] - t) > p_.max_time_offset_s) continue;
+      const Eigen::Vector3d p_node = T_map[i].inverse() * (interpolatePose(st, T_map, t) * p_.lever());
+      const Eigen::Matrix3d C = 0.5 * (fixes_[k].cov + fixes_[k].cov.transpose());
+      if (!C.allFinite() || C.determinant() <= 0) continue;
+      m_.push_back({k, i, p_node, C.inverse()});
+    }
+  }
+  /// The trajectory's motion between consecutive nodes and its information (Params edge_sigma_*).
+  void motionFactors(const PoseVector& T_map) {
+    const double k2 = p_.edge_vertical_scale * p_.edge_vertical_scale;
+    for (size_t i = 0; i + 1 < T_map.size(); ++i) {
+      Z_.push_back(T_map[i].inverse() * T_map[i + 1]);
+      const double d = Z_.back().translation().norm();
+      const double vt = p_.edge_sigma_t_m * p_.edge_sigma_t_m + std::pow(p_.edge_sigma_t_per_m * d, 2);
+      const double vr = p_.edge_sigma_r_rad * p_.edge_sigma_r_rad + std::pow(p_.edge_sigma_r_rad_per_m * d, 2);
+      Matrix6d I = Matrix6d::Zero();
+      I.diagonal() << 1 / vt, 1 / vt, 1 / (vt * k2), 1 / (vr * k2), 1 / (vr * k2), 1 / vr;
+      I_.push_back(I);
+    }
+  }
+
+  const GnssFusionParams& p_;
+  const std::vector<GnssFactor>& fixes_;
+  std::vector<Matched> m_;
+  std::vector<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>> Z_;
+  std::vector<Matrix6d, Eigen::aligned_allocator<Matrix6d>> I_;
+  Eigen::Matrix3d R0_prior_ = Eigen::Matrix3d::Identity();
+};
+
+}  // namespace
+
 GnssFusionResult fuseGnss(const std::vector<double>& st, const PoseVector& T_map, const std::vector<GnssFactor>& fixes,
                           const GnssFusionParams& p) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -178,19 +296,9 @@ GnssFusionResult fuseGnss(const std::vector<double>& st, const PoseVector& T_map
   GnssFusionResult res;
   res.fix_use.assign(fixes.size(), FixUse::Unmatched);
   const size_t N = T_map.size();
-  // 1. each fix on its nearest node, the antenna carried from the fix's time to the node's
-  std::vector<Matched> m;
-  for (size_t k = 0; k < fixes.size(); ++k) {
-    if (N == 0 || fixes[k].t_s < st.front() - p.max_time_offset_s || fixes[k].t_s > st.back() + p.max_time_offset_s) continue;
-    const size_t j = static_cast<size_t>(std::lower_bound(st.begin(), st.end(), fixes[k].t_s) - st.begin());
-    size_t i = std::min(j, N - 1);
-    if (j > 0 && (j == N || std::abs(st[j - 1] - fixes[k].t_s) < std::abs(st[j] - fixes[k].t_s))) i = j - 1;
-    if (std::abs(st[i] - fixes[k].t_s) > p.max_time_offset_s) continue;
-    const Eigen::Vector3d p_node = T_map[i].inverse() * (interpolatePose(st, T_map, fixes[k].t_s) * p.lever());
-    const Eigen::Matrix3d C = 0.5 * (fixes[k].cov + fixes[k].cov.transpose());
-    if (!C.allFinite() || C.determinant() <= 0) continue;
-    m.push_back({k, i, p_node, C.inverse()});
-  }
+  // 1. each fix on its nearest node; the motion factors
+  Problem problem(st, T_map, fixes, p);
+  const std::vector<Matched>& m = problem.matched();
   // 2. the start: a robust yaw + translation fit of the antenna path to the fixes
   std::vector<Eigen::Vector3d> a, z;
   std::vector<Eigen::Matrix3d> info;
@@ -208,87 +316,19 @@ GnssFusionResult fuseGnss(const std::vector<double>& st, const PoseVector& T_map
   }
   PoseVector T(N);
   for (size_t i = 0; i < N; ++i) T[i] = res.T_enu_map_initial * T_map[i];
-  const Eigen::Matrix3d R0_prior = T[0].rotation();
-  // motion factors: measurements and information
-  std::vector<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>> Z(N > 0 ? N - 1 : 0);
-  std::vector<Matrix6d, Eigen::aligned_allocator<Matrix6d>> I(Z.size());
-  for (size_t i = 0; i + 1 < N; ++i) {
-    Z[i] = T_map[i].inverse() * T_map[i + 1];
-    const double d = Z[i].translation().norm();
-    const double vt = p.edge_sigma_t_m * p.edge_sigma_t_m + std::pow(p.edge_sigma_t_per_m * d, 2);
-    const double vr = p.edge_sigma_r_rad * p.edge_sigma_r_rad + std::pow(p.edge_sigma_r_rad_per_m * d, 2);
-    I[i].setZero();
-    const double k2 = p.edge_vertical_scale * p.edge_vertical_scale;
-    I[i].diagonal() << 1 / vt, 1 / vt, 1 / (vt * k2), 1 / (vr * k2), 1 / (vr * k2), 1 / vr;
-  }
-  const double info_att = 1.0 / (p.attitude_prior_sigma_rad * p.attitude_prior_sigma_rad);
-  std::vector<double> w(m.size(), 1.0);
-  const int n = static_cast<int>(6 * N);
+  problem.setAttitudePrior(T[0].rotation());
   // 3. Gauss-Newton with the kernel's weights recomputed every iteration (IRLS)
   for (int it = 0; it < p.max_iterations; ++it) {
-    std::vector<Eigen::Triplet<double>> trip;
-    trip.reserve(N * 36 * 4 + m.size() * 36 + 4);
-    Eigen::VectorXd b = Eigen::VectorXd::Zero(n);
-    auto addBlock = [&](size_t r, size_t c, const Matrix6d& B) {
-      for (int x = 0; x < 6; ++x)
-        for (int y = 0; y < 6; ++y)
-          if (B(x, y) != 0) trip.emplace_back(static_cast<int>(6 * r) + x, static_cast<int>(6 * c) + y, B(x, y));
-    };
-    for (size_t i = 0; i + 1 < N; ++i) {
-      const Eigen::Isometry3d A = T[i].inverse() * T[i + 1];
-      const Eigen::Isometry3d E = Z[i].inverse() * A;
-      Vec6 e;
-      e << E.translation(), rotvec(E.rotation());
-      const Matrix6d Ji = -adjoint(A.inverse());
-      const Matrix6d& L = I[i];
-      addBlock(i, i, Ji.transpose() * L * Ji);
-      addBlock(i, i + 1, Ji.transpose() * L);
-      addBlock(i + 1, i, L * Ji);
-      addBlock(i + 1, i + 1, L);
-      b.segment<6>(static_cast<int>(6 * i)) += Ji.transpose() * L * e;
-      b.segment<6>(static_cast<int>(6 * (i + 1))) += L * e;
-    }
-    for (size_t k = 0; k < m.size(); ++k) {
-      const auto& f = m[k];
-      const Eigen::Matrix3d R = T[f.node].rotation();
-      const Eigen::Vector3d r = R * f.p + T[f.node].translation() - fixes[f.fix].p_enu;
-      w[k] = kernelWeight(p.kernel, p.kernel_width, std::sqrt(std::max(0.0, r.dot(f.info * r))));
-      Mat36 J;
-      J.leftCols<3>() = R;
-      J.rightCols<3>() = -R * skew(f.p);
-      const Eigen::Matrix3d L = w[k] * f.info;
-      addBlock(f.node, f.node, J.transpose() * L * J);
-      b.segment<6>(static_cast<int>(6 * f.node)) += J.transpose() * L * r;
-    }
-    {  // roll / pitch of the first node (node-frame x and y of the rotation change since the start)
-      const Eigen::Vector3d e = rotvec(R0_prior.transpose() * T[0].rotation());
-      Matrix6d B = Matrix6d::Zero();
-      B(3, 3) = B(4, 4) = info_att;
-      addBlock(0, 0, B);
-      b(3) += info_att * e.x();
-      b(4) += info_att * e.y();
-    }
-    for (int x = 0; x < n; ++x) trip.emplace_back(x, x, 1e-9);  // a yaw left free by a standstill stays finite
-    Eigen::SparseMatrix<double> H(n, n);
-    H.setFromTriplets(trip.begin(), trip.end());
-    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(H);
-    if (ldlt.info() != Eigen::Success) {
+    double max_step = 0;
+    if (!problem.step(T, max_step)) {
       res.status = "the normal equations are singular";
       break;
     }
-    const Eigen::VectorXd dx = ldlt.solve(-b);
-    double max_step = 0;
-    for (size_t i = 0; i < N; ++i) {
-      const Vec6 d = dx.segment<6>(static_cast<int>(6 * i));
-      T[i].translation() += T[i].rotation() * d.head<3>();
-      T[i].linear() = T[i].rotation() * expSO3(d.tail<3>());
-      max_step = std::max(max_step, d.head<3>().norm());
-    }
     res.iterations = it + 1;
-    if (max_step < 1e-4 && it > 2) {
+    if (max_step < 1e-4 && it > 2) {  // the weights settle in a few more iterations than the poses
       res.converged = true;
       break;
-    }  // the weights settle in a few more iterations than the poses
+    }
   }
   // 4. what each fix became, and the map -> ENU transform over the fused poses
   double sq = 0;
