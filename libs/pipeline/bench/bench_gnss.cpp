@@ -97,11 +97,12 @@ int simFigures(int argc, char** argv) {
   const double T_end = traj.stamps_s.back() - static_cast<double>(sp0.start_epoch_s);
   struct Variant {
     std::string name;
-    double outage_start, outage_len, mp_start, mp_len;
+    double outage_start, outage_len, mp_start, mp_len, bias_walk;
   };
-  const std::vector<Variant> variants = {{"as simulated", 0, 0, 0, 0},
-                                         {"30 s outage from t = 60 s", 60, 30, 0, 0},
-                                         {"50 m multipath jump, t = 100-103 s", 0, 0, 100, 3}};
+  const std::vector<Variant> variants = {{"as simulated", 0, 0, 0, 0, 0},
+                                         {"30 s outage from t = 60 s", 60, 30, 0, 0, 0},
+                                         {"50 m multipath jump, t = 100-103 s", 0, 0, 100, 3, 0},
+                                         {"+ bias walk 0.05 m/sqrt(s)", 0, 0, 0, 0, 0.05}};
   std::printf("scenario %s: %.0f m, %zu frames, GNSS %.0f Hz, %.1f m white noise (%.1f m up), lever arm in the lidar frame "
               "(%.2f, %.2f, %.2f) m\n",
               sp0.name.c_str(), sim::Simulator(sp0).trajectory().at(T_end).s_m, traj.poses.size(), sp0.gnss.rate_hz,
@@ -117,6 +118,7 @@ int simFigures(int argc, char** argv) {
     sp.gnss.multipath_start_s = v.mp_start;
     sp.gnss.multipath_duration_s = v.mp_len;
     sp.gnss.multipath_offset_m = 50;
+    if (v.bias_walk > 0) sp.gnss.bias_walk_m_per_sqrt_s = v.bias_walk;
     const sim::Simulator s(sp);
     const std::string dir = (std::filesystem::temp_directory_path() / "bench_gnss_sim").string() + "/";
     std::filesystem::create_directories(dir);
