@@ -124,6 +124,10 @@ void makeFiles() {
   write(w / "bad-vehicle.ini", "[vehicle]\ndbc = nope.dbc\n");
   write(w / "roadslam-sim.dbc", fileText(kSrc + "/ini/vehicles/roadslam-sim.dbc"));
   write(w / "vehicle-typo.ini", fileText(kSrc + "/ini/vehicles/roadslam-sim.ini") + "\nwheelbase_mm = 2.7\n");
+  // GNSS: an NMEA log whose every line is bad (checksum, no fix), and one with a few bad lines
+  write(w / "no-fix.nmea", "$GPGGA,000001.00,,,,,0,00,99.9,,M,,M,,*5E\n$GPGGA,000002.00,4808.0,N,01134.0,E,1,08,0.9,0,M,0,M,,*00\n");
+  write(w / "some-bad.nmea", "$GPRMC,000001.00,A,4808.0000,N,01134.0000,E,0.0,0.0,010124,,,A*5A\nnot nmea\n"
+                             "$GPGGA,000002.00,4808.0,N,01134.0,E,1,08,0.9,0,M,0,M,,*00\n");
   // trajectories
   write(w / "three-columns.tum", "1 2 3\n");
   write(w / "words.tum", "# t x y z qx qy qz qw\n1.0 0 0 zero 0 0 0 1\n");
@@ -204,7 +208,10 @@ const Row kTable[] = {
   {"can-log-missing",      "roadslam-can decode --dbc {S}/ini/vehicles/roadslam-sim.dbc {W}/nope.log", 105, "File does not exist"},
   {"can-bad-vehicle",      "roadslam-can odometry --vehicle {W}/bad-vehicle.ini {W}/half-good.log --out {O}/odo.tum", 1, "bad-vehicle.ini"},
   {"can-vehicle-typo",     "roadslam-can odometry --vehicle {W}/vehicle-typo.ini --data-root {S}/ini/vehicles {W}/half-good.log --out {O}/odo.tum", 1, "unknown key 'wheelbase_mm' in [vehicle] (nearest known: wheelbase_m)"},
+  {"map-gnss-no-fix",      "roadslam-map --config {S}/ini/default.ini --input {W}/truncated.pcap --out {O} --gnss {W}/no-fix.nmea", 1, "holds no valid fix"},
+  {"map-gnss-missing",     "roadslam-map --config {S}/ini/default.ini --input {W}/truncated.pcap --out {O} --gnss {W}/nope.nmea", 105, "File does not exist"},
   // roadslam-rawlog
+  {"rawlog-nmea-bad-lines","roadslam-rawlog nmea {W}/some-bad.nmea {W}/some-bad.rawlog", 0, "2 bad checksum"},
   {"rawlog-info-random",   "roadslam-rawlog info {W}/random.rawlog", 1, "not a readable MRPT rawlog"},
   {"rawlog-info-truncated","roadslam-rawlog info {W}/truncated.pcap", 1, "damaged at record 239 (byte 299344)"},
   {"rawlog-info-missing",  "roadslam-rawlog info {W}/nope.rawlog", 1, "nope.rawlog"},

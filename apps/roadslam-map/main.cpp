@@ -19,6 +19,10 @@ int main(int argc, char** argv) {
   app.add_option("--max-frames", req.max_frames, "stop after this many frames (0 = all)");
   app.add_option("--can", req.can_log_path, "candump log of the same drive: wheel odometry prior")->check(CLI::ExistingFile);
   app.add_option("--vehicle", req.vehicle_ini_path, "the car's vehicle ini (ini/vehicles/...), with --can")->check(CLI::ExistingFile);
+  app.add_option("--gnss", req.gnss_path, "NMEA log of the same drive: GNSS fused at the end, geo-referenced outputs")
+      ->check(CLI::ExistingFile);
+  app.add_flag("--gnss-from-input", req.gnss_from_input,
+               "fuse the GPS fixes the input carries (Velodyne $GPRMC position packets) instead of --gnss");
   app.add_flag("--allow-unknown-keys", req.allow_unknown_keys, "ini keys no component reads are warnings, not errors");
   app.add_flag("--quiet", quiet, "nothing on stdout (no progress bar, no summary); errors and warnings on stderr");
   app.add_flag("--json", json, "print the summary as JSON (as in OUT/summary.json) instead of text");

@@ -5,12 +5,14 @@
 #include <fmt/core.h>
 
 #include <exception>
+#include <memory>
 #include <string>
 
 #include "roadslam/common/atomic_file.h"
 #include "roadslam/common/cli.h"
 #include "roadslam/common/stop_signal.h"
 #include "roadslam/sources/boxroom.h"
+#include "roadslam/sources/nmea_source.h"
 #include "roadslam/sources/recorder.h"
 #include "roadslam/sources/recording.h"
 #include "roadslam/sources/udp_receiver.h"
@@ -65,6 +67,28 @@ int main(int argc, char** argv) {
   rec->add_option("--bind", udp.bind_address, "local IPv4 address to listen on (default: all)");
   rec->add_option("--source", udp.source_filter, "accept only this sensor IPv4 address");
 
+  std::string nmea_in, nmea_out, nmea_label = "GPS";
+  auto* nmea = app.add_subcommand("nmea", "NMEA 0183 log -> MRPT rawlog (CObservationGPS per receiver epoch)");
+  nmea->add_option("IN", nmea_in, "NMEA log: one sentence per line, optionally after its receive time [s]")
+      ->required()->check(CLI::ExistingFile);
+  nmea->add_option("OUT", nmea_out, "output .rawlog")->required();
+  nmea->add_option("--label", nmea_label, "sensorLabel of the observations")->capture_default_str();
+
+  std::string gnss_out, gnss_device, gnss_replay, gnss_rawlog;
+  int gnss_baud = 9600;
+  std::size_t gnss_lines = 0;
+  double gnss_speed = 0;
+  auto* grec = app.add_subcommand("record-gnss", "NMEA 0183 receiver (serial port, or a log replayed) into an NMEA log "
+                                                 "and optionally a rawlog (Ctrl-C stops)");
+  grec->add_option("OUT", gnss_out, "output NMEA log (receive time + sentence per line)")->required();
+  auto* dev_opt = grec->add_option("--device", gnss_device, "serial device, e.g. /dev/ttyUSB0");
+  grec->add_option("--baud", gnss_baud, "serial baud rate")->capture_default_str();
+  auto* rep_opt = grec->add_option("--replay", gnss_replay, "an NMEA log to replay instead of a device")->check(CLI::ExistingFile);
+  grec->add_option("--speed", gnss_speed, "replay pace (1 = real time, 0 = at once)")->capture_default_str();
+  grec->add_option("--rawlog", gnss_rawlog, "also write the valid epochs as CObservationGPS into this rawlog");
+  grec->add_option("--lines", gnss_lines, "stop after this many lines (0 = until the source ends or Ctrl-C)");
+  dev_opt->excludes(rep_opt);
+
   std::string box_out;
   auto* box = app.add_subcommand("make-boxroom", "Write the deterministic box-room VLP-16 capture");
   box->add_option("OUT", box_out, "output .pcap (bundled: rawlogs/boxroom-vlp16.pcap)")->required();
@@ -91,6 +115,24 @@ int main(int argc, char** argv) {
                  rec_out, r.packets, r.source.data_packets, r.source.position_packets,
                  r.source.kernel_drops, r.source.missing_packets, r.source.malformed_packets,
                  rx.grantedRcvbufBytes());
+    } else if (*nmea) {
+      const NmeaImportSummary s = nmeaLogToRawlog(nmea_in, nmea_out, nmea_label);
+      std::string counts;
+      for (const auto& [name, n] : s.counters.named())
+        if (n > 0 && name != "lines" && name != "sentences" && name != "epochs" && name != "fixes")
+          counts += fmt::format(", {} {}", n, name);
+      fmt::print("{}: {} GNSS epochs from {} lines{}\n", nmea_out, s.epochs, s.counters.lines, counts);
+      for (const auto& p : s.problems) fmt::print(stderr, "roadslam-rawlog: warning: {}\n", p);
+    } else if (*grec) {
+      if (gnss_device.empty() && gnss_replay.empty()) throw std::runtime_error("record-gnss needs --device or --replay");
+      roadslam::installStopSignalHandlers();
+      std::unique_ptr<NmeaSource> src;
+      if (!gnss_device.empty()) src = std::make_unique<SerialNmeaSource>(gnss_device, gnss_baud);
+      else src = std::make_unique<NmeaLogReplaySource>(gnss_replay, gnss_speed);
+      const NmeaRecordSummary r = recordNmea(*src, gnss_out, gnss_rawlog, gnss_lines);
+      fmt::print("{}: {} lines from {}{}\n", gnss_out, r.lines, src->describe(),
+                 gnss_rawlog.empty() ? "" : fmt::format(", {} GNSS epochs in {}", r.epochs, gnss_rawlog));
+      if (!r.error.empty()) fmt::print(stderr, "roadslam-rawlog: warning: {}\n", r.error);
     } else if (*box) {
       const BoxRoomSummary s = writeBoxRoomPcap(box_out);
       fmt::print("{}: {} data packets, {} position packets, {} points, {} complete sweeps\n",

@@ -36,7 +36,8 @@ const std::vector<std::string>& knownSections() {
   static const std::vector<std::string> s = {
       "velodyne", "preprocess", "kitti", "registration", "odometry", "mapping", "pose_graph", "loop_closure",
       "loop_closure_coarse", "loop_closure_fine", "point_map", "octomap", "grid", "vehicle_prior", "ground",
-      "boundary", "objects", "tracking", "scenario", "world", "trajectory", "lidar", "can", "grab", "vehicle"};
+      "boundary", "objects", "tracking", "gnss_fusion", "scenario", "world", "trajectory", "lidar", "can", "gnss",
+      "grab", "vehicle"};
   return s;
 }
 

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 
 #include "roadslam/common/atomic_file.h"
@@ -19,6 +20,7 @@
 #include "roadslam/mapping/mapper.h"
 #include "roadslam/objects/stage.h"
 #include "roadslam/pipeline/can_prior.h"
+#include "roadslam/pipeline/gnss_outputs.h"
 #include "roadslam/pipeline/pipeline.h"
 #include "roadslam/sources/scan_source.h"
 #include "roadslam/velodyne/decoder_params.h"
@@ -48,6 +50,7 @@ struct JobParams {
   mapping::MapOutputParams maps;
   objects::ClusterParams objects;    ///< [objects] (ground labels from [preprocess] seg_*)
   objects::TrackerParams tracking;   ///< [tracking]
+  mapping::GnssFusionParams gnss_fusion;  ///< [gnss_fusion], read by --gnss; recorded always
 
   void load(const mrpt::config::CConfigFileBase& cfg) {
     objects.loadFromConfigFile(cfg, "objects", "preprocess");
@@ -58,6 +61,7 @@ struct JobParams {
     vehicle_prior.loadFromConfigFile(cfg, "vehicle_prior");
     mapper.loadFromConfigFile(cfg);
     maps.loadFromConfigFile(cfg);
+    gnss_fusion.loadFromConfigFile(cfg, "gnss_fusion");
   }
   std::string used() const {
     mrpt::config::CConfigFileMemory out;
@@ -69,6 +73,7 @@ struct JobParams {
     maps.saveToConfigFile(out);
     objects.saveToConfigFile(out, "objects");
     tracking.saveToConfigFile(out, "tracking");
+    gnss_fusion.saveToConfigFile(out, "gnss_fusion");
     return out.getContent();
   }
 };
@@ -154,6 +159,10 @@ MapOutcome runMapJob(const MapRequest& req) {
   const auto unknown_keys = cfg->checkEntries(req.allow_unknown_keys);
   if (!req.can_log_path.empty() && req.vehicle_ini_path.empty()) throw std::runtime_error("--can needs --vehicle (the car's vehicle ini)");
   auto source = openNonEmptySource(req.input_path, *cfg, req.times_path);
+  std::optional<GnssInput> gnss_in;  // read before the run: a bad log fails before hours of processing
+  if (!req.gnss_path.empty() && req.gnss_from_input) throw std::runtime_error("--gnss and --gnss-from-input exclude each other");
+  if (!req.gnss_path.empty()) gnss_in = readGnssInput(req.gnss_path, params.gnss_fusion);
+  std::vector<sources::TimedGpsFix> input_fixes;  // with gnss_from_input: taken from the source per sweep
   prepareOutDir(req.out_dir);
   writeFileAtomically(req.out_dir + "/config_used.ini", params.used());
 
@@ -186,6 +195,10 @@ MapOutcome runMapJob(const MapRequest& req) {
     if (req.max_frames && out.frames.size() >= req.max_frames) break;
     auto f = pipe.next();
     if (!f) break;
+    if (req.gnss_from_input) {
+      auto fx = pipe.source().takeGpsFixes();
+      input_fixes.insert(input_fixes.end(), fx.begin(), fx.end());
+    }
     if (objects_stage) objects_out.add(*f, *objects_stage);
     out.frames.push_back(std::move(*f->pose.odometry));
     if (req.progress) bar.update(out.frames.size());
@@ -250,6 +263,32 @@ MapOutcome runMapJob(const MapRequest& req) {
                            {"octomap_leafs", ms.octomap_leafs}, {"octomap_ms_per_keyframe", ms.octomap_ms_per_keyframe},
                            {"grid_occupied_cells", ms.grid_occupied}, {"grid_free_cells", ms.grid_free},
                            {"ms_total", ms.ms_total}};
+  }
+  if (req.gnss_from_input) {
+    auto fx = pipe.source().takeGpsFixes();
+    input_fixes.insert(input_fixes.end(), fx.begin(), fx.end());
+    try {
+      gnss_in = gnssInputFromFixes(input_fixes, "GPS fixes of " + stream->describe(), params.gnss_fusion);
+    } catch (const std::exception& e) {
+      out.summary["warnings"].push_back(std::string("GNSS fusion not done: ") + e.what());
+    }
+  }
+  if (gnss_in) {
+    std::vector<double> stamps;
+    mapping::PoseVector T;
+    for (size_t i = 0; i < out.frames.size(); ++i) {
+      if (out.frames[i].status == odometry::FrameStatus::Skipped) continue;
+      if (!stamps.empty() && out.frames[i].stamp_s <= stamps.back()) continue;
+      stamps.push_back(out.frames[i].stamp_s);
+      T.push_back(req.maps ? out.T_map_lidar[i] : out.frames[i].T_world_lidar);
+    }
+    out.summary["gnss"] = fuseAndWriteGnss(req.out_dir, stamps, T, *gnss_in, params.gnss_fusion);
+    const auto& g = out.summary["gnss"];
+    if (g["status"] != "ok") out.summary["warnings"].push_back("GNSS fusion not done: " + g["status"].get<std::string>());
+    for (const auto& [name, n] : gnss_in->log.counters.named()) {
+      if (n > 0 && name != "lines" && name != "sentences" && name != "epochs" && name != "fixes" && name != "unsupported sentence")
+        out.summary["warnings"].push_back("GNSS log: " + std::to_string(n) + " x " + name);
+    }
   }
   out.summary["wall_time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   writeMapOutputs(req.out_dir, out.frames, out.T_map_lidar, out.summary);

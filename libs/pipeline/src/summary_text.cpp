@@ -46,6 +46,15 @@ std::string summaryText(const nlohmann::json& s, const std::string& out_dir) {
     lines.emplace_back("CAN prior", formatText("%d priors used, %d missing", c.value("priors_used", 0),
                                                c.value("priors_missing", 0)));
   }
+  if (s.contains("gnss")) {
+    const auto& g = s["gnss"];
+    lines.emplace_back("GNSS", g.value("status", std::string("?")) == "ok"
+                                   ? formatText("%zu fixes: %zu used, %zu rejected, %zu outside the drive; %.2f m rms residual",
+                                                g.value("fixes", size_t{0}), g.value("fixes_used", size_t{0}),
+                                                g.value("fixes_rejected", size_t{0}), g.value("fixes_unmatched", size_t{0}),
+                                                g.value("rms_horizontal_residual_m", 0.0))
+                                   : "not fused: " + g.value("status", std::string("?")));
+  }
   lines.emplace_back("warnings", warningsValue(s.contains("warnings") ? s["warnings"].size() : 0));
   lines.emplace_back("outputs", out_dir + " (trajectory.tum, maps, frames.csv, summary.json)");
   return alignedLines(lines);

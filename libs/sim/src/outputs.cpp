@@ -181,6 +181,7 @@ RunReport runToDirectory(Simulator& sim, const OutputOptions& opt) {
     rep.can_frames = frames.size();
     rep.can_dbc = sim.params().can.dbcPath();
   }
+  if (sim.params().gnss.enabled) rep.gnss = writeGnss(sim, rep.stats.duration_s, d);
   mrpt::config::CConfigFileMemory used;
   sim.params().saveToConfigFile(used);
   writeFileAtomically(d + "scenario_used.ini", used.getContent());
@@ -204,6 +205,10 @@ RunReport runToDirectory(Simulator& sim, const OutputOptions& opt) {
   if (sim.params().can.enabled) {
     j["can_frames"] = rep.can_frames;
     j["can_dbc"] = rep.can_dbc;
+  }
+  if (sim.params().gnss.enabled) {
+    j["gnss"] = {{"epochs", rep.gnss.epochs}, {"fixes", rep.gnss.fixes}, {"outage_epochs", rep.gnss.outage_epochs},
+                 {"multipath_epochs", rep.gnss.multipath_epochs}};
   }
   if (udp) {
     j["packets_sent"] = rep.packets_sent;

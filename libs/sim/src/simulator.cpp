@@ -38,19 +38,21 @@ void ScenarioParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg
   std::vector<std::string> sections;
   cfg.getAllSections(sections);
   for (const auto& s : sections)
-    if (s != "scenario" && s != "world" && s != "trajectory" && s != "lidar" && s != "can")
-      throw std::runtime_error("unknown section [" + s + "] (expected scenario, world, trajectory, lidar, can)");
+    if (s != "scenario" && s != "world" && s != "trajectory" && s != "lidar" && s != "can" && s != "gnss")
+      throw std::runtime_error("unknown section [" + s + "] (expected scenario, world, trajectory, lidar, can, gnss)");
   rejectUnknown(cfg, "scenario", fieldKeys<ScenarioParams>());
   rejectUnknown(cfg, "world", WorldParams::keys());
   rejectUnknown(cfg, "trajectory", TrajectoryParams::keys());
   rejectUnknown(cfg, "lidar", LidarParams::keys());
   rejectUnknown(cfg, "can", CanParams::keys());
+  rejectUnknown(cfg, "gnss", GnssParams::keys());
   loadFields(*this, cfg, "scenario");
   if (duration_s < 0) throw std::runtime_error("[scenario] duration_s must be >= 0");
   world.loadFromConfigFile(cfg, "world");
   trajectory.loadFromConfigFile(cfg, "trajectory");
   lidar.loadFromConfigFile(cfg, "lidar");
   can.loadFromConfigFile(cfg, "can");
+  gnss.loadFromConfigFile(cfg, "gnss");
 }
 
 void ScenarioParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg) const {
@@ -59,6 +61,7 @@ void ScenarioParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg) const 
   trajectory.saveToConfigFile(cfg, "trajectory");
   lidar.saveToConfigFile(cfg, "lidar");
   can.saveToConfigFile(cfg, "can");
+  if (gnss.enabled) gnss.saveToConfigFile(cfg, "gnss");
 }
 
 ScenarioParams ScenarioParams::fromFile(const std::string& path) {

@@ -123,11 +123,29 @@ bool RawlogWriter::writePosition(const velodyne::RawPacket& position_packet) {
   return true;
 }
 
+void RawlogWriter::writeGnss(const gnss::GnssFix& fix) {
+  mrpt::obs::CObservationGPS obs;
+  fillGnssObservation(fix, impl_->params.gps_label, obs);
+  mrpt::serialization::archiveFrom(impl_->out) << obs;
+  ++gps_;
+}
+
 void RawlogWriter::close() {
   if (impl_->closed) return;
   impl_->out.close();
   impl_->closed = true;
   commitTempFile(impl_->tmp, impl_->path);
+}
+
+NmeaImportSummary nmeaLogToRawlog(const std::string& nmea_path, const std::string& rawlog_path,
+                                  const std::string& label) {
+  const gnss::NmeaLog log = gnss::readNmeaLog(nmea_path);
+  RawlogWriter::Params p;
+  p.gps_label = label;
+  RawlogWriter w(rawlog_path, p);
+  for (const auto& f : log.fixes) w.writeGnss(f);
+  w.close();
+  return {w.gpsWritten(), log.counters, log.problems};
 }
 
 }  // namespace roadslam::sources

@@ -10,7 +10,9 @@
 /// (3x4, corrected) with trajectory_times.txt, frames.csv (one row per frame: status, timing,
 /// registration figures, odometry pose), posegraph.graph (MRPT text graph of the keyframes),
 /// the maps (see roadslam/mapping/map_outputs.h), config_used.ini (every parameter as used) and
-/// summary.json (with loop_closures and loop_candidates_rejected).
+/// summary.json (with loop_closures and loop_candidates_rejected). With MapRequest::gnss_path also the
+/// geo-referenced files of roadslam/pipeline/gnss_outputs.h (trajectory_enu.tum, trajectory_geo.csv,
+/// trajectory.geojson, trajectory.kml, gnss_fixes.csv, map_georef.json); without it nothing changes.
 
 #include <mrpt/config/CConfigFileBase.h>
 #include <nlohmann/json.hpp>
@@ -29,6 +31,13 @@ struct MapRequest {
   size_t max_frames = 0;    ///< 0 = all
   std::string can_log_path;     ///< candump log of the same recording: wheel odometry prior (optional)
   std::string vehicle_ini_path; ///< the car's vehicle ini (DBC mapping), required with can_log_path
+  /// NMEA log of the same drive (libs/gnss/nmea.h format, optional): fused in batch at the end
+  /// ([gnss_fusion]) into the geo-referenced outputs of pipeline/gnss_outputs.h
+  std::string gnss_path;
+  /// Fuse the GPS fixes the input itself carries instead (Velodyne position packets' $GPRMC, as the
+  /// source hands them out: WGS84 latitude / longitude, no height, no accuracy) ([gnss_fusion]
+  /// fallback_sigma_m horizontally, height left free); exclusive with gnss_path
+  bool gnss_from_input = false;
   bool progress = true;     ///< progress bar when stderr is a terminal
   /// false: the odometry alone (no keyframe graph, loop closure or maps; trajectory.tum holds the
   /// odometry's poses), for runs that score only the odometry (experiments).

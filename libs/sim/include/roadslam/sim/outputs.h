@@ -16,6 +16,7 @@
 ///                       lidar points on the car fired within 0.05 s of t (its visibility; 0 when
 ///                       hidden), range_m = x-y distance from the lidar to the car's centre
 ///   can.log             the car's CAN traffic in candump -l format (can_output.h), same clock
+///   gnss.nmea, gt_gnss.csv  with [gnss] enabled: the receiver's NMEA log and its truth (gnss_output.h)
 ///   summary.json        scenario, seed, duration_s, packets, sweeps, points, distance_m,
 ///                       real_time_factor (packets_sent with UDP), can_frames and can_dbc
 ///   scenario_used.ini   the parameters actually used
@@ -43,6 +44,7 @@ struct RunReport {
   double real_time_factor = 0;   ///< simulated seconds per wall-clock second (whole run) [-]
   std::size_t can_frames = 0;    ///< frames written to can.log (0 when [can] enabled = false)
   std::string can_dbc;           ///< DBC the CAN traffic was encoded with (empty without CAN)
+  GnssRun gnss;                  ///< [gnss] enabled: epochs written
 };
 
 /// Simulates \p sim into \p opt.dir (and UDP); throws naming the file on I/O errors.

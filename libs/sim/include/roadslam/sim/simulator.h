@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "roadslam/sim/can_output.h"
+#include "roadslam/sim/gnss_output.h"
 #include "roadslam/sim/lidar.h"
 #include "roadslam/sim/trajectory.h"
 #include "roadslam/sim/world.h"
@@ -27,7 +28,7 @@ class ParamTable;
 
 namespace roadslam::sim {
 
-/// Everything a scenario ini holds: sections [scenario], [world], [trajectory], [lidar], [can].
+/// Everything a scenario ini holds: sections [scenario], [world], [trajectory], [lidar], [can], [gnss].
 struct ScenarioParams {
   std::string name = "unnamed";
   uint64_t seed = 1;                 ///< world and noise seed [-]
@@ -39,6 +40,7 @@ struct ScenarioParams {
   TrajectoryParams trajectory;
   LidarParams lidar;
   CanParams can;
+  GnssParams gnss;  ///< [gnss]: saved only when enabled (scenario_used.ini unchanged without it)
 
   /// The ini keys, one line each (common/param_table.h): load, save and the known keys.
   void fields(ParamTable& t);

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "roadslam/gnss/nmea.h"
 #include "roadslam/velodyne/packet.h"
 
 namespace mrpt::config {
@@ -59,6 +60,8 @@ class RawlogWriter {
   void writeSweep(const std::vector<velodyne::RawPacket>& data_packets);
   /// A 512-byte position packet; returns false (and counts it) when it holds no $GPRMC sentence.
   bool writePosition(const velodyne::RawPacket& position_packet);
+  /// A GNSS receiver epoch from NMEA (fillGnssObservation), under Params::gps_label.
+  void writeGnss(const gnss::GnssFix& fix);
   /// Flushes and renames onto the final path; throws naming the path on I/O error.
   void close();
 
@@ -72,5 +75,15 @@ class RawlogWriter {
   std::unique_ptr<Impl> impl_;
   std::size_t sweeps_ = 0, packets_ = 0, gps_ = 0, skipped_ = 0;
 };
+
+struct NmeaImportSummary {
+  std::size_t epochs = 0;           ///< CObservationGPS records written (valid fixes)
+  gnss::NmeaCounters counters;      ///< what the parser counted (bad checksums, no fix, ...)
+  std::vector<std::string> problems;  ///< the first problems, "line N: what"
+};
+/// An NMEA log file (libs/gnss/nmea.h format) into a rawlog of CObservationGPS, one per valid epoch,
+/// labelled \p label. Throws naming the file when it cannot be read or written; bad lines are counted.
+NmeaImportSummary nmeaLogToRawlog(const std::string& nmea_path, const std::string& rawlog_path,
+                                  const std::string& label = "GPS");
 
 }  // namespace roadslam::sources

@@ -1,0 +1,102 @@
+#pragma once
+/// \file gnss_fusion.h
+/// GNSS positions fused into a trajectory as robust unary factors (issue 23), in batch: a pose graph
+/// whose nodes are the trajectory's poses T_enu_node, whose binary factors are the trajectory's own
+/// relative motions (odometry, loop-corrected or dead-reckoned), and whose unary factors are the GNSS
+/// antenna positions in a local ENU frame. The map-to-ENU transform T_enu_map is estimated on the way.
+///
+/// Frames: `map` is the trajectory's frame (the odometry's world frame, z roughly up); `enu` a local
+/// East-North-Up frame (libs/gnss EnuFrame); `node` the body whose poses are given (the lidar for
+/// roadslam-map, the vehicle for dead reckoning). The antenna sits at the lever arm in the node frame.
+///
+/// Factors and solver (Gauss-Newton with iteratively reweighted least squares, right perturbations
+/// T <- T Exp(d), d = [rho, phi], the pseudo-exponential MRPT's graph SLAM uses: t <- t + R rho):
+///  - motion i -> i+1: e = log(Z^-1 T_i^-1 T_j), de/dd_j = I, de/dd_i = -Ad(T_j^-1 T_i) (first order),
+///    information diag(1/st^2 I3, 1/sr^2 I3) with st^2 = edge_sigma_t^2 + (edge_sigma_t_per_m d)^2 and
+///    sr alike, d the distance between the nodes;
+///  - GNSS fix k on node i (the node nearest in time; the antenna offset carried from the fix's time
+///    to the node's along the input trajectory): r = R_i p + t_i - z, dr/drho = R_i,
+///    dr/dphi = -R_i [p]x, information the fix's covariance^-1, weighted by the robust kernel of its
+///    Mahalanobis distance m (Cauchy: w = 1 / (1 + (m/c)^2); Huber: w = min(1, c/m));
+///  - a weak roll / pitch prior on the first node (a straight drive leaves the roll about its own
+///    line unobserved by positions).
+/// The start: T_enu_map by a robust (IRLS) yaw + translation fit of the antenna path to the fixes.
+
+#include <Eigen/Geometry>
+#include <string>
+#include <vector>
+
+#include "roadslam/mapping/pose_graph.h"
+
+namespace mrpt::config {
+class CConfigFileBase;
+}
+
+namespace roadslam {
+class ParamTable;
+}
+
+namespace roadslam::mapping {
+
+enum class RobustKernel { None, Huber, Cauchy };
+
+/// Ini section [gnss_fusion].
+struct GnssFusionParams {
+  double lever_x_m = 0, lever_y_m = 0, lever_z_m = 0;  ///< antenna in the node frame [m]
+  /// Motion factors: per edge, so their sum over a stretch grows with the square root of the number
+  /// of nodes on it. A loose rotation lets the graph bend the path to absorb a scale error instead of
+  /// shortening the steps (a synthetic 0.5 % scale error put 4 m into a 30 s outage with 0.05 deg).
+  double edge_sigma_t_m = 0.01;          ///< motion factor translation std, sigma_0 [m]
+  double edge_sigma_t_per_m = 0.005;     ///< ... growing per metre between the nodes [m/m]
+  double edge_sigma_r_rad = 0.01 * M_PI / 180;   ///< rotation std, sigma_0 [rad]; ini edge_sigma_r_deg
+  double edge_sigma_r_rad_per_m = 0.002 * M_PI / 180;  ///< ... per metre [rad/m]; ini edge_sigma_r_deg_per_m
+  /// Multiplies the motion factors' std of z, roll and pitch (in the node frame): > 1 for a planar
+  /// odometry (CAN dead reckoning) that knows nothing of hills [-].
+  double edge_vertical_scale = 1.0;
+  RobustKernel kernel = RobustKernel::Cauchy;  ///< robust kernel of the GNSS factors
+  double kernel_width = 3.0;             ///< c, in Mahalanobis units [-]
+  double outlier_gate = 6.0;             ///< a fix whose final Mahalanobis distance exceeds this is counted rejected [-]
+  double max_time_offset_s = 0.15;       ///< a fix farther in time from every node is not used [s]
+  double attitude_prior_sigma_rad = 2.0 * M_PI / 180;  ///< first node's roll / pitch prior [rad]; ini _deg
+  int max_iterations = 30;               ///< Gauss-Newton iterations [-]
+  double uere_m = 3.0;                   ///< user equivalent range error: sigma = HDOP x uere without GST [m]
+  double fallback_sigma_m = 5.0;         ///< sigma of a fix with neither GST nor HDOP [m]
+  bool receiver_time = true;             ///< stamp fixes with the receiver's time (else the receive time)
+
+  Eigen::Vector3d lever() const { return {lever_x_m, lever_y_m, lever_z_m}; }
+  void fields(ParamTable& t);
+  void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section = "gnss_fusion");
+  void saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& section = "gnss_fusion") const;
+};
+
+/// A GNSS antenna position in the ENU frame.
+struct GnssFactor {
+  double t_s = 0;               ///< [s], the trajectory's clock
+  Eigen::Vector3d p_enu;        ///< [m]
+  Eigen::Matrix3d cov;          ///< [m^2]
+};
+
+enum class FixUse : unsigned char { Used, Rejected, Unmatched };
+
+struct GnssFusionResult {
+  bool ok = false;              ///< false: too few fixes or too little motion (status says which)
+  std::string status;
+  PoseVector T_enu_node;        ///< fused poses, one per input node
+  Eigen::Isometry3d T_enu_map = Eigen::Isometry3d::Identity();  ///< best rigid map -> ENU over the fused nodes
+  Eigen::Isometry3d T_enu_map_initial = Eigen::Isometry3d::Identity();  ///< the robust fit the solver started from
+  std::vector<FixUse> fix_use;  ///< per input fix
+  size_t used = 0, rejected = 0, unmatched = 0;
+  int iterations = 0;
+  bool converged = false;       ///< the last step moved no node by more than 0.1 mm (else max_iterations ran out)
+  double rms_inlier_m = 0;      ///< rms horizontal residual of the used fixes [m]
+  double ms = 0;                ///< wall time [ms]
+};
+
+/// Fuses \p fixes into the trajectory (\p stamps_s [s], \p T_map_node, same size, stamps increasing).
+GnssFusionResult fuseGnss(const std::vector<double>& stamps_s, const PoseVector& T_map_node,
+                          const std::vector<GnssFactor>& fixes, const GnssFusionParams& p);
+
+/// T at time \p t along (stamps, poses): linear translation, slerped rotation, clamped at the ends.
+Eigen::Isometry3d interpolatePose(const std::vector<double>& stamps_s, const PoseVector& T, double t);
+
+}  // namespace roadslam::mapping

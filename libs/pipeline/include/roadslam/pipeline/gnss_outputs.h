@@ -1,0 +1,59 @@
+#pragma once
+/// \file gnss_outputs.h
+/// GNSS at the end of a map job (issue 23): an NMEA log's fixes into a local ENU frame, their batch
+/// fusion into the job's trajectory (mapping/gnss_fusion.h) and the geo-referenced outputs.
+///
+/// ENU frame: origin at the first valid fix (WGS84 lat, lon, ellipsoidal height). Files in DIR:
+///   trajectory_enu.tum    fused T_enu_lidar per frame, "t x y z qx qy qz qw"
+///   trajectory_geo.csv    per frame: t, lat_deg, lon_deg, h_m (WGS84), utm_zone, easting_m, northing_m
+///                         (UTM zone of the first fix for the whole drive)
+///   trajectory.geojson    the fused path, a GeoJSON LineString [lon, lat, h] (RFC 7946)
+///   trajectory.kml        the same path as a KML LineString (lon,lat,h)
+///   gnss_fixes.csv        per fix: t, e, n, u [m in ENU], sigma_e, sigma_n [m], use (used, rejected, unmatched)
+///   map_georef.json       beside the point map and grid: the ENU origin, T_enu_map (4x4), and the UTM
+///                         offset of the map's origin (zone, easting, northing, h, meridian convergence,
+///                         scale): a map point p [m] lies at UTM  offset + k Rot(convergence) (T_enu_map p)_en
+/// and a "gnss" object in summary.json (parser counts by name, fusion counts, rms, status).
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "roadslam/gnss/geo.h"
+#include "roadslam/gnss/nmea.h"
+#include "roadslam/mapping/gnss_fusion.h"
+#include "roadslam/sources/gps_fix.h"
+
+namespace roadslam::pipeline {
+
+/// An NMEA log's valid fixes in the ENU frame at the first of them.
+struct GnssInput {
+  std::string path;
+  gnss::NmeaLog log;
+  gnss::Geodetic origin;                   ///< the ENU origin (first valid fix)
+  std::vector<mapping::GnssFactor> factors;  ///< one per valid fix
+};
+
+/// Reads \p nmea_path; throws naming the file when it cannot be read or holds no valid fix.
+GnssInput readGnssInput(const std::string& nmea_path, const mapping::GnssFusionParams& p);
+
+/// The valid fixes an input carried (sources::ScanSource::takeGpsFixes: RMC only), in the ENU frame at
+/// the first: horizontal sigma fallback_sigma_m, the height unknown (sigma 1 km, the fix's height 0).
+/// Stamped with the fix's UTC time when p.receiver_time and it has a date, else the capture time.
+/// The "log" counts epochs, fixes and "no fix" (RMC 'V'). Throws when none is valid.
+GnssInput gnssInputFromFixes(const std::vector<sources::TimedGpsFix>& fixes, const std::string& describe,
+                             const mapping::GnssFusionParams& p);
+
+/// Fuses \p in into (\p stamps_s, \p T_map_lidar), writes the files above into \p out_dir and returns
+/// the summary's "gnss" object. A fusion that cannot run (too few fixes, no motion) writes nothing
+/// but that object, whose "status" says why.
+nlohmann::json fuseAndWriteGnss(const std::string& out_dir, const std::vector<double>& stamps_s,
+                                const mapping::PoseVector& T_map_lidar, const GnssInput& in,
+                                const mapping::GnssFusionParams& p);
+
+/// The geo-referenced trajectory files (trajectory_enu.tum, trajectory_geo.csv, .geojson, .kml) of
+/// T_enu_lidar in the ENU frame \p enu.
+void writeGeoTrajectory(const std::string& out_dir, const std::vector<double>& stamps_s,
+                        const mapping::PoseVector& T_enu_lidar, const gnss::EnuFrame& enu);
+
+}  // namespace roadslam::pipeline

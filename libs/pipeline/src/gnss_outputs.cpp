@@ -1,0 +1,170 @@
+#include "roadslam/pipeline/gnss_outputs.h"
+
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+#include "roadslam/common/atomic_file.h"
+
+namespace roadslam::pipeline {
+namespace {
+
+const char* useName(mapping::FixUse u) {
+  switch (u) {
+    case mapping::FixUse::Used: return "used";
+    case mapping::FixUse::Rejected: return "rejected";
+    case mapping::FixUse::Unmatched: return "unmatched";
+  }
+  return "?";
+}
+
+nlohmann::json matrixJson(const Eigen::Isometry3d& T) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (int r = 0; r < 4; ++r) rows.push_back({T.matrix()(r, 0), T.matrix()(r, 1), T.matrix()(r, 2), T.matrix()(r, 3)});
+  return rows;
+}
+
+}  // namespace
+
+GnssInput readGnssInput(const std::string& path, const mapping::GnssFusionParams& p) {
+  GnssInput in;
+  in.path = path;
+  in.log = gnss::readNmeaLog(path);
+  if (in.log.fixes.empty()) {
+    throw std::runtime_error("GNSS log '" + path + "' holds no valid fix (" + std::to_string(in.log.counters.lines) +
+                             " lines, " + std::to_string(in.log.counters.bad_checksum) + " with a bad checksum, " +
+                             std::to_string(in.log.counters.no_fix) + " epochs without a fix)");
+  }
+  in.origin = in.log.fixes.front().position;
+  const gnss::EnuFrame enu(in.origin);
+  for (const auto& f : in.log.fixes) {
+    mapping::GnssFactor g;
+    g.t_s = f.stamp(p.receiver_time);
+    g.p_enu = enu.toEnu(f.position);
+    g.cov = f.covarianceEnu(p.uere_m, p.fallback_sigma_m);
+    in.factors.push_back(g);
+  }
+  return in;
+}
+
+GnssInput gnssInputFromFixes(const std::vector<sources::TimedGpsFix>& fixes, const std::string& describe,
+                             const mapping::GnssFusionParams& p) {
+  GnssInput in;
+  in.path = describe;
+  for (const auto& f : fixes) {
+    ++in.log.counters.epochs;
+    if (!f.fix.valid) {
+      ++in.log.counters.no_fix;
+      continue;
+    }
+    gnss::GnssFix g;
+    g.has_position = true;
+    g.rmc_status = 'A';
+    g.position = {f.fix.latitude_deg, f.fix.longitude_deg, 0.0};
+    g.t_receive_s = f.stamp_s;
+    g.t_receiver_s = f.fix.epochSeconds();
+    in.log.fixes.push_back(g);
+  }
+  in.log.counters.fixes = in.log.fixes.size();
+  if (in.log.fixes.empty()) throw std::runtime_error("the input carries no valid GPS fix (" + std::to_string(fixes.size()) + " fixes read)");
+  in.origin = in.log.fixes.front().position;
+  const gnss::EnuFrame enu(in.origin);
+  const double s = p.fallback_sigma_m;
+  for (const auto& f : in.log.fixes) {
+    mapping::GnssFactor g;
+    g.t_s = f.stamp(p.receiver_time);
+    g.p_enu = enu.toEnu(f.position);
+    g.cov = Eigen::Vector3d(s * s, s * s, 1e6).asDiagonal();
+    in.factors.push_back(g);
+  }
+  return in;
+}
+
+void writeGeoTrajectory(const std::string& dir, const std::vector<double>& st, const mapping::PoseVector& T,
+                        const gnss::EnuFrame& enu) {
+  std::string tum, csv = "t,lat_deg,lon_deg,h_m,utm_zone,easting_m,northing_m\n", coords, kml;
+  char line[320];
+  int zone = -1;
+  nlohmann::json line_coords = nlohmann::json::array();
+  for (size_t i = 0; i < T.size(); ++i) {
+    const Eigen::Vector3d t = T[i].translation();
+    const Eigen::Quaterniond q(T[i].rotation());
+    std::snprintf(line, sizeof(line), "%.6f %.4f %.4f %.4f %.9f %.9f %.9f %.9f\n", st[i], t.x(), t.y(), t.z(), q.x(),
+                  q.y(), q.z(), q.w());
+    tum += line;
+    const gnss::Geodetic g = enu.toGeodetic(t);
+    const gnss::Utm u = gnss::utmFromGeodetic(g, zone);
+    zone = u.zone;
+    std::snprintf(line, sizeof(line), "%.6f,%.9f,%.9f,%.4f,%s,%.4f,%.4f\n", st[i], g.lat_deg, g.lon_deg, g.h_m,
+                  u.zoneName().c_str(), u.easting_m, u.northing_m);
+    csv += line;
+    line_coords.push_back({std::round(g.lon_deg * 1e9) / 1e9, std::round(g.lat_deg * 1e9) / 1e9,
+                           std::round(g.h_m * 1e3) / 1e3});
+    std::snprintf(line, sizeof(line), "%.9f,%.9f,%.3f ", g.lon_deg, g.lat_deg, g.h_m);
+    kml += line;
+  }
+  writeFileAtomically(dir + "/trajectory_enu.tum", tum);
+  writeFileAtomically(dir + "/trajectory_geo.csv", csv);
+  const nlohmann::json geo = {
+      {"type", "FeatureCollection"},
+      {"features",
+       {{{"type", "Feature"},
+         {"properties", {{"name", "roadslam trajectory"}, {"frames", T.size()}}},
+         {"geometry", {{"type", "LineString"}, {"coordinates", line_coords}}}}}}};
+  writeFileAtomically(dir + "/trajectory.geojson", geo.dump() + "\n");
+  writeFileAtomically(dir + "/trajectory.kml",
+                      "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<kml xmlns=\"http://www.opengis.net/kml/2.2\">\n"
+                      "<Document><name>roadslam trajectory</name>\n<Placemark><name>trajectory</name>\n"
+                      "<LineString><altitudeMode>absolute</altitudeMode><coordinates>\n" +
+                          kml + "\n</coordinates></LineString>\n</Placemark>\n</Document>\n</kml>\n");
+}
+
+nlohmann::json fuseAndWriteGnss(const std::string& dir, const std::vector<double>& st, const mapping::PoseVector& T_map,
+                                const GnssInput& in, const mapping::GnssFusionParams& p) {
+  nlohmann::json j;
+  j["input"] = in.path;
+  j["nmea"] = in.log.counters.named();
+  j["problems"] = in.log.problems;
+  j["origin"] = {{"lat_deg", in.origin.lat_deg}, {"lon_deg", in.origin.lon_deg}, {"h_m", in.origin.h_m}};
+  const mapping::GnssFusionResult r = mapping::fuseGnss(st, T_map, in.factors, p);
+  j["status"] = r.status;
+  j["fixes"] = in.factors.size();
+  j["fixes_used"] = r.used;
+  j["fixes_rejected"] = r.rejected;
+  j["fixes_unmatched"] = r.unmatched;
+  j["iterations"] = r.iterations;
+  j["converged"] = r.converged;
+  j["rms_horizontal_residual_m"] = r.rms_inlier_m;
+  j["ms"] = r.ms;
+  if (!r.ok) return j;
+  const gnss::EnuFrame enu(in.origin);
+  writeGeoTrajectory(dir, st, r.T_enu_node, enu);
+  std::string fixes = "t,e_m,n_m,u_m,sigma_e_m,sigma_n_m,use\n";
+  char line[200];
+  for (size_t k = 0; k < in.factors.size(); ++k) {
+    const auto& f = in.factors[k];
+    std::snprintf(line, sizeof(line), "%.6f,%.4f,%.4f,%.4f,%.3f,%.3f,%s\n", f.t_s, f.p_enu.x(), f.p_enu.y(), f.p_enu.z(),
+                  std::sqrt(f.cov(0, 0)), std::sqrt(f.cov(1, 1)), useName(r.fix_use[k]));
+    fixes += line;
+  }
+  writeFileAtomically(dir + "/gnss_fixes.csv", fixes);
+  // the map's origin in UTM, with the rotation and scale from ENU to the UTM grid there
+  const Eigen::Vector3d o = r.T_enu_map.translation();
+  const gnss::Utm u = gnss::utmFromGeodetic(enu.toGeodetic(o));
+  const double yaw_enu_map = std::atan2(r.T_enu_map.rotation()(1, 0), r.T_enu_map.rotation()(0, 0));
+  const nlohmann::json georef = {
+      {"enu_origin", j["origin"]},
+      {"T_enu_map", matrixJson(r.T_enu_map)},
+      {"utm_offset", {{"zone", u.zoneName()}, {"easting_m", u.easting_m}, {"northing_m", u.northing_m}, {"h_m", u.h_m},
+                      {"meridian_convergence_deg", u.convergence_rad * 180 / M_PI}, {"scale", u.scale}}},
+      {"map_yaw_from_east_deg", yaw_enu_map * 180 / M_PI},
+      {"note", "map point p [m] -> ENU e = T_enu_map p -> UTM (E, N) = (easting, northing) + scale * "
+               "Rot(meridian_convergence) (e_east, e_north) (counter-clockwise), h = h_m + e_up; exact per point: "
+               "trajectory_geo.csv"}};
+  writeFileAtomically(dir + "/map_georef.json", georef.dump(1) + "\n");
+  j["T_enu_map"] = matrixJson(r.T_enu_map);
+  j["utm_offset"] = georef["utm_offset"];
+  return j;
+}
+
+}  // namespace roadslam::pipeline

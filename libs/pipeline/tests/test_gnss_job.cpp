@@ -1,0 +1,97 @@
+// GNSS at the end of roadslam-map, end to end on the small simulated loop: the simulator's receiver
+// (10 Hz, 1 m noise, a 50 m multipath jump) fused into the job's odometry trajectory through
+// runMapJob's --gnss path; the outputs read back and scored against the simulator's truth in its world
+// frame, which is the ENU frame at ([scenario] origin, [gnss] origin_h_m) (GeographicLib converts).
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "roadslam/datasets/trajectory_io.h"
+#include "roadslam/gnss/geo.h"
+#include "roadslam/mapping/gnss_fusion.h"
+#include "roadslam/pipeline/map_job.h"
+#include "sim_cache.h"
+
+using namespace roadslam;
+
+TEST(GnssJob, SmallLoopFusedGeoreferencedOutputs) {
+  auto sp = pipeline::test::smallLoop();
+  const std::string sim_dir = pipeline::test::simulateOnce(sp, "mapping-small-loop-v1");
+  sp.gnss.enabled = true;
+  sp.gnss.multipath_start_s = 20;
+  sp.gnss.multipath_duration_s = 2;
+  const sim::Simulator s(sp);
+  const std::string out = std::string(ROADSLAM_BINARY_DIR) + "/test-out/map-job-small-loop-gnss";
+  std::filesystem::create_directories(out);
+  const auto gt = datasets::readTum(sim_dir + "/gt_trajectory.tum");
+  const auto run = sim::writeGnss(s, gt.stamps_s.back() - static_cast<double>(sp.start_epoch_s), out + "/");
+  // the antenna in the lidar frame: [gnss] lever arm (vehicle frame) less the lidar mount (no rotation)
+  std::ifstream def(std::string(ROADSLAM_SOURCE_DIR) + "/ini/default.ini");
+  std::stringstream ini;
+  ini << def.rdbuf();
+  std::string text = ini.str();
+  const auto at = text.find("[gnss_fusion]");
+  ASSERT_NE(at, std::string::npos);
+  text = text.substr(0, at) + "[gnss_fusion]\nlever_x_m = " + std::to_string(sp.gnss.lever_x_m - sp.lidar.mount_x_m) +
+         "\nlever_y_m = " + std::to_string(sp.gnss.lever_y_m - sp.lidar.mount_y_m) + "\nlever_z_m = " +
+         std::to_string(sp.gnss.lever_z_m - sp.lidar.mount_height_m) + "\n";
+  std::ofstream(out + "/map-gnss.ini") << text;
+
+  pipeline::MapRequest req;
+  req.config_path = out + "/map-gnss.ini";
+  req.input_path = sim_dir + "/velodyne.pcap";
+  req.gnss_path = out + "/gnss.nmea";
+  req.out_dir = out;
+  req.progress = false;
+  req.allow_unknown_keys = true;  // the cut-down [gnss_fusion] leaves the other keys at their defaults
+  req.maps = false;  // the odometry alone: the fusion takes any trajectory, and the test stays short
+  const auto o = pipeline::runMapJob(req);
+  const auto& g = o.summary["gnss"];
+  ASSERT_EQ(g["status"], "ok") << g.dump(1);
+  EXPECT_EQ(g["fixes_rejected"].get<size_t>(), run.multipath_epochs) << g.dump(1);
+  EXPECT_EQ(g["nmea"]["bad checksum"].get<int>(), 0);
+
+  // the fused trajectory against the truth, in the simulator's world (ENU) frame
+  const gnss::Geodetic origin{g["origin"]["lat_deg"], g["origin"]["lon_deg"], g["origin"]["h_m"]};
+  const gnss::EnuFrame fused_enu(origin), world({sp.origin_lat_deg, sp.origin_lon_deg, sp.gnss.origin_h_m});
+  const auto fused = datasets::readTum(out + "/trajectory_enu.tum");
+  ASSERT_GT(fused.poses.size(), 300u);
+  double sq = 0;
+  for (size_t i = 0; i < fused.poses.size(); ++i) {
+    const Eigen::Vector3d p = world.toEnu(fused_enu.toGeodetic(fused.poses[i].translation()));
+    const Eigen::Vector3d t = mapping::interpolatePose(gt.stamps_s, gt.poses, fused.stamps_s[i]).translation();
+    sq += (p - t).head<2>().squaredNorm();
+  }
+  EXPECT_LT(std::sqrt(sq / fused.poses.size()), 0.30);
+
+  // GeoJSON and KML: one coordinate per frame, [lon, lat, h] the same point as trajectory_geo.csv
+  nlohmann::json gj;
+  std::ifstream(out + "/trajectory.geojson") >> gj;
+  const auto& coords = gj["features"][0]["geometry"]["coordinates"];
+  ASSERT_EQ(coords.size(), fused.poses.size());
+  const gnss::Geodetic g0 = fused_enu.toGeodetic(fused.poses[0].translation());
+  EXPECT_NEAR(coords[0][0].get<double>(), g0.lon_deg, 1e-8);
+  EXPECT_NEAR(coords[0][1].get<double>(), g0.lat_deg, 1e-8);
+  std::ifstream kml(out + "/trajectory.kml");
+  std::string k((std::istreambuf_iterator<char>(kml)), std::istreambuf_iterator<char>());
+  EXPECT_NE(k.find("<LineString>"), std::string::npos);
+  // map_georef.json: a map point through its UTM offset formula lands within 1 cm of its exact UTM
+  nlohmann::json geo;
+  std::ifstream(out + "/map_georef.json") >> geo;
+  Eigen::Matrix4d M;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) M(r, c) = geo["T_enu_map"][r][c];
+  Eigen::Isometry3d T_enu_map(M);
+  const auto& u = geo["utm_offset"];
+  const double conv = u["meridian_convergence_deg"].get<double>() * M_PI / 180, k0 = u["scale"];
+  for (const Eigen::Vector3d& p_map : {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(80, -40, 2), Eigen::Vector3d(-30, 60, 0)}) {
+    const Eigen::Vector3d e = T_enu_map * p_map - T_enu_map.translation();
+    const double E = u["easting_m"].get<double>() + k0 * (std::cos(conv) * e.x() - std::sin(conv) * e.y());
+    const double N = u["northing_m"].get<double>() + k0 * (std::sin(conv) * e.x() + std::cos(conv) * e.y());
+    const gnss::Utm exact = gnss::utmFromGeodetic(fused_enu.toGeodetic(T_enu_map * p_map));
+    EXPECT_NEAR(E, exact.easting_m, 0.01);
+    EXPECT_NEAR(N, exact.northing_m, 0.01);
+  }
+}
