@@ -1,6 +1,7 @@
 #include "roadslam/registration/global_registration.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <random>
 #include <stdexcept>
@@ -11,6 +12,10 @@
 
 namespace roadslam::registration {
 namespace {
+
+double msSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
 
 /// nanoflann adaptor over FPFH descriptors (33-D, float).
 struct FeatureAdaptor {
@@ -23,13 +28,18 @@ struct FeatureAdaptor {
 using FeatureTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, FeatureAdaptor>,
                                                         FeatureAdaptor, 33, uint32_t>;
 
-std::vector<uint32_t> nearestFeatures(const std::vector<Fpfh>& data, const std::vector<Fpfh>& queries) {
+/// Nearest descriptor of each query; \p eps > 0 allows an approximate answer within (1 + eps) of the
+/// true distance (Arya et al. 1998, as nanoflann implements it) [-].
+std::vector<uint32_t> nearestFeatures(const std::vector<Fpfh>& data, const std::vector<Fpfh>& queries, float eps) {
   FeatureAdaptor ad{&data};
   const FeatureTree tree(33, ad, nanoflann::KDTreeSingleIndexAdaptorParams(15));
   std::vector<uint32_t> nn(queries.size(), 0);
+  const nanoflann::SearchParams sp(32, eps, false);
   for (size_t i = 0; i < queries.size(); ++i) {
     float d2 = 0;
-    tree.knnSearch(queries[i].data(), 1, &nn[i], &d2);
+    nanoflann::KNNResultSet<float, uint32_t> rs(1);
+    rs.init(&nn[i], &d2);
+    tree.findNeighbors(rs, queries[i].data(), sp);
   }
   return nn;
 }
@@ -39,9 +49,9 @@ struct Correspondence {
 };
 
 /// Mutual nearest neighbours in feature space (Zhou et al. 2016, Sec. 3.1: the reciprocity test).
-std::vector<Correspondence> mutualMatches(const FeatureCloud& target, const FeatureCloud& source) {
-  const auto s2t = nearestFeatures(target.features, source.features);
-  const auto t2s = nearestFeatures(source.features, target.features);
+std::vector<Correspondence> mutualMatches(const FeatureCloud& target, const FeatureCloud& source, float eps) {
+  const auto s2t = nearestFeatures(target.features, source.features, eps);
+  const auto t2s = nearestFeatures(source.features, target.features, eps);
   std::vector<Correspondence> out;
   for (size_t i = 0; i < s2t.size(); ++i) {
     if (t2s[s2t[i]] != i) continue;
@@ -152,6 +162,7 @@ void GlobalParams::fields(ParamTable& t) {
   t.angle("level_normal_deg", level_normal_rad);
   t.num("min_keypoints", min_keypoints);
   t.num("min_correspondences", min_correspondences);
+  t.num("match_eps", match_eps);
   t.num("ransac_max_iterations", ransac_max_iterations);
   t.num("ransac_probability", ransac_probability);
   t.num("inlier_distance_m", inlier_distance_m);
@@ -216,7 +227,10 @@ RegistrationResult alignGlobal(const FeatureCloud& target, const FeatureCloud& s
                                                " keypoints (points on non-level surfaces), fewer than min_keypoints = " +
                                                std::to_string(p.min_keypoints));
   }
-  const std::vector<Correspondence> c = mutualMatches(target, source);
+  auto t0 = std::chrono::steady_clock::now();
+  const std::vector<Correspondence> c = mutualMatches(target, source, static_cast<float>(p.match_eps));
+  d.match_ms = msSince(t0);
+  t0 = std::chrono::steady_clock::now();
   d.correspondences = static_cast<int>(c.size());
   if (d.correspondences < p.min_correspondences) {
     return failed(I, Status::TooFewCorrespondences, std::to_string(c.size()) + " mutual feature matches < min_correspondences = " +
@@ -234,6 +248,7 @@ RegistrationResult alignGlobal(const FeatureCloud& target, const FeatureCloud& s
     const Eigen::Isometry3d Tr = refit(c, rival->T, p.inlier_distance_m, d.rival_consensus);
     if (!farApart(Tr, d.T_ransac, p)) d.rival_consensus = 0;  // it slid onto the best pose
   }
+  d.ransac_ms = msSince(t0);
   if (d.consensus < p.min_consensus) {
     return failed(d.T_ransac, Status::NoConsensus, "best pose supported by " + std::to_string(d.consensus) +
                                                        " matches < min_consensus = " + std::to_string(p.min_consensus));
@@ -246,8 +261,10 @@ RegistrationResult alignGlobal(const FeatureCloud& target, const FeatureCloud& s
     r.confidence = confidence;
     return r;
   }
+  t0 = std::chrono::steady_clock::now();
   const Target fine_target(target.refine_points, p.fine);
   RegistrationResult r = align(fine_target, source.refine_points, d.T_ransac, p.fine);
+  d.refine_ms = msSince(t0);
   r.confidence = confidence;
   if (!r.converged) {
     r.reason = "refinement: " + r.reason;
@@ -270,7 +287,12 @@ RegistrationResult alignGlobal(const FeatureCloud& target, const FeatureCloud& s
 
 RegistrationResult alignGlobal(const PointCloud& points_target, const PointCloud& points_source, const GlobalParams& p,
                                GlobalDiagnostics* diagnostics) {
-  return alignGlobal(computeFeatures(points_target, p), computeFeatures(points_source, p), p, diagnostics);
+  const auto t0 = std::chrono::steady_clock::now();
+  const FeatureCloud target = computeFeatures(points_target, p), source = computeFeatures(points_source, p);
+  const double features_ms = msSince(t0);
+  const RegistrationResult r = alignGlobal(target, source, p, diagnostics);
+  if (diagnostics) diagnostics->features_ms = features_ms;
+  return r;
 }
 
 }  // namespace roadslam::registration
