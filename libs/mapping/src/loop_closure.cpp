@@ -27,6 +27,19 @@ registration::PointCloud submap(const std::vector<Keyframe>& kfs, const PoseVect
   return registration::voxelDownsample(pts, voxel_m);
 }
 
+const NameTable<LoopCandidates>& candidateNames() {
+  static const NameTable<LoopCandidates> t{
+      {LoopCandidates::Radius, "radius"}, {LoopCandidates::ScanContext, "scan_context"}, {LoopCandidates::Both, "both"}};
+  return t;
+}
+
+registration::PointCloud pointsOf(const Keyframe& kf) {
+  registration::PointCloud pts;
+  pts.reserve(kf.points_lidar.size());
+  for (const auto& q : kf.points_lidar) pts.push_back(q.cast<double>());
+  return pts;
+}
+
 }  // namespace
 
 LoopClosureParams::LoopClosureParams() {
@@ -62,6 +75,7 @@ void LoopClosureParams::fields(ParamTable& t) {
   t.num("max_loop_residual_m", max_loop_residual_m);
   t.num("information_scale", information_scale);
   t.num("skip_after_loop_m", skip_after_loop_m);
+  t.choice("candidates", candidates, candidateNames());
 }
 
 void LoopClosureParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& s) {
@@ -74,12 +88,16 @@ void LoopClosureParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& 
   }
   coarse.loadFromConfigFile(cfg, s + "_coarse");
   fine.loadFromConfigFile(cfg, s + "_fine");
+  place.loadFromConfigFile(cfg, s + "_place");
+  global.loadFromConfigFile(cfg, s + "_global");
 }
 
 void LoopClosureParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& s) const {
   saveFields(*this, cfg, s);
   coarse.saveToConfigFile(cfg, s + "_coarse");
   fine.saveToConfigFile(cfg, s + "_fine");
+  place.saveToConfigFile(cfg, s + "_place");
+  global.saveToConfigFile(cfg, s + "_global");
 }
 
 std::vector<size_t> findLoopCandidates(const std::vector<Keyframe>& kfs, const PoseVector& T_map_kf, size_t query,
@@ -143,6 +161,47 @@ LoopResult verifyLoop(const std::vector<Keyframe>& kfs, const PoseVector& T_map_
   if (r.correction_m > p.consistency_abs_m + p.consistency_ratio * path || r.correction_rad > p.consistency_rot_rad + p.consistency_rot_rad_per_m * path) {
     return finish("inconsistent with odometry");
   }
+  r.accepted = true;
+  return finish("accepted");
+}
+
+std::vector<size_t> findPlaceCandidates(const place::ScanContextDatabase& db, const std::vector<Keyframe>& kfs,
+                                        size_t query, const LoopClosureParams& p) {
+  std::vector<size_t> out;
+  for (const auto& m : db.query(kfs[query].descriptor, kfs[query].path_m, p.max_candidates)) out.push_back(m.id);
+  return out;
+}
+
+LoopResult verifyPlaceLoop(const std::vector<Keyframe>& kfs, const PoseVector& T_map_kf, size_t query, size_t match,
+                           const LoopClosureParams& p) {
+  const auto t0 = std::chrono::steady_clock::now();
+  LoopResult r;
+  r.query = query;
+  r.match = match;
+  auto finish = [&](const std::string& why) {
+    r.reason = why;
+    r.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    return r;
+  };
+  const auto g = registration::alignGlobal(pointsOf(kfs[match]), pointsOf(kfs[query]), p.global);
+  if (!g.converged) return finish("global: " + registration::toString(g.status));
+  const size_t qfirst = query + 1 >= static_cast<size_t>(p.query_keyframes) ? query + 1 - p.query_keyframes : 0;
+  const size_t tfirst = match >= static_cast<size_t>(p.target_half_width) ? match - p.target_half_width : 0;
+  const size_t tlast = std::min(match + p.target_half_width, qfirst > 0 ? qfirst - 1 : 0);
+  const auto source = submap(kfs, T_map_kf, qfirst, query, query, p.source_voxel_m);
+  const auto target_pts = submap(kfs, T_map_kf, tfirst, std::max(tlast, match), match, p.target_voxel_m);
+  const registration::Target fine_target(target_pts, p.fine);
+  const auto f = registration::align(fine_target, source, g.T_target_source, p.fine);
+  r.T_match_query = f.T_target_source;
+  r.fitness_m = f.fitness;
+  r.overlap = source.empty() ? 0.0 : static_cast<double>(f.inliers) / source.size();
+  r.information = p.information_scale * f.information;
+  const Eigen::Isometry3d corr = (T_map_kf[match].inverse() * T_map_kf[query]).inverse() * f.T_target_source;
+  r.correction_m = corr.translation().norm();
+  r.correction_rad = angleOf(corr);
+  if (!f.converged) return finish("fine: " + registration::toString(f.status));
+  if (r.fitness_m > p.max_fitness_m) return finish("fitness");
+  if (r.overlap < p.min_overlap) return finish("overlap");
   r.accepted = true;
   return finish("accepted");
 }
