@@ -5,6 +5,7 @@
 // one. Prints recall (revisit keyframes with a true loop), precision, false candidates stopped by the
 // verification, and time per keyframe (descriptor + query) and per verification (CPU, one thread).
 //   taskset -c 1 build/bench/bench_place [--keyframe-m=2] [--seconds=0 (whole drive)]
+#include <roadslam/mapping/loop_closure.h>
 #include <roadslam/place/scan_context.h>
 #include <roadslam/registration/global_registration.h>
 
@@ -28,10 +29,20 @@ double cpuMs() {
 struct Kf {
   reg::PointCloud points;
   Eigen::Isometry3d T_gt;
+  Eigen::Isometry3d T_odo;  ///< drifted odometry (test::DriftModel defaults), the graph's guess before any loop
   double path_m;
 };
 
-void run(const std::string& scenario, double seconds, double keyframe_m) {
+/// The mapping's acceptance test of a place candidate against the odometry (LoopClosureParams place_consistency_*).
+bool consistent(const Kf& q, const Kf& m, const Eigen::Isometry3d& T_match_query, const roadslam::mapping::LoopClosureParams& lp) {
+  const Eigen::Isometry3d corr = (m.T_odo.inverse() * q.T_odo).inverse() * T_match_query;
+  const double path = q.path_m - m.path_m;
+  return corr.translation().norm() <= lp.place_consistency_abs_m + lp.place_consistency_ratio * path &&
+         Eigen::AngleAxisd(corr.linear()).angle() <= lp.place_consistency_rot_rad + lp.place_consistency_rot_rad_per_m * path;
+}
+
+void run(const std::string& scenario, double seconds, double keyframe_m, bool check_odometry) {
+  const roadslam::mapping::LoopClosureParams lp;
   auto p = roadslam::sim::ScenarioParams::fromFile(std::string(ROADSLAM_SOURCE_DIR) + "/ini/sim/" + scenario + ".ini");
   p.duration_s = seconds;
   const auto frames = roadslam::mapping::test::simulateDrive(p, {});
@@ -40,9 +51,10 @@ void run(const std::string& scenario, double seconds, double keyframe_m) {
   for (size_t i = 0; i < frames.size(); ++i) {
     if (i > 0) path += (frames[i].T_world_lidar_gt.translation() - frames[i - 1].T_world_lidar_gt.translation()).norm();
     if (!kfs.empty() && path - kfs.back().path_m < keyframe_m) continue;
-    kfs.push_back({frames[i].points_lidar, frames[i].T_world_lidar_gt, path});
+    kfs.push_back({frames[i].points_lidar, frames[i].T_world_lidar_gt, frames[i].result.T_world_lidar, path});
   }
-  const pl::ScanContextParams sp;
+  pl::ScanContextParams sp;
+  if (const char* v = std::getenv("PLACE_MAX_DISTANCE")) sp.max_distance = std::atof(v);
   const reg::GlobalParams gp;
   pl::ScanContextDatabase db(sp);
   int revisits = 0, found = 0, accepted = 0, true_acc = 0, candidates = 0, false_cand_stopped = 0;
@@ -50,8 +62,16 @@ void run(const std::string& scenario, double seconds, double keyframe_m) {
   int verifications = 0;
   for (size_t q = 0; q < kfs.size(); ++q) {
     bool revisit = false;
-    for (size_t j = 0; j < q && kfs[q].path_m - kfs[j].path_m >= sp.min_travel_m; ++j)
-      revisit |= (kfs[j].T_gt.translation() - kfs[q].T_gt.translation()).norm() <= 3.0;
+    size_t nearest = 0;
+    double nearest_m = 1e9;
+    for (size_t j = 0; j < q && kfs[q].path_m - kfs[j].path_m >= sp.min_travel_m; ++j) {
+      const double dj = (kfs[j].T_gt.translation() - kfs[q].T_gt.translation()).norm();
+      revisit |= dj <= 3.0;
+      if (dj < nearest_m) {
+        nearest_m = dj;
+        nearest = j;
+      }
+    }
     revisits += revisit ? 1 : 0;
     const double t0 = cpuMs();
     pl::ScanContext sc = pl::makeScanContext(kfs[q].points, sp);
@@ -68,7 +88,7 @@ void run(const std::string& scenario, double seconds, double keyframe_m) {
       const Eigen::Isometry3d E = gt.inverse() * r.T_target_source;
       const bool right = E.translation().norm() <= 0.5 && Eigen::AngleAxisd(E.linear()).angle() <= 2 * M_PI / 180;
       const bool near = gt.translation().norm() <= 10.0;
-      if (!r.converged) {
+      if (!r.converged || (check_odometry && !consistent(kfs[q], kfs[m.id], r.T_target_source, lp))) {
         false_cand_stopped += near ? 0 : 1;
         continue;
       }
@@ -81,9 +101,15 @@ void run(const std::string& scenario, double seconds, double keyframe_m) {
       break;  // the first accepted candidate closes the loop
     }
     found += got ? 1 : 0;
+    if (revisit && std::getenv("PLACE_VERBOSE")) {
+      int shift = 0;
+      const double d = pl::scanContextDistance(sc, db.descriptor(nearest), &shift);
+      std::fprintf(stderr, "  %s revisit kf %zu: true kf %zu %.1f m, SC distance %.3f, matches %zu%s\n", scenario.c_str(), q,
+                   nearest, nearest_m, d, matches.size(), got ? " found" : "");
+    }
     db.add(q, kfs[q].path_m, std::move(sc));
   }
-  std::printf("| %-18s | %4zu | %5d | %5d | %6.1f %% | %5d / %5d | %6.1f %% | %5d | %6.2f | %6.1f |\n", scenario.c_str(), kfs.size(),
+  std::printf("| %-18s | %-3s | %4zu | %5d | %5d | %6.1f %% | %5d / %5d | %6.1f %% | %5d | %6.2f | %6.1f |\n", scenario.c_str(), check_odometry ? "on" : "off", kfs.size(),
               revisits, found, revisits ? 100.0 * found / revisits : 0.0, true_acc, accepted,
               accepted ? 100.0 * true_acc / accepted : 100.0, false_cand_stopped, ms_sc / std::max<size_t>(1, kfs.size()),
               verifications ? ms_verify / verifications : 0.0);
@@ -97,9 +123,10 @@ int main(int argc, char** argv) {
     if (std::strncmp(argv[a], "--keyframe-m=", 13) == 0) keyframe_m = std::atof(argv[a] + 13);
     if (std::strncmp(argv[a], "--seconds=", 10) == 0) seconds = std::atof(argv[a] + 10);
   }
-  std::printf("| drive | keyframes | revisit kfs | found | recall | true / accepted | precision | far candidates stopped | ms per kf (SC) | ms per verification |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
-  for (const char* s : {"parallel-streets", "urban-loop"}) run(s, seconds, keyframe_m);
+  std::printf("| drive | odometry check | keyframes | revisit kfs | found | recall | true / accepted | precision | far candidates stopped | ms per kf (SC) | ms per verification |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
+  for (const char* s : {"parallel-streets", "urban-loop"})
+    for (bool check : {false, true}) run(s, seconds, keyframe_m, check);
   std::printf("keyframes every %.1f m of GT path; Scan Context and global registration defaults ([loop_closure_place], "
               "[loop_closure_global]).\n", keyframe_m);
   return 0;

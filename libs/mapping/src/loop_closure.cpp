@@ -76,6 +76,10 @@ void LoopClosureParams::fields(ParamTable& t) {
   t.num("information_scale", information_scale);
   t.num("skip_after_loop_m", skip_after_loop_m);
   t.choice("candidates", candidates, candidateNames());
+  t.num("place_consistency_abs_m", place_consistency_abs_m);
+  t.num("place_consistency_ratio", place_consistency_ratio);
+  t.angle("place_consistency_rot_deg", place_consistency_rot_rad);
+  t.scaled("place_consistency_rot_deg_per_100m", place_consistency_rot_rad_per_m, unit::kDeg / 100);
 }
 
 void LoopClosureParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& s) {
@@ -202,6 +206,11 @@ LoopResult verifyPlaceLoop(const std::vector<Keyframe>& kfs, const PoseVector& T
   if (!f.converged) return finish("fine: " + registration::toString(f.status));
   if (r.fitness_m > p.max_fitness_m) return finish("fitness");
   if (r.overlap < p.min_overlap) return finish("overlap");
+  const double path = kfs[query].path_m - kfs[match].path_m;
+  if (r.correction_m > p.place_consistency_abs_m + p.place_consistency_ratio * path ||
+      r.correction_rad > p.place_consistency_rot_rad + p.place_consistency_rot_rad_per_m * path) {
+    return finish("inconsistent with odometry");
+  }
   r.accepted = true;
   return finish("accepted");
 }

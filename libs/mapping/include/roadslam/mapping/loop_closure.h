@@ -43,8 +43,8 @@ struct Keyframe {
 /// Where loop candidates come from. Ini values: radius | scan_context | both.
 ///  radius: older keyframes near the query in the graph estimate (needs the odometry's drift to be small);
 ///  scan_context: Scan Context place recognition ([loop_closure_place]), independent of the drift, each
-///  candidate registered with no guess by global registration ([loop_closure_global]) before the fine ICP
-///  (no odometry consistency test: the graph residual test after optimisation still applies).
+///  candidate registered with no guess by global registration ([loop_closure_global]) before the fine ICP,
+///  then a looser odometry consistency test (place_consistency_*) and the graph residual test.
 enum class LoopCandidates { Radius, ScanContext, Both };
 
 /// Ini section [loop_closure]; the coarse and fine registrations read [loop_closure_coarse] and
@@ -73,6 +73,13 @@ struct LoopClosureParams {
   registration::Params coarse;       ///< NDT by default
   registration::Params fine;         ///< point-to-plane ICP by default
   LoopCandidates candidates = LoopCandidates::Radius;  ///< ini candidates
+  /// Place candidates: the correction of the graph's guess must stay within what odometry may have drifted,
+  /// looser than for radius candidates (the guess is not where they come from): look-alike streets farther
+  /// apart than this are told apart, nearer ones cannot be from one sweep.
+  double place_consistency_abs_m = 5.0;     ///< [m]
+  double place_consistency_ratio = 0.1;     ///< ... plus this fraction of the path between the keyframes [-]
+  double place_consistency_rot_rad = 5.0 * M_PI / 180.0;  ///< [rad]; ini place_consistency_rot_deg
+  double place_consistency_rot_rad_per_m = 10.0 * M_PI / 180.0 / 100.0;  ///< [rad/m]; ini place_consistency_rot_deg_per_100m
   place::ScanContextParams place;          ///< [loop_closure_place]
   registration::GlobalParams global;       ///< [loop_closure_global], its refinement [loop_closure_global_fine]
 
@@ -110,7 +117,7 @@ std::vector<size_t> findPlaceCandidates(const place::ScanContextDatabase& db, co
                                         size_t query, const LoopClosureParams& p);
 
 /// A place candidate: the two keyframes registered with no guess (global registration), then the fine ICP
-/// of verifyLoop's submaps from that pose, with its fitness and overlap checks (no odometry consistency).
+/// of verifyLoop's submaps from that pose, with its fitness and overlap checks and the place_consistency_* bounds.
 LoopResult verifyPlaceLoop(const std::vector<Keyframe>& kfs, const PoseVector& T_map_kf, size_t query, size_t match,
                            const LoopClosureParams& p);
 
