@@ -80,6 +80,7 @@ void LoopClosureParams::fields(ParamTable& t) {
   t.num("place_consistency_ratio", place_consistency_ratio);
   t.angle("place_consistency_rot_deg", place_consistency_rot_rad);
   t.scaled("place_consistency_rot_deg_per_100m", place_consistency_rot_rad_per_m, unit::kDeg / 100);
+  t.num("place_information_scale", place_information_scale);
 }
 
 void LoopClosureParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& s) {
@@ -199,7 +200,7 @@ LoopResult verifyPlaceLoop(const std::vector<Keyframe>& kfs, const PoseVector& T
   r.T_match_query = f.T_target_source;
   r.fitness_m = f.fitness;
   r.overlap = source.empty() ? 0.0 : static_cast<double>(f.inliers) / source.size();
-  r.information = p.information_scale * f.information;
+  r.information = p.place_information_scale * f.information;
   const Eigen::Isometry3d corr = (T_map_kf[match].inverse() * T_map_kf[query]).inverse() * f.T_target_source;
   r.correction_m = corr.translation().norm();
   r.correction_rad = angleOf(corr);

@@ -48,6 +48,12 @@ RunResult runMapper(const std::vector<test::SimFrame>& frames, const MapperParam
     (l.accepted ? r.accepted : r.rejected)++;
     std::cout << "  loop kf " << l.query << " -> " << l.match << ": " << l.reason << " fitness " << l.fitness_m
               << " overlap " << l.overlap << " correction " << l.correction_m << " m " << l.ms << " ms\n";
+    if (getenv("MAPPING_DEBUG") && l.reason == "graph residual") {
+      const auto& kq = mapper.keyframes()[l.query];
+      const auto& km = mapper.keyframes()[l.match];
+      const Eigen::Isometry3d T_true = frames[km.frame_index].T_world_lidar_gt.inverse() * frames[kq.frame_index].T_world_lidar_gt;
+      std::cout << "    rejected loop error vs GT " << (T_true.inverse() * l.T_match_query).translation().norm() << " m\n";
+    }
     if (!l.accepted) continue;
     const auto& kq = mapper.keyframes()[l.query];
     const auto& km = mapper.keyframes()[l.match];
@@ -107,39 +113,36 @@ TEST(MapperSim, ParallelStreetsNoFalseLoop) {
   // every accepted loop must be a true revisit (its measurement agrees with the truth)
   EXPECT_LT(r.worst_loop_error_m, 0.3);
   EXPECT_LE(r.ate_corrected_m, r.ate_odometry_m + 0.05);
+  // Scan Context candidates on the same drive (issue 22): it offers the look-alike streets 40 m apart and
+  // global registration matches them (one 54 m off was accepted before the place_consistency test); no
+  // false loop enters the graph, the true revisit at the end does.
+  MapperParams sc;
+  sc.loop.candidates = LoopCandidates::ScanContext;
+  const auto rs = runMapper(frames, sc);
+  EXPECT_GE(rs.accepted, 1u);
+  EXPECT_LT(rs.worst_loop_error_m, 0.3);
+  EXPECT_LE(2 * rs.ate_corrected_m, rs.ate_odometry_m);
 }
 
-// Place recognition (issue 22): with a heading drift the radius search cannot bridge (0.03 deg/m: the loop's
-// end is ~10 deg and tens of metres off in the graph), Scan Context candidates verified by global registration close
-// the loop; every accepted loop agrees with the truth.
-TEST(MapperSim, ScanContextClosesTheLoopDespiteLargeDrift) {
+// Place recognition (issue 22): the small loop driven 1.3 times with a heading drift of 0.03 deg/m (the
+// second lap starts ~11 m off in the graph): Scan Context candidates, verified by global registration,
+// close the loop and every accepted loop agrees with the truth (place_information_scale: without it the
+// optimiser left the graph 4.5 m off these exact loops and the residual test rejected all of them).
+TEST(MapperSim, ScanContextClosesTheSecondLap) {
+  auto p = smallLoop();
+  p.trajectory.laps = 2;
+  p.duration_s = 52;  // ~1.3 laps of ~40 s
   test::DriftModel drift;
   drift.yaw_rad_per_m = 0.03 * M_PI / 180;
-  const auto frames = test::simulateDrive(smallLoop(), drift);
-  MapperParams radius;
-  const auto r0 = runMapper(frames, radius);
+  const auto frames = test::simulateDrive(p, drift);
   MapperParams sc;
   sc.loop.candidates = LoopCandidates::ScanContext;
   const auto r = runMapper(frames, sc);
-  EXPECT_EQ(r0.accepted, 0u) << "the radius search should not bridge this drift (else the test proves nothing)";
-  EXPECT_GE(r.accepted, 1u);
+  EXPECT_GE(r.accepted, 3u);
   EXPECT_LT(r.worst_loop_error_m, 0.3);
-  EXPECT_LE(2 * r.ate_corrected_m, r.ate_odometry_m);
+  EXPECT_LE(5 * r.ate_corrected_m, r.ate_odometry_m);
 }
 
-TEST(MapperSim, ScanContextParallelStreetsNoFalseLoop) {
-  auto p = sim::ScenarioParams::fromFile(std::string(ROADSLAM_SOURCE_DIR) + "/ini/sim/parallel-streets.ini");
-  p.world.length_m = 120;
-  p.world.width_m = 40;
-  p.world.moving_cars = 2;
-  p.trajectory.start_standing_s = 0.5;
-  const auto frames = test::simulateDrive(p, test::DriftModel{});
-  MapperParams sc;
-  sc.loop.candidates = LoopCandidates::ScanContext;
-  const auto r = runMapper(frames, sc);
-  EXPECT_LT(r.worst_loop_error_m, 0.3);
-  EXPECT_LE(r.ate_corrected_m, r.ate_odometry_m + 0.05);
-}
 
 namespace {
 
