@@ -19,6 +19,9 @@ int main(int argc, char** argv) {
   app.add_option("--max-frames", req.max_frames, "stop after this many frames (0 = all)");
   app.add_option("--can", req.can_log_path, "candump log of the same drive: wheel odometry prior")->check(CLI::ExistingFile);
   app.add_option("--vehicle", req.vehicle_ini_path, "the car's vehicle ini (ini/vehicles/...), with --can")->check(CLI::ExistingFile);
+  app.add_option("--prior-map", req.prior_map_dir,
+                 "map folder of an earlier run: localize each sweep in it (no mapping); localization.csv per sweep")
+      ->check(CLI::ExistingDirectory);
   app.add_flag("--allow-unknown-keys", req.allow_unknown_keys, "ini keys no component reads are warnings, not errors");
   app.add_flag("--quiet", quiet, "nothing on stdout (no progress bar, no summary); errors and warnings on stderr");
   app.add_flag("--json", json, "print the summary as JSON (as in OUT/summary.json) instead of text");

@@ -113,6 +113,8 @@ LocalizationResult Localizer::localize(const std::vector<Eigen::Vector3d>& point
   if (r.status == LocalizationStatus::Lost) {
     reset();
   } else {
+    // keep the rotation orthonormal: the prediction multiplies the last poses, rounding errors would grow
+    r.T_map_lidar.linear() = Eigen::Quaterniond(r.T_map_lidar.linear()).normalized().toRotationMatrix();
     // a relocalization starts the motion model afresh (the previous pose may be from before a jump)
     if (r.status == LocalizationStatus::Relocalized) m.before_last.reset();
     else m.before_last = m.last;

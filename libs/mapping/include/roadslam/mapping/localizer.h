@@ -21,7 +21,7 @@ namespace roadslam::mapping {
 /// Ini section [localization].
 struct LocalizerParams {
   double map_voxel_m = 0.4;          ///< map points kept: one per voxel [m]
-  double sweep_voxel_m = 0.5;        ///< tracking source: one point per voxel [m]
+  double sweep_voxel_m = 1.0;        ///< tracking source: one point per voxel [m]
   double min_overlap = 0.5;          ///< tracking / relocalization accepted above this overlap [-]
   int relocalize_candidates = 3;     ///< Scan Context candidates tried per relocalization [-]
   double relocalize_max_distance = 0.3;  ///< Scan Context distance of a relocalization candidate below [-]
