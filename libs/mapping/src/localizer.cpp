@@ -1,6 +1,10 @@
 #include "roadslam/mapping/localizer.h"
 
 #include <optional>
+#include <stdexcept>
+
+#include "roadslam/common/config.h"
+#include "roadslam/common/param_table.h"
 
 #include "roadslam/place/scan_context.h"
 
@@ -11,6 +15,28 @@ LocalizerParams::LocalizerParams() {
   track.max_correspondence_distance_m = 1.0;
   track.max_iterations = 30;
   track.max_correction_m = 3.0;
+}
+
+void LocalizerParams::fields(ParamTable& t) {
+  t.num("map_voxel_m", map_voxel_m);
+  t.num("sweep_voxel_m", sweep_voxel_m);
+  t.num("min_overlap", min_overlap);
+  t.num("relocalize_candidates", relocalize_candidates);
+  t.num("relocalize_max_distance", relocalize_max_distance);
+}
+
+void LocalizerParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& s) {
+  loadFields(*this, cfg, s);
+  rejectUnknownKeys(cfg, s, fieldKeys<LocalizerParams>());
+  if (map_voxel_m <= 0 || sweep_voxel_m <= 0 || relocalize_candidates < 1 || relocalize_max_distance <= 0) {
+    throw std::runtime_error("[" + s + "]: *_voxel_m, relocalize_candidates and relocalize_max_distance must be > 0");
+  }
+  track.loadFromConfigFile(cfg, s + "_track");
+}
+
+void LocalizerParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& s) const {
+  saveFields(*this, cfg, s);
+  track.saveToConfigFile(cfg, s + "_track");
 }
 
 std::string toString(LocalizationStatus s) {

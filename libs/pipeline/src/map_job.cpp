@@ -50,6 +50,7 @@ struct JobParams {
   mapping::MapOutputParams maps;
   objects::ClusterParams objects;    ///< [objects] (ground labels from [preprocess] seg_*)
   objects::TrackerParams tracking;   ///< [tracking]
+  mapping::LocalizerParams localizer;  ///< [localization] (--prior-map); its global registration: [loop_closure_global]
 
   void load(const mrpt::config::CConfigFileBase& cfg) {
     objects.loadFromConfigFile(cfg, "objects", "preprocess");
@@ -60,6 +61,8 @@ struct JobParams {
     vehicle_prior.loadFromConfigFile(cfg, "vehicle_prior");
     mapper.loadFromConfigFile(cfg);
     maps.loadFromConfigFile(cfg);
+    localizer.loadFromConfigFile(cfg);
+    localizer.global = mapper.loop.global;
   }
   std::string used() const {
     mrpt::config::CConfigFileMemory out;
@@ -71,6 +74,7 @@ struct JobParams {
     maps.saveToConfigFile(out);
     objects.saveToConfigFile(out, "objects");
     tracking.saveToConfigFile(out, "tracking");
+    localizer.saveToConfigFile(out);
     return out.getContent();
   }
 };
@@ -211,7 +215,7 @@ MapOutcome runMapJob(const MapRequest& req) {
   if (!req.can_log_path.empty() && req.vehicle_ini_path.empty()) throw std::runtime_error("--can needs --vehicle (the car's vehicle ini)");
   PriorMapRun prior;
   const bool localize = !req.prior_map_dir.empty();
-  if (localize) prior.localizer = std::make_unique<mapping::Localizer>(mapping::readMapFolder(req.prior_map_dir));
+  if (localize) prior.localizer = std::make_unique<mapping::Localizer>(mapping::readMapFolder(req.prior_map_dir), params.localizer);
   const bool maps = req.maps && !localize;  // a prior map is never grown
   auto source = openNonEmptySource(req.input_path, *cfg, req.times_path);
   prepareOutDir(req.out_dir);

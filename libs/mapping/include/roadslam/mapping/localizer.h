@@ -18,7 +18,8 @@
 
 namespace roadslam::mapping {
 
-/// Ini section [localization].
+/// Ini sections [localization] and [localization_track] (registration::Params keys); the relocalization's
+/// global registration is the loop closure's ([loop_closure_global], set by the caller).
 struct LocalizerParams {
   double map_voxel_m = 0.4;          ///< map points kept: one per voxel [m]
   double sweep_voxel_m = 1.0;        ///< tracking source: one point per voxel [m]
@@ -29,6 +30,9 @@ struct LocalizerParams {
   registration::GlobalParams global; ///< relocalization's global registration
 
   LocalizerParams();
+  void fields(ParamTable& t);
+  void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section = "localization");
+  void saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& section = "localization") const;
 };
 
 enum class LocalizationStatus {
