@@ -127,9 +127,20 @@ std::vector<size_t> findLoopCandidates(const std::vector<Keyframe>& kfs, const P
   return out;
 }
 
-LoopResult verifyLoop(const std::vector<Keyframe>& kfs, const PoseVector& T_map_kf, size_t query, size_t match,
-                      const LoopClosureParams& p) {
-  const auto t0 = std::chrono::steady_clock::now();
+namespace {
+
+/// What a loop's correction of the graph's guess may be, and the weight of its edge.
+struct Acceptance {
+  double abs_m, ratio, rot_rad, rot_rad_per_m;  ///< correction <= abs + ratio * path (rotation alike)
+  double information_scale;                     ///< multiplies the fine ICP information [-]
+};
+
+/// Steps 2-3 of loop_closure.h from \p start (T_match_query): the coarse registration when \p coarse, the
+/// fine ICP of the query submap against the candidate's, its fitness and overlap tests and the correction's
+/// bounds. \p t0: when the verification began (LoopResult::ms).
+LoopResult verifySubmaps(const std::vector<Keyframe>& kfs, const PoseVector& T_map_kf, size_t query, size_t match,
+                         const LoopClosureParams& p, const Eigen::Isometry3d& start, bool coarse, const Acceptance& a,
+                         std::chrono::steady_clock::time_point t0) {
   LoopResult r;
   r.query = query;
   r.match = match;
@@ -139,23 +150,24 @@ LoopResult verifyLoop(const std::vector<Keyframe>& kfs, const PoseVector& T_map_
   const auto source = submap(kfs, T_map_kf, qfirst, query, query, p.source_voxel_m);
   const auto target_pts = submap(kfs, T_map_kf, tfirst, std::max(tlast, match), match, p.target_voxel_m);
   const Eigen::Isometry3d guess = T_map_kf[match].inverse() * T_map_kf[query];
-  Eigen::Isometry3d start = guess;
-  // a revisit is on the same road: the odometry's vertical drift (its largest) is not a guess
-  if (p.level_guess) start.translation().z() = 0;
   auto finish = [&](const std::string& why) {
     r.reason = why;
     r.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     return r;
   };
-  const registration::Target coarse_target(target_pts, p.coarse);
-  const auto c = registration::align(coarse_target, source, start, p.coarse);
-  if (!c.converged) return finish("coarse: " + registration::toString(c.status));
+  Eigen::Isometry3d fine_start = start;
+  if (coarse) {
+    const registration::Target coarse_target(target_pts, p.coarse);
+    const auto c = registration::align(coarse_target, source, start, p.coarse);
+    if (!c.converged) return finish("coarse: " + registration::toString(c.status));
+    fine_start = c.T_target_source;
+  }
   const registration::Target fine_target(target_pts, p.fine);
-  const auto f = registration::align(fine_target, source, c.T_target_source, p.fine);
+  const auto f = registration::align(fine_target, source, fine_start, p.fine);
   r.T_match_query = f.T_target_source;
   r.fitness_m = f.fitness;
   r.overlap = source.empty() ? 0.0 : static_cast<double>(f.inliers) / source.size();
-  r.information = p.information_scale * f.information;
+  r.information = a.information_scale * f.information;
   const Eigen::Isometry3d corr = guess.inverse() * f.T_target_source;
   r.correction_m = corr.translation().norm();
   r.correction_rad = angleOf(corr);
@@ -163,11 +175,25 @@ LoopResult verifyLoop(const std::vector<Keyframe>& kfs, const PoseVector& T_map_
   if (r.fitness_m > p.max_fitness_m) return finish("fitness");
   if (r.overlap < p.min_overlap) return finish("overlap");
   const double path = kfs[query].path_m - kfs[match].path_m;
-  if (r.correction_m > p.consistency_abs_m + p.consistency_ratio * path || r.correction_rad > p.consistency_rot_rad + p.consistency_rot_rad_per_m * path) {
+  if (r.correction_m > a.abs_m + a.ratio * path || r.correction_rad > a.rot_rad + a.rot_rad_per_m * path) {
     return finish("inconsistent with odometry");
   }
   r.accepted = true;
   return finish("accepted");
+}
+
+}  // namespace
+
+LoopResult verifyLoop(const std::vector<Keyframe>& kfs, const PoseVector& T_map_kf, size_t query, size_t match,
+                      const LoopClosureParams& p) {
+  const auto t0 = std::chrono::steady_clock::now();
+  Eigen::Isometry3d start = T_map_kf[match].inverse() * T_map_kf[query];
+  // a revisit is on the same road: the odometry's vertical drift (its largest) is not a guess
+  if (p.level_guess) start.translation().z() = 0;
+  return verifySubmaps(kfs, T_map_kf, query, match, p, start, true,
+                       {p.consistency_abs_m, p.consistency_ratio, p.consistency_rot_rad, p.consistency_rot_rad_per_m,
+                        p.information_scale},
+                       t0);
 }
 
 std::vector<size_t> findPlaceCandidates(const place::ScanContextDatabase& db, const std::vector<Keyframe>& kfs,
@@ -180,40 +206,19 @@ std::vector<size_t> findPlaceCandidates(const place::ScanContextDatabase& db, co
 LoopResult verifyPlaceLoop(const std::vector<Keyframe>& kfs, const PoseVector& T_map_kf, size_t query, size_t match,
                            const LoopClosureParams& p) {
   const auto t0 = std::chrono::steady_clock::now();
-  LoopResult r;
-  r.query = query;
-  r.match = match;
-  auto finish = [&](const std::string& why) {
-    r.reason = why;
+  const auto g = registration::alignGlobal(pointsOf(kfs[match]), pointsOf(kfs[query]), p.global);
+  if (!g.converged) {
+    LoopResult r;
+    r.query = query;
+    r.match = match;
+    r.reason = "global: " + registration::toString(g.status);
     r.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     return r;
-  };
-  const auto g = registration::alignGlobal(pointsOf(kfs[match]), pointsOf(kfs[query]), p.global);
-  if (!g.converged) return finish("global: " + registration::toString(g.status));
-  const size_t qfirst = query + 1 >= static_cast<size_t>(p.query_keyframes) ? query + 1 - p.query_keyframes : 0;
-  const size_t tfirst = match >= static_cast<size_t>(p.target_half_width) ? match - p.target_half_width : 0;
-  const size_t tlast = std::min(match + p.target_half_width, qfirst > 0 ? qfirst - 1 : 0);
-  const auto source = submap(kfs, T_map_kf, qfirst, query, query, p.source_voxel_m);
-  const auto target_pts = submap(kfs, T_map_kf, tfirst, std::max(tlast, match), match, p.target_voxel_m);
-  const registration::Target fine_target(target_pts, p.fine);
-  const auto f = registration::align(fine_target, source, g.T_target_source, p.fine);
-  r.T_match_query = f.T_target_source;
-  r.fitness_m = f.fitness;
-  r.overlap = source.empty() ? 0.0 : static_cast<double>(f.inliers) / source.size();
-  r.information = p.place_information_scale * f.information;
-  const Eigen::Isometry3d corr = (T_map_kf[match].inverse() * T_map_kf[query]).inverse() * f.T_target_source;
-  r.correction_m = corr.translation().norm();
-  r.correction_rad = angleOf(corr);
-  if (!f.converged) return finish("fine: " + registration::toString(f.status));
-  if (r.fitness_m > p.max_fitness_m) return finish("fitness");
-  if (r.overlap < p.min_overlap) return finish("overlap");
-  const double path = kfs[query].path_m - kfs[match].path_m;
-  if (r.correction_m > p.place_consistency_abs_m + p.place_consistency_ratio * path ||
-      r.correction_rad > p.place_consistency_rot_rad + p.place_consistency_rot_rad_per_m * path) {
-    return finish("inconsistent with odometry");
   }
-  r.accepted = true;
-  return finish("accepted");
+  return verifySubmaps(kfs, T_map_kf, query, match, p, g.T_target_source, false,
+                       {p.place_consistency_abs_m, p.place_consistency_ratio, p.place_consistency_rot_rad,
+                        p.place_consistency_rot_rad_per_m, p.place_information_scale},
+                       t0);
 }
 
 }  // namespace roadslam::mapping
