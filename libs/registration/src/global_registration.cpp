@@ -172,6 +172,7 @@ void GlobalParams::fields(ParamTable& t) {
   t.num("rival_distance_m", rival_distance_m);
   t.angle("rival_angle_deg", rival_angle_rad);
   t.num("min_confidence", min_confidence);
+  t.num("min_overlap_margin", min_overlap_margin);
   t.num("refine_voxel_m", refine_voxel_m);
   t.num("min_overlap", min_overlap);
   t.flag("reject_degenerate", reject_degenerate);
@@ -245,25 +246,40 @@ RegistrationResult alignGlobal(const FeatureCloud& target, const FeatureCloud& s
   for (const auto& h : hyp)
     if (farApart(h.T, d.T_ransac, p) && (!rival || h.support > rival->support)) rival = &h;
   if (rival) {
-    const Eigen::Isometry3d Tr = refit(c, rival->T, p.inlier_distance_m, d.rival_consensus);
-    if (!farApart(Tr, d.T_ransac, p)) d.rival_consensus = 0;  // it slid onto the best pose
+    d.T_rival = refit(c, rival->T, p.inlier_distance_m, d.rival_consensus);
+    if (!farApart(d.T_rival, d.T_ransac, p)) d.rival_consensus = 0;  // it slid onto the best pose
   }
   d.ransac_ms = msSince(t0);
   if (d.consensus < p.min_consensus) {
     return failed(d.T_ransac, Status::NoConsensus, "best pose supported by " + std::to_string(d.consensus) +
                                                        " matches < min_consensus = " + std::to_string(p.min_consensus));
   }
-  const double confidence = 1.0 - std::min(1.0, static_cast<double>(d.rival_consensus) / d.consensus);
-  if (confidence < p.min_confidence) {
-    RegistrationResult r = failed(d.T_ransac, Status::Ambiguous, "a pose far away is supported by " +
-                                                                     std::to_string(d.rival_consensus) + " matches against " +
-                                                                     std::to_string(d.consensus));
-    r.confidence = confidence;
-    return r;
-  }
+  double confidence = 1.0 - std::min(1.0, static_cast<double>(d.rival_consensus) / d.consensus);
   t0 = std::chrono::steady_clock::now();
   const Target fine_target(target.refine_points, p.fine);
   RegistrationResult r = align(fine_target, source.refine_points, d.T_ransac, p.fine);
+  const double n_src = static_cast<double>(source.refine_points.size());
+  if (confidence < p.min_confidence) {
+    // the features cannot tell the two poses apart: let the whole clouds decide, each pose refined and
+    // judged by its overlap (source points paired within the refinement's reach)
+    RegistrationResult rr = align(fine_target, source.refine_points, d.T_rival, p.fine);
+    double ov = r.converged ? r.inliers / n_src : 0.0, ov_rival = rr.converged ? rr.inliers / n_src : 0.0;
+    if (ov_rival > ov) {
+      std::swap(r, rr);
+      std::swap(ov, ov_rival);
+      std::swap(d.T_ransac, d.T_rival);
+    }
+    if (ov - ov_rival < p.min_overlap_margin) {
+      d.refine_ms = msSince(t0);
+      RegistrationResult a = failed(d.T_ransac, Status::Ambiguous, "a pose far away is supported by " +
+                                                                      std::to_string(d.rival_consensus) + " matches against " +
+                                                                      std::to_string(d.consensus) + ", refined overlaps " +
+                                                                      std::to_string(ov) + " / " + std::to_string(ov_rival));
+      a.confidence = confidence;
+      return a;
+    }
+    confidence = 1.0 - ov_rival / ov;
+  }
   d.refine_ms = msSince(t0);
   r.confidence = confidence;
   if (!r.converged) {

@@ -12,9 +12,11 @@
 ///     rival, and confidence = 1 - rival support / best support (0: two places explain the features
 ///     equally well, as on look-alike parallel streets);
 ///  4. refinement by the project's registration (registration.h, [..._fine] Params, point-to-plane ICP by
-///     default) on the clouds at refine_voxel_m, from the RANSAC pose.
+///     default) on the clouds at refine_voxel_m, from the RANSAC pose; when confidence < min_confidence the
+///     rival is refined too and the pose pairing more source points wins if its overlap is higher by
+///     min_overlap_margin (confidence then = 1 - the other's overlap / its own).
 /// Failures are data (RegistrationResult::status and reason): too few points or keypoints, too few
-/// correspondences, no consensus, ambiguous (confidence below min_confidence), the refinement's own
+/// correspondences, no consensus, ambiguous (the two poses' overlaps within the margin), the refinement's own
 /// failures, a degenerate refinement (a weak direction, e.g. along a corridor), low overlap. A pose is never returned as converged on such an input.
 
 #include <Eigen/Geometry>
@@ -45,7 +47,8 @@ struct GlobalParams {
   int min_consensus = 8;             ///< fewer supporting correspondences: NoConsensus [-]
   double rival_distance_m = 2.0;     ///< a rival pose is this far from the best ... [m]
   double rival_angle_rad = 10.0 * M_PI / 180.0;  ///< ... or turned this much [rad]; ini _deg
-  double min_confidence = 0.25;      ///< 1 - rival/best support below: Ambiguous [-]
+  double min_confidence = 0.25;      ///< 1 - rival/best support below: both poses refined, decided by overlap [-]
+  double min_overlap_margin = 0.1;   ///< ... the better overlap must exceed the other's by this, else Ambiguous [-]
   double refine_voxel_m = 0.5;       ///< refinement clouds' voxel [m]
   double min_overlap = 0.3;          ///< refined inliers / source points below: LowOverlap [-]
   bool reject_degenerate = true;     ///< a refinement with a weak direction (Degeneracy) is Ambiguous [-]
@@ -77,6 +80,7 @@ struct GlobalDiagnostics {
   int rival_consensus = 0;     ///< ... the best pose far from it [-]
   int hypotheses = 0;          ///< triplets that passed the edge test and were scored [-]
   Eigen::Isometry3d T_ransac = Eigen::Isometry3d::Identity();  ///< before refinement
+  Eigen::Isometry3d T_rival = Eigen::Isometry3d::Identity();   ///< the rival pose (when rival_consensus > 0)
   double features_ms = 0, match_ms = 0, ransac_ms = 0, refine_ms = 0;  ///< wall time per stage [ms]
 };
 
