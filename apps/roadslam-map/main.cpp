@@ -23,6 +23,9 @@ int main(int argc, char** argv) {
       ->check(CLI::ExistingFile);
   app.add_flag("--gnss-from-input", req.gnss_from_input,
                "fuse the GPS fixes the input carries (Velodyne $GPRMC position packets) instead of --gnss");
+  app.add_option("--prior-map", req.prior_map_dir,
+                 "map folder of an earlier run: localize each sweep in it (no mapping); localization.csv per sweep")
+      ->check(CLI::ExistingDirectory);
   app.add_flag("--allow-unknown-keys", req.allow_unknown_keys, "ini keys no component reads are warnings, not errors");
   app.add_flag("--quiet", quiet, "nothing on stdout (no progress bar, no summary); errors and warnings on stderr");
   app.add_flag("--json", json, "print the summary as JSON (as in OUT/summary.json) instead of text");

@@ -35,7 +35,8 @@ std::string nearest(const std::string& word, const std::vector<std::string>& can
 const std::vector<std::string>& knownSections() {
   static const std::vector<std::string> s = {
       "velodyne", "preprocess", "kitti", "registration", "odometry", "mapping", "pose_graph", "loop_closure",
-      "loop_closure_coarse", "loop_closure_fine", "point_map", "octomap", "grid", "vehicle_prior", "ground",
+      "loop_closure_coarse", "loop_closure_fine", "loop_closure_place", "loop_closure_global", "loop_closure_global_fine",
+      "localization", "localization_track", "point_map", "octomap", "grid", "vehicle_prior", "ground",
       "boundary", "objects", "tracking", "gnss_fusion", "scenario", "world", "trajectory", "lidar", "can", "gnss",
       "grab", "vehicle"};
   return s;

@@ -27,6 +27,19 @@ registration::PointCloud submap(const std::vector<Keyframe>& kfs, const PoseVect
   return registration::voxelDownsample(pts, voxel_m);
 }
 
+const NameTable<LoopCandidates>& candidateNames() {
+  static const NameTable<LoopCandidates> t{
+      {LoopCandidates::Radius, "radius"}, {LoopCandidates::ScanContext, "scan_context"}, {LoopCandidates::Both, "both"}};
+  return t;
+}
+
+registration::PointCloud pointsOf(const Keyframe& kf) {
+  registration::PointCloud pts;
+  pts.reserve(kf.points_lidar.size());
+  for (const auto& q : kf.points_lidar) pts.push_back(q.cast<double>());
+  return pts;
+}
+
 }  // namespace
 
 LoopClosureParams::LoopClosureParams() {
@@ -62,6 +75,12 @@ void LoopClosureParams::fields(ParamTable& t) {
   t.num("max_loop_residual_m", max_loop_residual_m);
   t.num("information_scale", information_scale);
   t.num("skip_after_loop_m", skip_after_loop_m);
+  t.choice("candidates", candidates, candidateNames());
+  t.num("place_consistency_abs_m", place_consistency_abs_m);
+  t.num("place_consistency_ratio", place_consistency_ratio);
+  t.angle("place_consistency_rot_deg", place_consistency_rot_rad);
+  t.scaled("place_consistency_rot_deg_per_100m", place_consistency_rot_rad_per_m, unit::kDeg / 100);
+  t.num("place_information_scale", place_information_scale);
 }
 
 void LoopClosureParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& s) {
@@ -74,12 +93,16 @@ void LoopClosureParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& 
   }
   coarse.loadFromConfigFile(cfg, s + "_coarse");
   fine.loadFromConfigFile(cfg, s + "_fine");
+  place.loadFromConfigFile(cfg, s + "_place");
+  global.loadFromConfigFile(cfg, s + "_global");
 }
 
 void LoopClosureParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& s) const {
   saveFields(*this, cfg, s);
   coarse.saveToConfigFile(cfg, s + "_coarse");
   fine.saveToConfigFile(cfg, s + "_fine");
+  place.saveToConfigFile(cfg, s + "_place");
+  global.saveToConfigFile(cfg, s + "_global");
 }
 
 std::vector<size_t> findLoopCandidates(const std::vector<Keyframe>& kfs, const PoseVector& T_map_kf, size_t query,
@@ -104,9 +127,20 @@ std::vector<size_t> findLoopCandidates(const std::vector<Keyframe>& kfs, const P
   return out;
 }
 
-LoopResult verifyLoop(const std::vector<Keyframe>& kfs, const PoseVector& T_map_kf, size_t query, size_t match,
-                      const LoopClosureParams& p) {
-  const auto t0 = std::chrono::steady_clock::now();
+namespace {
+
+/// What a loop's correction of the graph's guess may be, and the weight of its edge.
+struct Acceptance {
+  double abs_m, ratio, rot_rad, rot_rad_per_m;  ///< correction <= abs + ratio * path (rotation alike)
+  double information_scale;                     ///< multiplies the fine ICP information [-]
+};
+
+/// Steps 2-3 of loop_closure.h from \p start (T_match_query): the coarse registration when \p coarse, the
+/// fine ICP of the query submap against the candidate's, its fitness and overlap tests and the correction's
+/// bounds. \p t0: when the verification began (LoopResult::ms).
+LoopResult verifySubmaps(const std::vector<Keyframe>& kfs, const PoseVector& T_map_kf, size_t query, size_t match,
+                         const LoopClosureParams& p, const Eigen::Isometry3d& start, bool coarse, const Acceptance& a,
+                         std::chrono::steady_clock::time_point t0) {
   LoopResult r;
   r.query = query;
   r.match = match;
@@ -116,23 +150,24 @@ LoopResult verifyLoop(const std::vector<Keyframe>& kfs, const PoseVector& T_map_
   const auto source = submap(kfs, T_map_kf, qfirst, query, query, p.source_voxel_m);
   const auto target_pts = submap(kfs, T_map_kf, tfirst, std::max(tlast, match), match, p.target_voxel_m);
   const Eigen::Isometry3d guess = T_map_kf[match].inverse() * T_map_kf[query];
-  Eigen::Isometry3d start = guess;
-  // a revisit is on the same road: the odometry's vertical drift (its largest) is not a guess
-  if (p.level_guess) start.translation().z() = 0;
   auto finish = [&](const std::string& why) {
     r.reason = why;
     r.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     return r;
   };
-  const registration::Target coarse_target(target_pts, p.coarse);
-  const auto c = registration::align(coarse_target, source, start, p.coarse);
-  if (!c.converged) return finish("coarse: " + registration::toString(c.status));
+  Eigen::Isometry3d fine_start = start;
+  if (coarse) {
+    const registration::Target coarse_target(target_pts, p.coarse);
+    const auto c = registration::align(coarse_target, source, start, p.coarse);
+    if (!c.converged) return finish("coarse: " + registration::toString(c.status));
+    fine_start = c.T_target_source;
+  }
   const registration::Target fine_target(target_pts, p.fine);
-  const auto f = registration::align(fine_target, source, c.T_target_source, p.fine);
+  const auto f = registration::align(fine_target, source, fine_start, p.fine);
   r.T_match_query = f.T_target_source;
   r.fitness_m = f.fitness;
   r.overlap = source.empty() ? 0.0 : static_cast<double>(f.inliers) / source.size();
-  r.information = p.information_scale * f.information;
+  r.information = a.information_scale * f.information;
   const Eigen::Isometry3d corr = guess.inverse() * f.T_target_source;
   r.correction_m = corr.translation().norm();
   r.correction_rad = angleOf(corr);
@@ -140,11 +175,50 @@ LoopResult verifyLoop(const std::vector<Keyframe>& kfs, const PoseVector& T_map_
   if (r.fitness_m > p.max_fitness_m) return finish("fitness");
   if (r.overlap < p.min_overlap) return finish("overlap");
   const double path = kfs[query].path_m - kfs[match].path_m;
-  if (r.correction_m > p.consistency_abs_m + p.consistency_ratio * path || r.correction_rad > p.consistency_rot_rad + p.consistency_rot_rad_per_m * path) {
+  if (r.correction_m > a.abs_m + a.ratio * path || r.correction_rad > a.rot_rad + a.rot_rad_per_m * path) {
     return finish("inconsistent with odometry");
   }
   r.accepted = true;
   return finish("accepted");
+}
+
+}  // namespace
+
+LoopResult verifyLoop(const std::vector<Keyframe>& kfs, const PoseVector& T_map_kf, size_t query, size_t match,
+                      const LoopClosureParams& p) {
+  const auto t0 = std::chrono::steady_clock::now();
+  Eigen::Isometry3d start = T_map_kf[match].inverse() * T_map_kf[query];
+  // a revisit is on the same road: the odometry's vertical drift (its largest) is not a guess
+  if (p.level_guess) start.translation().z() = 0;
+  return verifySubmaps(kfs, T_map_kf, query, match, p, start, true,
+                       {p.consistency_abs_m, p.consistency_ratio, p.consistency_rot_rad, p.consistency_rot_rad_per_m,
+                        p.information_scale},
+                       t0);
+}
+
+std::vector<size_t> findPlaceCandidates(const place::ScanContextDatabase& db, const std::vector<Keyframe>& kfs,
+                                        size_t query, const LoopClosureParams& p) {
+  std::vector<size_t> out;
+  for (const auto& m : db.query(kfs[query].descriptor, kfs[query].path_m, p.max_candidates)) out.push_back(m.id);
+  return out;
+}
+
+LoopResult verifyPlaceLoop(const std::vector<Keyframe>& kfs, const PoseVector& T_map_kf, size_t query, size_t match,
+                           const LoopClosureParams& p) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto g = registration::alignGlobal(pointsOf(kfs[match]), pointsOf(kfs[query]), p.global);
+  if (!g.converged) {
+    LoopResult r;
+    r.query = query;
+    r.match = match;
+    r.reason = "global: " + registration::toString(g.status);
+    r.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    return r;
+  }
+  return verifySubmaps(kfs, T_map_kf, query, match, p, g.T_target_source, false,
+                       {p.place_consistency_abs_m, p.place_consistency_ratio, p.place_consistency_rot_rad,
+                        p.place_consistency_rot_rad_per_m, p.place_information_scale},
+                       t0);
 }
 
 }  // namespace roadslam::mapping

@@ -5,6 +5,7 @@
 #include <tuple>
 
 #include "roadslam/common/config.h"
+#include "roadslam/mapping/map_folder.h"
 
 namespace roadslam::mapping {
 
@@ -55,6 +56,7 @@ MapOutputStats writeMaps(const std::string& dir, const Mapper& mapper, const Pos
   writeGridPng(dir + "/grid.png", dir + "/grid.yaml", grid);
   writeGridMrpt(dir + "/grid.gridmap", grid);
   writeSimpleMap(dir + "/keyframes.simplemap", kfs, T_map_kf);
+  writeMapFolder(dir, kfs, T_map_kf, mapper.params().loop.place);
   mapper.graph().saveToTextFile(dir + "/posegraph.graph");
   std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> loops;
   for (const auto& l : mapper.loopResults()) {

@@ -40,7 +40,7 @@ void MapperParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const st
   loop.saveToConfigFile(cfg, "loop_closure");
 }
 
-Mapper::Mapper(MapperParams params) : p_(std::move(params)), graph_(p_.graph) {}
+Mapper::Mapper(MapperParams params) : p_(std::move(params)), graph_(p_.graph), places_(p_.loop.place) {}
 
 size_t Mapper::acceptedLoops() const {
   size_t n = 0;
@@ -81,6 +81,10 @@ void Mapper::addKeyframe(const odometry::FrameResult& f, const std::vector<Eigen
   kf.T_odom_lidar = f.T_world_lidar;
   kf.path_m = path_m_;
   kf.points_lidar = downsample(points_lidar, p_.keyframe_voxel_m);
+  if (p_.loop.candidates != LoopCandidates::Radius) {
+    kf.descriptor = place::makeScanContext(points_lidar, p_.loop.place);
+    places_.add(kfs_.size(), path_m_, kf.descriptor);
+  }
   if (kfs_.empty()) {
     graph_.addNode(f.T_world_lidar);
   } else {
@@ -112,8 +116,15 @@ bool Mapper::detectLoop() {
   last_query_path_m_ = path_m_;
   const size_t query = kfs_.size() - 1;
   const PoseVector T_map_kf = graph_.poses();
-  for (size_t match : findLoopCandidates(kfs_, T_map_kf, query, lp)) {
-    if (tryLoop(verifyLoop(kfs_, T_map_kf, query, match, lp))) return true;
+  if (lp.candidates != LoopCandidates::ScanContext) {
+    for (size_t match : findLoopCandidates(kfs_, T_map_kf, query, lp)) {
+      if (tryLoop(verifyLoop(kfs_, T_map_kf, query, match, lp))) return true;
+    }
+  }
+  if (lp.candidates != LoopCandidates::Radius) {
+    for (size_t match : findPlaceCandidates(places_, kfs_, query, lp)) {
+      if (tryLoop(verifyPlaceLoop(kfs_, T_map_kf, query, match, lp))) return true;
+    }
   }
   return false;
 }

@@ -1,5 +1,7 @@
 #include "roadslam/pipeline/map_job.h"
 
+#include "roadslam/mapping/localizer.h"
+
 #include <mrpt/config/CConfigFileMemory.h>
 
 #include <chrono>
@@ -51,6 +53,7 @@ struct JobParams {
   objects::ClusterParams objects;    ///< [objects] (ground labels from [preprocess] seg_*)
   objects::TrackerParams tracking;   ///< [tracking]
   mapping::GnssFusionParams gnss_fusion;  ///< [gnss_fusion], read by --gnss; recorded always
+  mapping::LocalizerParams localizer;  ///< [localization] (--prior-map); its global registration: [loop_closure_global]
 
   void load(const mrpt::config::CConfigFileBase& cfg) {
     objects.loadFromConfigFile(cfg, "objects", "preprocess");
@@ -62,6 +65,8 @@ struct JobParams {
     mapper.loadFromConfigFile(cfg);
     maps.loadFromConfigFile(cfg);
     gnss_fusion.loadFromConfigFile(cfg, "gnss_fusion");
+    localizer.loadFromConfigFile(cfg);
+    localizer.global = mapper.loop.global;
   }
   std::string used() const {
     mrpt::config::CConfigFileMemory out;
@@ -74,6 +79,7 @@ struct JobParams {
     objects.saveToConfigFile(out, "objects");
     tracking.saveToConfigFile(out, "tracking");
     gnss_fusion.saveToConfigFile(out, "gnss_fusion");
+    localizer.saveToConfigFile(out);
     return out.getContent();
   }
 };
@@ -152,12 +158,77 @@ std::string effectiveMapConfig(const mrpt::config::CConfigFileBase& cfg) {
   return params.used();
 }
 
+namespace {
+
+/// Localization in a prior map, one row per sweep (localization.csv) and the poses in the map's frame.
+struct PriorMapRun {
+  std::unique_ptr<mapping::Localizer> localizer;
+  std::vector<int> localized;  ///< per frame: 1 when the localizer gave its pose
+  std::vector<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>> T_map_lidar;
+  std::string csv = "frame,stamp_s,status,confidence,keyframe,weak_directions,reason\n";
+  int tracked = 0, relocalized = 0, lost = 0;
+  double sum_conf = 0;
+
+  void add(size_t index, double stamp_s, const SweepPose& pose) {
+    mapping::LocalizationResult r;
+    if (pose.ok && pose.points_lidar) r = localizer->localize(*pose.points_lidar);
+    else r.reason = pose.ok ? "no points" : "no odometry pose: " + pose.why;
+    localized.push_back(r.status != mapping::LocalizationStatus::Lost ? 1 : 0);
+    T_map_lidar.push_back(r.T_map_lidar);
+    tracked += r.status == mapping::LocalizationStatus::Tracked;
+    relocalized += r.status == mapping::LocalizationStatus::Relocalized;
+    lost += r.status == mapping::LocalizationStatus::Lost;
+    sum_conf += r.confidence;
+    std::string why = r.reason;
+    for (char& c : why) c = c == ',' ? ';' : c;
+    csv += std::to_string(index) + "," + std::to_string(stamp_s) + "," + mapping::toString(r.status) + "," +
+           std::to_string(r.confidence) + "," + std::to_string(r.keyframe) + "," + std::to_string(r.weak_directions) +
+           "," + why + "\n";
+  }
+  /// Sweeps without a localization take the nearest localized sweep's pose moved by the odometry
+  /// between them (the previous one, else the next); none localized: the odometry's own poses.
+  void bridge(const std::vector<odometry::FrameResult>& frames) {
+    const size_t n = std::min(frames.size(), T_map_lidar.size());
+    long prev = -1;
+    std::vector<long> next(n, -1);
+    for (long i = static_cast<long>(n) - 1, nx = -1; i >= 0; --i) {
+      if (localized[static_cast<size_t>(i)]) nx = i;
+      next[static_cast<size_t>(i)] = nx;
+    }
+    for (size_t i = 0; i < n; ++i) {
+      if (localized[i]) {
+        prev = static_cast<long>(i);
+        continue;
+      }
+      const long k = prev >= 0 ? prev : next[i];
+      if (k < 0) {
+        T_map_lidar[i] = frames[i].T_world_lidar;
+        continue;
+      }
+      const auto ku = static_cast<size_t>(k);
+      T_map_lidar[i] = T_map_lidar[ku] * frames[ku].T_world_lidar.inverse() * frames[i].T_world_lidar;
+    }
+    T_map_lidar.resize(frames.size(), Eigen::Isometry3d::Identity());
+  }
+  nlohmann::json summary(const std::string& dir) const {
+    const int n = tracked + relocalized + lost;
+    return {{"prior_map", dir}, {"map_points", localizer->mapPoints()}, {"tracked", tracked},
+            {"relocalized", relocalized}, {"lost", lost}, {"mean_confidence", n > 0 ? sum_conf / n : 0.0}};
+  }
+};
+
+}  // namespace
+
 MapOutcome runMapJob(const MapRequest& req) {
   const auto cfg = loadIniFile(req.config_path);
   JobParams params;
   params.load(*cfg);
   const auto unknown_keys = cfg->checkEntries(req.allow_unknown_keys);
   if (!req.can_log_path.empty() && req.vehicle_ini_path.empty()) throw std::runtime_error("--can needs --vehicle (the car's vehicle ini)");
+  PriorMapRun prior;
+  const bool localize = !req.prior_map_dir.empty();
+  if (localize) prior.localizer = std::make_unique<mapping::Localizer>(mapping::readMapFolder(req.prior_map_dir), params.localizer);
+  const bool maps = req.maps && !localize;  // a prior map is never grown
   auto source = openNonEmptySource(req.input_path, *cfg, req.times_path);
   std::optional<GnssInput> gnss_in;  // read before the run: a bad log fails before hours of processing
   if (!req.gnss_path.empty() && req.gnss_from_input) throw std::runtime_error("--gnss and --gnss-from-input exclude each other");
@@ -169,7 +240,7 @@ MapOutcome runMapJob(const MapRequest& req) {
   MapOutcome out;
   mapping::Mapper mapper(params.mapper);
   std::unique_ptr<mapping::OctoMapWorker> octo;
-  if (req.maps && params.maps.octomap.enabled) octo = std::make_unique<mapping::OctoMapWorker>(params.maps.octomap);
+  if (maps && params.maps.octomap.enabled) octo = std::make_unique<mapping::OctoMapWorker>(params.maps.octomap);
   std::unique_ptr<CanPriorStream> can;
   if (!req.can_log_path.empty()) can = std::make_unique<CanPriorStream>(req.can_log_path, req.vehicle_ini_path, *cfg);
   Stages stages;
@@ -180,7 +251,7 @@ MapOutcome runMapJob(const MapRequest& req) {
   auto odometry = std::make_unique<OdometryPoses>(params.odometry, std::move(can), objects_stage != nullptr);
   const OdometryPoses& odo = *odometry;
   stages.poses = std::move(odometry);
-  if (req.maps) stages.mapper = &mapper;
+  if (maps) stages.mapper = &mapper;
   stages.octomap = octo.get();
   stages.octomap_keyframe_spacing_m = params.maps.octomap.keyframe_spacing_m;
   stages.objects = objects_stage.get();
@@ -200,15 +271,21 @@ MapOutcome runMapJob(const MapRequest& req) {
       input_fixes.insert(input_fixes.end(), fx.begin(), fx.end());
     }
     if (objects_stage) objects_out.add(*f, *objects_stage);
+    if (localize) prior.add(f->index, f->pose.stamp_s, f->pose);
     out.frames.push_back(std::move(*f->pose.odometry));
     if (req.progress) bar.update(out.frames.size());
   }
   pipe.flushMaps();
   bar.finish();
   out.interrupted = stopRequested();
-  if (req.maps) {
+  if (maps) {
     const auto T_map_kf = mapper.keyframePoses();
     for (const auto& f : out.frames) out.T_map_lidar.push_back(mapper.correctedPose(f, T_map_kf));
+  }
+  if (localize) {
+    prior.bridge(out.frames);
+    out.T_map_lidar = prior.T_map_lidar;
+    writeFileAtomically(req.out_dir + "/localization.csv", prior.csv);
   }
   out.summary = summarize(out.frames);
   out.summary["warnings"] = nlohmann::json::array();
@@ -248,7 +325,8 @@ MapOutcome runMapJob(const MapRequest& req) {
     writeFileAtomically(req.out_dir + "/tracks.csv", objects_out.tracks);
     writeFileAtomically(req.out_dir + "/tracks_ended.csv", objects_out.ended);
   }
-  if (req.maps) {
+  if (localize) out.summary["localization"] = prior.summary(req.prior_map_dir);
+  if (maps) {
     const auto loops = loopsJson(mapper);
     out.summary["loop_closures"] = loops["accepted"].size();
     out.summary["loop_candidates_rejected"] = loops["rejected"].size();

@@ -71,3 +71,36 @@ TEST(MapJobHeavy, ParallelStreetsNoFalseLoop) {
     EXPECT_LT(d, 12.0) << "false loop accepted";
   }
 }
+
+// roadslam-map --prior-map (issue 22), wiring end to end: a map folder made by a first run over the small
+// loop, then the same recording localized in it (an unknown start: the first sweep is relocalized). The
+// accuracy on a second, different lap is MapperSim.SecondLapByPlaceRecognition's; here every sweep must get
+// a pose in the map and the trajectory must match the truth.
+TEST(MapJobHeavy, LocalizesInAPriorMap) {
+  const std::string sim_dir = pipeline::test::simulateOnce(pipeline::test::smallLoop(), "mapping-small-loop-v1");
+  run(sim_dir, "map-job-prior-map-a");
+  const std::string map_dir = std::string(ROADSLAM_BINARY_DIR) + "/test-out/map-job-prior-map-a";
+  pipeline::MapRequest req;
+  req.config_path = std::string(ROADSLAM_SOURCE_DIR) + "/ini/default.ini";
+  req.input_path = sim_dir + "/velodyne.pcap";
+  req.out_dir = std::string(ROADSLAM_BINARY_DIR) + "/test-out/map-job-prior-map-b";
+  req.progress = false;
+  req.prior_map_dir = map_dir;
+  const auto out = pipeline::runMapJob(req);
+  const auto& loc = out.summary["localization"];
+  std::cout << "prior map: " << loc.dump() << "\n";
+  EXPECT_GE(loc["relocalized"].get<int>(), 1);
+  EXPECT_LE(loc["lost"].get<int>(), 2);
+  EXPECT_FALSE(out.summary.contains("loop_closures")) << "the prior map is not grown";
+  const double ate_loc = ate(sim_dir + "/gt_trajectory.tum", req.out_dir + "/trajectory.tum");
+  std::cout << "prior map: ATE " << ate_loc << " m\n";
+  EXPECT_LE(ate_loc, 0.10);
+  // an older folder (no map.json) is refused naming the file
+  req.prior_map_dir = sim_dir;
+  try {
+    pipeline::runMapJob(req);
+    ADD_FAILURE() << "a folder without map.json was accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("map.json"), std::string::npos) << e.what();
+  }
+}

@@ -118,6 +118,9 @@ std::string toString(Status s) {
     case Status::TooFewCorrespondences: return "too_few_correspondences";
     case Status::Diverged: return "diverged";
     case Status::MethodMismatch: return "method_mismatch";
+    case Status::NoConsensus: return "no_consensus";
+    case Status::Ambiguous: return "ambiguous";
+    case Status::LowOverlap: return "low_overlap";
   }
   return "unknown";
 }

@@ -20,6 +20,8 @@
 #include <vector>
 
 #include "roadslam/mapping/pose_graph.h"
+#include "roadslam/place/scan_context.h"
+#include "roadslam/registration/global_registration.h"
 #include "roadslam/registration/params.h"
 
 namespace roadslam {
@@ -35,7 +37,15 @@ struct Keyframe {
   Eigen::Isometry3d T_odom_lidar = Eigen::Isometry3d::Identity();  ///< odometry-only pose
   double path_m = 0;               ///< odometry path length driven up to this keyframe [m]
   std::vector<Eigen::Vector3f> points_lidar;  ///< lidar frame [m]
+  place::ScanContext descriptor;   ///< Scan Context (when place candidates are on; else empty)
 };
+
+/// Where loop candidates come from. Ini values: radius | scan_context | both.
+///  radius: older keyframes near the query in the graph estimate (needs the odometry's drift to be small);
+///  scan_context: Scan Context place recognition ([loop_closure_place]), independent of the drift, each
+///  candidate registered with no guess by global registration ([loop_closure_global]) before the fine ICP,
+///  then a looser odometry consistency test (place_consistency_*) and the graph residual test.
+enum class LoopCandidates { Radius, ScanContext, Both };
 
 /// Ini section [loop_closure]; the coarse and fine registrations read [loop_closure_coarse] and
 /// [loop_closure_fine] (registration::Params keys).
@@ -62,6 +72,20 @@ struct LoopClosureParams {
   double skip_after_loop_m = 10.0;   ///< no query for this much path after an accepted loop [m]
   registration::Params coarse;       ///< NDT by default
   registration::Params fine;         ///< point-to-plane ICP by default
+  LoopCandidates candidates = LoopCandidates::Radius;  ///< ini candidates
+  /// Place candidates: the correction of the graph's guess must stay within what odometry may have drifted,
+  /// looser than for radius candidates (the guess is not where they come from): look-alike streets farther
+  /// apart than this are told apart, nearer ones cannot be from one sweep.
+  double place_consistency_abs_m = 5.0;     ///< [m]
+  double place_consistency_ratio = 0.1;     ///< ... plus this fraction of the path between the keyframes [-]
+  double place_consistency_rot_rad = 5.0 * M_PI / 180.0;  ///< [rad]; ini place_consistency_rot_deg
+  double place_consistency_rot_rad_per_m = 10.0 * M_PI / 180.0 / 100.0;  ///< [rad/m]; ini place_consistency_rot_deg_per_100m
+  /// Multiplies a place loop's fine ICP information [-]. Place loops pair whole submaps (overlap ~1, inlier
+  /// RMSE ~0.17 m): at full information MRPT's Levenberg-Marquardt stopped with the graph 4.5 m off an
+  /// exact (3 mm) loop edge on the simulated second lap and the residual test rejected every such loop.
+  double place_information_scale = 0.01;
+  place::ScanContextParams place;          ///< [loop_closure_place]
+  registration::GlobalParams global;       ///< [loop_closure_global], its refinement [loop_closure_global_fine]
 
   LoopClosureParams();
   /// The ini keys, one line each (common/param_table.h): load, save and the known keys.
@@ -91,5 +115,14 @@ std::vector<size_t> findLoopCandidates(const std::vector<Keyframe>& kfs, const P
 /// Registers the query submap against the candidate's and applies the acceptance checks 3 above.
 LoopResult verifyLoop(const std::vector<Keyframe>& kfs, const PoseVector& T_map_kf, size_t query, size_t match,
                       const LoopClosureParams& p);
+
+/// Older keyframes whose Scan Context matches the query's, best first (at most max_candidates).
+std::vector<size_t> findPlaceCandidates(const place::ScanContextDatabase& db, const std::vector<Keyframe>& kfs,
+                                        size_t query, const LoopClosureParams& p);
+
+/// A place candidate: the two keyframes registered with no guess (global registration), then the fine ICP
+/// of verifyLoop's submaps from that pose, with its fitness and overlap checks and the place_consistency_* bounds.
+LoopResult verifyPlaceLoop(const std::vector<Keyframe>& kfs, const PoseVector& T_map_kf, size_t query, size_t match,
+                           const LoopClosureParams& p);
 
 }  // namespace roadslam::mapping

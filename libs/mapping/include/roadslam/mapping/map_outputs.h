@@ -3,7 +3,8 @@
 /// Every map of a run, built from the keyframes at the optimised poses and written into a folder:
 ///   map.bt (OctoMap, max-likelihood; map.ot too when [octomap] write_ot), map.ply and map.pcd (point
 ///   map), grid.png + grid.yaml (map_server) and grid.gridmap (MRPT), keyframes.simplemap (MRPT),
-///   posegraph.graph (MRPT text graph), map_top.png (top view with trajectory and loops).
+///   posegraph.graph (MRPT text graph), map_top.png (top view with trajectory and loops), map.json +
+///   keyframes.bin (the folder's version, keyframes with points and Scan Context: map_folder.h).
 /// The OctoMap is built on a worker thread while the other maps are written.
 
 #include <string>

@@ -84,6 +84,7 @@ class Mapper {
   PoseGraph graph_;
   std::vector<Keyframe> kfs_;
   std::vector<LoopResult> loops_;
+  place::ScanContextDatabase places_;  ///< keyframe descriptors (LoopCandidates other than Radius)
   std::vector<long> frame_kf_;  ///< keyframe id each frame index follows (-1: none yet)
   double path_m_ = 0;
   double last_query_path_m_ = -1e9, last_loop_path_m_ = -1e9;

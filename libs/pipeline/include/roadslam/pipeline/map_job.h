@@ -45,6 +45,11 @@ struct MapRequest {
   /// Keys or sections of the ini that no component reads are an error naming file and line
   /// (checked_config.h); with this they are warnings in the summary instead.
   bool allow_unknown_keys = false;
+  /// A map folder of an earlier run (map.json, keyframes.bin): localize each sweep in it instead of
+  /// mapping (issue 22). The odometry still deskews and bridges sweeps that are not localized; no keyframe
+  /// graph, loop closure or maps are made; trajectory.tum holds the poses in the prior map's frame and
+  /// localization.csv each sweep's status and confidence. Throws naming the file for an older or foreign folder.
+  std::string prior_map_dir;
 };
 
 struct MapOutcome {

@@ -26,7 +26,10 @@ enum class Status {
   NonFiniteInput,         ///< NaN/Inf in the source points or in the initial guess
   TooFewCorrespondences,  ///< fewer than Params::min_inliers pairs within reach
   Diverged,               ///< correction beyond Params::max_correction_m, or a singular system
-  MethodMismatch          ///< target was built for another method (e.g. no normals / no NDT grid)
+  MethodMismatch,         ///< target was built for another method (e.g. no normals / no NDT grid)
+  NoConsensus,            ///< global registration: no pose supported by enough feature correspondences
+  Ambiguous,              ///< global registration: another pose far away is supported almost as well
+  LowOverlap              ///< global registration: the refined pose leaves too few source points paired
 };
 std::string toString(Status s);
 
@@ -57,6 +60,9 @@ struct RegistrationResult {
   int iterations = 0;                     ///< total over NDT levels [-]
   int inliers = 0;                        ///< correspondences at the final estimate [-]
   double fitness = 0;                     ///< inlier RMSE (point-to-point distance) [m]
+  /// Global registration (global_registration.h): 1 - support of the best rival pose / the pose's
+  /// support, in [0, 1]. Local methods (which start from a guess) leave it 0 [-].
+  double confidence = 0;
   Eigen::Matrix<double, 6, 6> information = Eigen::Matrix<double, 6, 6>::Zero();  ///< [1/m^2, 1/rad^2]
   Degeneracy degeneracy;
 };
