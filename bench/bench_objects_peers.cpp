@@ -21,20 +21,8 @@ using namespace roadslam::objects;
 
 namespace {
 
-struct Sweep {
-  Scan scan;
-  preprocess::GroundLabels g;
-};
-
-const Sweep& sweep() {
-  static const Sweep s = [] {
-    Sweep w;
-    w.scan = test::castSweep(test::streetScene());
-    w.g = preprocess::segmentGroundWithHeights(w.scan.points, ClusterParams{}.ground);
-    return w;
-  }();
-  return s;
-}
+using Sweep = test::LabelledSweep;
+const Sweep& sweep() { return test::streetSweep(); }
 
 /// The points segmentObjects clusters: non-ground, within the heights and the x-y range (its filter).
 pcl::PointCloud<pcl::PointXYZ>::Ptr candidates(const Sweep& s, const ClusterParams& p) {

@@ -12,20 +12,8 @@ using namespace roadslam::objects;
 
 namespace {
 
-struct Sweep {
-  Scan scan;
-  preprocess::GroundLabels g;
-};
-
-const Sweep& sweep() {
-  static const Sweep s = [] {
-    Sweep w;
-    w.scan = test::castSweep(test::streetScene());
-    w.g = preprocess::segmentGroundWithHeights(w.scan.points, ClusterParams{}.ground);
-    return w;
-  }();
-  return s;
-}
+using Sweep = test::LabelledSweep;
+const Sweep& sweep() { return test::streetSweep(); }
 
 void BM_GroundLabels(benchmark::State& st) {
   const auto& s = sweep();

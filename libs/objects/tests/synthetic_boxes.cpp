@@ -1,5 +1,7 @@
 #include "synthetic_boxes.h"
 
+#include "roadslam/objects/params.h"
+
 #include <cmath>
 #include <limits>
 
@@ -52,6 +54,16 @@ std::vector<SynthBox> streetScene() {
   return {{8, 4, 0, 4.5, 1.8, 1.5},     {16, 4.2, 0.05, 4.2, 1.8, 1.4}, {25, 4, 0, 4.8, 1.9, 1.6},
           {12, -3.5, M_PI, 4.5, 1.8, 1.5}, {-10, -4, 0.3, 4.4, 1.8, 1.5}, {-20, 4, -0.2, 5.0, 2.0, 1.8},
           {5, -12, 1.2, 4.5, 1.8, 1.5},  {-6, 10, 0.7, 0.6, 0.6, 1.8}};
+}
+
+const LabelledSweep& streetSweep() {
+  static const LabelledSweep s = [] {
+    LabelledSweep w;
+    w.scan = castSweep(streetScene());
+    w.g = preprocess::segmentGroundWithHeights(w.scan.points, ClusterParams{}.ground);
+    return w;
+  }();
+  return s;
 }
 
 }  // namespace roadslam::objects::test

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "roadslam/common/scan.h"
+#include "roadslam/preprocess/ground_segmentation.h"
 
 namespace roadslam::objects::test {
 
@@ -17,5 +18,13 @@ Scan castSweep(const std::vector<SynthBox>& boxes, int azimuth_steps = 1800, dou
 
 /// A street: parked and moving cars on both sides (8 boxes).
 std::vector<SynthBox> streetScene();
+
+/// The street cast into one sweep with its ground labels (ClusterParams' defaults), made once: the
+/// benchmarks' input.
+struct LabelledSweep {
+  Scan scan;
+  preprocess::GroundLabels g;
+};
+const LabelledSweep& streetSweep();
 
 }  // namespace roadslam::objects::test

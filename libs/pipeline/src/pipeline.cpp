@@ -55,8 +55,6 @@ Pipeline::Pipeline(std::unique_ptr<sources::ScanSource> source, Stages stages)
 
 Pipeline::~Pipeline() = default;
 
-bool Pipeline::finished() const { return source_->finished(); }
-
 /// Keyframes go to the OctoMap once older than octomap_delay_s (every keyframe when \p flush); after a
 /// loop, the OctoMap is rebuilt from the keyframes decided on so far at their moved poses.
 void Pipeline::feedOctoMap(bool loop, double now_s, bool flush) {

@@ -4,6 +4,18 @@
 #include <stdexcept>
 
 namespace roadslam::sources {
+namespace {
+// Adds \p b's counters to \p a (stamps are the caller's).
+void addCounts(SourceStats& a, const SourceStats& b) {
+  a.packets += b.packets;
+  a.data_packets += b.data_packets;
+  a.position_packets += b.position_packets;
+  a.malformed_packets += b.malformed_packets;
+  a.skipped_packets += b.skipped_packets;
+  a.missing_packets += b.missing_packets;
+  a.kernel_drops += b.kernel_drops;
+}
+}  // namespace
 
 SegmentedPacketSource::SegmentedPacketSource(std::vector<std::string> segments, const PortConfig& ports)
     : segments_(std::move(segments)), ports_(ports) {
@@ -21,14 +33,7 @@ std::string SegmentedPacketSource::describe() const {
 bool SegmentedPacketSource::finished() const { return !source_; }
 
 void SegmentedPacketSource::closeCurrent() {
-  const SourceStats& s = source_->stats();
-  done_.packets += s.packets;
-  done_.data_packets += s.data_packets;
-  done_.position_packets += s.position_packets;
-  done_.malformed_packets += s.malformed_packets;
-  done_.skipped_packets += s.skipped_packets;
-  done_.missing_packets += s.missing_packets;
-  done_.kernel_drops += s.kernel_drops;
+  addCounts(done_, source_->stats());
   for (auto& f : source_->takeDecodedFixes()) fixes_.push_back(f);
   if (!source_->errorMessage().empty())
     error_ += (error_.empty() ? "" : "; ") + source_->errorMessage();
@@ -40,17 +45,11 @@ std::optional<velodyne::RawPacket> SegmentedPacketSource::next() {
   while (source_) {
     auto p = source_->next();
     const SourceStats& s = source_->stats();
-    const double first = stats_.packets ? stats_.first_stamp_s : 0.0;
+    const double first = stats_.packets ? stats_.first_stamp_s : 0.0, last = stats_.last_stamp_s;
     stats_ = done_;
-    stats_.packets += s.packets;
-    stats_.data_packets += s.data_packets;
-    stats_.position_packets += s.position_packets;
-    stats_.malformed_packets += s.malformed_packets;
-    stats_.skipped_packets += s.skipped_packets;
-    stats_.missing_packets += s.missing_packets;
-    stats_.kernel_drops += s.kernel_drops;
+    addCounts(stats_, s);
     stats_.first_stamp_s = first ? first : s.first_stamp_s;
-    if (s.packets) stats_.last_stamp_s = s.last_stamp_s;
+    stats_.last_stamp_s = s.packets ? s.last_stamp_s : last;  // a new segment has none yet
     if (p) return p;
     if (!source_->finished()) return std::nullopt;
     closeCurrent();

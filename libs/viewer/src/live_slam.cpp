@@ -75,7 +75,7 @@ void LiveSlam::run(Impl& impl) {
   try {
     while (!stop_) {
       const auto f = impl.pipe->next();
-      if (!f && impl.pipe->finished()) break;
+      if (!f && impl.pipe->source().finished()) break;
       if (!f) continue;  // live: no sweep ready yet
       const auto& r = *f->pose.odometry;
       FrameResult out;

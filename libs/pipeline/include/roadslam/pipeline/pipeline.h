@@ -85,9 +85,6 @@ class Pipeline {
   /// came within the source's timeout: source().finished() tells them apart). Per-sweep problems come
   /// back in the frame (no pose, a failed registration); only a broken invariant throws.
   std::optional<PipelineFrame> next();
-  /// True once the source is exhausted (a live source: after it was closed and drained); a nullopt
-  /// from next() before that only means no sweep was ready yet.
-  bool finished() const;
 
   /// Hands the OctoMap the keyframes its delay still holds back (Stages::octomap_delay_s); next()
   /// does it at the end of the source, a job that stops early calls it.
