@@ -85,6 +85,17 @@ bool poseAt(const datasets::Trajectory& tr, double t, Eigen::Isometry3d& T) {
   return true;
 }
 
+/// T_map_world at \p t: the run's pose (\p est, T_map_lidar) composed with the GT's inverse (\p gt,
+/// T_world_lidar), both at \p t clamped into the run's and the GT's spans.
+Eigen::Isometry3d mapFromWorld(const datasets::Trajectory& gt, const datasets::Trajectory& est, double t) {
+  const double te = std::clamp(t, est.stamps_s.front(), est.stamps_s.back());
+  const double tg = gt.stamps_s.empty() ? te : std::clamp(te, gt.stamps_s.front(), gt.stamps_s.back());
+  Eigen::Isometry3d T_map_lidar, T_world_lidar;
+  poseAt(est, te, T_map_lidar);
+  if (!poseAt(gt, tg, T_world_lidar)) T_world_lidar = Eigen::Isometry3d::Identity();
+  return T_map_lidar * T_world_lidar.inverse();
+}
+
 /// tracks.csv rows grouped by their time (rounded to the microsecond).
 std::map<long long, std::vector<Hyp>> readTracks(const std::string& path) {
   std::ifstream f(path);
@@ -271,8 +282,7 @@ GhostCount countGhostsAmong(const std::string& gt_objects_json, const std::strin
   if (est.poses.empty()) throw std::runtime_error("'" + run_trajectory_tum + "' holds no pose");
   Eigen::Isometry3d T_world_lidar;
   if (!poseAt(gt, est.stamps_s[0], T_world_lidar)) throw std::runtime_error("the GT trajectory does not cover the run's first pose");
-  const Eigen::Isometry3d T_world_map = T_world_lidar * est.poses[0].inverse();
-  // swept boxes on a 1 m grid of the world for a quick lookup
+  // swept boxes in the map frame on a 1 m grid for a quick lookup
   struct SweptBox {
     double x, y, z0, z1, c, s, hl, hw;
   };
@@ -281,8 +291,14 @@ GhostCount countGhostsAmong(const std::string& gt_objects_json, const std::strin
     const double hl = 0.5 * c["length_m"].get<double>() + margin_m, hw = 0.5 * c["width_m"].get<double>() + margin_m;
     const double h = c["height_m"].get<double>();
     for (const auto& q : c["track"]) {
-      const SweptBox b{q[1].get<double>(), q[2].get<double>(), q[3].get<double>() + margin_m, q[3].get<double>() + h,
-                       std::cos(q[4].get<double>()), std::sin(q[4].get<double>()), hl, hw};
+      // the car's points at time t entered the map through the run's pose of that time, so its box is
+      // carried into the map by T_map_world(t) = T_map_lidar(t) * T_world_lidar_gt(t)^-1: drift then
+      // moves the ghosts and the box together (times outside the run take its nearest end)
+      const Eigen::Isometry3d T_map_world = mapFromWorld(gt, est, q[0].get<double>());
+      const Eigen::Vector3d centre = T_map_world * Eigen::Vector3d(q[1].get<double>(), q[2].get<double>(), q[3].get<double>());
+      const Eigen::Vector3d axis = T_map_world.linear() * Eigen::Vector3d(std::cos(q[4].get<double>()), std::sin(q[4].get<double>()), 0);
+      const double yaw = std::atan2(axis.y(), axis.x());
+      const SweptBox b{centre.x(), centre.y(), centre.z() + margin_m, centre.z() + h, std::cos(yaw), std::sin(yaw), hl, hw};
       const double r = std::hypot(hl, hw);
       for (long gx = static_cast<long>(std::floor(b.x - r)); gx <= static_cast<long>(std::floor(b.x + r)); ++gx) {
         for (long gy = static_cast<long>(std::floor(b.y - r)); gy <= static_cast<long>(std::floor(b.y + r)); ++gy) grid[{gx, gy}].push_back(b);
@@ -292,12 +308,12 @@ GhostCount countGhostsAmong(const std::string& gt_objects_json, const std::strin
   GhostCount out;
   out.map_points = points_map.size();
   for (const auto& p : points_map) {
-    const Eigen::Vector3d w = T_world_map * p.cast<double>();
-    const auto it = grid.find({static_cast<long>(std::floor(w.x())), static_cast<long>(std::floor(w.y()))});
+    const Eigen::Vector3d m = p.cast<double>();
+    const auto it = grid.find({static_cast<long>(std::floor(m.x())), static_cast<long>(std::floor(m.y()))});
     if (it == grid.end()) continue;
     for (const SweptBox& b : it->second) {
-      const double dx = w.x() - b.x, dy = w.y() - b.y;
-      if (std::abs(b.c * dx + b.s * dy) <= b.hl && std::abs(-b.s * dx + b.c * dy) <= b.hw && w.z() >= b.z0 && w.z() <= b.z1) {
+      const double dx = m.x() - b.x, dy = m.y() - b.y;
+      if (std::abs(b.c * dx + b.s * dy) <= b.hl && std::abs(-b.s * dx + b.c * dy) <= b.hw && m.z() >= b.z0 && m.z() <= b.z1) {
         ++out.ghost_points;
         break;
       }

@@ -176,7 +176,78 @@ void Tracker::predictCtrv(Track& tr, double dt) const {
   ctrvView(tr);
 }
 
-void Tracker::correct(Track& tr, const Eigen::Vector2d& z, double dt) const {
+void Tracker::predict(double t) {
+  const double dt = std::max(0.0, t - t_);
+  Eigen::Matrix4d F = Eigen::Matrix4d::Identity();
+  F(0, 2) = F(1, 3) = dt;
+  const double q = p_.accel_sigma_mps2 * p_.accel_sigma_mps2;
+  // discrete white-acceleration noise: G q G^T with G = [dt^2/2, dt]
+  Eigen::Matrix4d Q = Eigen::Matrix4d::Zero();
+  const double a = dt * dt * dt * dt / 4 * q, b = dt * dt * dt / 2 * q, c = dt * dt * q;
+  Q(0, 0) = Q(1, 1) = a;
+  Q(0, 2) = Q(2, 0) = Q(1, 3) = Q(3, 1) = b;
+  Q(2, 2) = Q(3, 3) = c;
+  for (auto* list : {&tracks_, &lost_}) {
+    for (Track& tr : *list) {
+      if (p_.motion_model == MotionModel::Ctrv) {
+        if (dt > 0) predictCtrv(tr, dt);
+        continue;
+      }
+      tr.x = F * tr.x;
+      tr.P = F * tr.P * F.transpose() + Q;
+    }
+  }
+  t_ = t;
+}
+
+void Tracker::endAll(double t, const std::string& reason) {
+  for (Track& tr : tracks_) ended_.push_back({tr, reason, t});
+  for (Track& tr : lost_) tr.state = TrackState::Confirmed, ended_.push_back({tr, reason, t});
+  tracks_.clear();
+  lost_.clear();
+}
+
+void Tracker::prune(double t, const std::string& reason) {
+  // a lost track that took a detection is alive again; one unseen for reid_window_s ends "missed"
+  std::vector<Track> keep_lost;
+  for (Track& tr : lost_) {
+    if (tr.misses == 0) {
+      tracks_.push_back(tr);
+    } else if (t - tr.t_last > p_.reid_window_s || !tr.x.allFinite()) {
+      ended_.push_back({tr, tr.x.allFinite() ? "missed" : "diverged", t});
+    } else {
+      keep_lost.push_back(tr);
+    }
+  }
+  lost_ = std::move(keep_lost);
+  std::vector<Track> keep;
+  for (Track& tr : tracks_) {
+    const bool dead = tr.state == TrackState::Tentative ? tr.misses > p_.tentative_max_misses : tr.misses > p_.max_misses;
+    if (dead && tr.x.allFinite() && tr.state == TrackState::Confirmed && reason == "missed" && p_.reid_window_s > 0) {
+      lost_.push_back(tr);  // out of sight (hidden, or not segmented): kept for re-identification
+    } else if (dead || !tr.x.allFinite()) {
+      ended_.push_back({tr, tr.x.allFinite() ? reason : "diverged", t});
+    } else {
+      keep.push_back(tr);
+    }
+  }
+  tracks_ = std::move(keep);
+}
+
+void Tracker::coast(double t, const std::string& reason) {
+  if (!std::isfinite(t)) return;
+  if (!started_) started_ = true, t_ = t;
+  if (t - t_ > p_.max_dt_s || t < t_) endAll(t, "gap");
+  predict(t);
+  for (Track& tr : tracks_) ++tr.misses, tr.last_detection = -1;
+  for (Track& tr : lost_) ++tr.misses;
+  prune(t, reason);
+}
+
+namespace {
+
+/// Kalman update of \p tr with the detection centre \p z seen \p dt after the state's time (either model).
+void correct(Track& tr, const Eigen::Vector2d& z, double dt, const TrackerParams& p_) {
   // The detection is where the object was when the beam swept it, dt after the state's time:
   // h(x) = position + dt * velocity (CV: H = [I, dt I], linear; CTRV: its Jacobian).
   const Eigen::Matrix2d R = Eigen::Matrix2d::Identity() * p_.meas_sigma_m * p_.meas_sigma_m;
@@ -201,54 +272,98 @@ void Tracker::correct(Track& tr, const Eigen::Vector2d& z, double dt) const {
   tr.P = (Eigen::Matrix4d::Identity() - K * H) * tr.P;
 }
 
-void Tracker::predict(double t) {
-  const double dt = std::max(0.0, t - t_);
-  Eigen::Matrix4d F = Eigen::Matrix4d::Identity();
-  F(0, 2) = F(1, 3) = dt;
-  const double q = p_.accel_sigma_mps2 * p_.accel_sigma_mps2;
-  // discrete white-acceleration noise: G q G^T with G = [dt^2/2, dt]
-  Eigen::Matrix4d Q = Eigen::Matrix4d::Zero();
-  const double a = dt * dt * dt * dt / 4 * q, b = dt * dt * dt / 2 * q, c = dt * dt * q;
-  Q(0, 0) = Q(1, 1) = a;
-  Q(0, 2) = Q(2, 0) = Q(1, 3) = Q(3, 1) = b;
-  Q(2, 2) = Q(3, 3) = c;
-  for (Track& tr : tracks_) {
-    if (p_.motion_model == MotionModel::Ctrv) {
-      if (dt > 0) predictCtrv(tr, dt);
-      continue;
-    }
-    tr.x = F * tr.x;
-    tr.P = F * tr.P * F.transpose() + Q;
-  }
-  t_ = t;
-}
-
-void Tracker::endAll(double t, const std::string& reason) {
-  for (Track& tr : tracks_) ended_.push_back({tr, reason, t});
-  tracks_.clear();
-}
-
-void Tracker::prune(double t, const std::string& reason) {
-  std::vector<Track> keep;
-  for (Track& tr : tracks_) {
-    const bool dead = tr.state == TrackState::Tentative ? tr.misses > p_.tentative_max_misses : tr.misses > p_.max_misses;
-    if (dead || !tr.x.allFinite()) {
-      ended_.push_back({tr, tr.x.allFinite() ? reason : "diverged", t});
-    } else {
-      keep.push_back(tr);
+/// Gated association costs of \p tracks against \p dets (x-y distance of the completed detection centre
+/// to the track's prediction at the detection's time, plus the extent growth); \p comp: the completions.
+/// A lost track (TrackerParams::reid_window_s) has the wider Euclidean gate reid_gate_m; the gate in
+/// standard deviations grows with its coasted covariance.
+std::vector<std::vector<double>> associationCosts(const std::vector<Track*>& tracks, const std::vector<Detection>& dets,
+                                                  const Eigen::Vector2d& s, const TrackerParams& p,
+                                                  std::vector<std::vector<Completed>>& comp) {
+  std::vector<std::vector<double>> cost(tracks.size(), std::vector<double>(dets.size(), kUnassignable));
+  comp.assign(tracks.size(), std::vector<Completed>(dets.size()));
+  const Eigen::Matrix2d R = Eigen::Matrix2d::Identity() * p.meas_sigma_m * p.meas_sigma_m;
+  for (size_t i = 0; i < tracks.size(); ++i) {
+    const Track& tr = *tracks[i];
+    const double gate = tr.state == TrackState::Confirmed && tr.misses > p.max_misses ? std::max(p.gate_m, p.reid_gate_m) : p.gate_m;
+    const Eigen::Matrix2d S_inv = (tr.P.topLeftCorner<2, 2>() + R).inverse();  // innovation covariance
+    for (size_t j = 0; j < dets.size(); ++j) {
+      // completion moves a centre by at most half the capped extents: farther boxes cannot be in the gate
+      if ((dets[j].centre - tr.x.head<2>()).norm() > gate + p.max_extent_growth_m) continue;
+      comp[i][j] = completeFor(tr, dets[j], s, p);
+      const Eigen::Vector2d r = comp[i][j].centre - (tr.x.head<2>() + dets[j].dt * tr.x.tail<2>());
+      const double d = r.norm(), m2 = r.dot(S_inv * r);
+      if (d > gate || m2 > p.gate_sigma * p.gate_sigma) continue;
+      // extents seen now against the track's (capped: a car seen whole once is a car seen in part now)
+      const double dl = std::max(0.0, comp[i][j].along - std::min(tr.length, p.max_extent_growth_m)) +
+                        std::max(0.0, comp[i][j].across - std::min(tr.width, p.max_extent_growth_m));
+      cost[i][j] = d + p.size_weight * dl;
     }
   }
-  tracks_ = std::move(keep);
+  return cost;
 }
 
-void Tracker::coast(double t, const std::string& reason) {
-  if (!std::isfinite(t)) return;
-  if (!started_) started_ = true, t_ = t;
-  if (t - t_ > p_.max_dt_s || t < t_) endAll(t, "gap");
-  predict(t);
-  for (Track& tr : tracks_) ++tr.misses, tr.last_detection = -1;
-  prune(t, reason);
+/// The static / moving label of a confirmed track (TrackerParams::moving_*), with hysteresis: it
+/// stops moving below half the speed; a track never seen car-sized is never moving.
+void label(Track& tr, double t, const TrackerParams& p) {
+  if (tr.state != TrackState::Confirmed) return;
+  const double v = tr.speed(), travel = (tr.x.head<2>() - tr.birth_xy).norm();
+  const double lo = std::min(tr.length, tr.width), hi = std::max(tr.length, tr.width);
+  const bool car_sized = hi <= p.moving_max_length_m && lo <= p.moving_max_width_m && lo >= p.moving_min_width_m &&
+                         tr.top_height <= p.moving_max_height_m;
+  if (v > p.moving_speed_mps && travel > p.moving_min_travel_m && tr.hits >= p.moving_min_hits && car_sized) {
+    if (tr.moving_since < 0) tr.moving_since = t;
+    tr.moving = true;
+  }
+  if (v < 0.5 * p.moving_speed_mps || !car_sized) tr.moving = false;
+  if (!tr.moving) return;
+  // the heading follows the velocity; extents swap when it turns by more than 45 deg off them
+  const double h = std::atan2(tr.x(3), tr.x(2));
+  if (std::abs(std::sin(wrapPi(h - tr.heading))) > std::sqrt(0.5)) std::swap(tr.length, tr.width);
+  tr.heading = h;
 }
+
+/// \p tr takes the detection \p d (index \p j) completed as \p c, seen from \p s at \p t.
+void take(Track& tr, const Detection& d, const Completed& c, const Eigen::Vector2d& s, double t, int j, const TrackerParams& p_) {
+  correct(tr, c.centre, d.dt, p_);
+  tr.length = std::max(tr.length, c.along);
+  tr.width = std::max(tr.width, c.across);
+  growToCarBehindFace(tr, d, s, p_);
+  ++tr.hits, tr.misses = 0, tr.t_last = t, tr.last_detection = j;
+  tr.z_min = d.z_min, tr.z_max = d.z_max;
+  remember(tr, d, t);
+  tr.top_height = std::max(tr.top_height, d.top);
+  if (tr.hits >= p_.confirm_hits) tr.state = TrackState::Confirmed;
+  label(tr, t, p_);
+}
+
+/// A tentative track \p id born on the detection \p d (index \p j) seen from \p s at \p t.
+Track born(int id, const Detection& d, const Eigen::Vector2d& s, double t, int j, const TrackerParams& p_) {
+  const double m2 = p_.meas_sigma_m * p_.meas_sigma_m, v2 = p_.init_speed_sigma_mps * p_.init_speed_sigma_mps;
+  Track tr;
+  tr.id = id;
+  tr.x << d.centre, 0, 0;
+  tr.P = Eigen::Vector4d(m2, m2, v2, v2).asDiagonal();
+  tr.heading = d.yaw;
+  tr.s << d.centre, 0, d.yaw, 0;
+  tr.S = Vec5(m2, m2, v2, kInitHeadingSigma_rad * kInitHeadingSigma_rad,
+              p_.ctrv.init_yaw_rate_sigma_radps * p_.ctrv.init_yaw_rate_sigma_radps)
+             .asDiagonal();
+  const Completed c = complete(d, tr.heading, 0, 0, s);
+  tr.length = c.along, tr.width = c.across;
+  // a car's face: its centre is behind it, and it drives along the line of sight (CTRV's heading)
+  Eigen::Vector2d centre = d.centre, los;
+  if (isCarFace(d, s, p_, &centre, &los)) tr.s(3) = std::atan2(los.y(), los.x());
+  tr.x.head<2>() = tr.s.head<2>() = centre;
+  growToCarBehindFace(tr, d, s, p_);
+  if (p_.motion_model == MotionModel::Ctrv) ctrvView(tr);
+  tr.z_min = d.z_min, tr.z_max = d.z_max, tr.top_height = d.top;
+  tr.hits = 1, tr.t_birth = tr.t_last = t, tr.birth_xy = tr.x.head<2>(), tr.last_detection = j;
+  remember(tr, d, t);
+  if (tr.hits >= p_.confirm_hits) tr.state = TrackState::Confirmed;
+  return tr;
+}
+
+}  // namespace
 
 void Tracker::update(double t, const Eigen::Isometry3d& T_map_lidar, const std::vector<Object>& objects) {
   if (!std::isfinite(t) || !T_map_lidar.matrix().allFinite()) return coast(t, "pose");
@@ -259,96 +374,27 @@ void Tracker::update(double t, const Eigen::Isometry3d& T_map_lidar, const std::
   std::vector<Detection> dets;
   dets.reserve(objects.size());
   for (const Object& o : objects) dets.push_back(toMap(o, T_map_lidar));  // finite: segmentObjects drops NaN points
-  // Gated costs: x-y distance of the completed detection centre to the track's prediction.
-  std::vector<std::vector<double>> cost(tracks_.size(), std::vector<double>(dets.size(), kUnassignable));
-  std::vector<std::vector<Completed>> comp(tracks_.size(), std::vector<Completed>(dets.size()));
-  const Eigen::Matrix2d R = Eigen::Matrix2d::Identity() * p_.meas_sigma_m * p_.meas_sigma_m;
-  for (size_t i = 0; i < tracks_.size(); ++i) {
-    const Track& tr = tracks_[i];
-    const Eigen::Matrix2d S_inv = (tr.P.topLeftCorner<2, 2>() + R).inverse();  // innovation covariance
-    for (size_t j = 0; j < dets.size(); ++j) {
-      // completion moves a centre by at most half the capped extents: farther boxes cannot be in the gate
-      if ((dets[j].centre - tr.x.head<2>()).norm() > p_.gate_m + p_.max_extent_growth_m) continue;
-      comp[i][j] = completeFor(tr, dets[j], s, p_);
-      const Eigen::Vector2d r = comp[i][j].centre - (tr.x.head<2>() + dets[j].dt * tr.x.tail<2>());
-      const double d = r.norm(), m2 = r.dot(S_inv * r);
-      if (d > p_.gate_m || m2 > p_.gate_sigma * p_.gate_sigma) continue;
-      // extents seen now against the track's (capped: a car seen whole once is a car seen in part now)
-      const double dl = std::max(0.0, comp[i][j].along - std::min(tr.length, p_.max_extent_growth_m)) +
-                        std::max(0.0, comp[i][j].across - std::min(tr.width, p_.max_extent_growth_m));
-      cost[i][j] = d + p_.size_weight * dl;
-    }
-  }
+  // the alive tracks, then the lost ones (a detection they take brings them back under their id)
+  std::vector<Track*> all;
+  for (Track& tr : tracks_) all.push_back(&tr);
+  for (Track& tr : lost_) all.push_back(&tr);
+  std::vector<std::vector<Completed>> comp;
+  const auto cost = associationCosts(all, dets, s, p_, comp);
   const std::vector<int> match = hungarian(cost);
   std::vector<char> taken(dets.size(), false);
-  for (size_t i = 0; i < tracks_.size(); ++i) {
-    Track& tr = tracks_[i];
+  for (size_t i = 0; i < all.size(); ++i) {
     const int j = match[i];
-    tr.last_detection = -1;
+    all[i]->last_detection = -1;
     if (j < 0 || cost[i][static_cast<size_t>(j)] >= kUnassignable) {
-      ++tr.misses;
+      ++all[i]->misses;
       continue;
     }
     taken[static_cast<size_t>(j)] = true;
-    const Completed& c = comp[i][static_cast<size_t>(j)];
-    correct(tr, c.centre, dets[static_cast<size_t>(j)].dt);
-    tr.length = std::max(tr.length, c.along);
-    tr.width = std::max(tr.width, c.across);
-    growToCarBehindFace(tr, dets[static_cast<size_t>(j)], s, p_);
-    ++tr.hits, tr.misses = 0, tr.t_last = t, tr.last_detection = j;
-    tr.z_min = dets[static_cast<size_t>(j)].z_min, tr.z_max = dets[static_cast<size_t>(j)].z_max;
-    remember(tr, dets[static_cast<size_t>(j)], t);
-    tr.top_height = std::max(tr.top_height, dets[static_cast<size_t>(j)].top);
-    if (tr.hits >= p_.confirm_hits) tr.state = TrackState::Confirmed;
-    const double v = tr.speed();
-    const double travel = (tr.x.head<2>() - tr.birth_xy).norm();
-    if (tr.state == TrackState::Confirmed) {
-      const bool car_sized = std::max(tr.length, tr.width) <= p_.moving_max_length_m &&
-                             std::min(tr.length, tr.width) <= p_.moving_max_width_m &&
-                             std::min(tr.length, tr.width) >= p_.moving_min_width_m &&
-                             tr.top_height <= p_.moving_max_height_m;
-      if (v > p_.moving_speed_mps && travel > p_.moving_min_travel_m && tr.hits >= p_.moving_min_hits && car_sized) {
-        if (tr.moving_since < 0) tr.moving_since = t;
-        tr.moving = true;
-      }
-      if (v < 0.5 * p_.moving_speed_mps || !car_sized) tr.moving = false;
-    }
-    if (tr.moving) {
-      // the heading follows the velocity; extents swap when it turns by more than 45 deg off them
-      const double h = std::atan2(tr.x(3), tr.x(2));
-      if (std::abs(std::sin(wrapPi(h - tr.heading))) > std::sqrt(0.5)) std::swap(tr.length, tr.width);
-      tr.heading = h;
-    }
+    take(*all[i], dets[static_cast<size_t>(j)], comp[i][static_cast<size_t>(j)], s, t, j, p_);
   }
   prune(t, "missed");
   for (size_t j = 0; j < dets.size(); ++j) {
-    if (taken[j]) continue;
-    Track tr;
-    tr.id = next_id_++;
-    tr.x << dets[j].centre, 0, 0;
-    tr.P = Eigen::Vector4d(p_.meas_sigma_m * p_.meas_sigma_m, p_.meas_sigma_m * p_.meas_sigma_m,
-                           p_.init_speed_sigma_mps * p_.init_speed_sigma_mps,
-                           p_.init_speed_sigma_mps * p_.init_speed_sigma_mps)
-               .asDiagonal();
-    tr.heading = dets[j].yaw;
-    tr.s << dets[j].centre, 0, dets[j].yaw, 0;
-    tr.S = Vec5(p_.meas_sigma_m * p_.meas_sigma_m, p_.meas_sigma_m * p_.meas_sigma_m,
-                p_.init_speed_sigma_mps * p_.init_speed_sigma_mps, kInitHeadingSigma_rad * kInitHeadingSigma_rad,
-                p_.ctrv.init_yaw_rate_sigma_radps * p_.ctrv.init_yaw_rate_sigma_radps)
-               .asDiagonal();
-    const Completed c = complete(dets[j], tr.heading, 0, 0, s);
-    tr.length = c.along, tr.width = c.across;
-    // a car's face: its centre is behind it, and it drives along the line of sight (CTRV's heading)
-    Eigen::Vector2d centre = dets[j].centre, los;
-    if (isCarFace(dets[j], s, p_, &centre, &los)) tr.s(3) = std::atan2(los.y(), los.x());
-    tr.x.head<2>() = tr.s.head<2>() = centre;
-    growToCarBehindFace(tr, dets[j], s, p_);
-    if (p_.motion_model == MotionModel::Ctrv) ctrvView(tr);
-    tr.z_min = dets[j].z_min, tr.z_max = dets[j].z_max, tr.top_height = dets[j].top;
-    tr.hits = 1, tr.t_birth = tr.t_last = t, tr.birth_xy = tr.x.head<2>(), tr.last_detection = static_cast<int>(j);
-    remember(tr, dets[j], t);
-    if (tr.hits >= p_.confirm_hits) tr.state = TrackState::Confirmed;
-    tracks_.push_back(tr);
+    if (!taken[j]) tracks_.push_back(born(next_id_++, dets[j], s, t, static_cast<int>(j), p_));
   }
 }
 

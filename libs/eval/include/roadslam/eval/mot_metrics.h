@@ -73,9 +73,12 @@ MotMetrics evaluateMotFiles(const std::string& gt_objects_json, const std::strin
 /// Ghost points of moving traffic in a map: points of \p map_ply (binary float xyz, map frame) that fall
 /// inside the path a moving car of \p gt_objects_json swept (its box at every 0.1 s GT sample, grown by
 /// \p margin_m, from \p margin_m above its ground to its roof). The moving cars drive on lanes where the
-/// simulator places nothing else, so every such point is left by a passing car. The map frame is
-/// placed in the world by the first pose of \p run_trajectory_tum (T_map_lidar) and the GT pose
-/// (\p gt_trajectory_tum) at that time; odometry drift moves the map against the lanes over long drives.
+/// simulator places nothing else, so every such point is left by a passing car. Each GT sample's box
+/// is carried into the map frame by the run's pose at its time (\p run_trajectory_tum, T_map_lidar)
+/// and the GT pose then (\p gt_trajectory_tum, T_world_lidar): T_map_world(t) = T_map_lidar(t) *
+/// T_world_lidar(t)^-1, because a car's points at t entered the map through the pose of t. So odometry
+/// drift moves a trail and its box together and does not count as ghosts (nor as their removal).
+/// Times outside the run take its nearest end's transform.
 struct GhostCount {
   size_t map_points = 0, ghost_points = 0;
 };

@@ -74,6 +74,10 @@ class Tracker {
   void coast(double t, const std::string& reason = "pose");
 
   const std::vector<Track>& tracks() const { return tracks_; }  ///< alive (tentative and confirmed)
+  /// Confirmed tracks unseen for more than max_misses sweeps and less than reid_window_s: out of
+  /// tracks() (and the outputs), still predicted and associated (a wider gate, reid_gate_m); one that
+  /// takes a detection is back in tracks() under its id.
+  const std::vector<Track>& lost() const { return lost_; }
   /// Tracks ended since the last takeEnded(); every track confirmed or not.
   std::vector<EndedTrack> takeEnded();
   const TrackerParams& params() const { return p_; }
@@ -81,13 +85,12 @@ class Tracker {
  private:
   void predict(double t);
   void predictCtrv(Track& tr, double dt) const;
-  /// Kalman update of \p tr with the detection centre \p z seen \p dt after the state's time (either model).
-  void correct(Track& tr, const Eigen::Vector2d& z, double dt) const;
   void endAll(double t, const std::string& reason);
   void prune(double t, const std::string& reason);
 
   TrackerParams p_;
   std::vector<Track> tracks_;
+  std::vector<Track> lost_;
   std::vector<EndedTrack> ended_;
   int next_id_ = 1;
   double t_ = 0;
