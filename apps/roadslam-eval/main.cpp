@@ -55,6 +55,8 @@ int main(int argc, char** argv) {
   objects->add_option("--speed-after", mp.speed_after_s, "speed error counted for tracks this old [s]");
   objects->add_option("--min-returns", mp.min_returns,
                       "GT cars with fewer lidar points in the turn (gt_objects.json returns) are don't care");
+  objects->add_option("--switch-gap", mp.switch_gap_s,
+                      "id switches of a car unmatched for longer are also counted apart (after a gap) [s]");
   std::string o_events;
   objects->add_option("--events", o_events, "also write every miss, false positive and id switch as CSV");
   objects->add_flag("--json", json, "print JSON instead of text");

@@ -65,6 +65,16 @@ TEST(MotMetrics, CountsMatchesSwitchesAndFalsePositivesOfKnownTracks) {
   EXPECT_EQ(m.speed_samples, 21u);
   EXPECT_NEAR(m.speed_error_mean_mps, 0.5, 1e-6);
   EXPECT_EQ(m.gt_cars_seen, 1u);
+  EXPECT_EQ(m.id_switches_after_gap, 0u);  // the car was matched the frame before (0.1 s)
+  eval::MotParams p;
+  p.switch_gap_s = 0.05, p.keep_events = true;
+  const auto tight = eval::evaluateMotFiles(d + "/gt_objects.json", d + "/gt_trajectory.tum", d, p);
+  EXPECT_EQ(tight.id_switches_after_gap, 1u);
+  for (const auto& e : tight.events) {
+    if (e.kind == "id_switch") {
+      EXPECT_NEAR(e.gap_s, 0.1, 1e-6);
+    }
+  }
   std::filesystem::remove_all(d);
 }
 

@@ -187,45 +187,27 @@ void Tracker::predict(double t) {
   Q(0, 0) = Q(1, 1) = a;
   Q(0, 2) = Q(2, 0) = Q(1, 3) = Q(3, 1) = b;
   Q(2, 2) = Q(3, 3) = c;
-  for (auto* list : {&tracks_, &lost_}) {
-    for (Track& tr : *list) {
-      if (p_.motion_model == MotionModel::Ctrv) {
-        if (dt > 0) predictCtrv(tr, dt);
-        continue;
-      }
-      tr.x = F * tr.x;
-      tr.P = F * tr.P * F.transpose() + Q;
+  for (Track& tr : tracks_) {
+    if (p_.motion_model == MotionModel::Ctrv) {
+      if (dt > 0) predictCtrv(tr, dt);
+      continue;
     }
+    tr.x = F * tr.x;
+    tr.P = F * tr.P * F.transpose() + Q;
   }
   t_ = t;
 }
 
 void Tracker::endAll(double t, const std::string& reason) {
   for (Track& tr : tracks_) ended_.push_back({tr, reason, t});
-  for (Track& tr : lost_) tr.state = TrackState::Confirmed, ended_.push_back({tr, reason, t});
   tracks_.clear();
-  lost_.clear();
 }
 
 void Tracker::prune(double t, const std::string& reason) {
-  // a lost track that took a detection is alive again; one unseen for reid_window_s ends "missed"
-  std::vector<Track> keep_lost;
-  for (Track& tr : lost_) {
-    if (tr.misses == 0) {
-      tracks_.push_back(tr);
-    } else if (t - tr.t_last > p_.reid_window_s || !tr.x.allFinite()) {
-      ended_.push_back({tr, tr.x.allFinite() ? "missed" : "diverged", t});
-    } else {
-      keep_lost.push_back(tr);
-    }
-  }
-  lost_ = std::move(keep_lost);
   std::vector<Track> keep;
   for (Track& tr : tracks_) {
     const bool dead = tr.state == TrackState::Tentative ? tr.misses > p_.tentative_max_misses : tr.misses > p_.max_misses;
-    if (dead && tr.x.allFinite() && tr.state == TrackState::Confirmed && reason == "missed" && p_.reid_window_s > 0) {
-      lost_.push_back(tr);  // out of sight (hidden, or not segmented): kept for re-identification
-    } else if (dead || !tr.x.allFinite()) {
+    if (dead || !tr.x.allFinite()) {
       ended_.push_back({tr, tr.x.allFinite() ? reason : "diverged", t});
     } else {
       keep.push_back(tr);
@@ -240,7 +222,6 @@ void Tracker::coast(double t, const std::string& reason) {
   if (t - t_ > p_.max_dt_s || t < t_) endAll(t, "gap");
   predict(t);
   for (Track& tr : tracks_) ++tr.misses, tr.last_detection = -1;
-  for (Track& tr : lost_) ++tr.misses;
   prune(t, reason);
 }
 
@@ -274,25 +255,22 @@ void correct(Track& tr, const Eigen::Vector2d& z, double dt, const TrackerParams
 
 /// Gated association costs of \p tracks against \p dets (x-y distance of the completed detection centre
 /// to the track's prediction at the detection's time, plus the extent growth); \p comp: the completions.
-/// A lost track (TrackerParams::reid_window_s) has the wider Euclidean gate reid_gate_m; the gate in
-/// standard deviations grows with its coasted covariance.
-std::vector<std::vector<double>> associationCosts(const std::vector<Track*>& tracks, const std::vector<Detection>& dets,
+std::vector<std::vector<double>> associationCosts(const std::vector<Track>& tracks, const std::vector<Detection>& dets,
                                                   const Eigen::Vector2d& s, const TrackerParams& p,
                                                   std::vector<std::vector<Completed>>& comp) {
   std::vector<std::vector<double>> cost(tracks.size(), std::vector<double>(dets.size(), kUnassignable));
   comp.assign(tracks.size(), std::vector<Completed>(dets.size()));
   const Eigen::Matrix2d R = Eigen::Matrix2d::Identity() * p.meas_sigma_m * p.meas_sigma_m;
   for (size_t i = 0; i < tracks.size(); ++i) {
-    const Track& tr = *tracks[i];
-    const double gate = tr.state == TrackState::Confirmed && tr.misses > p.max_misses ? std::max(p.gate_m, p.reid_gate_m) : p.gate_m;
+    const Track& tr = tracks[i];
     const Eigen::Matrix2d S_inv = (tr.P.topLeftCorner<2, 2>() + R).inverse();  // innovation covariance
     for (size_t j = 0; j < dets.size(); ++j) {
       // completion moves a centre by at most half the capped extents: farther boxes cannot be in the gate
-      if ((dets[j].centre - tr.x.head<2>()).norm() > gate + p.max_extent_growth_m) continue;
+      if ((dets[j].centre - tr.x.head<2>()).norm() > p.gate_m + p.max_extent_growth_m) continue;
       comp[i][j] = completeFor(tr, dets[j], s, p);
       const Eigen::Vector2d r = comp[i][j].centre - (tr.x.head<2>() + dets[j].dt * tr.x.tail<2>());
       const double d = r.norm(), m2 = r.dot(S_inv * r);
-      if (d > gate || m2 > p.gate_sigma * p.gate_sigma) continue;
+      if (d > p.gate_m || m2 > p.gate_sigma * p.gate_sigma) continue;
       // extents seen now against the track's (capped: a car seen whole once is a car seen in part now)
       const double dl = std::max(0.0, comp[i][j].along - std::min(tr.length, p.max_extent_growth_m)) +
                         std::max(0.0, comp[i][j].across - std::min(tr.width, p.max_extent_growth_m));
@@ -374,23 +352,19 @@ void Tracker::update(double t, const Eigen::Isometry3d& T_map_lidar, const std::
   std::vector<Detection> dets;
   dets.reserve(objects.size());
   for (const Object& o : objects) dets.push_back(toMap(o, T_map_lidar));  // finite: segmentObjects drops NaN points
-  // the alive tracks, then the lost ones (a detection they take brings them back under their id)
-  std::vector<Track*> all;
-  for (Track& tr : tracks_) all.push_back(&tr);
-  for (Track& tr : lost_) all.push_back(&tr);
   std::vector<std::vector<Completed>> comp;
-  const auto cost = associationCosts(all, dets, s, p_, comp);
+  const auto cost = associationCosts(tracks_, dets, s, p_, comp);
   const std::vector<int> match = hungarian(cost);
   std::vector<char> taken(dets.size(), false);
-  for (size_t i = 0; i < all.size(); ++i) {
+  for (size_t i = 0; i < tracks_.size(); ++i) {
     const int j = match[i];
-    all[i]->last_detection = -1;
+    tracks_[i].last_detection = -1;
     if (j < 0 || cost[i][static_cast<size_t>(j)] >= kUnassignable) {
-      ++all[i]->misses;
+      ++tracks_[i].misses;
       continue;
     }
     taken[static_cast<size_t>(j)] = true;
-    take(*all[i], dets[static_cast<size_t>(j)], comp[i][static_cast<size_t>(j)], s, t, j, p_);
+    take(tracks_[i], dets[static_cast<size_t>(j)], comp[i][static_cast<size_t>(j)], s, t, j, p_);
   }
   prune(t, "missed");
   for (size_t j = 0; j < dets.size(); ++j) {

@@ -89,12 +89,7 @@ struct TrackerParams {
   double meas_sigma_m = 0.25;            ///< detection position noise [m]
   double init_speed_sigma_mps = 10.0;    ///< speed uncertainty of a new track [m/s]
   int confirm_hits = 3;                  ///< hits that confirm a tentative track [-]
-  int max_misses = 5;                    ///< consecutive misses (sweeps) after which a confirmed track is lost [-]
-  /// A lost track is out of the outputs but still predicted and associated for this long after its last
-  /// detection: a car hidden for a moment comes back under its id (re-identification by its predicted
-  /// position); then it ends ("missed"). 0: a lost track ends at once [s]
-  double reid_window_s = 3.0;
-  double reid_gate_m = 5.0;              ///< association gate of a lost track (its gate in sigmas grows as it coasts) [m]
+  int max_misses = 5;                    ///< consecutive misses (sweeps) that end a confirmed track [-]
   /// consecutive misses a tentative track survives (a far car's face is seen every other sweep when
   /// one ring hits it too low for an object) [-]
   int tentative_max_misses = 1;

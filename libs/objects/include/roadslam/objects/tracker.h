@@ -74,10 +74,6 @@ class Tracker {
   void coast(double t, const std::string& reason = "pose");
 
   const std::vector<Track>& tracks() const { return tracks_; }  ///< alive (tentative and confirmed)
-  /// Confirmed tracks unseen for more than max_misses sweeps and less than reid_window_s: out of
-  /// tracks() (and the outputs), still predicted and associated (a wider gate, reid_gate_m); one that
-  /// takes a detection is back in tracks() under its id.
-  const std::vector<Track>& lost() const { return lost_; }
   /// Tracks ended since the last takeEnded(); every track confirmed or not.
   std::vector<EndedTrack> takeEnded();
   const TrackerParams& params() const { return p_; }
@@ -90,7 +86,6 @@ class Tracker {
 
   TrackerParams p_;
   std::vector<Track> tracks_;
-  std::vector<Track> lost_;
   std::vector<EndedTrack> ended_;
   int next_id_ = 1;
   double t_ = 0;
