@@ -2,6 +2,7 @@
 
 #include <mrpt/config/CConfigFileBase.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -49,6 +50,13 @@ void ClusterParams::fields(ParamTable& t) {
   t.num("removal_margin_m", removal_margin_m);
   t.num("map_delay_s", map_delay_s);
   t.num("retro_extrapolate_s", retro_extrapolate_s);
+  t.num("ground_max_bridge_m", ground_max_bridge_m);
+}
+
+preprocess::GroundSegParams ClusterParams::groundParams() const {
+  preprocess::GroundSegParams g = ground;
+  if (ground_max_bridge_m > 0) g.max_bridge_m = std::min(g.max_bridge_m, ground_max_bridge_m);
+  return g;
 }
 
 void ClusterParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, const std::string& s,
@@ -59,10 +67,10 @@ void ClusterParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, c
     throw std::runtime_error("[" + s + "] " + e.what());
   }
   if (azimuth_bins < 16 || azimuth_window < 1 || ring_window < 0 || cluster_distance_m <= 0 || min_points < 1 ||
-      dbscan_min_points < 1 || lshape_step_rad <= 0 || lshape_step_rad > M_PI / 4 || map_delay_s < 0 || retro_extrapolate_s < 0) {
+      dbscan_min_points < 1 || lshape_step_rad <= 0 || lshape_step_rad > M_PI / 4 || map_delay_s < 0 || retro_extrapolate_s < 0 || ground_max_bridge_m < 0) {
     throw std::runtime_error("[" + s + "] azimuth_bins >= 16, azimuth_window >= 1, ring_window >= 0, "
                              "cluster_distance_m > 0, min_points >= 1, dbscan_min_points >= 1, "
-                             "0 < lshape_step_deg <= 45, map_delay_s >= 0 and retro_extrapolate_s >= 0 are required");
+                             "0 < lshape_step_deg <= 45, map_delay_s, retro_extrapolate_s and ground_max_bridge_m >= 0 are required");
   }
   ground.loadFromConfigFile(c, ground_section);
 }

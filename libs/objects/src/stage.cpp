@@ -48,7 +48,7 @@ ObjectsFrame ObjectsStage::snapshot() const {
 
 ObjectsFrame ObjectsStage::process(const Scan& scan, const Eigen::Isometry3d& T_map_lidar, double t_s) {
   auto t0 = Clock::now();
-  const auto g = preprocess::segmentGroundWithHeights(scan.points, p_.ground);
+  const auto g = preprocess::segmentGroundWithHeights(scan.points, p_.groundParams());
   const double ms_ground = msSince(t0);
   t0 = Clock::now();
   SegmentationStats st;

@@ -58,6 +58,13 @@ struct ClusterParams {
   /// for an object) [s]
   double retro_extrapolate_s = 4.0;
   preprocess::GroundSegParams ground;    ///< ground labels: read from [preprocess] seg_* (the odometry's), not saved here
+  /// The objects' own ground labels let a new ground line bridge at most this far from the last ground
+  /// prototype (GroundSegParams::max_bridge_m, 30 m for the odometry): a far car's face, hit by one ring
+  /// (VLP-16 at 1.9 m: the -1 deg ring beyond the -3 deg ring's 36 m), is otherwise taken for a rise of
+  /// the road and labelled ground. 0: the [preprocess] value [m]
+  double ground_max_bridge_m = 8.0;
+  /// The ground parameters the objects use: \ref ground with ground_max_bridge_m.
+  preprocess::GroundSegParams groundParams() const;
 
   void fields(ParamTable& t);
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section = "objects",
