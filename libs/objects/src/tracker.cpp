@@ -68,7 +68,10 @@ Completed complete(const Detection& d, double h, double L, double W, const Eigen
     return std::abs(sensor - lo) < std::abs(sensor - hi) ? lo + 0.5 * full : hi - 0.5 * full;
   };
   Completed c;
-  c.along = hi_u - lo_u, c.across = hi_v - lo_v;
+  // the extents are the box's own, paired with the heading's axes by its orientation: the projections
+  // of a box turned off the heading (a car in a turn, its velocity lagging) overstate both
+  const bool aligned = std::abs(std::cos(d.yaw - h)) >= std::sqrt(0.5);
+  c.along = aligned ? d.length : d.width, c.across = aligned ? d.width : d.length;
   c.centre = centreOn(lo_u, hi_u, L, s.dot(u)) * u + centreOn(lo_v, hi_v, W, s.dot(v)) * v;
   return c;
 }
