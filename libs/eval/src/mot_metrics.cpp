@@ -278,7 +278,7 @@ MotMetrics evaluateMotFiles(const std::string& gt_objects_json, const std::strin
 
 GhostCount countGhostsAmong(const std::string& gt_objects_json, const std::string& gt_trajectory_tum,
                             const std::string& run_trajectory_tum, const std::vector<Eigen::Vector3f>& points_map,
-                            double margin_m) {
+                            double margin_m, double max_range_m) {
   std::ifstream fo(gt_objects_json);
   if (!fo) throw std::runtime_error("cannot read '" + gt_objects_json + "'");
   const auto j = nlohmann::json::parse(fo, nullptr, false);
@@ -300,6 +300,12 @@ GhostCount countGhostsAmong(const std::string& gt_objects_json, const std::strin
       // the car's points at time t entered the map through the run's pose of that time, so its box is
       // carried into the map by T_map_world(t) = T_map_lidar(t) * T_world_lidar_gt(t)^-1: drift then
       // moves the ghosts and the box together (times outside the run take its nearest end)
+      if (max_range_m > 0) {
+        Eigen::Isometry3d T_world_lidar_t;
+        if (!poseAt(gt, q[0].get<double>(), T_world_lidar_t)) continue;
+        const Eigen::Vector3d pl = T_world_lidar_t.inverse() * Eigen::Vector3d(q[1].get<double>(), q[2].get<double>(), 0);
+        if (pl.head<2>().norm() > max_range_m) continue;
+      }
       const Eigen::Isometry3d T_map_world = mapFromWorld(gt, est, q[0].get<double>());
       const Eigen::Vector3d centre = T_map_world * Eigen::Vector3d(q[1].get<double>(), q[2].get<double>(), q[3].get<double>());
       const Eigen::Vector3d axis = T_map_world.linear() * Eigen::Vector3d(std::cos(q[4].get<double>()), std::sin(q[4].get<double>()), 0);
@@ -329,7 +335,8 @@ GhostCount countGhostsAmong(const std::string& gt_objects_json, const std::strin
 }
 
 GhostCount countGhostPoints(const std::string& gt_objects_json, const std::string& gt_trajectory_tum,
-                            const std::string& run_trajectory_tum, const std::string& map_ply, double margin_m) {
+                            const std::string& run_trajectory_tum, const std::string& map_ply, double margin_m,
+                            double max_range_m) {
   // the map's points (binary little-endian float xyz, as roadslam-map writes map.ply)
   std::ifstream fp(map_ply, std::ios::binary);
   if (!fp) throw std::runtime_error("cannot read '" + map_ply + "'");
@@ -343,7 +350,7 @@ GhostCount countGhostPoints(const std::string& gt_objects_json, const std::strin
   if (static_cast<size_t>(fp.gcount()) != xyz.size() * sizeof(float)) throw std::runtime_error("'" + map_ply + "' is truncated");
   std::vector<Eigen::Vector3f> pts(n);
   for (size_t i = 0; i < n; ++i) pts[i] = {xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]};
-  return countGhostsAmong(gt_objects_json, gt_trajectory_tum, run_trajectory_tum, pts, margin_m);
+  return countGhostsAmong(gt_objects_json, gt_trajectory_tum, run_trajectory_tum, pts, margin_m, max_range_m);
 }
 
 nlohmann::json toJson(const MotMetrics& m) {

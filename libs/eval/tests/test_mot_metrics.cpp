@@ -184,5 +184,8 @@ TEST(MotMetrics, GhostsFollowTheRunsPoseOfTheirTimeUnderDrift) {
   const auto g = eval::countGhostsAmong(d + "/gt_objects.json", d + "/gt_trajectory.tum", d + "/trajectory.tum", pts);
   EXPECT_EQ(g.map_points, 3u);
   EXPECT_EQ(g.ghost_points, 2u);
+  // only the paths swept within 5 m of the lidar (standing at the origin): the car's first half second
+  const auto near = eval::countGhostsAmong(d + "/gt_objects.json", d + "/gt_trajectory.tum", d + "/trajectory.tum", pts, 0.3, 5.0);
+  EXPECT_EQ(near.ghost_points, 1u);
   std::filesystem::remove_all(d);
 }

@@ -85,21 +85,25 @@ MotMetrics evaluateMotFiles(const std::string& gt_objects_json, const std::strin
 /// and the GT pose then (\p gt_trajectory_tum, T_world_lidar): T_map_world(t) = T_map_lidar(t) *
 /// T_world_lidar(t)^-1, because a car's points at t entered the map through the pose of t. So odometry
 /// drift moves a trail and its box together and does not count as ghosts (nor as their removal).
-/// Times outside the run take its nearest end's transform.
+/// Times outside the run take its nearest end's transform. \p max_range_m > 0: only the samples where
+/// the car was within this x-y range of the lidar (GT poses) sweep a path (the trails the objects stage,
+/// which segments out to [objects] max_range_m, can see); 0: every sample.
 struct GhostCount {
   size_t map_points = 0, ghost_points = 0;
 };
 GhostCount countGhostPoints(const std::string& gt_objects_json, const std::string& gt_trajectory_tum,
-                            const std::string& run_trajectory_tum, const std::string& map_ply, double margin_m = 0.3);
+                            const std::string& run_trajectory_tum, const std::string& map_ply, double margin_m = 0.3,
+                            double max_range_m = 0);
 /// The same test on any points of the map frame (\p points_map).
 GhostCount countGhostsAmong(const std::string& gt_objects_json, const std::string& gt_trajectory_tum,
                             const std::string& run_trajectory_tum, const std::vector<Eigen::Vector3f>& points_map,
-                            double margin_m = 0.3);
+                            double margin_m = 0.3, double max_range_m = 0);
 /// Ghost voxels of an OctoMap (\p map_bt, roadslam-map's map.bt): its occupied leaves' centres are
 /// the points (map_points = occupied leaves, ghost_points = those on the swept paths; pruned leaves
 /// count once, at their centre).
 GhostCount countGhostVoxels(const std::string& gt_objects_json, const std::string& gt_trajectory_tum,
-                            const std::string& run_trajectory_tum, const std::string& map_bt, double margin_m = 0.3);
+                            const std::string& run_trajectory_tum, const std::string& map_bt, double margin_m = 0.3,
+                            double max_range_m = 0);
 
 nlohmann::json toJson(const MotMetrics& m);
 std::string toText(const MotMetrics& m);
