@@ -96,6 +96,7 @@ void TrackerParams::fields(ParamTable& t) {
   t.num("init_speed_sigma_mps", init_speed_sigma_mps);
   t.num("confirm_hits", confirm_hits);
   t.num("max_misses", max_misses);
+  t.num("output_max_misses", output_max_misses);
   t.num("tentative_max_misses", tentative_max_misses);
   t.num("moving_speed_mps", moving_speed_mps);
   t.num("moving_min_travel_m", moving_min_travel_m);
@@ -121,10 +122,10 @@ void TrackerParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, c
     throw std::runtime_error("[" + s + "] " + e.what());
   }
   if (gate_m <= 0 || accel_sigma_mps2 <= 0 || meas_sigma_m <= 0 || init_speed_sigma_mps <= 0 || confirm_hits < 1 ||
-      max_misses < 0 || tentative_max_misses < 0 || max_dt_s <= 0 || ctrv.accel_sigma_mps2 <= 0 || ctrv.yaw_accel_sigma_radps2 <= 0 ||
+      max_misses < 0 || output_max_misses < 0 || tentative_max_misses < 0 || max_dt_s <= 0 || ctrv.accel_sigma_mps2 <= 0 || ctrv.yaw_accel_sigma_radps2 <= 0 ||
       ctrv.init_yaw_rate_sigma_radps <= 0) {
     throw std::runtime_error("[" + s + "] gate_m, accel_sigma_mps2, meas_sigma_m, init_speed_sigma_mps, max_dt_s, "
-                             "ctrv_* > 0, confirm_hits >= 1, max_misses >= 0 and tentative_max_misses >= 0 are required");
+                             "ctrv_* > 0, confirm_hits >= 1, max_misses, output_max_misses and tentative_max_misses >= 0 are required");
   }
 }
 

@@ -34,8 +34,8 @@ ObjectsFrame ObjectsStage::snapshot() const {
   const TrackerParams& tp = tracker_.params();
   for (const Track& t : tracker_.tracks()) {
     if (t.state != TrackState::Confirmed) continue;
-    f.tracks.push_back(t);
-    if (!t.moving) continue;
+    if (t.misses <= tp.output_max_misses) f.tracks.push_back(t);
+    if (!t.moving) continue;  // the removal boxes keep every coasting moving track: their points may be there
     BoxRecord b;
     b.t = t.t_last, b.centre = t.x.head<2>(), b.yaw = t.heading;
     b.length = std::max(t.length, tp.car_length_m) + 2 * t.speed() * kHalfSweep_s;

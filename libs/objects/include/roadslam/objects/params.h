@@ -97,6 +97,11 @@ struct TrackerParams {
   double init_speed_sigma_mps = 10.0;    ///< speed uncertainty of a new track [m/s]
   int confirm_hits = 3;                  ///< hits that confirm a tentative track [-]
   int max_misses = 5;                    ///< consecutive misses (sweeps) that end a confirmed track [-]
+  /// Confirmed tracks that missed more sweeps in a row stay out of the outputs (ObjectsFrame::tracks:
+  /// tracks.csv, the picture) while they still coast and associate until max_misses: a constant-velocity
+  /// prediction 0.3 s on (through a turn, past a car lost behind another) is no estimate (SORT outputs
+  /// only the tracks updated in the frame) [-]
+  int output_max_misses = 2;
   /// consecutive misses a tentative track survives (a far car's face is seen every other sweep when
   /// one ring hits it too low for an object) [-]
   int tentative_max_misses = 1;
