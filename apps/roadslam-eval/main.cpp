@@ -55,12 +55,17 @@ int main(int argc, char** argv) {
   objects->add_option("--speed-after", mp.speed_after_s, "speed error counted for tracks this old [s]");
   objects->add_option("--min-returns", mp.min_returns,
                       "GT cars with fewer lidar points in the turn (gt_objects.json returns) are don't care");
+  objects->add_option("--switch-gap", mp.switch_gap_s,
+                      "id switches of a car unmatched for longer are also counted apart (after a gap) [s]");
   std::string o_events;
   objects->add_option("--events", o_events, "also write every miss, false positive and id switch as CSV");
   objects->add_flag("--json", json, "print JSON instead of text");
   bool o_ghosts = false;
   objects->add_flag("--ghosts", o_ghosts,
                     "also count the map's points (RUN/map.ply) and OctoMap leaves (RUN/map.bt) on the moving cars' swept paths");
+  double o_ghost_range = 0;
+  objects->add_option("--ghost-range", o_ghost_range,
+                      "with --ghosts: also count the ghosts of the paths swept within this range of the lidar [m]");
   CLI11_PARSE(app, argc, argv);
   try {
     if (*objects) {
@@ -81,6 +86,17 @@ int main(int argc, char** argv) {
           j["octomap_occupied_leaves"] = v.map_points, j["octomap_ghost_leaves"] = v.ghost_points;
           text += "ghost voxels        " + std::to_string(v.ghost_points) + " of " + std::to_string(v.map_points) +
                   " occupied OctoMap leaves (map.bt)\n";
+        }
+      }
+      if (o_ghosts && o_ghost_range > 0) {
+        const std::string tr = o_run + "/trajectory.tum";
+        const auto g = roadslam::eval::countGhostPoints(o_gt, o_traj, tr, o_run + "/map.ply", 0.3, o_ghost_range);
+        j["ghost_points_within_range"] = g.ghost_points;
+        text += "ghost points        " + std::to_string(g.ghost_points) + " on paths swept within the ghost range\n";
+        if (std::ifstream(o_run + "/map.bt")) {
+          const auto v = roadslam::eval::countGhostVoxels(o_gt, o_traj, tr, o_run + "/map.bt", 0.3, o_ghost_range);
+          j["octomap_ghost_leaves_within_range"] = v.ghost_points;
+          text += "ghost voxels        " + std::to_string(v.ghost_points) + " on paths swept within the ghost range\n";
         }
       }
       std::cout << (json ? j.dump(2) + "\n" : text);

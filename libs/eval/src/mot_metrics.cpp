@@ -85,6 +85,17 @@ bool poseAt(const datasets::Trajectory& tr, double t, Eigen::Isometry3d& T) {
   return true;
 }
 
+/// T_map_world at \p t: the run's pose (\p est, T_map_lidar) composed with the GT's inverse (\p gt,
+/// T_world_lidar), both at \p t clamped into the run's and the GT's spans.
+Eigen::Isometry3d mapFromWorld(const datasets::Trajectory& gt, const datasets::Trajectory& est, double t) {
+  const double te = std::clamp(t, est.stamps_s.front(), est.stamps_s.back());
+  const double tg = gt.stamps_s.empty() ? te : std::clamp(te, gt.stamps_s.front(), gt.stamps_s.back());
+  Eigen::Isometry3d T_map_lidar, T_world_lidar;
+  poseAt(est, te, T_map_lidar);
+  if (!poseAt(gt, tg, T_world_lidar)) T_world_lidar = Eigen::Isometry3d::Identity();
+  return T_map_lidar * T_world_lidar.inverse();
+}
+
 /// tracks.csv rows grouped by their time (rounded to the microsecond).
 std::map<long long, std::vector<Hyp>> readTracks(const std::string& path) {
   std::ifstream f(path);
@@ -140,6 +151,7 @@ MotMetrics evaluateMotFiles(const std::string& gt_objects_json, const std::strin
   const auto tracks = readTracks(run_dir + "/tracks.csv");
   MotMetrics m;
   std::map<int, int> last_match;  // GT id -> hypothesis id of its last match
+  std::map<int, double> last_match_t;  // GT id -> time of its last match [s]
   std::set<int> seen;
   std::vector<double> speed_err;
   double dist_sum = 0, prev_t = NAN;
@@ -201,19 +213,24 @@ MotMetrics evaluateMotFiles(const std::string& gt_objects_json, const std::strin
         }
       }
     }
-    auto event = [&](const char* kind, int gi, int hj, double range, int ret, double nearest) {
-      if (p.keep_events) m.events.push_back({t, kind, gi, hj, range, ret, nearest});
+    auto event = [&](const char* kind, int gi, int hj, double range, int ret, double nearest, double gap = -1) {
+      if (p.keep_events) m.events.push_back({t, kind, gi, hj, range, ret, nearest, gap});
     };
     for (const auto& [i, j] : assign(g, h, g_free, h_free, p.match_distance_m)) {
       matched.emplace_back(i, j), g_free[i] = h_free[j] = 0;
       const auto lm = last_match.find(g_id[i]);
       if (lm != last_match.end() && lm->second != hyps[j].id) {
+        // a switch after the car went unmatched for longer than switch_gap_s (out of range, hidden):
+        // CLEAR MOT counts it, but only an appearance model could have kept the id
+        const double gap = t - last_match_t[g_id[i]];
         ++m.id_switches;
-        event("id_switch", g_id[i], hyps[j].id, g[i].norm(), g_ret[i], (g[i] - h[j]).norm());
+        m.id_switches_after_gap += gap > p.switch_gap_s;
+        event("id_switch", g_id[i], hyps[j].id, g[i].norm(), g_ret[i], (g[i] - h[j]).norm(), gap);
       }
     }
     for (const auto& [i, j] : matched) {
       last_match[g_id[i]] = hyps[j].id;
+      last_match_t[g_id[i]] = t;
       dist_sum += (g[i] - h[j]).norm();
       moving_matches += hyps[j].moving;
       m.tracked_s += dt;
@@ -261,7 +278,7 @@ MotMetrics evaluateMotFiles(const std::string& gt_objects_json, const std::strin
 
 GhostCount countGhostsAmong(const std::string& gt_objects_json, const std::string& gt_trajectory_tum,
                             const std::string& run_trajectory_tum, const std::vector<Eigen::Vector3f>& points_map,
-                            double margin_m) {
+                            double margin_m, double max_range_m) {
   std::ifstream fo(gt_objects_json);
   if (!fo) throw std::runtime_error("cannot read '" + gt_objects_json + "'");
   const auto j = nlohmann::json::parse(fo, nullptr, false);
@@ -271,8 +288,7 @@ GhostCount countGhostsAmong(const std::string& gt_objects_json, const std::strin
   if (est.poses.empty()) throw std::runtime_error("'" + run_trajectory_tum + "' holds no pose");
   Eigen::Isometry3d T_world_lidar;
   if (!poseAt(gt, est.stamps_s[0], T_world_lidar)) throw std::runtime_error("the GT trajectory does not cover the run's first pose");
-  const Eigen::Isometry3d T_world_map = T_world_lidar * est.poses[0].inverse();
-  // swept boxes on a 1 m grid of the world for a quick lookup
+  // swept boxes in the map frame on a 1 m grid for a quick lookup
   struct SweptBox {
     double x, y, z0, z1, c, s, hl, hw;
   };
@@ -281,8 +297,20 @@ GhostCount countGhostsAmong(const std::string& gt_objects_json, const std::strin
     const double hl = 0.5 * c["length_m"].get<double>() + margin_m, hw = 0.5 * c["width_m"].get<double>() + margin_m;
     const double h = c["height_m"].get<double>();
     for (const auto& q : c["track"]) {
-      const SweptBox b{q[1].get<double>(), q[2].get<double>(), q[3].get<double>() + margin_m, q[3].get<double>() + h,
-                       std::cos(q[4].get<double>()), std::sin(q[4].get<double>()), hl, hw};
+      // the car's points at time t entered the map through the run's pose of that time, so its box is
+      // carried into the map by T_map_world(t) = T_map_lidar(t) * T_world_lidar_gt(t)^-1: drift then
+      // moves the ghosts and the box together (times outside the run take its nearest end)
+      if (max_range_m > 0) {
+        Eigen::Isometry3d T_world_lidar_t;
+        if (!poseAt(gt, q[0].get<double>(), T_world_lidar_t)) continue;
+        const Eigen::Vector3d pl = T_world_lidar_t.inverse() * Eigen::Vector3d(q[1].get<double>(), q[2].get<double>(), 0);
+        if (pl.head<2>().norm() > max_range_m) continue;
+      }
+      const Eigen::Isometry3d T_map_world = mapFromWorld(gt, est, q[0].get<double>());
+      const Eigen::Vector3d centre = T_map_world * Eigen::Vector3d(q[1].get<double>(), q[2].get<double>(), q[3].get<double>());
+      const Eigen::Vector3d axis = T_map_world.linear() * Eigen::Vector3d(std::cos(q[4].get<double>()), std::sin(q[4].get<double>()), 0);
+      const double yaw = std::atan2(axis.y(), axis.x());
+      const SweptBox b{centre.x(), centre.y(), centre.z() + margin_m, centre.z() + h, std::cos(yaw), std::sin(yaw), hl, hw};
       const double r = std::hypot(hl, hw);
       for (long gx = static_cast<long>(std::floor(b.x - r)); gx <= static_cast<long>(std::floor(b.x + r)); ++gx) {
         for (long gy = static_cast<long>(std::floor(b.y - r)); gy <= static_cast<long>(std::floor(b.y + r)); ++gy) grid[{gx, gy}].push_back(b);
@@ -292,12 +320,12 @@ GhostCount countGhostsAmong(const std::string& gt_objects_json, const std::strin
   GhostCount out;
   out.map_points = points_map.size();
   for (const auto& p : points_map) {
-    const Eigen::Vector3d w = T_world_map * p.cast<double>();
-    const auto it = grid.find({static_cast<long>(std::floor(w.x())), static_cast<long>(std::floor(w.y()))});
+    const Eigen::Vector3d m = p.cast<double>();
+    const auto it = grid.find({static_cast<long>(std::floor(m.x())), static_cast<long>(std::floor(m.y()))});
     if (it == grid.end()) continue;
     for (const SweptBox& b : it->second) {
-      const double dx = w.x() - b.x, dy = w.y() - b.y;
-      if (std::abs(b.c * dx + b.s * dy) <= b.hl && std::abs(-b.s * dx + b.c * dy) <= b.hw && w.z() >= b.z0 && w.z() <= b.z1) {
+      const double dx = m.x() - b.x, dy = m.y() - b.y;
+      if (std::abs(b.c * dx + b.s * dy) <= b.hl && std::abs(-b.s * dx + b.c * dy) <= b.hw && m.z() >= b.z0 && m.z() <= b.z1) {
         ++out.ghost_points;
         break;
       }
@@ -307,7 +335,8 @@ GhostCount countGhostsAmong(const std::string& gt_objects_json, const std::strin
 }
 
 GhostCount countGhostPoints(const std::string& gt_objects_json, const std::string& gt_trajectory_tum,
-                            const std::string& run_trajectory_tum, const std::string& map_ply, double margin_m) {
+                            const std::string& run_trajectory_tum, const std::string& map_ply, double margin_m,
+                            double max_range_m) {
   // the map's points (binary little-endian float xyz, as roadslam-map writes map.ply)
   std::ifstream fp(map_ply, std::ios::binary);
   if (!fp) throw std::runtime_error("cannot read '" + map_ply + "'");
@@ -321,7 +350,7 @@ GhostCount countGhostPoints(const std::string& gt_objects_json, const std::strin
   if (static_cast<size_t>(fp.gcount()) != xyz.size() * sizeof(float)) throw std::runtime_error("'" + map_ply + "' is truncated");
   std::vector<Eigen::Vector3f> pts(n);
   for (size_t i = 0; i < n; ++i) pts[i] = {xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]};
-  return countGhostsAmong(gt_objects_json, gt_trajectory_tum, run_trajectory_tum, pts, margin_m);
+  return countGhostsAmong(gt_objects_json, gt_trajectory_tum, run_trajectory_tum, pts, margin_m, max_range_m);
 }
 
 nlohmann::json toJson(const MotMetrics& m) {
@@ -330,29 +359,30 @@ nlohmann::json toJson(const MotMetrics& m) {
           {"motp_m", m.motp_m}, {"speed_samples", m.speed_samples}, {"speed_error_mean_mps", m.speed_error_mean_mps},
           {"speed_error_p95_mps", m.speed_error_p95_mps}, {"tracked_s", m.tracked_s},
           {"id_switches_per_100s", m.id_switches_per_100s}, {"moving_label_fraction", m.moving_label_fraction},
-          {"gt_cars_seen", m.gt_cars_seen}, {"dont_care", m.dont_care}, {"dont_care_matches", m.dont_care_matches}};
+          {"gt_cars_seen", m.gt_cars_seen}, {"dont_care", m.dont_care}, {"dont_care_matches", m.dont_care_matches},
+          {"id_switches_after_gap", m.id_switches_after_gap}};
 }
 
 std::string toText(const MotMetrics& m) {
   char buf[1024];
   std::snprintf(buf, sizeof(buf),
                 "frames              %zu\nGT objects          %zu (%zu cars)\nmatches             %zu\n"
-                "misses              %zu\nfalse positives     %zu\nid switches         %zu (%.2f per 100 tracked s)\n"
+                "misses              %zu\nfalse positives     %zu\nid switches         %zu (%.2f per 100 tracked s; %zu after a gap)\n"
                 "MOTA                %.3f\nMOTP                %.3f m\nspeed error         %.2f m/s mean, %.2f m/s p95 (%zu samples)\n"
                 "labelled moving     %.1f %% of matches\n"
                 "don't care          %zu car-frames (hidden or far), %zu tracks on them\n",
                 m.frames, m.gt, m.gt_cars_seen, m.matches, m.misses, m.false_positives, m.id_switches,
-                m.id_switches_per_100s, m.mota, m.motp_m, m.speed_error_mean_mps, m.speed_error_p95_mps,
+                m.id_switches_per_100s, m.id_switches_after_gap, m.mota, m.motp_m, m.speed_error_mean_mps, m.speed_error_p95_mps,
                 m.speed_samples, 100 * m.moving_label_fraction, m.dont_care, m.dont_care_matches);
   return buf;
 }
 
 std::string eventsCsv(const MotMetrics& m) {
-  std::string out = "t,kind,gt_id,track_id,range_m,returns,nearest_m\n";
+  std::string out = "t,kind,gt_id,track_id,range_m,returns,nearest_m,gap_s\n";
   char buf[256];
   for (const MotEvent& e : m.events) {
-    std::snprintf(buf, sizeof(buf), "%.6f,%s,%d,%d,%.2f,%d,%.2f\n", e.t, e.kind.c_str(), e.gt_id, e.track_id, e.range_m,
-                  e.returns, e.nearest_m);
+    std::snprintf(buf, sizeof(buf), "%.6f,%s,%d,%d,%.2f,%d,%.2f,%.2f\n", e.t, e.kind.c_str(), e.gt_id, e.track_id, e.range_m,
+                  e.returns, e.nearest_m, e.gap_s);
     out += buf;
   }
   return out;

@@ -65,6 +65,16 @@ TEST(MotMetrics, CountsMatchesSwitchesAndFalsePositivesOfKnownTracks) {
   EXPECT_EQ(m.speed_samples, 21u);
   EXPECT_NEAR(m.speed_error_mean_mps, 0.5, 1e-6);
   EXPECT_EQ(m.gt_cars_seen, 1u);
+  EXPECT_EQ(m.id_switches_after_gap, 0u);  // the car was matched the frame before (0.1 s)
+  eval::MotParams p;
+  p.switch_gap_s = 0.05, p.keep_events = true;
+  const auto tight = eval::evaluateMotFiles(d + "/gt_objects.json", d + "/gt_trajectory.tum", d, p);
+  EXPECT_EQ(tight.id_switches_after_gap, 1u);
+  for (const auto& e : tight.events) {
+    if (e.kind == "id_switch") {
+      EXPECT_NEAR(e.gap_s, 0.1, 1e-6);
+    }
+  }
   std::filesystem::remove_all(d);
 }
 
@@ -152,5 +162,30 @@ TEST(MotMetrics, GhostVoxelsAreTheOccupiedLeavesOnTheSweptPaths) {
   const auto g = eval::countGhostVoxels(d + "/gt_objects.json", d + "/gt_trajectory.tum", d + "/trajectory.tum", d + "/map.bt");
   EXPECT_EQ(g.map_points, 2u);
   EXPECT_EQ(g.ghost_points, 1u);
+  std::filesystem::remove_all(d);
+}
+
+// Ghosts under drift: the run's pose slides 3 m sideways over the drive (the GT lidar stands still), so
+// the car's points of the last sample entered the map 3 m off its lane. The swept box of each sample is
+// carried into the map by the run's pose of its time: the trail there is a ghost, and a point on the
+// lane in map coordinates (where no car was placed by the run) is not.
+TEST(MotMetrics, GhostsFollowTheRunsPoseOfTheirTimeUnderDrift) {
+  const std::string d = tmpDir();
+  nlohmann::json track = nlohmann::json::array();
+  for (int k = 0; k <= 10; ++k) track.push_back({1000.0 + 0.1 * k, 1.0 * k, 0.0, 0.0, 0.0, 50, 5.0});
+  const nlohmann::json gt = {{"frame", "world"},
+                             {"moving_cars", {{{"id", 0}, {"length_m", 4.5}, {"width_m", 1.8}, {"height_m", 1.5}, {"track", track}}}}};
+  std::ofstream(d + "/gt_objects.json") << gt.dump();
+  std::ofstream(d + "/gt_trajectory.tum") << "1000 0 0 0 0 0 0 1\n1001 0 0 0 0 0 0 1\n";
+  std::ofstream(d + "/trajectory.tum") << "1000 0 0 0 0 0 0 1\n1001 0 3 0 0 0 0 1\n";
+  const std::vector<Eigen::Vector3f> pts = {{10.0f, 3.0f, 0.8f},   // the car at t = 1001, placed by the drifted pose
+                                            {10.0f, 0.0f, 0.8f},   // on the lane in map coordinates: static
+                                            {0.0f, 0.0f, 0.8f}};   // the car at t = 1000 (no drift yet)
+  const auto g = eval::countGhostsAmong(d + "/gt_objects.json", d + "/gt_trajectory.tum", d + "/trajectory.tum", pts);
+  EXPECT_EQ(g.map_points, 3u);
+  EXPECT_EQ(g.ghost_points, 2u);
+  // only the paths swept within 5 m of the lidar (standing at the origin): the car's first half second
+  const auto near = eval::countGhostsAmong(d + "/gt_objects.json", d + "/gt_trajectory.tum", d + "/trajectory.tum", pts, 0.3, 5.0);
+  EXPECT_EQ(near.ghost_points, 1u);
   std::filesystem::remove_all(d);
 }

@@ -2,6 +2,7 @@
 
 #include <mrpt/config/CConfigFileBase.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -49,6 +50,13 @@ void ClusterParams::fields(ParamTable& t) {
   t.num("removal_margin_m", removal_margin_m);
   t.num("map_delay_s", map_delay_s);
   t.num("retro_extrapolate_s", retro_extrapolate_s);
+  t.num("ground_max_bridge_m", ground_max_bridge_m);
+}
+
+preprocess::GroundSegParams ClusterParams::groundParams() const {
+  preprocess::GroundSegParams g = ground;
+  if (ground_max_bridge_m > 0) g.max_bridge_m = std::min(g.max_bridge_m, ground_max_bridge_m);
+  return g;
 }
 
 void ClusterParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, const std::string& s,
@@ -59,10 +67,10 @@ void ClusterParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, c
     throw std::runtime_error("[" + s + "] " + e.what());
   }
   if (azimuth_bins < 16 || azimuth_window < 1 || ring_window < 0 || cluster_distance_m <= 0 || min_points < 1 ||
-      dbscan_min_points < 1 || lshape_step_rad <= 0 || lshape_step_rad > M_PI / 4 || map_delay_s < 0 || retro_extrapolate_s < 0) {
+      dbscan_min_points < 1 || lshape_step_rad <= 0 || lshape_step_rad > M_PI / 4 || map_delay_s < 0 || retro_extrapolate_s < 0 || ground_max_bridge_m < 0) {
     throw std::runtime_error("[" + s + "] azimuth_bins >= 16, azimuth_window >= 1, ring_window >= 0, "
                              "cluster_distance_m > 0, min_points >= 1, dbscan_min_points >= 1, "
-                             "0 < lshape_step_deg <= 45, map_delay_s >= 0 and retro_extrapolate_s >= 0 are required");
+                             "0 < lshape_step_deg <= 45, map_delay_s, retro_extrapolate_s and ground_max_bridge_m >= 0 are required");
   }
   ground.loadFromConfigFile(c, ground_section);
 }
@@ -88,6 +96,7 @@ void TrackerParams::fields(ParamTable& t) {
   t.num("init_speed_sigma_mps", init_speed_sigma_mps);
   t.num("confirm_hits", confirm_hits);
   t.num("max_misses", max_misses);
+  t.num("output_max_misses", output_max_misses);
   t.num("tentative_max_misses", tentative_max_misses);
   t.num("moving_speed_mps", moving_speed_mps);
   t.num("moving_min_travel_m", moving_min_travel_m);
@@ -113,10 +122,10 @@ void TrackerParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, c
     throw std::runtime_error("[" + s + "] " + e.what());
   }
   if (gate_m <= 0 || accel_sigma_mps2 <= 0 || meas_sigma_m <= 0 || init_speed_sigma_mps <= 0 || confirm_hits < 1 ||
-      max_misses < 0 || tentative_max_misses < 0 || max_dt_s <= 0 || ctrv.accel_sigma_mps2 <= 0 || ctrv.yaw_accel_sigma_radps2 <= 0 ||
+      max_misses < 0 || output_max_misses < 0 || tentative_max_misses < 0 || max_dt_s <= 0 || ctrv.accel_sigma_mps2 <= 0 || ctrv.yaw_accel_sigma_radps2 <= 0 ||
       ctrv.init_yaw_rate_sigma_radps <= 0) {
     throw std::runtime_error("[" + s + "] gate_m, accel_sigma_mps2, meas_sigma_m, init_speed_sigma_mps, max_dt_s, "
-                             "ctrv_* > 0, confirm_hits >= 1, max_misses >= 0 and tentative_max_misses >= 0 are required");
+                             "ctrv_* > 0, confirm_hits >= 1, max_misses, output_max_misses and tentative_max_misses >= 0 are required");
   }
 }
 

@@ -260,7 +260,7 @@ std::vector<Object> segmentObjects(const std::vector<ScanPoint>& pts, bool has_r
 }
 
 std::vector<Object> segmentSweep(const Scan& scan, const ClusterParams& p, SegmentationStats* stats) {
-  const auto g = preprocess::segmentGroundWithHeights(scan.points, p.ground);
+  const auto g = preprocess::segmentGroundWithHeights(scan.points, p.groundParams());
   return segmentObjects(scan.points, scan.has_rings, g.ground, g.height_above_ground_m, p, stats);
 }
 

@@ -34,8 +34,8 @@ ObjectsFrame ObjectsStage::snapshot() const {
   const TrackerParams& tp = tracker_.params();
   for (const Track& t : tracker_.tracks()) {
     if (t.state != TrackState::Confirmed) continue;
-    f.tracks.push_back(t);
-    if (!t.moving) continue;
+    if (t.misses <= tp.output_max_misses) f.tracks.push_back(t);
+    if (!t.moving) continue;  // the removal boxes keep every coasting moving track: their points may be there
     BoxRecord b;
     b.t = t.t_last, b.centre = t.x.head<2>(), b.yaw = t.heading;
     b.length = std::max(t.length, tp.car_length_m) + 2 * t.speed() * kHalfSweep_s;
@@ -48,7 +48,7 @@ ObjectsFrame ObjectsStage::snapshot() const {
 
 ObjectsFrame ObjectsStage::process(const Scan& scan, const Eigen::Isometry3d& T_map_lidar, double t_s) {
   auto t0 = Clock::now();
-  const auto g = preprocess::segmentGroundWithHeights(scan.points, p_.ground);
+  const auto g = preprocess::segmentGroundWithHeights(scan.points, p_.groundParams());
   const double ms_ground = msSince(t0);
   t0 = Clock::now();
   SegmentationStats st;

@@ -68,7 +68,10 @@ Completed complete(const Detection& d, double h, double L, double W, const Eigen
     return std::abs(sensor - lo) < std::abs(sensor - hi) ? lo + 0.5 * full : hi - 0.5 * full;
   };
   Completed c;
-  c.along = hi_u - lo_u, c.across = hi_v - lo_v;
+  // the extents are the box's own, paired with the heading's axes by its orientation: the projections
+  // of a box turned off the heading (a car in a turn, its velocity lagging) overstate both
+  const bool aligned = std::abs(std::cos(d.yaw - h)) >= std::sqrt(0.5);
+  c.along = aligned ? d.length : d.width, c.across = aligned ? d.width : d.length;
   c.centre = centreOn(lo_u, hi_u, L, s.dot(u)) * u + centreOn(lo_v, hi_v, W, s.dot(v)) * v;
   return c;
 }
@@ -176,31 +179,6 @@ void Tracker::predictCtrv(Track& tr, double dt) const {
   ctrvView(tr);
 }
 
-void Tracker::correct(Track& tr, const Eigen::Vector2d& z, double dt) const {
-  // The detection is where the object was when the beam swept it, dt after the state's time:
-  // h(x) = position + dt * velocity (CV: H = [I, dt I], linear; CTRV: its Jacobian).
-  const Eigen::Matrix2d R = Eigen::Matrix2d::Identity() * p_.meas_sigma_m * p_.meas_sigma_m;
-  if (p_.motion_model == MotionModel::Ctrv) {
-    const double v = tr.s(2), c = std::cos(tr.s(3)), sn = std::sin(tr.s(3));
-    Eigen::Matrix<double, 2, 5> H = Eigen::Matrix<double, 2, 5>::Zero();
-    H(0, 0) = H(1, 1) = 1;
-    H(0, 2) = dt * c, H(0, 3) = -dt * v * sn;
-    H(1, 2) = dt * sn, H(1, 3) = dt * v * c;
-    const Eigen::Vector2d h(tr.s(0) + dt * v * c, tr.s(1) + dt * v * sn);
-    const Eigen::Matrix<double, 5, 2> K = tr.S * H.transpose() * (H * tr.S * H.transpose() + R).inverse();
-    tr.s += K * (z - h);
-    tr.s(3) = wrapPi(tr.s(3));
-    tr.S = (Mat5::Identity() - K * H) * tr.S;
-    ctrvView(tr);
-    return;
-  }
-  Eigen::Matrix<double, 2, 4> H;
-  H << 1, 0, dt, 0, 0, 1, 0, dt;
-  const Eigen::Matrix<double, 4, 2> K = tr.P * H.transpose() * (H * tr.P * H.transpose() + R).inverse();
-  tr.x += K * (z - H * tr.x);
-  tr.P = (Eigen::Matrix4d::Identity() - K * H) * tr.P;
-}
-
 void Tracker::predict(double t) {
   const double dt = std::max(0.0, t - t_);
   Eigen::Matrix4d F = Eigen::Matrix4d::Identity();
@@ -250,6 +228,124 @@ void Tracker::coast(double t, const std::string& reason) {
   prune(t, reason);
 }
 
+namespace {
+
+/// Kalman update of \p tr with the detection centre \p z seen \p dt after the state's time (either model).
+void correct(Track& tr, const Eigen::Vector2d& z, double dt, const TrackerParams& p_) {
+  // The detection is where the object was when the beam swept it, dt after the state's time:
+  // h(x) = position + dt * velocity (CV: H = [I, dt I], linear; CTRV: its Jacobian).
+  const Eigen::Matrix2d R = Eigen::Matrix2d::Identity() * p_.meas_sigma_m * p_.meas_sigma_m;
+  if (p_.motion_model == MotionModel::Ctrv) {
+    const double v = tr.s(2), c = std::cos(tr.s(3)), sn = std::sin(tr.s(3));
+    Eigen::Matrix<double, 2, 5> H = Eigen::Matrix<double, 2, 5>::Zero();
+    H(0, 0) = H(1, 1) = 1;
+    H(0, 2) = dt * c, H(0, 3) = -dt * v * sn;
+    H(1, 2) = dt * sn, H(1, 3) = dt * v * c;
+    const Eigen::Vector2d h(tr.s(0) + dt * v * c, tr.s(1) + dt * v * sn);
+    const Eigen::Matrix<double, 5, 2> K = tr.S * H.transpose() * (H * tr.S * H.transpose() + R).inverse();
+    tr.s += K * (z - h);
+    tr.s(3) = wrapPi(tr.s(3));
+    tr.S = (Mat5::Identity() - K * H) * tr.S;
+    ctrvView(tr);
+    return;
+  }
+  Eigen::Matrix<double, 2, 4> H;
+  H << 1, 0, dt, 0, 0, 1, 0, dt;
+  const Eigen::Matrix<double, 4, 2> K = tr.P * H.transpose() * (H * tr.P * H.transpose() + R).inverse();
+  tr.x += K * (z - H * tr.x);
+  tr.P = (Eigen::Matrix4d::Identity() - K * H) * tr.P;
+}
+
+/// Gated association costs of \p tracks against \p dets (x-y distance of the completed detection centre
+/// to the track's prediction at the detection's time, plus the extent growth); \p comp: the completions.
+std::vector<std::vector<double>> associationCosts(const std::vector<Track>& tracks, const std::vector<Detection>& dets,
+                                                  const Eigen::Vector2d& s, const TrackerParams& p,
+                                                  std::vector<std::vector<Completed>>& comp) {
+  std::vector<std::vector<double>> cost(tracks.size(), std::vector<double>(dets.size(), kUnassignable));
+  comp.assign(tracks.size(), std::vector<Completed>(dets.size()));
+  const Eigen::Matrix2d R = Eigen::Matrix2d::Identity() * p.meas_sigma_m * p.meas_sigma_m;
+  for (size_t i = 0; i < tracks.size(); ++i) {
+    const Track& tr = tracks[i];
+    const Eigen::Matrix2d S_inv = (tr.P.topLeftCorner<2, 2>() + R).inverse();  // innovation covariance
+    for (size_t j = 0; j < dets.size(); ++j) {
+      // completion moves a centre by at most half the capped extents: farther boxes cannot be in the gate
+      if ((dets[j].centre - tr.x.head<2>()).norm() > p.gate_m + p.max_extent_growth_m) continue;
+      comp[i][j] = completeFor(tr, dets[j], s, p);
+      const Eigen::Vector2d r = comp[i][j].centre - (tr.x.head<2>() + dets[j].dt * tr.x.tail<2>());
+      const double d = r.norm(), m2 = r.dot(S_inv * r);
+      if (d > p.gate_m || m2 > p.gate_sigma * p.gate_sigma) continue;
+      // extents seen now against the track's (capped: a car seen whole once is a car seen in part now)
+      const double dl = std::max(0.0, comp[i][j].along - std::min(tr.length, p.max_extent_growth_m)) +
+                        std::max(0.0, comp[i][j].across - std::min(tr.width, p.max_extent_growth_m));
+      cost[i][j] = d + p.size_weight * dl;
+    }
+  }
+  return cost;
+}
+
+/// The static / moving label of a confirmed track (TrackerParams::moving_*), with hysteresis: it
+/// stops moving below half the speed; a track never seen car-sized is never moving.
+void label(Track& tr, double t, const TrackerParams& p) {
+  if (tr.state != TrackState::Confirmed) return;
+  const double v = tr.speed(), travel = (tr.x.head<2>() - tr.birth_xy).norm();
+  const double lo = std::min(tr.length, tr.width), hi = std::max(tr.length, tr.width);
+  const bool car_sized = hi <= p.moving_max_length_m && lo <= p.moving_max_width_m && lo >= p.moving_min_width_m &&
+                         tr.top_height <= p.moving_max_height_m;
+  if (v > p.moving_speed_mps && travel > p.moving_min_travel_m && tr.hits >= p.moving_min_hits && car_sized) {
+    if (tr.moving_since < 0) tr.moving_since = t;
+    tr.moving = true;
+  }
+  if (v < 0.5 * p.moving_speed_mps || !car_sized) tr.moving = false;
+  if (!tr.moving) return;
+  // the heading follows the velocity; extents swap when it turns by more than 45 deg off them
+  const double h = std::atan2(tr.x(3), tr.x(2));
+  if (std::abs(std::sin(wrapPi(h - tr.heading))) > std::sqrt(0.5)) std::swap(tr.length, tr.width);
+  tr.heading = h;
+}
+
+/// \p tr takes the detection \p d (index \p j) completed as \p c, seen from \p s at \p t.
+void take(Track& tr, const Detection& d, const Completed& c, const Eigen::Vector2d& s, double t, int j, const TrackerParams& p_) {
+  correct(tr, c.centre, d.dt, p_);
+  tr.length = std::max(tr.length, c.along);
+  tr.width = std::max(tr.width, c.across);
+  growToCarBehindFace(tr, d, s, p_);
+  ++tr.hits, tr.misses = 0, tr.t_last = t, tr.last_detection = j;
+  tr.z_min = d.z_min, tr.z_max = d.z_max;
+  remember(tr, d, t);
+  tr.top_height = std::max(tr.top_height, d.top);
+  if (tr.hits >= p_.confirm_hits) tr.state = TrackState::Confirmed;
+  label(tr, t, p_);
+}
+
+/// A tentative track \p id born on the detection \p d (index \p j) seen from \p s at \p t.
+Track born(int id, const Detection& d, const Eigen::Vector2d& s, double t, int j, const TrackerParams& p_) {
+  const double m2 = p_.meas_sigma_m * p_.meas_sigma_m, v2 = p_.init_speed_sigma_mps * p_.init_speed_sigma_mps;
+  Track tr;
+  tr.id = id;
+  tr.x << d.centre, 0, 0;
+  tr.P = Eigen::Vector4d(m2, m2, v2, v2).asDiagonal();
+  tr.heading = d.yaw;
+  tr.s << d.centre, 0, d.yaw, 0;
+  tr.S = Vec5(m2, m2, v2, kInitHeadingSigma_rad * kInitHeadingSigma_rad,
+              p_.ctrv.init_yaw_rate_sigma_radps * p_.ctrv.init_yaw_rate_sigma_radps)
+             .asDiagonal();
+  const Completed c = complete(d, tr.heading, 0, 0, s);
+  tr.length = c.along, tr.width = c.across;
+  // a car's face: its centre is behind it, and it drives along the line of sight (CTRV's heading)
+  Eigen::Vector2d centre = d.centre, los;
+  if (isCarFace(d, s, p_, &centre, &los)) tr.s(3) = std::atan2(los.y(), los.x());
+  tr.x.head<2>() = tr.s.head<2>() = centre;
+  growToCarBehindFace(tr, d, s, p_);
+  if (p_.motion_model == MotionModel::Ctrv) ctrvView(tr);
+  tr.z_min = d.z_min, tr.z_max = d.z_max, tr.top_height = d.top;
+  tr.hits = 1, tr.t_birth = tr.t_last = t, tr.birth_xy = tr.x.head<2>(), tr.last_detection = j;
+  remember(tr, d, t);
+  if (tr.hits >= p_.confirm_hits) tr.state = TrackState::Confirmed;
+  return tr;
+}
+
+}  // namespace
+
 void Tracker::update(double t, const Eigen::Isometry3d& T_map_lidar, const std::vector<Object>& objects) {
   if (!std::isfinite(t) || !T_map_lidar.matrix().allFinite()) return coast(t, "pose");
   if (!started_) started_ = true, t_ = t;
@@ -259,96 +355,23 @@ void Tracker::update(double t, const Eigen::Isometry3d& T_map_lidar, const std::
   std::vector<Detection> dets;
   dets.reserve(objects.size());
   for (const Object& o : objects) dets.push_back(toMap(o, T_map_lidar));  // finite: segmentObjects drops NaN points
-  // Gated costs: x-y distance of the completed detection centre to the track's prediction.
-  std::vector<std::vector<double>> cost(tracks_.size(), std::vector<double>(dets.size(), kUnassignable));
-  std::vector<std::vector<Completed>> comp(tracks_.size(), std::vector<Completed>(dets.size()));
-  const Eigen::Matrix2d R = Eigen::Matrix2d::Identity() * p_.meas_sigma_m * p_.meas_sigma_m;
-  for (size_t i = 0; i < tracks_.size(); ++i) {
-    const Track& tr = tracks_[i];
-    const Eigen::Matrix2d S_inv = (tr.P.topLeftCorner<2, 2>() + R).inverse();  // innovation covariance
-    for (size_t j = 0; j < dets.size(); ++j) {
-      // completion moves a centre by at most half the capped extents: farther boxes cannot be in the gate
-      if ((dets[j].centre - tr.x.head<2>()).norm() > p_.gate_m + p_.max_extent_growth_m) continue;
-      comp[i][j] = completeFor(tr, dets[j], s, p_);
-      const Eigen::Vector2d r = comp[i][j].centre - (tr.x.head<2>() + dets[j].dt * tr.x.tail<2>());
-      const double d = r.norm(), m2 = r.dot(S_inv * r);
-      if (d > p_.gate_m || m2 > p_.gate_sigma * p_.gate_sigma) continue;
-      // extents seen now against the track's (capped: a car seen whole once is a car seen in part now)
-      const double dl = std::max(0.0, comp[i][j].along - std::min(tr.length, p_.max_extent_growth_m)) +
-                        std::max(0.0, comp[i][j].across - std::min(tr.width, p_.max_extent_growth_m));
-      cost[i][j] = d + p_.size_weight * dl;
-    }
-  }
+  std::vector<std::vector<Completed>> comp;
+  const auto cost = associationCosts(tracks_, dets, s, p_, comp);
   const std::vector<int> match = hungarian(cost);
   std::vector<char> taken(dets.size(), false);
   for (size_t i = 0; i < tracks_.size(); ++i) {
-    Track& tr = tracks_[i];
     const int j = match[i];
-    tr.last_detection = -1;
+    tracks_[i].last_detection = -1;
     if (j < 0 || cost[i][static_cast<size_t>(j)] >= kUnassignable) {
-      ++tr.misses;
+      ++tracks_[i].misses;
       continue;
     }
     taken[static_cast<size_t>(j)] = true;
-    const Completed& c = comp[i][static_cast<size_t>(j)];
-    correct(tr, c.centre, dets[static_cast<size_t>(j)].dt);
-    tr.length = std::max(tr.length, c.along);
-    tr.width = std::max(tr.width, c.across);
-    growToCarBehindFace(tr, dets[static_cast<size_t>(j)], s, p_);
-    ++tr.hits, tr.misses = 0, tr.t_last = t, tr.last_detection = j;
-    tr.z_min = dets[static_cast<size_t>(j)].z_min, tr.z_max = dets[static_cast<size_t>(j)].z_max;
-    remember(tr, dets[static_cast<size_t>(j)], t);
-    tr.top_height = std::max(tr.top_height, dets[static_cast<size_t>(j)].top);
-    if (tr.hits >= p_.confirm_hits) tr.state = TrackState::Confirmed;
-    const double v = tr.speed();
-    const double travel = (tr.x.head<2>() - tr.birth_xy).norm();
-    if (tr.state == TrackState::Confirmed) {
-      const bool car_sized = std::max(tr.length, tr.width) <= p_.moving_max_length_m &&
-                             std::min(tr.length, tr.width) <= p_.moving_max_width_m &&
-                             std::min(tr.length, tr.width) >= p_.moving_min_width_m &&
-                             tr.top_height <= p_.moving_max_height_m;
-      if (v > p_.moving_speed_mps && travel > p_.moving_min_travel_m && tr.hits >= p_.moving_min_hits && car_sized) {
-        if (tr.moving_since < 0) tr.moving_since = t;
-        tr.moving = true;
-      }
-      if (v < 0.5 * p_.moving_speed_mps || !car_sized) tr.moving = false;
-    }
-    if (tr.moving) {
-      // the heading follows the velocity; extents swap when it turns by more than 45 deg off them
-      const double h = std::atan2(tr.x(3), tr.x(2));
-      if (std::abs(std::sin(wrapPi(h - tr.heading))) > std::sqrt(0.5)) std::swap(tr.length, tr.width);
-      tr.heading = h;
-    }
+    take(tracks_[i], dets[static_cast<size_t>(j)], comp[i][static_cast<size_t>(j)], s, t, j, p_);
   }
   prune(t, "missed");
   for (size_t j = 0; j < dets.size(); ++j) {
-    if (taken[j]) continue;
-    Track tr;
-    tr.id = next_id_++;
-    tr.x << dets[j].centre, 0, 0;
-    tr.P = Eigen::Vector4d(p_.meas_sigma_m * p_.meas_sigma_m, p_.meas_sigma_m * p_.meas_sigma_m,
-                           p_.init_speed_sigma_mps * p_.init_speed_sigma_mps,
-                           p_.init_speed_sigma_mps * p_.init_speed_sigma_mps)
-               .asDiagonal();
-    tr.heading = dets[j].yaw;
-    tr.s << dets[j].centre, 0, dets[j].yaw, 0;
-    tr.S = Vec5(p_.meas_sigma_m * p_.meas_sigma_m, p_.meas_sigma_m * p_.meas_sigma_m,
-                p_.init_speed_sigma_mps * p_.init_speed_sigma_mps, kInitHeadingSigma_rad * kInitHeadingSigma_rad,
-                p_.ctrv.init_yaw_rate_sigma_radps * p_.ctrv.init_yaw_rate_sigma_radps)
-               .asDiagonal();
-    const Completed c = complete(dets[j], tr.heading, 0, 0, s);
-    tr.length = c.along, tr.width = c.across;
-    // a car's face: its centre is behind it, and it drives along the line of sight (CTRV's heading)
-    Eigen::Vector2d centre = dets[j].centre, los;
-    if (isCarFace(dets[j], s, p_, &centre, &los)) tr.s(3) = std::atan2(los.y(), los.x());
-    tr.x.head<2>() = tr.s.head<2>() = centre;
-    growToCarBehindFace(tr, dets[j], s, p_);
-    if (p_.motion_model == MotionModel::Ctrv) ctrvView(tr);
-    tr.z_min = dets[j].z_min, tr.z_max = dets[j].z_max, tr.top_height = dets[j].top;
-    tr.hits = 1, tr.t_birth = tr.t_last = t, tr.birth_xy = tr.x.head<2>(), tr.last_detection = static_cast<int>(j);
-    remember(tr, dets[j], t);
-    if (tr.hits >= p_.confirm_hits) tr.state = TrackState::Confirmed;
-    tracks_.push_back(tr);
+    if (!taken[j]) tracks_.push_back(born(next_id_++, dets[j], s, t, static_cast<int>(j), p_));
   }
 }
 

@@ -45,4 +45,27 @@ TEST(ObjectsParams, BadValuesNameTheSection) {
   ini2.write("tracking", "gate_m", -1.0);
   TrackerParams t;
   EXPECT_THROW(t.loadFromConfigFile(ini2), std::runtime_error);
+  mrpt::config::CConfigFileMemory ini3;
+  ini3.write("tracking", "output_max_misses", -1);
+  EXPECT_THROW(t.loadFromConfigFile(ini3), std::runtime_error);
+  mrpt::config::CConfigFileMemory ini4;
+  ini4.write("objects", "ground_max_bridge_m", -1.0);
+  try {
+    c.loadFromConfigFile(ini4);
+    FAIL();
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("ground_max_bridge_m"), std::string::npos);
+  }
+}
+
+// The objects' ground labels: [preprocess] seg_* with the bridge capped by [objects] ground_max_bridge_m
+// (0 keeps the odometry's), never widened.
+TEST(ObjectsParams, TheObjectsGroundBridgesAtMostTheirOwnLimit) {
+  ClusterParams c;
+  c.ground.max_bridge_m = 30.0;
+  EXPECT_DOUBLE_EQ(c.groundParams().max_bridge_m, c.ground_max_bridge_m);
+  c.ground_max_bridge_m = 0;
+  EXPECT_DOUBLE_EQ(c.groundParams().max_bridge_m, 30.0);
+  c.ground_max_bridge_m = 50.0;
+  EXPECT_DOUBLE_EQ(c.groundParams().max_bridge_m, 30.0);
 }

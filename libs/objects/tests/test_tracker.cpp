@@ -3,6 +3,7 @@
 // cost matrix with a known optimum.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -203,4 +204,29 @@ TEST(ObjectsStage, ACarLabelledMovingHandsOutItsEarlierBoxes) {
     }
   }
   EXPECT_EQ(retro_frames, 1u);
+}
+
+// A car that drives behind nothing and vanishes (empty sweeps): its track stays in the frame's outputs
+// for output_max_misses sweeps, then only in the tracker (coasting, associating) until max_misses, and
+// its removal box stays while it coasts.
+TEST(ObjectsStage, ACoastingTrackLeavesTheOutputsBeforeItEnds) {
+  ClusterParams cp;
+  cp.min_points = 4;
+  TrackerParams tp;
+  ObjectsStage stage(cp, tp);
+  const double v = 10.0;
+  int k = 0;
+  for (; k < 25; ++k) stage.process(test::castSweep({{-12.0 + v * 0.1 * k, 6.0, 0.0, 4.5, 1.8, 1.5}}), Eigen::Isometry3d::Identity(), 0.1 * k);
+  int id = -1;
+  for (const Track& t : stage.tracker().tracks()) id = t.moving ? t.id : id;
+  ASSERT_GE(id, 0) << "the car's track is labelled moving";
+  auto holds = [id](const std::vector<Track>& ts) {
+    return std::any_of(ts.begin(), ts.end(), [id](const Track& t) { return t.id == id; });
+  };
+  for (int miss = 1; miss <= tp.max_misses; ++miss, ++k) {
+    const ObjectsFrame f = stage.process(test::castSweep({}), Eigen::Isometry3d::Identity(), 0.1 * k);
+    ASSERT_TRUE(holds(stage.tracker().tracks())) << "coasting, miss " << miss;
+    EXPECT_EQ(holds(f.tracks), miss <= tp.output_max_misses) << "miss " << miss;
+    EXPECT_EQ(f.moving_boxes.size(), 1u) << "miss " << miss;
+  }
 }

@@ -34,6 +34,9 @@ struct MotParams {
   int min_returns = 10;             ///< GT cars seen with fewer lidar points in the turn are don't care [-]
   double dont_care_margin_m = 5.0;  ///< cars up to this far beyond max_range_m are don't care too [m]
   bool keep_events = false;         ///< fill MotMetrics::events (one row per miss, false positive, switch)
+  /// id switches of a car unmatched for longer than this before (out of range or hidden) are also
+  /// counted apart, MotMetrics::id_switches_after_gap [s]
+  double switch_gap_s = 5.0;
 };
 
 /// One error of the score, for a diagnosis (roadslam-eval objects --events).
@@ -44,6 +47,7 @@ struct MotEvent {
   double range_m = 0;               ///< x-y range of the GT car (miss, switch) or the track (false positive) [m]
   int returns = -1;                 ///< the GT car's points in the turn (-1 unknown or no GT car)
   double nearest_m = -1;            ///< miss: nearest confirmed track (any label); false positive: nearest GT car (any) [m]
+  double gap_s = -1;                ///< id switch: time since the car's last match [s] (-1 other kinds)
 };
 
 struct MotMetrics {
@@ -55,6 +59,9 @@ struct MotMetrics {
   double speed_error_mean_mps = 0, speed_error_p95_mps = 0;  ///< | |v_track| - |v_gt| |
   double tracked_s = 0;             ///< time GT cars were matched [s]
   double id_switches_per_100s = 0;
+  /// of id_switches, those of a car unmatched for more than MotParams::switch_gap_s before: a car that
+  /// comes back into range (around the block) under a new id; lidar boxes alone cannot re-identify it
+  size_t id_switches_after_gap = 0;
   double moving_label_fraction = 0;  ///< of the matches, the ones labelled moving
   size_t gt_cars_seen = 0;          ///< distinct GT cars that came within range (and were seen)
   size_t dont_care = 0;             ///< GT car-frames in range (or just beyond) not counted: too few returns or far
@@ -62,7 +69,7 @@ struct MotMetrics {
   std::vector<MotEvent> events;     ///< with MotParams::keep_events
 };
 
-/// MotMetrics::events as CSV: t,kind,gt_id,track_id,range_m,returns,nearest_m
+/// MotMetrics::events as CSV: t,kind,gt_id,track_id,range_m,returns,nearest_m,gap_s
 std::string eventsCsv(const MotMetrics& m);
 
 /// Scores \p run_dir (tracks.csv, trajectory_odometry.tum of roadslam-map with [objects] enabled)
@@ -73,23 +80,30 @@ MotMetrics evaluateMotFiles(const std::string& gt_objects_json, const std::strin
 /// Ghost points of moving traffic in a map: points of \p map_ply (binary float xyz, map frame) that fall
 /// inside the path a moving car of \p gt_objects_json swept (its box at every 0.1 s GT sample, grown by
 /// \p margin_m, from \p margin_m above its ground to its roof). The moving cars drive on lanes where the
-/// simulator places nothing else, so every such point is left by a passing car. The map frame is
-/// placed in the world by the first pose of \p run_trajectory_tum (T_map_lidar) and the GT pose
-/// (\p gt_trajectory_tum) at that time; odometry drift moves the map against the lanes over long drives.
+/// simulator places nothing else, so every such point is left by a passing car. Each GT sample's box
+/// is carried into the map frame by the run's pose at its time (\p run_trajectory_tum, T_map_lidar)
+/// and the GT pose then (\p gt_trajectory_tum, T_world_lidar): T_map_world(t) = T_map_lidar(t) *
+/// T_world_lidar(t)^-1, because a car's points at t entered the map through the pose of t. So odometry
+/// drift moves a trail and its box together and does not count as ghosts (nor as their removal).
+/// Times outside the run take its nearest end's transform. \p max_range_m > 0: only the samples where
+/// the car was within this x-y range of the lidar (GT poses) sweep a path (the trails the objects stage,
+/// which segments out to [objects] max_range_m, can see); 0: every sample.
 struct GhostCount {
   size_t map_points = 0, ghost_points = 0;
 };
 GhostCount countGhostPoints(const std::string& gt_objects_json, const std::string& gt_trajectory_tum,
-                            const std::string& run_trajectory_tum, const std::string& map_ply, double margin_m = 0.3);
+                            const std::string& run_trajectory_tum, const std::string& map_ply, double margin_m = 0.3,
+                            double max_range_m = 0);
 /// The same test on any points of the map frame (\p points_map).
 GhostCount countGhostsAmong(const std::string& gt_objects_json, const std::string& gt_trajectory_tum,
                             const std::string& run_trajectory_tum, const std::vector<Eigen::Vector3f>& points_map,
-                            double margin_m = 0.3);
+                            double margin_m = 0.3, double max_range_m = 0);
 /// Ghost voxels of an OctoMap (\p map_bt, roadslam-map's map.bt): its occupied leaves' centres are
 /// the points (map_points = occupied leaves, ghost_points = those on the swept paths; pruned leaves
 /// count once, at their centre).
 GhostCount countGhostVoxels(const std::string& gt_objects_json, const std::string& gt_trajectory_tum,
-                            const std::string& run_trajectory_tum, const std::string& map_bt, double margin_m = 0.3);
+                            const std::string& run_trajectory_tum, const std::string& map_bt, double margin_m = 0.3,
+                            double max_range_m = 0);
 
 nlohmann::json toJson(const MotMetrics& m);
 std::string toText(const MotMetrics& m);

@@ -58,6 +58,13 @@ struct ClusterParams {
   /// for an object) [s]
   double retro_extrapolate_s = 4.0;
   preprocess::GroundSegParams ground;    ///< ground labels: read from [preprocess] seg_* (the odometry's), not saved here
+  /// The objects' own ground labels let a new ground line bridge at most this far from the last ground
+  /// prototype (GroundSegParams::max_bridge_m, 30 m for the odometry): a far car's face, hit by one ring
+  /// (VLP-16 at 1.9 m: the -1 deg ring beyond the -3 deg ring's 36 m), is otherwise taken for a rise of
+  /// the road and labelled ground. 0: the [preprocess] value [m]
+  double ground_max_bridge_m = 8.0;
+  /// The ground parameters the objects use: \ref ground with ground_max_bridge_m.
+  preprocess::GroundSegParams groundParams() const;
 
   void fields(ParamTable& t);
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& section = "objects",
@@ -90,6 +97,11 @@ struct TrackerParams {
   double init_speed_sigma_mps = 10.0;    ///< speed uncertainty of a new track [m/s]
   int confirm_hits = 3;                  ///< hits that confirm a tentative track [-]
   int max_misses = 5;                    ///< consecutive misses (sweeps) that end a confirmed track [-]
+  /// Confirmed tracks that missed more sweeps in a row stay out of the outputs (ObjectsFrame::tracks:
+  /// tracks.csv, the picture) while they still coast and associate until max_misses: a constant-velocity
+  /// prediction 0.3 s on (through a turn, past a car lost behind another) is no estimate (SORT outputs
+  /// only the tracks updated in the frame) [-]
+  int output_max_misses = 2;
   /// consecutive misses a tentative track survives (a far car's face is seen every other sweep when
   /// one ring hits it too low for an object) [-]
   int tentative_max_misses = 1;

@@ -6,7 +6,8 @@
 /// stamp_s: the sweep's reference time (the deskew's, the tracks' state time; trajectory_odometry.tum's).
 /// objects.csv, one row per object per sweep (map frame):
 ///   frame,stamp_s,object,cx,cy,yaw_rad,length_m,width_m,z_min,z_max,points,track_id
-/// (track_id: the track that took it this sweep, -1 none). tracks.csv, one row per confirmed track per sweep:
+/// (track_id: the track that took it this sweep, -1 none). tracks.csv, one row per confirmed track per sweep
+/// (coasting at most TrackerParams::output_max_misses sweeps):
 ///   frame,stamp_s,track_id,x,y,vx,vy,speed_mps,heading_rad,length_m,width_m,z_min,z_max,moving,hits,misses,age_s
 /// tracks_ended.csv: track_id,t_birth,t_end,hits,confirmed,moving,reason.
 
@@ -23,7 +24,7 @@ namespace roadslam::objects {
 /// One sweep through the stage.
 struct ObjectsFrame {
   std::vector<Object> objects;     ///< lidar frame of the sweep's reference pose
-  std::vector<Track> tracks;       ///< confirmed tracks after the update (map frame)
+  std::vector<Track> tracks;       ///< confirmed tracks after the update, coasting <= TrackerParams::output_max_misses sweeps (map frame)
   std::vector<int> object_track;   ///< per object: the id of the track that took it, -1 none
   std::vector<char> object_moving; ///< per object: its track is labelled moving
   /// Tracks labelled moving at this sweep: the boxes of the detections they took before (map frame,

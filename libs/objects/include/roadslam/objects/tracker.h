@@ -81,8 +81,6 @@ class Tracker {
  private:
   void predict(double t);
   void predictCtrv(Track& tr, double dt) const;
-  /// Kalman update of \p tr with the detection centre \p z seen \p dt after the state's time (either model).
-  void correct(Track& tr, const Eigen::Vector2d& z, double dt) const;
   void endAll(double t, const std::string& reason);
   void prune(double t, const std::string& reason);
 
