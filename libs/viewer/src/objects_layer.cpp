@@ -44,7 +44,7 @@ class Csv {
     char* end = nullptr;
     const double v = std::strtod(cell.c_str(), &end);
     if (cell.empty() || *end != '\0' || !std::isfinite(v))
-      throw std::runtime_error(path_ + ":" + std::to_string(line_ + 1) + ": column '" + name + "' is not a number: '" + cell + "'");
+      throw std::runtime_error(path_ + ":" + std::to_string(line_) + ": column '" + name + "' is not a number: '" + cell + "'");
     return v;
   }
 

@@ -6,6 +6,7 @@
 #include <mrpt/img/CImage.h>
 #include <mrpt/opengl/COpenGLScene.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -69,13 +70,19 @@ struct Px {
   double u, v;
 };
 
-/// Pixels of \p c (within 12 per channel) in \p img.
+/// Pixels of the hue of \p c in \p img: lines are shaded and blended at their edges, so a pixel matches
+/// when it is bright enough (> 70) and its channels over its brightest are \p c's within 0.12.
 std::vector<Px> pixelsOf(const mrpt::img::CImage& img, const unsigned char c[3]) {
+  const double cm = std::max({c[0], c[1], c[2]});
   std::vector<Px> out;
   for (int y = 0; y < int(img.getHeight()); ++y)
     for (int x = 0; x < int(img.getWidth()); ++x) {
       const auto* p = img.ptr<uint8_t>(x, y);  // BGR
-      if (std::abs(p[2] - c[0]) <= 12 && std::abs(p[1] - c[1]) <= 12 && std::abs(p[0] - c[2]) <= 12) out.push_back({double(x), double(y)});
+      const double m = std::max({p[0], p[1], p[2]});
+      if (m <= 70) continue;
+      bool same = true;
+      for (int k = 0; k < 3; ++k) same = same && std::abs(p[2 - k] / m - c[k] / cm) <= 0.12;
+      if (same) out.push_back({double(x), double(y)});
     }
   return out;
 }
