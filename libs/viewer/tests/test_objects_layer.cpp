@@ -187,8 +187,9 @@ TEST(ViewerObjects, BoxesIdsAndArrowsAreWhereTheTracksAre) {
   EXPECT_EQ(inside(untracked, -1.0, 1.0, -12.5, -11.5), 0);
   EXPECT_GT(near(untracked, project(1.0, -11.5, -0.9), 3), 0);
 
-  // with the layer off, none of its colours is on screen (the checks above can fail)
-  o.show_objects = false;
+  // with the layer off (key o), none of its colours is on screen (the checks above can fail)
+  ASSERT_TRUE(replay.handleKey(*parseKey("o")));
+  EXPECT_FALSE(o.show_objects);
   const std::string off = (tempDir() / "objects_off.png").string();
   mrpt::opengl::COpenGLScene scene_off;
   renderer.render(scene_off, buildScene(model, replay.state(), o, scene_off), off);
