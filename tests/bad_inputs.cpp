@@ -84,6 +84,15 @@ void makeFiles() {
   write(w / "bad-stamp-reference.ini", "[kitti]\nstamp_reference = centre\n");
   write(w / "bad-bool.ini", "[odometry]\ndeskew = maybe\n");
   write(w / "bounds-typo.ini", fileText(kSrc + "/ini/bounds.ini") + "\n[boundary]\ncurb_min_jmup_m = 0.1\n");
+  {
+    std::string b = fileText(kSrc + "/ini/bounds.ini");
+    b.replace(b.find("cluster_method = range_image"), 28, "cluster_method = kmeans");
+    write(w / "bounds-bad-cluster.ini", b);
+  }
+  write(w / "map-bad-tracks" / "trajectory.tum", "0.0 0 0 0 0 0 0 1\n");
+  write(w / "map-bad-tracks" / "tracks.csv",
+        "frame,stamp_s,track_id,x,y,vx,vy,speed_mps,heading_rad,length_m,width_m,z_min,z_max,moving,hits,misses,age_s\n"
+        "0,0.0,7,abc,0,0,0,0,0,4.5,1.8,-1.9,-0.4,1,3,0,0.3\n");
   write(w / "a-file", "x");
   write(w / "exp-typo.ini", "[experiment]\nbase_config = " + kSrc + "/ini/default.ini\n[dataset.x]\ninput = " +
                                 (w / "truncated.pcap").string() + "\n[sweep]\nodometry.registration_voxel_sise_m = 1\n");
@@ -111,6 +120,8 @@ void makeFiles() {
     bin.append(reinterpret_cast<const char*>(rec), sizeof rec);
   }
   write(w / "kitti-damaged" / "000000.bin", bin);
+  write(w / "kitti-two" / "000000.bin", bin);  // a recording for roadslam-view rows
+  write(w / "kitti-two" / "000001.bin", bin);
   write(w / "kitti-damaged" / "000001.bin", bin.substr(0, 1001));
   write(w / "kitti-damaged" / "000002.bin", bin);
   write(w / "kitti-bad-times" / "velodyne" / "000000.bin", bin);
@@ -182,6 +193,7 @@ const Row kTable[] = {
   {"map-sigint",           "roadslam-map --config {S}/ini/default.ini --input {W}/kitti-long --out {O} --quiet", 130, "", 1500},
   // roadslam-bounds
   {"bounds-typo-key",      "roadslam-bounds --config {W}/bounds-typo.ini --input {W}/truncated.pcap --out {O}", 1, "unknown key 'curb_min_jmup_m' in [boundary] (nearest known: curb_min_jump_m)"},
+  {"bounds-bad-cluster",   "roadslam-bounds --config {W}/bounds-bad-cluster.ini --input {W}/truncated.pcap --out {O}", 1, "kmeans"},
   {"bounds-random-rawlog", "roadslam-bounds --config {S}/ini/bounds.ini --input {W}/random.rawlog --out {O}", 1, "gives no sweep"},
   {"bounds-input-missing", "roadslam-bounds --config {S}/ini/bounds.ini --input {W}/nope.pcap --out {O}", 1, "does not exist"},
   {"bounds-bad-trajectory","roadslam-bounds --config {S}/ini/bounds.ini --input {W}/truncated.pcap --trajectory {W}/three-columns.tum --out {O}", 1, "three-columns.tum"},
@@ -234,6 +246,7 @@ const Row kTable[] = {
   {"view-record-replay",   "roadslam-view {W}/truncated.pcap --record {O}", 2, "--record belongs to a live view"},
   {"view-live-typo-key",   "roadslam-view --grab {W}/grab-typo.ini --render {O}/x.png", 1, "segmnet_mb"},
   {"view-live-sequence",   "roadslam-view --udp 0 --render-sequence {O}/seq", 1, "--render-sequence and --video need a recording"},
+  {"view-bad-tracks-csv",  "roadslam-view {W}/kitti-two --map {W}/map-bad-tracks --render {O}/x.png --at 0", 1, "tracks.csv:2: column 'x' is not a number: 'abc'"},
 };
 // clang-format on
 

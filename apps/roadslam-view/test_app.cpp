@@ -216,6 +216,60 @@ TEST(RoadslamViewApp, RunSlamPostsTheOdometrysFrames) {
   EXPECT_NE(bad.out.find(typo.string() + ":2: unknown key 'registration_voxel_sise_m' in [odometry]"), std::string::npos) << bad.out;
 }
 
+// The objects layer live and recorded: --run-slam with [objects] enabled draws the boxes the objects
+// stage gives as it runs; roadslam-map with the same ini writes them to tracks.csv / objects.csv. Oracle:
+// the box room's objects (khaki: no confirmed track) cover the same pixels either way, and none is drawn
+// without the stage.
+TEST(RoadslamViewApp, RunSlamDrawsTheObjectsRoadslamMapWrites) {
+  const auto& f = fixture();
+  const std::string bin = fs::path(kBin).parent_path().string(), src = ROADSLAM_SOURCE_DIR;
+  std::stringstream ini;
+  ini << std::ifstream(src + "/ini/default.ini").rdbuf();
+  std::string text = ini.str();
+  const auto at = text.find("enabled = false", text.find("[objects]"));
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, 15, "enabled = true");
+  const fs::path on = f.dir / "objects_on.ini", map = f.dir / "objects_map";
+  std::ofstream(on) << text;
+  ASSERT_EQ(std::system((bin + "/roadslam-map --config " + on.string() + " --input " + f.rawlog.string() + " --out " +
+                         map.string() + " --quiet").c_str()), 0);
+  // khaki (SceneColors::object_untracked, 200 200 120) by hue: lines are shaded at their edges
+  const auto khaki = [](const fs::path& png) {
+    mrpt::img::CImage img;
+    std::vector<int> at;
+    if (!img.loadFromFile(png.string())) return at;
+    for (int y = 30; y < static_cast<int>(img.getHeight()) * 4 / 5; ++y)  // below the HUD, above the plots
+      for (int x = 0; x < static_cast<int>(img.getWidth()); ++x) {
+        const auto* p = img.ptr<uint8_t>(x, y);  // BGR
+        const double m = std::max({p[0], p[1], p[2]});
+        if (m > 70 && std::abs(p[2] / m - 1.0) < 0.12 && std::abs(p[1] / m - 1.0) < 0.12 && std::abs(p[0] / m - 0.6) < 0.12)
+          at.push_back(y * 10000 + x);
+      }
+    return at;
+  };
+  const std::string common = f.rawlog.string() + " --size 480x360 --camera top --at 0.5 --render ";
+  const fs::path live = f.dir / "objects_live.png", recorded = f.dir / "objects_recorded.png", none = f.dir / "objects_none.png";
+  ASSERT_EQ(run(common + live.string() + " --run-slam " + on.string()).status, 0);
+  ASSERT_EQ(run(common + recorded.string() + " --run-slam " + src + "/ini/default.ini --map " + map.string()).status, 0);
+  ASSERT_EQ(run(common + none.string() + " --run-slam " + src + "/ini/default.ini").status, 0);
+  const auto a = khaki(live), b = khaki(recorded);
+  EXPECT_GT(a.size(), 20u) << "the box room's objects";
+  // every pixel of one within a pixel of the other (objects.csv keeps millimetres, live has doubles)
+  const auto near = [](const std::vector<int>& from, const std::vector<int>& to) {
+    int far = 0;
+    for (int q : from) {
+      bool hit = false;
+      for (int dy = -1; dy <= 1 && !hit; ++dy)
+        for (int dx = -1; dx <= 1 && !hit; ++dx) hit = std::binary_search(to.begin(), to.end(), q + dy * 10000 + dx);
+      far += !hit;
+    }
+    return far;
+  };
+  EXPECT_EQ(near(a, b), 0) << "live objects where roadslam-map wrote none";
+  EXPECT_EQ(near(b, a), 0) << "roadslam-map's objects missing live";
+  EXPECT_TRUE(khaki(none).empty());
+}
+
 // A pcap opens directly: converted once into "<pcap>.rawlog" beside it (the same observations as
 // roadslam-rawlog's conversion), reused while fresh. --video encodes the sequence through ffmpeg.
 TEST(RoadslamViewApp, OpensAPcapAndWritesAVideo) {

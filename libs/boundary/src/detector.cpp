@@ -11,29 +11,47 @@
 #include <unordered_set>
 
 #include "internal.h"
+#include "roadslam/objects/segmentation.h"
 
 namespace roadslam::boundary {
 namespace {
 
+/// The objects segmentation run as the obstacle clustering: the labelling picks the points (its
+/// obstacles; the thesis method, every non-ground point of known height), the objects' size and
+/// height filters are off (walls, hedges and poles are obstacles too).
+objects::ClusterParams obstacleClusterParams(const Params& p) {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  objects::ClusterParams c;
+  c.method = p.cluster_method;
+  c.cluster_distance_m = p.cluster_distance_m;
+  c.min_points = p.cluster_min_points;
+  c.min_height_m = c.min_top_height_m = -kInf;
+  c.max_height_m = c.max_range_m = c.max_length_m = c.max_width_m = kInf;
+  c.min_range_m = 0;
+  c.ground = p.ground;
+  return c;
+}
+
 std::vector<Obstacle> clusterObstacles(const Scan& scan, const Labelling& lab, const Params& p, bool with_low) {
-  std::vector<Vec2> pts;
-  std::vector<float> h;
-  for (size_t i = 0; i < scan.points.size(); ++i) {  // the sweep's points only (see process())
-    const bool take = lab.cls[i] == PointClass::Obstacle ||
-                      (with_low && lab.cls[i] != PointClass::Ground && std::isfinite(lab.height_m[i]));
-    if (!take) continue;
-    pts.push_back({scan.points[i].x, scan.points[i].y});
-    h.push_back(lab.height_m[i]);
+  const size_t n = scan.points.size();  // the sweep's points only (see process())
+  std::vector<uint8_t> left_out(n, 1);  // segmentObjects' "ground" mask: 1 = not an obstacle point
+  for (size_t i = 0; i < n; ++i) {
+    left_out[i] = !(lab.cls[i] == PointClass::Obstacle ||
+                    (with_low && lab.cls[i] != PointClass::Ground && std::isfinite(lab.height_m[i])));
   }
+  const std::vector<float> heights(lab.height_m.begin(), lab.height_m.begin() + static_cast<std::ptrdiff_t>(n));
   std::vector<Obstacle> out;
-  for (const auto& c : detail::gridClusters(pts, p.cluster_cell_m)) {
-    if (static_cast<int>(c.size()) < p.cluster_min_points) continue;
+  for (const objects::Object& ob : objects::segmentObjects(scan.points, scan.has_rings, left_out, heights, obstacleClusterParams(p))) {
     Obstacle o;
     std::vector<Vec2> cp;
-    for (size_t i : c) cp.push_back(pts[i]), o.max_height_m = std::max<double>(o.max_height_m, h[i]);
-    o.points = static_cast<int>(c.size());
+    cp.reserve(ob.indices.size());
+    for (uint32_t i : ob.indices) cp.push_back({scan.points[i].x, scan.points[i].y});
+    o.points = static_cast<int>(ob.points);
+    o.max_height_m = ob.top_height_m;
     o.hull = detail::convexHull(std::move(cp));
-    detail::orientedRect(o.hull, o);
+    o.center = {ob.box.cx, ob.box.cy};
+    o.length_m = ob.box.length, o.width_m = ob.box.width;
+    o.yaw_rad = std::remainder(ob.box.yaw, M_PI);  // a rectangle's direction is defined modulo pi
     out.push_back(std::move(o));
   }
   return out;

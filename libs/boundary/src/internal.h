@@ -122,10 +122,6 @@ BendFrame chooseFrame(const std::vector<Vec2>& cells, double kappa_path, const P
 
 /// Convex hull, counter-clockwise (Andrew's monotone chain).
 std::vector<Vec2> convexHull(std::vector<Vec2> pts);
-/// Minimum-area rectangle of a convex hull (one side on a hull edge: Freeman & Shapira 1975).
-void orientedRect(const std::vector<Vec2>& hull, Obstacle& o);
-/// Clusters \p pts on a grid of cell \p cell (8-connected cells = Euclidean clustering at ~cell).
-std::vector<std::vector<size_t>> gridClusters(const std::vector<Vec2>& pts, double cell);
 
 /// RANSAC polynomial fit of one side (side = +1 left, -1 right) over curb points, vehicle frame.
 SideBoundary fitSide(const std::vector<Vec2>& pts, int side, const Params& p, std::mt19937& rng);

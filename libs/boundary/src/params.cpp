@@ -19,6 +19,14 @@ const NameTable<Method>& methodNames() {
   return t;
 }
 
+/// The objects stage's names ([objects] method).
+const NameTable<objects::ClusterMethod>& clusterNames() {
+  static const NameTable<objects::ClusterMethod> t{{objects::ClusterMethod::RangeImage, "range_image"},
+                                                   {objects::ClusterMethod::Euclidean, "euclidean"},
+                                                   {objects::ClusterMethod::Dbscan, "dbscan"}};
+  return t;
+}
+
 }  // namespace
 
 std::string toString(Method m) { return nameOf(methodNames(), m); }
@@ -41,7 +49,8 @@ void Params::fields(ParamTable& t) {
   t.num("tall_max_height_m", tall_max_height_m);
   t.num("obstacle_min_height_m", obstacle_min_height_m);
   t.num("obstacle_max_height_m", obstacle_max_height_m);
-  t.num("cluster_cell_m", cluster_cell_m);
+  t.choice("cluster_method", cluster_method, clusterNames());
+  t.num("cluster_distance_m", cluster_distance_m);
   t.num("roi_range_m", roi_range_m);
   t.num("band_min_x_m", band_min_x_m);
   t.num("band_max_x_m", band_max_x_m);
@@ -97,7 +106,7 @@ void Params::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const 
           "needs 0 < curb_min_jump_m < curb_max_jump_m");
   require(band_max_x_m > band_min_x_m, s, "band_max_x_m", "must exceed band_min_x_m");
   require(poly_degree == 1 || poly_degree == 2, s, "poly_degree", "must be 1 or 2");
-  require(bin_m > 0 && polyline_step_m > 0 && path_step_m > 0 && grid_resolution_m > 0 && cluster_cell_m > 0 && curb_map_cell_m > 0, s, "bin_m",
+  require(bin_m > 0 && polyline_step_m > 0 && path_step_m > 0 && grid_resolution_m > 0 && cluster_distance_m > 0 && curb_map_cell_m > 0, s, "bin_m",
           "cell sizes and steps must be > 0");
   require(memory_frames >= 1 && ransac_iterations >= 1 && freespace_sectors >= 8, s, "memory_frames",
           "memory_frames, ransac_iterations >= 1 and freespace_sectors >= 8");

@@ -54,7 +54,15 @@ TEST(Detector, ParkedCarIsAnObstacleNotABoundary) {
   EXPECT_LT(maxLateralError(f.right, -3.5), 0.15);
   bool car = false;
   for (const auto& o : f.obstacles) {
-    car = car || (std::abs(o.center.x - 10.25) < 1.0 && std::abs(o.center.y + 2.4) < 1.0);
+    if (!(std::abs(o.center.x - 10.25) < 1.0 && std::abs(o.center.y + 2.4) < 1.0)) continue;
+    car = true;
+    // one cluster (the objects segmentation): the car's side facing the road (y = -1.5 m, x 8-12.5 m;
+    // the cast sweep's rings find its rear face too low for an obstacle), its L-shape box along the road
+    EXPECT_NEAR(o.center.x, 10.25, 0.3);
+    EXPECT_NEAR(o.center.y, -1.5, 0.15);
+    EXPECT_NEAR(o.length_m, 4.5, 0.4);
+    EXPECT_LT(o.width_m, 0.3);
+    EXPECT_LT(std::abs(o.yaw_rad), 2.0 * M_PI / 180.0);
   }
   EXPECT_TRUE(car) << "no obstacle at the parked car";
   // Free space ahead stops at the car's face, not beyond.

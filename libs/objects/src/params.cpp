@@ -47,6 +47,7 @@ void ClusterParams::fields(ParamTable& t) {
   t.num("max_width_m", max_width_m);
   t.angle("lshape_step_deg", lshape_step_rad);
   t.flag("remove_moving_from_maps", remove_moving_from_maps);
+  t.flag("remove_moving_from_odometry", remove_moving_from_odometry);
   t.num("removal_margin_m", removal_margin_m);
   t.num("map_delay_s", map_delay_s);
   t.num("retro_extrapolate_s", retro_extrapolate_s);

@@ -269,11 +269,18 @@ void Odometry::redeskewFirstFrame(const Eigen::Isometry3d& delta_sweep) {
   gmap_ = registration::GaussianVoxelMap(params_.map_voxel_m, params_.map_points_per_voxel, params_.map_radius_m, 7,
                                          params_.map_ring_lines_on_walls);
   map_.clear();
-  updateMap(track_.T_world_last);
+  updateMap(track_.T_world_last, track_.last_stamp_s);
   first_scan_.reset();
 }
 
-void Odometry::updateMap(const Eigen::Isometry3d& T_world_lidar) {
+bool MapExclusion::contains(const Eigen::Vector3d& p, double t_s) const {
+  const Eigen::Vector2d d = p.head<2>() - (centre_world + velocity_world_mps * (t_s - stamp_s));
+  const double c = std::cos(yaw_rad), s = std::sin(yaw_rad);
+  return std::abs(c * d.x() + s * d.y()) <= half_length_m && std::abs(-s * d.x() + c * d.y()) <= half_width_m &&
+         p.z() >= z_min_m && p.z() <= z_max_m;
+}
+
+int Odometry::updateMap(const Eigen::Isometry3d& T_world_lidar, double stamp_s) {
   // A bounded number of points of each frame per map voxel (KISS-ICP inserts the frame voxelised at
   // half the map voxel): a voxel then fills from several frames and rings, so the scan line of one
   // ring across the road never fills it alone.
@@ -282,6 +289,23 @@ void Odometry::updateMap(const Eigen::Isometry3d& T_world_lidar) {
   firstPerVoxel(frame_.points, frame_.ground, params_.map_insert_voxel_m, world, ground);
   dropFarGround(world, ground, params_.map_ground_max_range_m);
   for (auto& p : world) p = T_world_lidar * p;
+  int excluded = 0;
+  if (!exclusions_.empty()) {
+    size_t k = 0;
+    for (size_t i = 0; i < world.size(); ++i) {
+      const bool out = std::any_of(exclusions_.begin(), exclusions_.end(),
+                                   [&](const MapExclusion& b) { return b.contains(world[i], stamp_s); });
+      if (out) {
+        ++excluded;
+        continue;
+      }
+      world[k] = world[i];
+      if (!ground.empty()) ground[k] = ground[i];
+      ++k;
+    }
+    world.resize(k);
+    if (!ground.empty()) ground.resize(k);
+  }
   if (params_.matcher == Matcher::VoxelMap) {
     gmap_.insert(world, ground);
     gmap_.removeFar(T_world_lidar.translation());
@@ -291,6 +315,7 @@ void Odometry::updateMap(const Eigen::Isometry3d& T_world_lidar) {
     map_.removeFar(T_world_lidar.translation());
     target_stale_ = true;
   }
+  return excluded;
 }
 
 Odometry::Prediction Odometry::predictFrame(const Scan& scan, const std::optional<MotionPrior>& prior,
@@ -422,7 +447,7 @@ FrameResult Odometry::process(Scan scan, const std::optional<MotionPrior>& given
   if (usesGravityPrior(params_) && (res.status == FrameStatus::Ok || res.status == FrameStatus::First)) updateUp(res);
   const auto t_map = Clock::now();
   if (res.status == FrameStatus::Ok || res.status == FrameStatus::First || res.status == FrameStatus::Degenerate) {
-    updateMap(res.T_world_lidar);
+    res.map_points_excluded = updateMap(res.T_world_lidar, res.stamp_s);
   }
   res.ms_map = msSince(t_map);
   advance(res, prior, pred.dt, scan.stamp_s);

@@ -143,3 +143,52 @@ TEST(OdometryUnit, ParamsRoundTripAndBadValuesNameTheKey) {
     EXPECT_NE(std::string(e.what()).find("matcher"), std::string::npos);
   }
 }
+
+TEST(OdometryUnit, MapExclusionMovesWithItsVelocity) {
+  odometry::MapExclusion b;
+  b.stamp_s = 10.0, b.centre_world = {10, 0}, b.velocity_world_mps = {5, 0};
+  b.yaw_rad = M_PI / 2, b.half_length_m = 2.0, b.half_width_m = 1.0, b.z_min_m = -2, b.z_max_m = 0;
+  EXPECT_TRUE(b.contains({10.9, 1.9, -1}, 10.0));    // the length axis along y
+  EXPECT_FALSE(b.contains({11.1, 0, -1}, 10.0));
+  EXPECT_TRUE(b.contains({15.9, 0, -1}, 11.0));      // 5 m further 1 s later
+  EXPECT_FALSE(b.contains({10.0, 0, -1}, 11.0));
+  EXPECT_FALSE(b.contains({15.0, 0, 0.5}, 11.0));    // above it
+}
+
+// A car driving beside the vehicle through the canyon: boxes on it keep its points out of the local
+// map and nothing else; the pose is as good as without them.
+TEST(OdometryUnit, ExcludedBoxesKeepACarsPointsOutOfTheMap) {
+  auto sweepWithCar = [](int i) {
+    Scan s = canyonSweep(0.8 * i, 300 + i);
+    for (double x = -2; x <= 2; x += 0.1)  // its side, 3 m left, at 12 m/s: x = 5 + 1.2 i in the world
+      for (double z = -1.5; z <= -0.5; z += 0.1) {
+        ScanPoint p;
+        p.x = static_cast<float>(5 + 1.2 * i + x - 0.8 * i), p.y = 3.f, p.z = static_cast<float>(z);
+        s.points.push_back(p);
+      }
+    s.stamp_s = 0.1 * i;
+    return s;
+  };
+  odometry::MapExclusion car;
+  car.centre_world = {5, 3}, car.velocity_world_mps = {12, 0};
+  car.half_length_m = 2.3, car.half_width_m = 0.5, car.z_min_m = -1.7, car.z_max_m = -0.3;
+  odometry::MapExclusion elsewhere = car;
+  elsewhere.centre_world = {5, -3};
+  for (const auto& boxes : {std::vector<odometry::MapExclusion>{car}, std::vector<odometry::MapExclusion>{elsewhere}}) {
+    odometry::Odometry odo(testParams());
+    odo.setMapExclusions(boxes);
+    int excluded = 0;
+    for (int i = 0; i < 10; ++i) {
+      const auto r = odo.process(sweepWithCar(i));
+      ASSERT_NE(r.status, FrameStatus::NotConverged) << r.reason;
+      EXPECT_NEAR(r.T_world_lidar.translation().x(), 0.8 * i, 0.05) << "frame " << i;
+      excluded += r.map_points_excluded;
+      if (boxes.front().centre_world.y() > 0) {
+        EXPECT_GT(r.map_points_excluded, 20) << "frame " << i;  // the car's side, one point per 0.25 m voxel
+      }
+    }
+    if (boxes.front().centre_world.y() < 0) {
+      EXPECT_EQ(excluded, 0) << "a box where nothing stands keeps nothing out";
+    }
+  }
+}

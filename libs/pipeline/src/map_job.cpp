@@ -107,6 +107,7 @@ struct ObjectsOutput {
   size_t n_objects = 0;
   size_t moving_points_removed = 0;
   size_t retro_points_removed = 0;  ///< from earlier keyframes, when their track was labelled moving
+  size_t odometry_points_excluded = 0;  ///< kept out of the odometry's local map (remove_moving_from_odometry)
   std::map<std::string, int> end_reasons;
   std::map<int, mapping::TopViewBox> last_moving;  ///< each moving track's last box, for map_top.png
 
@@ -114,6 +115,7 @@ struct ObjectsOutput {
     if (!f.objects) return;
     moving_points_removed += f.moving_points_removed;
     retro_points_removed += f.retro_points_removed;
+    if (f.pose.odometry) odometry_points_excluded += static_cast<size_t>(f.pose.odometry->map_points_excluded);
     const objects::ObjectsFrame& o = *f.objects;
     const double t = f.pose.ok ? f.pose.t_ref : f.pose.stamp_s;  // the time the tracks are at
     if (f.pose.ok) {
@@ -145,7 +147,8 @@ struct ObjectsOutput {
     int confirmed_alive = 0;
     for (const auto& t : stage.tracker().tracks()) confirmed_alive += t.state == objects::TrackState::Confirmed;
     return {{"objects", n_objects}, {"tracks_alive_at_end", confirmed_alive}, {"moving_points_removed_from_maps", moving_points_removed},
-            {"earlier_points_removed_from_keyframes", retro_points_removed}, {"tracks_ended", end_reasons},
+            {"earlier_points_removed_from_keyframes", retro_points_removed},
+            {"moving_points_kept_out_of_odometry_map", odometry_points_excluded}, {"tracks_ended", end_reasons},
             {"ms_segment_track_per_frame", stats(ms)}, {"ms_ground_per_frame", stats(ms_ground)}};
   }
 };
@@ -257,6 +260,7 @@ MapOutcome runMapJob(const MapRequest& req) {
   stages.objects = objects_stage.get();
   stages.remove_moving_from_maps = params.objects.remove_moving_from_maps;
   stages.removal_margin_m = params.objects.removal_margin_m;
+  stages.remove_moving_from_odometry = params.objects.enabled && params.objects.remove_moving_from_odometry;
   if (params.objects.enabled && params.objects.remove_moving_from_maps) stages.octomap_delay_s = params.objects.map_delay_s;
   Pipeline pipe(std::move(source), std::move(stages));
   const sources::ScanSource* stream = &pipe.source();

@@ -1,5 +1,6 @@
 #include "roadslam/pipeline/pipeline.h"
 
+#include <algorithm>
 #include <chrono>
 #include <stdexcept>
 
@@ -128,6 +129,11 @@ std::optional<PipelineFrame> Pipeline::next() {
   if (stages_.objects) {
     t = Clock::now();
     f.objects = f.pose.ok ? stages_.objects->process(*scan, f.pose.ref, f.pose.t_ref) : stages_.objects->coast(f.pose.stamp_s);
+    if (stages_.remove_moving_from_odometry) {
+      const double t_tracks = f.pose.ok ? f.pose.t_ref : f.pose.stamp_s;
+      stages_.poses->excludeFromMap(
+          movingExclusions(*f.objects, t_tracks, stages_.objects->tracker().params(), stages_.removal_margin_m));
+    }
     f.ms.objects = msSince(t);
   }
 
@@ -160,6 +166,24 @@ std::optional<PipelineFrame> Pipeline::next() {
   if (keep) f.scan = std::move(scan);
   totals_ += f.ms;
   return f;
+}
+
+std::vector<odometry::MapExclusion> movingExclusions(const objects::ObjectsFrame& f, double t_s,
+                                                     const objects::TrackerParams& tp, double margin_m, double sweep_s) {
+  std::vector<odometry::MapExclusion> out;
+  for (const objects::Track& tr : f.tracks) {
+    if (!tr.moving) continue;
+    odometry::MapExclusion b;
+    b.stamp_s = t_s;
+    b.centre_world = tr.x.head<2>();
+    b.velocity_world_mps = tr.x.tail<2>();
+    b.yaw_rad = tr.heading;
+    b.half_length_m = 0.5 * std::max(tr.length, tp.car_length_m) + tr.speed() * sweep_s + margin_m;
+    b.half_width_m = 0.5 * std::max(tr.width, tp.car_width_m) + margin_m;
+    b.z_min_m = tr.z_min - margin_m, b.z_max_m = tr.z_max + margin_m;
+    out.push_back(b);
+  }
+  return out;
 }
 
 std::unique_ptr<sources::ScanSource> openNonEmptySource(const std::string& path, const mrpt::config::CConfigFileBase& cfg,

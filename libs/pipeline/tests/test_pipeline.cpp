@@ -216,3 +216,29 @@ TEST(Pipeline, TheObjectsStageTracksTheWallAndCoastsWithoutAPose) {
   EXPECT_EQ(ended[0].track.state, objects::TrackState::Confirmed);
   EXPECT_TRUE(ended[0].track.x.allFinite());
 }
+
+// The objects stage's moving tracks as boxes for the odometry's map: car-sized at least, lengthened by
+// one sweep's drive, grown by the margin; static tracks give none.
+TEST(Pipeline, MovingTracksBecomeOdometryExclusions) {
+  objects::ObjectsFrame f;
+  objects::Track moving, parked;
+  moving.id = 1, moving.moving = true, moving.heading = 0, moving.length = 3.0, moving.width = 2.0;
+  moving.x << 10, 2, 5, 0;
+  moving.z_min = -1.5, moving.z_max = 0.0;
+  parked = moving;
+  parked.id = 2, parked.moving = false;
+  f.tracks = {moving, parked};
+  objects::TrackerParams tp;  // car 4.5 x 1.8 m
+  const auto boxes = pipeline::movingExclusions(f, 7.0, tp, 0.3, 0.1);
+  ASSERT_EQ(boxes.size(), 1u);
+  const auto& b = boxes[0];
+  EXPECT_DOUBLE_EQ(b.stamp_s, 7.0);
+  EXPECT_NEAR(b.half_length_m, 0.5 * 4.5 + 5 * 0.1 + 0.3, 1e-12);  // the car's length, not the 3 m seen
+  EXPECT_NEAR(b.half_width_m, 0.5 * 2.0 + 0.3, 1e-12);             // the 2 m seen, wider than a car
+  EXPECT_NEAR(b.z_min_m, -1.8, 1e-12);
+  EXPECT_NEAR(b.z_max_m, 0.3, 1e-12);
+  // one sweep later the box has driven 0.5 m
+  EXPECT_TRUE(b.contains({10.5 + 3.0, 2, -1}, 7.1));
+  EXPECT_FALSE(b.contains({10.5 + 3.1, 2, -1}, 7.1));
+  EXPECT_FALSE(b.contains({10.5 - 3.1, 2, -1}, 7.1));
+}

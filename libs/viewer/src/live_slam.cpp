@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 
 #include "roadslam/common/config.h"
 #include "roadslam/datasets/kitti_scans.h"
+#include "roadslam/objects/stage.h"
 #include "roadslam/pipeline/pipeline.h"
 #include "roadslam/sources/observation_packet_source.h"
 #include "roadslam/sources/sweep_source.h"
@@ -13,6 +15,7 @@
 namespace roadslam::viewer {
 
 struct LiveSlam::Impl {
+  std::unique_ptr<objects::ObjectsStage> objects;  // with [objects] enabled; lent to the pipeline
   std::unique_ptr<pipeline::Pipeline> pipe;
   sources::ObservationPacketSource* live = nullptr;  // owned by the pipeline's source
 };
@@ -23,13 +26,48 @@ struct Config {
   std::unique_ptr<CheckedConfig> cfg;
   odometry::Params odometry;
   velodyne::DecoderParams decoder;
+  objects::ClusterParams objects;
+  objects::TrackerParams tracking;
   explicit Config(const std::string& path) : cfg(loadIniFile(path)) {
     odometry.loadFromConfigFile(*cfg);
+    objects.loadFromConfigFile(*cfg, "objects", "preprocess");
+    tracking.loadFromConfigFile(*cfg, "tracking");
     decoder.loadFromConfigFile(*cfg, "velodyne");
     datasets::KittiParams kp;  // read by a KITTI source; loaded so that its keys are checked too
     kp.loadFromConfigFile(*cfg, "kitti");
   }
 };
+
+/// The odometry, and with [objects] enabled the objects stage after it (as roadslam-map runs them).
+pipeline::Stages stagesFor(const Config& c, std::unique_ptr<objects::ObjectsStage>& objects_stage) {
+  pipeline::Stages stages;
+  if (c.objects.enabled) objects_stage = std::make_unique<objects::ObjectsStage>(c.objects, c.tracking);
+  stages.poses = std::make_unique<pipeline::OdometryPoses>(c.odometry, objects_stage != nullptr);
+  stages.objects = objects_stage.get();
+  stages.removal_margin_m = c.objects.removal_margin_m;
+  stages.remove_moving_from_odometry = c.objects.enabled && c.objects.remove_moving_from_odometry;
+  return stages;
+}
+
+/// The sweep's boxes as the map folder's tracks.csv and objects.csv hold them (map frame).
+ObjectBoxes boxesOf(const pipeline::PipelineFrame& f) {
+  ObjectBoxes out;
+  out.stamp_s = f.pose.ok ? f.pose.t_ref : f.pose.stamp_s;
+  for (const objects::Track& t : f.objects->tracks) {
+    out.boxes.push_back({t.id, t.moving, t.x(0), t.x(1), t.heading, t.length, t.width, t.z_min, t.z_max, t.x(2), t.x(3)});
+  }
+  if (!f.pose.ok) return out;
+  const Eigen::Isometry3d& T = f.pose.ref;
+  const double dyaw = std::atan2(T(1, 0), T(0, 0));
+  for (std::size_t k = 0; k < f.objects->objects.size(); ++k) {
+    if (k < f.objects->object_track.size() && f.objects->object_track[k] >= 0) continue;  // drawn as its track
+    const objects::Object& o = f.objects->objects[k];
+    const Eigen::Vector3d c = T * Eigen::Vector3d(o.box.cx, o.box.cy, 0);
+    const double z0 = T.translation().z();
+    out.boxes.push_back({-1, false, c.x(), c.y(), o.box.yaw + dyaw, o.box.length, o.box.width, o.z_min + z0, o.z_max + z0, 0, 0});
+  }
+  return out;
+}
 }  // namespace
 
 LiveSlam::LiveSlam(const std::string& config_ini, const std::string& recording, ViewerModel& model)
@@ -37,9 +75,7 @@ LiveSlam::LiveSlam(const std::string& config_ini, const std::string& recording, 
   Config c(config_ini);
   auto source = pipeline::openNonEmptySource(recording, *c.cfg);
   c.cfg->checkEntries(false);
-  pipeline::Stages stages;
-  stages.poses = std::make_unique<pipeline::OdometryPoses>(c.odometry, false);
-  impl_->pipe = std::make_unique<pipeline::Pipeline>(std::move(source), std::move(stages));
+  impl_->pipe = std::make_unique<pipeline::Pipeline>(std::move(source), stagesFor(c, impl_->objects));
   thread_ = std::thread([this] { run(*impl_); });
 }
 
@@ -51,9 +87,7 @@ LiveSlam::LiveSlam(const std::string& config_ini, const std::string& sensor_labe
   auto packets = std::make_unique<sources::ObservationPacketSource>(sensor_label, name);
   impl_->live = packets.get();
   auto sweeps = std::make_unique<sources::SweepSource>(std::move(packets), c.decoder);
-  pipeline::Stages stages;
-  stages.poses = std::make_unique<pipeline::OdometryPoses>(c.odometry, false);
-  impl_->pipe = std::make_unique<pipeline::Pipeline>(std::move(sweeps), std::move(stages));
+  impl_->pipe = std::make_unique<pipeline::Pipeline>(std::move(sweeps), stagesFor(c, impl_->objects));
   thread_ = std::thread([this] { run(*impl_); });
 }
 
@@ -86,6 +120,7 @@ void LiveSlam::run(Impl& impl) {
       out.ms = r.ms_total;
       out.inliers = r.inliers;
       if (r.status != odometry::FrameStatus::Skipped) model_.postFrame(out);
+      if (f->objects) model_.postObjects(boxesOf(*f));
       last_stamp_s_ = r.stamp_s;
       ++frames_;
     }

@@ -216,12 +216,26 @@ void ViewerModel::postFrame(const FrameResult& f) {
 
 std::size_t ViewerModel::takePosted() {
   std::vector<FrameResult> taken;
+  std::vector<ObjectBoxes> objects;
   {
     std::lock_guard<std::mutex> lock(posted_mutex_);
     taken.swap(posted_);
+    objects.swap(posted_objects_);
   }
   for (const auto& f : taken) appendFrame(f);
+  for (auto& o : objects) appendObjects(std::move(o));
   return taken.size();
+}
+
+void ViewerModel::postObjects(ObjectBoxes f) {
+  std::lock_guard<std::mutex> lock(posted_mutex_);
+  posted_objects_.push_back(std::move(f));
+}
+
+void ViewerModel::appendObjects(ObjectBoxes f) {
+  const auto it = std::upper_bound(objects_.begin(), objects_.end(), f.stamp_s,
+                                   [](double t, const ObjectBoxes& o) { return t < o.stamp_s; });
+  objects_.insert(it, std::move(f));
 }
 
 std::size_t ViewerModel::framesUpTo(double t_s) const {
@@ -251,6 +265,9 @@ const FrameResult* ViewerModel::frameNear(double t_s, double tol_s) const {
 }
 const BoundaryFrame* ViewerModel::boundaryNear(double t_s, double tol_s) const {
   return nearest(bounds_, t_s, tol_s, [](const BoundaryFrame& r) { return r.stamp_s; });
+}
+const ObjectBoxes* ViewerModel::objectsNear(double t_s, double tol_s) const {
+  return nearest(objects_, t_s, tol_s, [](const ObjectBoxes& r) { return r.stamp_s; });
 }
 
 void ViewerModel::loadCan(const std::string& log, const std::string& vehicle_ini) {
@@ -311,6 +328,7 @@ void ViewerModel::loadMapFolder(const std::string& dir) {
     appendFrame(f);
   }
   if (!traj.stamps_s.empty()) checkOverlap("map folder '" + dir + "' times", traj.stamps_s.front(), traj.stamps_s.back());
+  objects_ = readObjectsFolder(dir);  // a run with [objects] enabled
   if (std::ifstream js(dir + "/summary.json"); js) {
     try {
       const auto j = nlohmann::json::parse(js);

@@ -17,7 +17,7 @@ std::optional<Key> parseKey(const std::string& n) {
       {"down", Key::Down},   {"home", Key::Home}, {"end", Key::End},     {"+", Key::Plus},
       {"plus", Key::Plus},   {"-", Key::Minus},   {"minus", Key::Minus}, {"c", Key::C},
       {"v", Key::V},         {"h", Key::H},       {"m", Key::M},         {"b", Key::B},
-      {"s", Key::S}};
+      {"s", Key::S},         {"o", Key::O}};
   for (const auto& [name, key] : names)
     if (name == n) return key;
   return std::nullopt;
@@ -32,7 +32,7 @@ const std::vector<std::pair<std::string, std::string>>& shortcuts() {
       {"+ / -", "speed x2 / x0.5 (0.1x-10x)"},
       {"c", "colour: height, intensity, ring, time"},
       {"v", "camera: follow, top-down, orbit"},
-      {"m / b / s", "map / boundaries / sweep on-off"},
+      {"m / b / s / o", "map / boundaries / sweep / objects on-off"},
       {"h", "this help"}};
   return s;
 }
@@ -113,6 +113,7 @@ bool Replay::handleKey(Key key) {
     case Key::M: options_.show_map = !options_.show_map; return true;
     case Key::B: options_.show_boundaries = !options_.show_boundaries; return true;
     case Key::S: options_.show_sweep = !options_.show_sweep; return true;
+    case Key::O: options_.show_objects = !options_.show_objects; return true;
     case Key::H: help_ = !help_; return true;
   }
   return false;

@@ -1,5 +1,6 @@
 #include "roadslam/viewer/scene.h"
 
+#include "roadslam/viewer/objects_layer.h"
 #include "roadslam/viewer/plots.h"
 
 #include <mrpt/img/color_maps.h>
@@ -172,6 +173,8 @@ CameraView buildScene(const ViewerModel& model, const SceneState& st, const Scen
       scene.insert(polyline(b->right, SceneColors::right, 4.f));
       scene.insert(polyline(b->free_space, SceneColors::free_space, 1.5f, true));
     }
+  if (o.show_objects)
+    if (const auto* ob = model.objectsNear(t_pose)) addObjectBoxes(*ob, scene);
   if (st.sweep && o.show_sweep) {
     auto cloud = CPointCloudColoured::Create();
     cloud->reserve(st.sweep->points.size());

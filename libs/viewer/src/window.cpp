@@ -40,6 +40,7 @@ std::optional<Key> keyOf(int glfw_key) {
     case GLFW_KEY_M: return Key::M;
     case GLFW_KEY_B: return Key::B;
     case GLFW_KEY_S: return Key::S;
+    case GLFW_KEY_O: return Key::O;
     default: return std::nullopt;
   }
 }
@@ -252,7 +253,7 @@ class ViewerWindow {
     const std::string key = std::to_string(cur.value_or(SIZE_MAX)) + "|" + std::to_string(pinned_.value_or(SIZE_MAX)) +
                             "|" + std::to_string(m.framesUpTo(replay_.time() + 0.06)) + "|" + toString(o.color_by) +
                             toString(o.camera) + std::to_string(o.show_map) + std::to_string(o.show_boundaries) +
-                            std::to_string(o.show_sweep);
+                            std::to_string(o.show_sweep) + std::to_string(o.show_objects);
     if (!force && key == last_key_ && !dirty_) return;
     last_key_ = key;
     dirty_ = false;

@@ -3,8 +3,8 @@
 /// Road boundaries, obstacles and free space from a deskewed sweep and its pose.
 /// Per sweep: ground labels with heights (libs/preprocess, slope-following line fits) -> curb points
 /// along each ring (a 0.05-0.30 m jump between two flat pieces, nothing tall in the same cell) ->
-/// obstacle points (0.3-3 m above ground) clustered on a grid, each with a convex hull and an oriented
-/// rectangle -> free space by polar ray casting up to the first curb or obstacle -> left/right
+/// obstacle points (0.3-3 m above ground) clustered by the objects segmentation (objects::segmentObjects,
+/// the one clustering of the chain), each with a convex hull and its L-shape box -> free space by polar ray casting up to the first curb or obstacle -> left/right
 /// boundary: RANSAC polynomial over the curb evidence of many sweeps (a CurbMap in the map frame,
 /// aged out behind the vehicle, moved into the current vehicle frame and then into the arc frame of
 /// the path driven over the last path_curvature_frames sweeps, so fits follow corners), scored by

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <string>
 
+#include "roadslam/objects/params.h"
 #include "roadslam/preprocess/ground_segmentation.h"
 
 namespace mrpt::config {
@@ -59,10 +60,14 @@ struct Params {
   double tall_height_m = 0.40;        ///< a cell with a point between this ... [m]
   double tall_max_height_m = 1.5;     ///< ... and this high above ground is no curb (tree crowns above pass) [m]
 
-  // Obstacles: non-ground points between these heights above the local ground.
+  // Obstacles: non-ground points between these heights above the local ground, grouped by the
+  // objects stage's segmentation (objects::segmentObjects: one clustering for objects and obstacles),
+  // without its size and height filters (walls and hedges are obstacles too).
   double obstacle_min_height_m = 0.30;  ///< lower bound [m]
   double obstacle_max_height_m = 3.0;   ///< upper bound (overhangs, tree crowns above) [m]
-  double cluster_cell_m = 0.30;         ///< grid cell of the Euclidean clustering [m]
+  /// range_image (ring x azimuth; sweeps without rings fall back to euclidean), euclidean or dbscan [-]
+  objects::ClusterMethod cluster_method = objects::ClusterMethod::RangeImage;
+  double cluster_distance_m = 0.6;      ///< two obstacle points join one cluster when this close in x-y [m]
   int cluster_min_points = 5;           ///< smaller clusters are noise [-]
   double roi_range_m = 40.0;            ///< obstacles, free space and grid within this range [m]
 

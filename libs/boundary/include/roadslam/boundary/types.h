@@ -36,10 +36,11 @@ struct SideBoundary {
   double parallel_m = 0;                ///< of the polyline, length continued parallel to the other side beyond this side's own evidence [m]
 };
 
-/// A cluster of obstacle points (parked or moving car, wall, pole, ...), vehicle frame.
+/// A cluster of obstacle points (parked or moving car, wall, pole, ...), vehicle frame: one object of
+/// the objects segmentation (objects::segmentObjects) over the labelling's obstacle points.
 struct Obstacle {
   std::vector<Vec2> hull;               ///< convex outline, counter-clockwise [m]
-  Vec2 center;                          ///< oriented rectangle centre [m]
+  Vec2 center;                          ///< oriented rectangle centre: the object's L-shape box (Zhang et al. 2017) [m]
   double length_m = 0, width_m = 0;     ///< rectangle sides, length >= width [m]
   double yaw_rad = 0;                   ///< direction of the long side [rad]
   double max_height_m = 0;              ///< highest point above ground [m]

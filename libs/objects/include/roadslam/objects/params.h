@@ -47,8 +47,11 @@ struct ClusterParams {
   double max_width_m = 4.0;              ///< wider clusters are no object [m]
   double lshape_step_rad = 1.0 * 3.14159265358979323846 / 180.0;  ///< L-shape search step; ini `lshape_step_deg` [rad]
   /// Points of objects whose track is labelled moving stay out of the maps (point map, OctoMap, grid,
-  /// keyframes; not the odometry's own local map) [-]
+  /// keyframes; the odometry's own local map: the next key) [-]
   bool remove_moving_from_maps = true;
+  /// ... and, predicted to the next sweeps, out of the odometry's own local map (libs/pipeline hands
+  /// them to the pose stage: the objects stage runs after the odometry) [-]
+  bool remove_moving_from_odometry = false;
   double removal_margin_m = 0.3;         ///< around a moving object's box, x-y and z [m]
   /// With the removal: keyframes reach the OctoMap this long after their sweep, so that the points of a
   /// car labelled moving later (its first sweeps, before the label) leave the keyframes first [s]

@@ -146,6 +146,20 @@ struct MotionPrior {
   double speed_mps = 0;                                           ///< vehicle speed [m/s]
 };
 
+/// A region whose points stay out of the odometry's local map: a moving object a later stage found
+/// (the pipeline hands the objects stage's moving tracks back; the odometry knows nothing of objects).
+/// An x-y box in the world frame moving at constant velocity, with a height range.
+struct MapExclusion {
+  double stamp_s = 0;                                           ///< time of centre_world [s]
+  Eigen::Vector2d centre_world = Eigen::Vector2d::Zero();       ///< [m]
+  Eigen::Vector2d velocity_world_mps = Eigen::Vector2d::Zero(); ///< [m/s]
+  double yaw_rad = 0;                                           ///< direction of the length axis, world frame [rad]
+  double half_length_m = 0, half_width_m = 0;                   ///< half extents, margins included [m]
+  double z_min_m = -INFINITY, z_max_m = INFINITY;               ///< world frame [m]
+  /// Whether \p p_world lies inside the box moved to time \p t_s.
+  bool contains(const Eigen::Vector3d& p_world, double t_s) const;
+};
+
 enum class FrameStatus {
   Ok,             ///< registered and converged
   First,          ///< first frame: defines the world frame
@@ -180,6 +194,7 @@ struct FrameResult {
   /// (registration::SurfaceInformation::along); NaN when the motion is too small to have a direction [-]
   double motion_information = std::nan("");
   int vertical_constraints = 0; ///< tilt constraints from vertical structures (gravity prior) [-]
+  int map_points_excluded = 0;  ///< points kept out of the local map by setMapExclusions() [-]
   double ms_preprocess = 0, ms_register = 0, ms_map = 0, ms_total = 0;  ///< wall time [ms]
   Eigen::Matrix<double, 6, 6> information = Eigen::Matrix<double, 6, 6>::Zero();
 };
@@ -201,6 +216,9 @@ class Odometry {
     const bool times = scan.has_point_times || params_.times_from_azimuth;
     return scan.stamp_s + (times ? params_.deskew_reference * params_.sweep_duration_s : 0.0);
   }
+  /// Points inside \p boxes (each moved to the frame's pose time) stay out of the local-map updates
+  /// of the frames processed after this call, until the next call replaces them (empty: none).
+  void setMapExclusions(std::vector<MapExclusion> boxes) { exclusions_ = std::move(boxes); }
   const LocalMap& localMap() const { return map_; }
   const registration::GaussianVoxelMap& voxelMap() const { return gmap_; }
   /// Deskewed, preprocessed points of the last frame (lidar frame) [m] (for keyframe maps).
@@ -222,7 +240,9 @@ class Odometry {
   registration::RegistrationResult match(const std::vector<Eigen::Vector3d>& source,
                                          const Eigen::Isometry3d& T_pred, FrameResult& res,
                                          registration::SurfaceInformation* surface = nullptr);
-  void updateMap(const Eigen::Isometry3d& T_world_lidar);
+  /// Adds the frame's points at \p T_world_lidar (time \p stamp_s) to the local map; returns how many
+  /// the exclusions kept out.
+  int updateMap(const Eigen::Isometry3d& T_world_lidar, double stamp_s);
   Eigen::Isometry3d searchFirstMotion(const Scan& scan, const Eigen::Isometry3d& guess, FrameResult& res);
   void redeskewFirstFrame(const Eigen::Isometry3d& delta_sweep);
 
@@ -277,7 +297,8 @@ class Odometry {
   Track track_;
   UpEstimate up_;
   FramePoints frame_;
-  std::optional<Scan> first_scan_;  ///< the first sweep, preprocessed, until the motion is known
+  std::optional<Scan> first_scan_;
+  std::vector<MapExclusion> exclusions_;  ///< setMapExclusions()  ///< the first sweep, preprocessed, until the motion is known
 };
 
 }  // namespace roadslam::odometry

@@ -58,6 +58,10 @@ struct Stages {
   /// of a track's earlier sweeps leave the keyframes when it is labelled moving (ObjectsFrame::retro).
   bool remove_moving_from_maps = false;
   double removal_margin_m = 0.3;                  ///< [objects] removal_margin_m
+  /// With objects: the moving tracks of each sweep, predicted forward, keep their points out of the
+  /// pose stage's own map (the odometry's local map) from the next sweep on (PoseStage::excludeFromMap):
+  /// the objects stage comes after the odometry, so its answer reaches the odometry one sweep late.
+  bool remove_moving_from_odometry = false;
 };
 
 /// One sweep through the stages.
@@ -106,6 +110,14 @@ class Pipeline {
   size_t frames_ = 0;
   size_t octo_seen_ = 0;  ///< keyframes the OctoMap feed has decided on
 };
+
+/// The confirmed moving tracks of \p f as regions for the odometry's map (map frame, at the tracks'
+/// state time \p t_s): at least a car's size (\p tp car_length_m x car_width_m), lengthened by the
+/// distance driven over one sweep either way (\p sweep_s: the next sweep's points spread over it),
+/// grown by \p margin_m in x-y and z.
+std::vector<odometry::MapExclusion> movingExclusions(const objects::ObjectsFrame& f, double t_s,
+                                                     const objects::TrackerParams& tp, double margin_m,
+                                                     double sweep_s = 0.1);
 
 /// Opens the recording \p path (sources::openScanSource) and reads its first sweep: an input that
 /// gives none is an error ("input 'X' gives no sweep: <why>") before any output exists. The sweep

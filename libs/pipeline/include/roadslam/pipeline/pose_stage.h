@@ -58,6 +58,9 @@ class PoseStage {
   virtual SweepPose pose(Scan& scan) = 0;
   /// "odometry", "odometry+can" or the trajectory's path: for the summaries.
   virtual std::string describe() const = 0;
+  /// Regions (the map frame of the poses) whose points stay out of the map the stage registers
+  /// against in the sweeps after this call; a stage with no map of its own ignores them.
+  virtual void excludeFromMap(std::vector<odometry::MapExclusion> /*boxes*/) {}
 };
 
 /// Poses from the odometry, with the CAN log's motion prior when one is given. Between two converged
@@ -71,6 +74,8 @@ class OdometryPoses : public PoseStage {
   ~OdometryPoses() override;
   SweepPose pose(Scan& scan) override;
   std::string describe() const override;
+  /// Into the odometry's local map (odometry::Odometry::setMapExclusions; map frame = its world frame).
+  void excludeFromMap(std::vector<odometry::MapExclusion> boxes) override { odo_.setMapExclusions(std::move(boxes)); }
 
   const odometry::Odometry& odometry() const { return odo_; }
   /// The CAN prior when a log was given, else nullptr.

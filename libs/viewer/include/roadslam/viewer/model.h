@@ -3,7 +3,8 @@
 /// What the replay viewer shows: a recording (an MRPT rawlog, opened through sources::RawlogIndex)
 /// and, optionally, the results of the other programs over it: a `roadslam-map` output folder
 /// (trajectory.tum, frames.csv, summary.json loops, map.ply), a `roadslam-bounds` output folder
-/// (boundaries.jsonl) and a ground-truth TUM trajectory. All poses are T_map_lidar in the map frame
+/// (boundaries.jsonl) and a ground-truth TUM trajectory. A map folder of a run with `[objects] enabled`
+/// adds its tracks and objects (tracks.csv, objects.csv: objects_layer.h). All poses are T_map_lidar in the map frame
 /// [m]; times are the recording's clock [s].
 ///
 /// Per-frame results are a stream: appendFrame() adds one while replaying (a live odometry), and
@@ -20,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "roadslam/viewer/objects_layer.h"
 #include "roadslam/sources/rawlog_session.h"
 #include "roadslam/sources/live_observations.h"
 #include "roadslam/sources/rawlog_index.h"
@@ -125,9 +127,16 @@ class ViewerModel {
   /// Thread-safe: queues a frame result from another thread (e.g. an odometry running beside the
   /// replay); takePosted() moves the queue into frames() on the drawing thread.
   void postFrame(const FrameResult& f);
-  /// Appends the posted frames; returns how many (the window calls it every tick).
+  /// Appends the posted frames and objects; returns how many frames (the window calls it every tick).
   std::size_t takePosted();
   const std::vector<FrameResult>& frames() const { return frames_; }
+  /// Appends the objects of a sweep (in time order; an older one is inserted in order); not
+  /// thread-safe, as appendFrame(). postObjects() queues them from another thread for takePosted().
+  void appendObjects(ObjectBoxes f);
+  void postObjects(ObjectBoxes f);
+  const std::vector<ObjectBoxes>& objects() const { return objects_; }
+  /// The objects of the sweep within \p tolerance_s of \p t_s (the nearest), if any.
+  const ObjectBoxes* objectsNear(double t_s, double tolerance_s = 0.06) const;
   /// Number of frames stamped at or before \p t_s (frames()[0 .. n) are "so far").
   std::size_t framesUpTo(double t_s) const;
   /// The frame within \p tolerance_s of \p t_s (the nearest), if any.
@@ -171,6 +180,8 @@ class ViewerModel {
   std::vector<FrameResult> frames_;
   std::mutex posted_mutex_;
   std::vector<FrameResult> posted_;
+  std::vector<ObjectBoxes> posted_objects_;
+  std::vector<ObjectBoxes> objects_;
   std::vector<LoopEdge> loops_;
   std::vector<Eigen::Vector3f> map_points_;
   std::vector<Eigen::Vector4f> octo_voxels_;

@@ -25,9 +25,9 @@ class CObservation;
 namespace roadslam::viewer {
 
 /// Shortcut keys, independent of the GUI toolkit.
-enum class Key { Space, Left, Right, Up, Down, Home, End, Plus, Minus, C, V, H, M, B, S };
+enum class Key { Space, Left, Right, Up, Down, Home, End, Plus, Minus, C, V, H, M, B, S, O };
 /// "space", "left", "right", "up", "down", "home", "end", "+"/"plus", "-"/"minus", "c", "v", "h",
-/// "m", "b", "s"; nullopt for any other name.
+/// "m", "b", "s", "o"; nullopt for any other name.
 std::optional<Key> parseKey(const std::string& name);
 /// The help overlay: one line per shortcut.
 const std::vector<std::pair<std::string, std::string>>& shortcuts();

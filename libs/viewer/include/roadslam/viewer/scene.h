@@ -2,8 +2,8 @@
 /// \file scene.h
 /// Builds the viewer's 3D scene (an mrpt::opengl::COpenGLScene) for one instant of the replay: the
 /// current sweep coloured by height / intensity / ring / per-point time, the decimated point map, the
-/// trajectory so far, ground truth, keyframes, loop-closure edges and the boundaries of the current
-/// sweep, with a follow / top-down / orbit camera. The same scene is shown in the window and rendered
+/// trajectory so far, ground truth, keyframes, loop-closure edges, the boundaries and the objects
+/// (track boxes, ids, velocity arrows: objects_layer.h) of the current sweep, with a follow / top-down / orbit camera. The same scene is shown in the window and rendered
 /// headless (render.h), so the pictures in the docs and tests are the window's.
 
 #include <memory>
@@ -32,7 +32,7 @@ struct SceneOptions {
   ColorBy color_by = ColorBy::Height;
   CameraMode camera = CameraMode::Follow;
   bool show_sweep = true, show_map = true, show_trajectory = true, show_ground_truth = true, show_loops = true,
-       show_boundaries = true, show_keyframes = true;
+       show_boundaries = true, show_keyframes = true, show_objects = true;
   float sweep_point_px = 2.0f;     ///< point size of the current sweep [pixels]
   float map_point_px = 1.0f;       ///< point size of the map [pixels]
   float line_px = 3.0f;            ///< trajectory line width [pixels]
@@ -61,6 +61,9 @@ struct SceneColors {
   static constexpr unsigned char grid_occupied[3] = {255, 200, 0};  // amber
   static constexpr unsigned char grid_free[3] = {45, 60, 75};
   static constexpr unsigned char background[3] = {25, 25, 30};
+  static constexpr unsigned char object_moving[3] = {255, 50, 150};     // pink: a moving track's box, id, arrow
+  static constexpr unsigned char object_static[3] = {0, 230, 160};      // teal: a static track
+  static constexpr unsigned char object_untracked[3] = {200, 200, 120}; // khaki: an object no confirmed track took
 };
 
 /// What is shown at one instant.
