@@ -297,8 +297,8 @@ class Odometry {
   Track track_;
   UpEstimate up_;
   FramePoints frame_;
-  std::optional<Scan> first_scan_;
-  std::vector<MapExclusion> exclusions_;  ///< setMapExclusions()  ///< the first sweep, preprocessed, until the motion is known
+  std::optional<Scan> first_scan_;  ///< the first sweep, preprocessed, until the motion is known
+  std::vector<MapExclusion> exclusions_;  ///< setMapExclusions()
 };
 
 }  // namespace roadslam::odometry
