@@ -123,7 +123,7 @@ bool Mapper::detectLoop() {
   }
   if (lp.candidates != LoopCandidates::Radius) {
     for (size_t match : findPlaceCandidates(places_, kfs_, query, lp)) {
-      if (tryLoop(verifyPlaceLoop(kfs_, T_map_kf, query, match, lp))) return true;
+      if (tryLoop(verifyPlaceLoop(kfs_, T_map_kf, query, match, lp, features_))) return true;
     }
   }
   return false;

@@ -12,6 +12,7 @@
 #include "roadslam/common/config.h"
 #include "roadslam/common/param_table.h"
 #include "ini_keys.h"
+#include "pose_graph_solver.h"
 
 namespace roadslam::mapping {
 namespace {
@@ -33,12 +34,7 @@ Eigen::Isometry3d toEigen(const mrpt::poses::CPose3D& p) {
 
 /// se(3) residual [t, rotation vector] of the measurement against the estimate (small-error form).
 Eigen::Matrix<double, 6, 1> residual(const Eigen::Isometry3d& T_meas, const Eigen::Isometry3d& T_est) {
-  const Eigen::Isometry3d E = T_meas.inverse() * T_est;
-  Eigen::Matrix<double, 6, 1> e;
-  const Eigen::AngleAxisd aa(E.rotation());
-  e.head<3>() = E.translation();
-  e.tail<3>() = aa.angle() * aa.axis();
-  return e;
+  return detail::pseudoLog(T_meas.inverse() * T_est);
 }
 
 /// The mean eigenvalue of \p B times identity; with \p weak_ratio > 0, eigen-directions below
@@ -64,6 +60,8 @@ Eigen::Matrix3d isotropicBlock(const Eigen::Matrix3d& B, double weak_ratio) {
 
 void PoseGraphParams::fields(ParamTable& t) {
   t.num("max_iterations", max_iterations);
+  static const NameTable<GraphOptimizer> optimizers{{GraphOptimizer::Lm, "lm"}, {GraphOptimizer::MrptLevmarq, "mrpt_levmarq"}};
+  t.choice("optimizer", optimizer, optimizers);
   t.flag("use_registration_information", use_registration_information);
   t.flag("isotropic_information", isotropic_information);
   t.num("isotropic_weak_ratio", isotropic_weak_ratio);
@@ -134,12 +132,31 @@ OptimizeStats PoseGraph::optimize() {
   OptimizeStats st;
   if (numNodes() < 2 || impl_->edges.empty()) return st;
   const auto t0 = std::chrono::steady_clock::now();
-  mrpt::graphslam::TResultInfoSpaLevMarq info{};
-  mrpt::containers::yaml extra = mrpt::containers::yaml::Map();
-  extra["max_iterations"] = static_cast<uint64_t>(impl_->p.max_iterations);
-  mrpt::graphslam::optimize_graph_spa_levmarq(impl_->graph, info, nullptr, extra);
-  st.iterations = static_cast<int>(info.num_iters);
-  st.final_error = info.final_total_sq_error;
+  if (impl_->p.optimizer == GraphOptimizer::MrptLevmarq) {
+    mrpt::graphslam::TResultInfoSpaLevMarq info{};
+    mrpt::containers::yaml extra = mrpt::containers::yaml::Map();
+    extra["max_iterations"] = static_cast<uint64_t>(impl_->p.max_iterations);
+    mrpt::graphslam::optimize_graph_spa_levmarq(impl_->graph, info, nullptr, extra);
+    st.iterations = static_cast<int>(info.num_iters);
+    st.final_error = info.final_total_sq_error;
+  } else {
+    std::vector<detail::SolverEdge> edges;
+    edges.reserve(impl_->edges.size());
+    for (const auto& it : impl_->edges) {
+      detail::SolverEdge e;
+      e.from = it->first.first;
+      e.to = it->first.second;
+      e.T_from_to = toEigen(it->second.mean);
+      for (int r = 0; r < 6; ++r)
+        for (int c = 0; c < 6; ++c) e.information(r, c) = it->second.cov_inv(r, c);
+      edges.push_back(e);
+    }
+    PoseVector T = poses();
+    const auto r = detail::optimizePoses(T, edges, impl_->p.max_iterations);
+    setPoses(T);
+    st.iterations = r.iterations;
+    st.final_error = r.final_cost;
+  }
   st.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return st;
 }

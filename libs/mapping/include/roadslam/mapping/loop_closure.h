@@ -16,6 +16,7 @@
 
 #include <cmath>
 #include <Eigen/Geometry>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -120,9 +121,25 @@ LoopResult verifyLoop(const std::vector<Keyframe>& kfs, const PoseVector& T_map_
 std::vector<size_t> findPlaceCandidates(const place::ScanContextDatabase& db, const std::vector<Keyframe>& kfs,
                                         size_t query, const LoopClosureParams& p);
 
-/// A place candidate: the two keyframes registered with no guess (global registration), then the fine ICP
-/// of verifyLoop's submaps from that pose, with its fitness and overlap checks and the place_consistency_* bounds.
+/// Global-registration features of keyframes (registration::computeFeatures of their points), computed on
+/// first use and kept: a keyframe enters many candidate pairs, and its features are most of a pair's cost.
+class KeyframeFeatures {
+ public:
+  /// Features of keyframe \p i of \p kfs for \p p (the same params on every call).
+  const registration::FeatureCloud& of(const std::vector<Keyframe>& kfs, size_t i, const registration::GlobalParams& p);
+  /// Forgets keyframe \p i's features (its points changed).
+  void invalidate(size_t i);
+  size_t computed() const { return computed_; }  ///< features computed so far [-]
+
+ private:
+  std::vector<std::unique_ptr<registration::FeatureCloud>> f_;
+  size_t computed_ = 0;
+};
+
+/// A place candidate: the two keyframes registered with no guess (global registration, their features from
+/// \p features), then the fine ICP of verifyLoop's submaps from that pose, with its fitness and overlap checks
+/// and the place_consistency_* bounds.
 LoopResult verifyPlaceLoop(const std::vector<Keyframe>& kfs, const PoseVector& T_map_kf, size_t query, size_t match,
-                           const LoopClosureParams& p);
+                           const LoopClosureParams& p, KeyframeFeatures& features);
 
 }  // namespace roadslam::mapping

@@ -28,9 +28,15 @@ namespace roadslam::mapping {
 using Matrix6d = Eigen::Matrix<double, 6, 6>;
 using PoseVector = std::vector<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>>;
 
+/// Ini values: lm (ours: steps accepted on the information-weighted cost, pose_graph_solver.h) |
+/// mrpt_levmarq (MRPT 2.5.8's optimize_graph_spa_levmarq, which accepts steps on the unweighted error
+/// and stalls when edges' information differs by orders of magnitude; kept for comparison).
+enum class GraphOptimizer { Lm, MrptLevmarq };
+
 /// Ini section [pose_graph].
 struct PoseGraphParams {
   int max_iterations = 100;               ///< Levenberg-Marquardt iterations per optimisation [-]
+  GraphOptimizer optimizer = GraphOptimizer::Lm;  ///< ini optimizer
   bool use_registration_information = true;  ///< odometry edges carry the registration information
   double odometry_information_scale = 1.0;   ///< multiplies the registration information [-]
   /// Keep the registration information's directions (false), or only its translation and rotation
