@@ -16,7 +16,7 @@ using sim::toEigen;
 
 }  // namespace
 
-std::vector<SimFrame> simulateDrive(const sim::ScenarioParams& p, const DriftModel& drift) {
+std::vector<SimFrame> simulateDrive(const sim::ScenarioParams& p, const DriftModel& drift, Eigen::Isometry3d* T_sim_world) {
   sim::Simulator s(p);
   std::vector<Scan> sweeps;
   sim::SweepSink sink([&](Scan&& sc) { sweeps.push_back(std::move(sc)); });
@@ -28,6 +28,7 @@ std::vector<SimFrame> simulateDrive(const sim::ScenarioParams& p, const DriftMod
     const double t0 = sc.stamp_s - static_cast<double>(p.start_epoch_s);
     const Eigen::Isometry3d T_gt = toEigen(s.lidar().lidarPose(t0));
     if (k == 0) T_gt0 = T_gt;
+    if (k == 0 && T_sim_world) *T_sim_world = T_gt;
     SimFrame f;
     f.T_world_lidar_gt = T_gt0.inverse() * T_gt;
     // drifted odometry: true increment, scaled, with a heading error proportional to the distance
