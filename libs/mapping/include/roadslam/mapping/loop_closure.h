@@ -81,10 +81,10 @@ struct LoopClosureParams {
   double place_consistency_ratio = 0.1;     ///< ... plus this fraction of the path between the keyframes [-]
   double place_consistency_rot_rad = 5.0 * M_PI / 180.0;  ///< [rad]; ini place_consistency_rot_deg
   double place_consistency_rot_rad_per_m = 10.0 * M_PI / 180.0 / 100.0;  ///< [rad/m]; ini place_consistency_rot_deg_per_100m
-  /// Multiplies a place loop's fine ICP information [-]. Place loops pair whole submaps (overlap ~1, inlier
-  /// RMSE ~0.17 m): at full information MRPT's Levenberg-Marquardt stopped with the graph 4.5 m off an
-  /// exact (3 mm) loop edge on the simulated second lap and the residual test rejected every such loop.
-  double place_information_scale = 0.01;
+  /// Multiplies a place loop's fine ICP information [-]. 0.01 was needed with MRPT's optimiser, which left
+  /// the graph 4.5 m off exact (3 mm) place loops at full information (its first refused step ended it,
+  /// pose_graph_solver.h); with [pose_graph] optimizer = lm full information closes them (MapperSim tests).
+  double place_information_scale = 1.0;
   place::ScanContextParams place;          ///< [loop_closure_place]
   registration::GlobalParams global;       ///< [loop_closure_global], its refinement [loop_closure_global_fine]
 
