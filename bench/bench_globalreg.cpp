@@ -130,8 +130,13 @@ bool within(const Eigen::Isometry3d& gt, const Eigen::Isometry3d& est) {
 
 void printRow(const std::string& drive, const std::string& method, const Tally& t, int ok_ref, bool has_conv) {
   const double n = std::max(1, t.pairs);
-  const std::string ref = ok_ref < 0 ? "" : std::to_string(100.0 * ok_ref / n).substr(0, 5) + " %";
-  const std::string pre = ok_ref < 0 ? "" : std::to_string(100.0 * t.ransac_ok / n).substr(0, 5) + " %";
+  auto percent = [](double x) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%6.1f %%", x);
+    return std::string(b);
+  };
+  const std::string ref = ok_ref < 0 ? "" : percent(100.0 * ok_ref / n);
+  const std::string pre = ok_ref < 0 ? "" : percent(100.0 * t.ransac_ok / n);
   std::printf("| %-24s | %-22s | %5d | %6.1f %% | %s | %s | %s | %8.1f | %8.1f |\n", drive.c_str(), method.c_str(),
               t.pairs, 100.0 * t.ok / n, ref.c_str(), pre.c_str(),
               has_conv ? (std::to_string(t.converged) + " / " + std::to_string(t.wrong_converged)).c_str() : "  n/a  ",
