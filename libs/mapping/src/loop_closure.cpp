@@ -167,7 +167,9 @@ LoopResult verifySubmaps(const std::vector<Keyframe>& kfs, const PoseVector& T_m
   r.T_match_query = f.T_target_source;
   r.fitness_m = f.fitness;
   r.overlap = source.empty() ? 0.0 : static_cast<double>(f.inliers) / source.size();
-  r.information = a.information_scale * f.information;
+  // the fine ICP's information is about the match frame (left perturbations); the loop edge's residual
+  // is in the query's frame
+  r.information = a.information_scale * sourceFrameInformation(f.information, f.T_target_source);
   const Eigen::Isometry3d corr = guess.inverse() * f.T_target_source;
   r.correction_m = corr.translation().norm();
   r.correction_rad = angleOf(corr);

@@ -219,6 +219,20 @@ Matrix6d PoseGraph::odometryInformation(const Matrix6d& reg_info) const {
   return I + floor * 1e-3;
 }
 
+Matrix6d sourceFrameInformation(const Matrix6d& I_target, const Eigen::Isometry3d& T_target_source) {
+  // exp(delta) T = T exp(Ad_T^-1 delta): delta = Ad_T e, so delta^T I delta = e^T (Ad_T^T I Ad_T) e with the
+  // SE(3) adjoint in [t, r] order Ad_T = [[R, [t]x R], [0, R]] (first order, as the residual's pseudo-log)
+  const Eigen::Matrix3d R = T_target_source.rotation();
+  const Eigen::Vector3d t = T_target_source.translation();
+  Eigen::Matrix3d tx;
+  tx << 0, -t.z(), t.y(), t.z(), 0, -t.x(), -t.y(), t.x(), 0;
+  Matrix6d Ad = Matrix6d::Zero();
+  Ad.topLeftCorner<3, 3>() = R;
+  Ad.topRightCorner<3, 3>() = tx * R;
+  Ad.bottomRightCorner<3, 3>() = R;
+  return Ad.transpose() * I_target * Ad;
+}
+
 Matrix6d PoseGraph::canInformation(double distance_m, const Eigen::Isometry3d& T_base_lidar) const {
   const auto& p = impl_->p;
   const double d = std::abs(distance_m);
@@ -228,15 +242,7 @@ Matrix6d PoseGraph::canInformation(double distance_m, const Eigen::Isometry3d& T
   I_base.diagonal() << 1 / var_t, 1 / var_t, p.can_weak_information, p.can_weak_information, p.can_weak_information,
       1 / var_yaw;
   // SE(3) adjoint of T_base_lidar in [t, r] order: [[R, [t]x R], [0, R]].
-  const Eigen::Matrix3d R = T_base_lidar.rotation();
-  const Eigen::Vector3d t = T_base_lidar.translation();
-  Eigen::Matrix3d tx;
-  tx << 0, -t.z(), t.y(), t.z(), 0, -t.x(), -t.y(), t.x(), 0;
-  Matrix6d Ad = Matrix6d::Zero();
-  Ad.topLeftCorner<3, 3>() = R;
-  Ad.topRightCorner<3, 3>() = tx * R;
-  Ad.bottomRightCorner<3, 3>() = R;
-  return Ad.transpose() * I_base * Ad;
+  return sourceFrameInformation(I_base, T_base_lidar);
 }
 
 Eigen::Isometry3d fuseMeasurements(const Eigen::Isometry3d& T_a, const Matrix6d& I_a, const Eigen::Isometry3d& T_b,

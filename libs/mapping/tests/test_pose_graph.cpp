@@ -262,3 +262,27 @@ TEST(PoseGraph, ExactEdgesGiveTheTruthAtAnyLoopInformation) {
     }
   }
 }
+
+// A registration's information (left perturbations in the target frame, registration.h) moved to the
+// graph's residual frame (right perturbations, the source's), against the point-to-plane Hessian built
+// directly in the source frame from the same pairs: x = T p, r = n.(x - q); target frame J = [n; x x n],
+// source frame (x = T pexp(e) p) J = [R^T n; p x R^T n]. A turned loop (120 deg) 8 m away.
+TEST(PoseGraph, LoopInformationMovesToTheQueryFrame) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = (Eigen::AngleAxisd(2.1, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(0.05, Eigen::Vector3d::UnitX())).toRotationMatrix();
+  T.translation() << 8, -3, 0.4;
+  std::srand(11);
+  Matrix6d H_target = Matrix6d::Zero(), H_source = Matrix6d::Zero();
+  for (int k = 0; k < 200; ++k) {
+    const Eigen::Vector3d p = Eigen::Vector3d::Random() * 20, n = Eigen::Vector3d::Random().normalized();
+    const Eigen::Vector3d x = T * p, ns = T.linear().transpose() * n;
+    Eigen::Matrix<double, 6, 1> Jt, Js;
+    Jt << n, x.cross(n);
+    Js << ns, p.cross(ns);
+    H_target += Jt * Jt.transpose();
+    H_source += Js * Js.transpose();
+  }
+  const Matrix6d I = sourceFrameInformation(H_target, T);
+  EXPECT_LT((I - H_source).norm(), 1e-9 * H_source.norm());
+  EXPECT_GT((H_target - H_source).norm(), 0.1 * H_source.norm());  // the frames really differ here
+}
