@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <stdexcept>
 
@@ -41,13 +42,15 @@ class FeatureIndex {
   /// true distance (Arya et al. 1998, as nanoflann implements it) [-].
   std::vector<uint32_t> nearest(const std::vector<Fpfh>& queries, float eps) const {
     std::vector<uint32_t> nn(queries.size(), 0);
-    const nanoflann::SearchParams sp(32, eps, false);
-    for (size_t i = 0; i < queries.size(); ++i) {
-      float d2 = 0;
-      nanoflann::KNNResultSet<float, uint32_t> rs(1);
-      rs.init(&nn[i], &d2);
-      tree_.findNeighbors(rs, queries[i].data(), sp);
-    }
+    for (size_t i = 0; i < queries.size(); ++i) nn[i] = nearest(queries[i], eps);
+    return nn;
+  }
+  uint32_t nearest(const Fpfh& query, float eps) const {
+    uint32_t nn = 0;
+    float d2 = 0;
+    nanoflann::KNNResultSet<float, uint32_t> rs(1);
+    rs.init(&nn, &d2);
+    tree_.findNeighbors(rs, query.data(), nanoflann::SearchParams(32, eps, false));
     return nn;
   }
 
@@ -74,7 +77,13 @@ struct Correspondence {
 std::vector<Correspondence> mutualMatches(const FeatureCloud& target, const FeatureCloud& source, float eps) {
   std::unique_ptr<FeatureIndex> local_t, local_s;
   const auto s2t = indexOf(target, local_t).nearest(source.features, eps);
-  const auto t2s = indexOf(source, local_s).nearest(target.features, eps);
+  // the reciprocity test reads t2s only at the target features some source feature chose: query those
+  // alone (a deterministic search per query, so the same matches as querying every target feature)
+  const FeatureIndex& source_index = indexOf(source, local_s);
+  constexpr uint32_t kNotQueried = std::numeric_limits<uint32_t>::max();
+  std::vector<uint32_t> t2s(target.features.size(), kNotQueried);
+  for (uint32_t t : s2t)
+    if (t2s[t] == kNotQueried) t2s[t] = source_index.nearest(target.features[t], eps);
   std::vector<Correspondence> out;
   for (size_t i = 0; i < s2t.size(); ++i) {
     if (t2s[s2t[i]] != i) continue;
