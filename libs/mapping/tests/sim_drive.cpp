@@ -45,7 +45,10 @@ std::vector<SimFrame> simulateDrive(const sim::ScenarioParams& p, const DriftMod
     f.result.keyframe = k == 0 || (T_kf.inverse() * T_drift).translation().norm() >= drift.keyframe_m;
     if (f.result.keyframe) T_kf = T_drift;
     // rotation ~100x stiffer than translation, like a scan registration (lever arms of ~10 m)
-    f.result.information.diagonal() << 1e4, 1e4, 1e4, 1e6, 1e6, 1e6;
+    // (about the lidar; the odometry reports it about its world frame, as registration does)
+    Eigen::Matrix<double, 6, 6> I_lidar = Eigen::Matrix<double, 6, 6>::Zero();
+    I_lidar.diagonal() << 1e4, 1e4, 1e4, 1e6, 1e6, 1e6;
+    f.result.information = sourceFrameInformation(I_lidar, T_drift.inverse());
     const Eigen::Isometry3d T_start_end = toEigen(s.lidar().lidarPose(t0)).inverse() * toEigen(s.lidar().lidarPose(t0 + 0.1));
     f.points_lidar = registration::voxelDownsample(odometry::deskew(sc, T_start_end, 0.1), 0.25);
     out.push_back(std::move(f));

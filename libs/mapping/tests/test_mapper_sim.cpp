@@ -263,6 +263,7 @@ TunnelFrames tunnelFrames(double duration_s) {
       if (const auto T_b = prior.baseMotion(t0 + t - 0.1, t0 + t)) wheel = WheelMotion{*T_b, pp.T_base_lidar};
     }
     f.T_world_lidar = T_odo;
+    f.information = sourceFrameInformation(f.information, T_odo.inverse());  // about the world frame, as the odometry's
     f.keyframe = k == 0 || (T_kf.inverse() * T_odo).translation().norm() >= 1.0;
     if (f.keyframe) T_kf = T_odo;
     out.odo.push_back(f);
