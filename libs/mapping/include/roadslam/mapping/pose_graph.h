@@ -119,7 +119,8 @@ class PoseGraph {
 
   /// Writes MRPT's text graph format (VERTEX3 / EDGE3 lines) atomically; throws naming the path.
   void saveToTextFile(const std::string& path) const;
-  /// Information of an odometry edge from the registration's information (see PoseGraphParams).
+  /// Information of an odometry edge from the registration's information, already in the keyframe's
+  /// lidar frame (sourceFrameInformation of the odometry's, which is about its map frame; see PoseGraphParams).
   Matrix6d odometryInformation(const Matrix6d& registration_information) const;
   /// Information of a CAN edge over \p distance_m [m] in the lidar frame: the base-frame information
   /// (PoseGraphParams can_*) moved through the mounting T_base_lidar, I_lidar = Ad^T I_base Ad with
