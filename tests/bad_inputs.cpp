@@ -79,6 +79,7 @@ void makeFiles() {
   write(w / "typo-section.ini", def + "\n[odometri]\nmap_radius_m = 50\n");
   write(w / "not-a-number.ini", "[preprocess]\nvoxel_size_m = abc\n");
   write(w / "bad-matcher.ini", "[odometry]\nmatcher = kiss\n");
+  write(w / "bad-graph-optimizer.ini", "[pose_graph]\noptimizer = g2o\n");
   write(w / "negative-voxel.ini", "[odometry]\nmap_voxel_m = -1\n");
   write(w / "bad-spin.ini", "[kitti]\nspin = sideways\n");
   write(w / "bad-stamp-reference.ini", "[kitti]\nstamp_reference = centre\n");
@@ -147,6 +148,7 @@ void makeFiles() {
   // simulator and grabber inis
   write(w / "sim-typo.ini", fileText(kSrc + "/ini/sim/urban-loop.ini") + "\n[lidar]\nrange_nosie_m = 0.1\n");
   write(w / "sim-bad-value.ini", "[scenario]\nduration_s = -5\n");
+  write(w / "sim-open-route-offset.ini", fileText(kSrc + "/ini/sim/highway.ini") + "\n[trajectory]\nstart_offset_m = 50\n");
   write(w / "grab-typo.ini", fileText(kSrc + "/ini/grab.ini") + "\n[grab]\nsegmnet_mb = 5\n");
 }
 
@@ -185,6 +187,7 @@ const Row kTable[] = {
   {"map-typo-allowed",     "roadslam-map --config {W}/typo-key.ini --input {W}/truncated.pcap --out {O} --quiet --allow-unknown-keys", 0, "warning: "},
   {"map-not-a-number",     "roadslam-map --config {W}/not-a-number.ini --input {W}/truncated.pcap --out {O}", 1, "[preprocess] voxel_size_m = 'abc' is not a number"},
   {"map-bad-matcher",      "roadslam-map --config {W}/bad-matcher.ini --input {W}/truncated.pcap --out {O}", 1, "expected voxel_map or registration"},
+  {"map-bad-graph-optimizer", "roadslam-map --config {W}/bad-graph-optimizer.ini --input {W}/truncated.pcap --out {O}", 1, "optimizer = 'g2o': expected lm or mrpt_levmarq"},
   {"map-negative-voxel",   "roadslam-map --config {W}/negative-voxel.ini --input {W}/truncated.pcap --out {O}", 1, "must be positive"},
   {"map-bad-spin",         "roadslam-map --config {W}/bad-spin.ini --input {W}/truncated.pcap --out {O}", 1, "[kitti] spin = 'sideways'"},
   {"map-bad-stamp-ref",    "roadslam-map --config {W}/bad-stamp-reference.ini --input {W}/truncated.pcap --out {O}", 1, "expected start, middle or end"},
@@ -236,6 +239,7 @@ const Row kTable[] = {
   // roadslam-sim
   {"sim-typo-key",         "roadslam-sim --scenario {W}/sim-typo.ini --out {O}", 1, "range_nosie_m"},
   {"sim-bad-value",        "roadslam-sim --scenario {W}/sim-bad-value.ini --out {O}", 1, "duration_s"},
+  {"sim-open-route-offset", "roadslam-sim --scenario {W}/sim-open-route-offset.ini --out {O}", 1, "start_offset_m needs a closed route"},
   {"sim-missing",          "roadslam-sim --scenario {W}/nope.ini --out {O}", 105, "File does not exist"},
   // roadslam-grab
   {"grab-typo-key",        "roadslam-grab --config {W}/grab-typo.ini --out {O} --duration 0.1", 1, "segmnet_mb"},

@@ -6,6 +6,7 @@
 #include "roadslam/common/config.h"
 #include "roadslam/common/param_table.h"
 
+#include "roadslam/mapping/loop_closure.h"
 #include "roadslam/place/scan_context.h"
 
 namespace roadslam::mapping {
@@ -53,6 +54,7 @@ struct Localizer::Impl {
   LocalizerParams p;
   std::unique_ptr<registration::Target> target;
   place::ScanContextDatabase places;
+  mutable KeyframeFeatures features;  ///< map keyframes' global-registration features, on first use
   std::optional<Eigen::Isometry3d> last, before_last;  ///< T_map_lidar of the last two localized sweeps
   size_t map_points = 0;
 };
@@ -101,12 +103,9 @@ LocalizationResult Localizer::relocalize(const std::vector<Eigen::Vector3d>& poi
   LocalizationResult best;
   best.reason = "relocalization: no place matched";
   const auto sc = place::makeScanContext(points_lidar, m.places.params());
-  const auto sweep = registration::computeFeatures(points_lidar, m.p.global);
+  const auto sweep = registration::computeFeatures(points_lidar, m.p.global, false);
   for (const auto& c : m.places.query(sc, 0.0, m.p.relocalize_candidates)) {
-    const Keyframe& kf = m.map.keyframes[c.id];
-    registration::PointCloud kf_pts;
-    for (const auto& q : kf.points_lidar) kf_pts.push_back(q.cast<double>());
-    const auto g = registration::alignGlobal(registration::computeFeatures(kf_pts, m.p.global), sweep, m.p.global);
+    const auto g = registration::alignGlobal(m.features.of(m.map.keyframes, c.id, m.p.global), sweep, m.p.global);
     if (!g.converged) {
       best.reason = "relocalization: global " + registration::toString(g.status);
       continue;

@@ -167,7 +167,9 @@ LoopResult verifySubmaps(const std::vector<Keyframe>& kfs, const PoseVector& T_m
   r.T_match_query = f.T_target_source;
   r.fitness_m = f.fitness;
   r.overlap = source.empty() ? 0.0 : static_cast<double>(f.inliers) / source.size();
-  r.information = a.information_scale * f.information;
+  // the fine ICP's information is about the match frame (left perturbations); the loop edge's residual
+  // is in the query's frame
+  r.information = a.information_scale * sourceFrameInformation(f.information, f.T_target_source);
   const Eigen::Isometry3d corr = guess.inverse() * f.T_target_source;
   r.correction_m = corr.translation().norm();
   r.correction_rad = angleOf(corr);
@@ -203,10 +205,24 @@ std::vector<size_t> findPlaceCandidates(const place::ScanContextDatabase& db, co
   return out;
 }
 
+const registration::FeatureCloud& KeyframeFeatures::of(const std::vector<Keyframe>& kfs, size_t i,
+                                                       const registration::GlobalParams& p) {
+  if (f_.size() <= i) f_.resize(i + 1);
+  if (!f_[i]) {
+    f_[i] = std::make_unique<registration::FeatureCloud>(registration::computeFeatures(pointsOf(kfs.at(i)), p));
+    ++computed_;
+  }
+  return *f_[i];
+}
+
+void KeyframeFeatures::invalidate(size_t i) {
+  if (i < f_.size()) f_[i].reset();
+}
+
 LoopResult verifyPlaceLoop(const std::vector<Keyframe>& kfs, const PoseVector& T_map_kf, size_t query, size_t match,
-                           const LoopClosureParams& p) {
+                           const LoopClosureParams& p, KeyframeFeatures& features) {
   const auto t0 = std::chrono::steady_clock::now();
-  const auto g = registration::alignGlobal(pointsOf(kfs[match]), pointsOf(kfs[query]), p.global);
+  const auto g = registration::alignGlobal(features.of(kfs, match, p.global), features.of(kfs, query, p.global), p.global);
   if (!g.converged) {
     LoopResult r;
     r.query = query;

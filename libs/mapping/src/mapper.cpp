@@ -90,7 +90,9 @@ void Mapper::addKeyframe(const odometry::FrameResult& f, const std::vector<Eigen
   } else {
     const size_t prev = kfs_.size() - 1;
     Eigen::Isometry3d T_prev_cur = kfs_[prev].T_odom_lidar.inverse() * f.T_world_lidar;
-    Matrix6d info = graph_.odometryInformation(f.information);
+    // the odometry's information is about its map frame (left perturbations, lever arms from the map's
+    // origin); the edge's residual is in this keyframe's lidar frame
+    Matrix6d info = graph_.odometryInformation(sourceFrameInformation(f.information, f.T_world_lidar));
     if (p_.graph.can_edges && wheel_complete_) {
       // T_lidarkf_lidar = T_base_lidar^-1 * T_basekf_base * T_base_lidar
       const Eigen::Isometry3d T_can = T_base_lidar_.inverse() * T_kfbase_base_ * T_base_lidar_;
@@ -123,7 +125,7 @@ bool Mapper::detectLoop() {
   }
   if (lp.candidates != LoopCandidates::Radius) {
     for (size_t match : findPlaceCandidates(places_, kfs_, query, lp)) {
-      if (tryLoop(verifyPlaceLoop(kfs_, T_map_kf, query, match, lp))) return true;
+      if (tryLoop(verifyPlaceLoop(kfs_, T_map_kf, query, match, lp, features_))) return true;
     }
   }
   return false;

@@ -12,6 +12,7 @@
 #include "roadslam/common/config.h"
 #include "roadslam/common/param_table.h"
 #include "ini_keys.h"
+#include "pose_graph_solver.h"
 
 namespace roadslam::mapping {
 namespace {
@@ -33,12 +34,7 @@ Eigen::Isometry3d toEigen(const mrpt::poses::CPose3D& p) {
 
 /// se(3) residual [t, rotation vector] of the measurement against the estimate (small-error form).
 Eigen::Matrix<double, 6, 1> residual(const Eigen::Isometry3d& T_meas, const Eigen::Isometry3d& T_est) {
-  const Eigen::Isometry3d E = T_meas.inverse() * T_est;
-  Eigen::Matrix<double, 6, 1> e;
-  const Eigen::AngleAxisd aa(E.rotation());
-  e.head<3>() = E.translation();
-  e.tail<3>() = aa.angle() * aa.axis();
-  return e;
+  return detail::pseudoLog(T_meas.inverse() * T_est);
 }
 
 /// The mean eigenvalue of \p B times identity; with \p weak_ratio > 0, eigen-directions below
@@ -64,6 +60,8 @@ Eigen::Matrix3d isotropicBlock(const Eigen::Matrix3d& B, double weak_ratio) {
 
 void PoseGraphParams::fields(ParamTable& t) {
   t.num("max_iterations", max_iterations);
+  static const NameTable<GraphOptimizer> optimizers{{GraphOptimizer::Lm, "lm"}, {GraphOptimizer::MrptLevmarq, "mrpt_levmarq"}};
+  t.choice("optimizer", optimizer, optimizers);
   t.flag("use_registration_information", use_registration_information);
   t.flag("isotropic_information", isotropic_information);
   t.num("isotropic_weak_ratio", isotropic_weak_ratio);
@@ -134,12 +132,31 @@ OptimizeStats PoseGraph::optimize() {
   OptimizeStats st;
   if (numNodes() < 2 || impl_->edges.empty()) return st;
   const auto t0 = std::chrono::steady_clock::now();
-  mrpt::graphslam::TResultInfoSpaLevMarq info{};
-  mrpt::containers::yaml extra = mrpt::containers::yaml::Map();
-  extra["max_iterations"] = static_cast<uint64_t>(impl_->p.max_iterations);
-  mrpt::graphslam::optimize_graph_spa_levmarq(impl_->graph, info, nullptr, extra);
-  st.iterations = static_cast<int>(info.num_iters);
-  st.final_error = info.final_total_sq_error;
+  if (impl_->p.optimizer == GraphOptimizer::MrptLevmarq) {
+    mrpt::graphslam::TResultInfoSpaLevMarq info{};
+    mrpt::containers::yaml extra = mrpt::containers::yaml::Map();
+    extra["max_iterations"] = static_cast<uint64_t>(impl_->p.max_iterations);
+    mrpt::graphslam::optimize_graph_spa_levmarq(impl_->graph, info, nullptr, extra);
+    st.iterations = static_cast<int>(info.num_iters);
+    st.final_error = info.final_total_sq_error;
+  } else {
+    std::vector<detail::SolverEdge> edges;
+    edges.reserve(impl_->edges.size());
+    for (const auto& it : impl_->edges) {
+      detail::SolverEdge e;
+      e.from = it->first.first;
+      e.to = it->first.second;
+      e.T_from_to = toEigen(it->second.mean);
+      for (int r = 0; r < 6; ++r)
+        for (int c = 0; c < 6; ++c) e.information(r, c) = it->second.cov_inv(r, c);
+      edges.push_back(e);
+    }
+    PoseVector T = poses();
+    const auto r = detail::optimizePoses(T, edges, impl_->p.max_iterations);
+    setPoses(T);
+    st.iterations = r.iterations;
+    st.final_error = r.final_cost;
+  }
   st.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return st;
 }
@@ -202,6 +219,20 @@ Matrix6d PoseGraph::odometryInformation(const Matrix6d& reg_info) const {
   return I + floor * 1e-3;
 }
 
+Matrix6d sourceFrameInformation(const Matrix6d& I_target, const Eigen::Isometry3d& T_target_source) {
+  // exp(delta) T = T exp(Ad_T^-1 delta): delta = Ad_T e, so delta^T I delta = e^T (Ad_T^T I Ad_T) e with the
+  // SE(3) adjoint in [t, r] order Ad_T = [[R, [t]x R], [0, R]] (first order, as the residual's pseudo-log)
+  const Eigen::Matrix3d R = T_target_source.rotation();
+  const Eigen::Vector3d t = T_target_source.translation();
+  Eigen::Matrix3d tx;
+  tx << 0, -t.z(), t.y(), t.z(), 0, -t.x(), -t.y(), t.x(), 0;
+  Matrix6d Ad = Matrix6d::Zero();
+  Ad.topLeftCorner<3, 3>() = R;
+  Ad.topRightCorner<3, 3>() = tx * R;
+  Ad.bottomRightCorner<3, 3>() = R;
+  return Ad.transpose() * I_target * Ad;
+}
+
 Matrix6d PoseGraph::canInformation(double distance_m, const Eigen::Isometry3d& T_base_lidar) const {
   const auto& p = impl_->p;
   const double d = std::abs(distance_m);
@@ -211,15 +242,7 @@ Matrix6d PoseGraph::canInformation(double distance_m, const Eigen::Isometry3d& T
   I_base.diagonal() << 1 / var_t, 1 / var_t, p.can_weak_information, p.can_weak_information, p.can_weak_information,
       1 / var_yaw;
   // SE(3) adjoint of T_base_lidar in [t, r] order: [[R, [t]x R], [0, R]].
-  const Eigen::Matrix3d R = T_base_lidar.rotation();
-  const Eigen::Vector3d t = T_base_lidar.translation();
-  Eigen::Matrix3d tx;
-  tx << 0, -t.z(), t.y(), t.z(), 0, -t.x(), -t.y(), t.x(), 0;
-  Matrix6d Ad = Matrix6d::Zero();
-  Ad.topLeftCorner<3, 3>() = R;
-  Ad.topRightCorner<3, 3>() = tx * R;
-  Ad.bottomRightCorner<3, 3>() = R;
-  return Ad.transpose() * I_base * Ad;
+  return sourceFrameInformation(I_base, T_base_lidar);
 }
 
 Eigen::Isometry3d fuseMeasurements(const Eigen::Isometry3d& T_a, const Matrix6d& I_a, const Eigen::Isometry3d& T_b,

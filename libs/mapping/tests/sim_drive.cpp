@@ -16,7 +16,7 @@ using sim::toEigen;
 
 }  // namespace
 
-std::vector<SimFrame> simulateDrive(const sim::ScenarioParams& p, const DriftModel& drift) {
+std::vector<SimFrame> simulateDrive(const sim::ScenarioParams& p, const DriftModel& drift, Eigen::Isometry3d* T_sim_world) {
   sim::Simulator s(p);
   std::vector<Scan> sweeps;
   sim::SweepSink sink([&](Scan&& sc) { sweeps.push_back(std::move(sc)); });
@@ -28,6 +28,7 @@ std::vector<SimFrame> simulateDrive(const sim::ScenarioParams& p, const DriftMod
     const double t0 = sc.stamp_s - static_cast<double>(p.start_epoch_s);
     const Eigen::Isometry3d T_gt = toEigen(s.lidar().lidarPose(t0));
     if (k == 0) T_gt0 = T_gt;
+    if (k == 0 && T_sim_world) *T_sim_world = T_gt;
     SimFrame f;
     f.T_world_lidar_gt = T_gt0.inverse() * T_gt;
     // drifted odometry: true increment, scaled, with a heading error proportional to the distance
@@ -44,7 +45,10 @@ std::vector<SimFrame> simulateDrive(const sim::ScenarioParams& p, const DriftMod
     f.result.keyframe = k == 0 || (T_kf.inverse() * T_drift).translation().norm() >= drift.keyframe_m;
     if (f.result.keyframe) T_kf = T_drift;
     // rotation ~100x stiffer than translation, like a scan registration (lever arms of ~10 m)
-    f.result.information.diagonal() << 1e4, 1e4, 1e4, 1e6, 1e6, 1e6;
+    // (about the lidar; the odometry reports it about its world frame, as registration does)
+    Eigen::Matrix<double, 6, 6> I_lidar = Eigen::Matrix<double, 6, 6>::Zero();
+    I_lidar.diagonal() << 1e4, 1e4, 1e4, 1e6, 1e6, 1e6;
+    f.result.information = sourceFrameInformation(I_lidar, T_drift.inverse());
     const Eigen::Isometry3d T_start_end = toEigen(s.lidar().lidarPose(t0)).inverse() * toEigen(s.lidar().lidarPose(t0 + 0.1));
     f.points_lidar = registration::voxelDownsample(odometry::deskew(sc, T_start_end, 0.1), 0.25);
     out.push_back(std::move(f));

@@ -24,8 +24,11 @@ struct DriftModel {
   double keyframe_m = 1.0;        ///< keyframe spacing [m]
 };
 
-/// Simulates \p p and returns one frame per sweep (sweeps of the standing start are kept).
-std::vector<SimFrame> simulateDrive(const sim::ScenarioParams& p, const DriftModel& drift);
+/// Simulates \p p and returns one frame per sweep (sweeps of the standing start are kept); \p T_sim_world
+/// (optional) receives the drive's world frame (its first lidar pose) in the simulator's frame, to compare
+/// two drives of the same streets.
+std::vector<SimFrame> simulateDrive(const sim::ScenarioParams& p, const DriftModel& drift,
+                                    Eigen::Isometry3d* T_sim_world = nullptr);
 
 /// ATE RMSE [m] of \p est against \p gt after SE(3) alignment (Umeyama, roadslam::eval).
 double ateRmse(const PoseVector& gt, const PoseVector& est);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <stdexcept>
 
@@ -28,20 +29,44 @@ struct FeatureAdaptor {
 using FeatureTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, FeatureAdaptor>,
                                                         FeatureAdaptor, 33, uint32_t>;
 
-/// Nearest descriptor of each query; \p eps > 0 allows an approximate answer within (1 + eps) of the
-/// true distance (Arya et al. 1998, as nanoflann implements it) [-].
-std::vector<uint32_t> nearestFeatures(const std::vector<Fpfh>& data, const std::vector<Fpfh>& queries, float eps) {
-  FeatureAdaptor ad{&data};
-  const FeatureTree tree(33, ad, nanoflann::KDTreeSingleIndexAdaptorParams(15));
-  std::vector<uint32_t> nn(queries.size(), 0);
-  const nanoflann::SearchParams sp(32, eps, false);
-  for (size_t i = 0; i < queries.size(); ++i) {
+}  // namespace
+
+class FeatureIndex {
+ public:
+  explicit FeatureIndex(std::vector<Fpfh> f)
+      : features_(std::move(f)), ad_{&features_}, tree_(33, ad_, nanoflann::KDTreeSingleIndexAdaptorParams(15)) {}
+  FeatureIndex(const FeatureIndex&) = delete;
+  FeatureIndex& operator=(const FeatureIndex&) = delete;
+
+  /// Nearest descriptor of each query; \p eps > 0 allows an approximate answer within (1 + eps) of the
+  /// true distance (Arya et al. 1998, as nanoflann implements it) [-].
+  std::vector<uint32_t> nearest(const std::vector<Fpfh>& queries, float eps) const {
+    std::vector<uint32_t> nn(queries.size(), 0);
+    for (size_t i = 0; i < queries.size(); ++i) nn[i] = nearest(queries[i], eps);
+    return nn;
+  }
+  uint32_t nearest(const Fpfh& query, float eps) const {
+    uint32_t nn = 0;
     float d2 = 0;
     nanoflann::KNNResultSet<float, uint32_t> rs(1);
-    rs.init(&nn[i], &d2);
-    tree.findNeighbors(rs, queries[i].data(), sp);
+    rs.init(&nn, &d2);
+    tree_.findNeighbors(rs, query.data(), nanoflann::SearchParams(32, eps, false));
+    return nn;
   }
-  return nn;
+
+ private:
+  std::vector<Fpfh> features_;
+  FeatureAdaptor ad_;
+  FeatureTree tree_;
+};
+
+namespace {
+
+/// The cloud's cached index, else one built now into \p local.
+const FeatureIndex& indexOf(const FeatureCloud& c, std::unique_ptr<FeatureIndex>& local) {
+  if (c.index) return *c.index;
+  local = std::make_unique<FeatureIndex>(c.features);
+  return *local;
 }
 
 struct Correspondence {
@@ -50,8 +75,15 @@ struct Correspondence {
 
 /// Mutual nearest neighbours in feature space (Zhou et al. 2016, Sec. 3.1: the reciprocity test).
 std::vector<Correspondence> mutualMatches(const FeatureCloud& target, const FeatureCloud& source, float eps) {
-  const auto s2t = nearestFeatures(target.features, source.features, eps);
-  const auto t2s = nearestFeatures(source.features, target.features, eps);
+  std::unique_ptr<FeatureIndex> local_t, local_s;
+  const auto s2t = indexOf(target, local_t).nearest(source.features, eps);
+  // the reciprocity test reads t2s only at the target features some source feature chose: query those
+  // alone (a deterministic search per query, so the same matches as querying every target feature)
+  const FeatureIndex& source_index = indexOf(source, local_s);
+  constexpr uint32_t kNotQueried = std::numeric_limits<uint32_t>::max();
+  std::vector<uint32_t> t2s(target.features.size(), kNotQueried);
+  for (uint32_t t : s2t)
+    if (t2s[t] == kNotQueried) t2s[t] = source_index.nearest(target.features[t], eps);
   std::vector<Correspondence> out;
   for (size_t i = 0; i < s2t.size(); ++i) {
     if (t2s[s2t[i]] != i) continue;
@@ -196,7 +228,9 @@ void GlobalParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const st
   fine.saveToConfigFile(cfg, s + "_fine");
 }
 
-FeatureCloud computeFeatures(const PointCloud& points, const GlobalParams& p) {
+namespace {
+
+FeatureCloud featuresOf(const PointCloud& points, const GlobalParams& p, bool as_target) {
   FeatureCloud fc;
   for (const auto& q : points) fc.input_points += q.allFinite() ? 1 : 0;
   fc.points = voxelDownsample(points, p.voxel_m);
@@ -206,7 +240,15 @@ FeatureCloud computeFeatures(const PointCloud& points, const GlobalParams& p) {
   for (size_t i = 0; i < fc.points.size(); ++i)
     if (!normals[i].isZero() && std::abs(normals[i].z()) < max_nz) fc.keypoints.push_back(static_cast<int>(i));
   fc.features = computeFpfh(fc.points, normals, fc.keypoints, p.feature_radius_m, p.max_feature_neighbours);
+  fc.index = std::make_shared<const FeatureIndex>(fc.features);
+  if (as_target) fc.refine_target = std::make_shared<const Target>(fc.refine_points, p.fine);
   return fc;
+}
+
+}  // namespace
+
+FeatureCloud computeFeatures(const PointCloud& points, const GlobalParams& p, bool as_target) {
+  return featuresOf(points, p, as_target);
 }
 
 RegistrationResult alignGlobal(const FeatureCloud& target, const FeatureCloud& source, const GlobalParams& p,
@@ -256,7 +298,9 @@ RegistrationResult alignGlobal(const FeatureCloud& target, const FeatureCloud& s
   }
   double confidence = 1.0 - std::min(1.0, static_cast<double>(d.rival_consensus) / d.consensus);
   t0 = std::chrono::steady_clock::now();
-  const Target fine_target(target.refine_points, p.fine);
+  std::unique_ptr<Target> local_target;
+  if (!target.refine_target) local_target = std::make_unique<Target>(target.refine_points, p.fine);
+  const Target& fine_target = target.refine_target ? *target.refine_target : *local_target;
   RegistrationResult r = align(fine_target, source.refine_points, d.T_ransac, p.fine);
   const double n_src = static_cast<double>(source.refine_points.size());
   if (confidence < p.min_confidence) {
@@ -304,7 +348,7 @@ RegistrationResult alignGlobal(const FeatureCloud& target, const FeatureCloud& s
 RegistrationResult alignGlobal(const PointCloud& points_target, const PointCloud& points_source, const GlobalParams& p,
                                GlobalDiagnostics* diagnostics) {
   const auto t0 = std::chrono::steady_clock::now();
-  const FeatureCloud target = computeFeatures(points_target, p), source = computeFeatures(points_source, p);
+  const FeatureCloud target = featuresOf(points_target, p, true), source = featuresOf(points_source, p, false);
   const double features_ms = msSince(t0);
   const RegistrationResult r = alignGlobal(target, source, p, diagnostics);
   if (diagnostics) diagnostics->features_ms = features_ms;

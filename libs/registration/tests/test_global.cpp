@@ -63,6 +63,33 @@ TEST(GlobalRegistration, RecoversALargeOffsetWithNoGuess) {
   EXPECT_GE(d.consensus, prm.min_consensus);
 }
 
+// Features cached per cloud (computeFeatures once, reused for many pairs; also with the caches dropped,
+// as a FeatureCloud made by hand has none): the same pose and status as from the two clouds, and a cloud
+// serves as target and source of different pairs.
+TEST(GlobalRegistration, CachedFeaturesGiveTheSameResultAsTheClouds) {
+  const Eigen::Isometry3d T_target_source = pose(12, -5, 120);
+  const PointCloud target = test::structuredScene(30, 0.01, 1);
+  const PointCloud source = transformed(test::structuredScene(30, 0.01, 2), T_target_source.inverse());
+  GlobalParams prm;
+  const RegistrationResult direct = alignGlobal(target, source, prm);
+  ASSERT_TRUE(direct.converged) << direct.reason;
+  const FeatureCloud ft = computeFeatures(target, prm), fs = computeFeatures(source, prm);
+  ASSERT_TRUE(ft.index && ft.refine_target && fs.index && fs.refine_target);
+  FeatureCloud bare_t = ft, bare_s = fs;
+  bare_t.index.reset(), bare_t.refine_target.reset(), bare_s.index.reset(), bare_s.refine_target.reset();
+  for (const FeatureCloud* pair : {&ft, static_cast<const FeatureCloud*>(&bare_t)}) {
+    const RegistrationResult cached = alignGlobal(*pair, pair == &ft ? fs : bare_s, prm);
+    EXPECT_EQ(cached.status, direct.status);
+    EXPECT_TRUE(cached.T_target_source.isApprox(direct.T_target_source, 1e-12));
+  }
+  // the other way round, from the same caches: the inverse pose
+  const RegistrationResult back = alignGlobal(fs, ft, prm);
+  ASSERT_TRUE(back.converged) << back.reason;
+  const Eigen::Isometry3d E = back.T_target_source * direct.T_target_source;
+  EXPECT_LT(E.translation().norm(), 0.2);
+  EXPECT_LT(Eigen::AngleAxisd(E.linear()).angle() * 180 / M_PI, 1.0);
+}
+
 TEST(GlobalRegistration, TooFewPointsFailWithAReason) {
   PointCloud few;
   for (int i = 0; i < 10; ++i) few.emplace_back(i, 0.5 * i, 1.0);

@@ -78,6 +78,7 @@ ScenarioParams ScenarioParams::fromFile(const std::string& path) {
 
 Simulator::Simulator(const ScenarioParams& params) : p_(params) {
   world_ = buildWorld(p_.world, p_.seed, route_);
+  if (p_.trajectory.start_offset_m > 0) route_ = routeStartingAt(route_, p_.trajectory.start_offset_m);
   trajectory_ = std::make_unique<Trajectory>(route_, world_.ground, p_.trajectory, &world_);
   lidar_ = std::make_unique<LidarSimulator>(world_, *trajectory_, p_.lidar, p_.seed);
 }

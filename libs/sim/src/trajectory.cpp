@@ -19,6 +19,7 @@ void TrajectoryParams::fields(ParamTable& t) {
   t.num("start_standing_s", start_standing_s);
   t.num("end_standing_s", end_standing_s);
   t.num("laps", laps);
+  t.num("start_offset_m", start_offset_m);
   t.num("track_width_m", track_width_m);
   t.num("wheelbase_m", wheelbase_m);
   t.num("k_pitch_deg_per_mps2", k_pitch_deg_per_mps2);
@@ -33,6 +34,7 @@ void TrajectoryParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& c
   if (max_speed_kmh <= 0 || accel_mps2 <= 0 || decel_mps2 <= 0 || lateral_accel_mps2 <= 0 || laps < 1)
     throw std::runtime_error("[" + s + "] max_speed_kmh, accel_mps2, decel_mps2, lateral_accel_mps2 "
                              "must be > 0 and laps >= 1");
+  if (start_offset_m < 0) throw std::runtime_error("[" + s + "] start_offset_m must be >= 0");
 }
 
 void TrajectoryParams::saveToConfigFile(mrpt::config::CConfigFileBase& c, const std::string& s) const {
@@ -40,6 +42,19 @@ void TrajectoryParams::saveToConfigFile(mrpt::config::CConfigFileBase& c, const 
 }
 
 std::vector<std::string> TrajectoryParams::keys() { return fieldKeys<TrajectoryParams>(); }
+
+Road routeStartingAt(const Road& route, double start_offset_m) {
+  if (!route.closed) throw std::runtime_error("[trajectory] start_offset_m needs a closed route (layout loop, or grid with an even number of streets)");
+  const double len = roadLength(route);
+  const double s0 = std::fmod(start_offset_m, len);
+  // the dense centreline (0.5 m) restarts at its first point at or past s0
+  const auto it = std::lower_bound(route.cum_m.begin(), route.cum_m.end(), s0);
+  const auto k = static_cast<std::ptrdiff_t>(std::min<std::size_t>(it - route.cum_m.begin(), route.centerline.size() - 1));
+  Road out = route;
+  std::rotate(out.centerline.begin(), out.centerline.begin() + k, out.centerline.end());
+  finalizeRoad(out);
+  return out;
+}
 
 namespace {
 /// Speed at each dense route point [m/s]: the curvature limit v^2 |k| <= a_lat, then a forward pass

@@ -141,7 +141,12 @@ World buildWorld(const WorldParams& p, uint64_t seed, Road& route) {
   addSidewalks(p, index, world);
   addTunnel(p, world);
   addRoadsideObjects(p, index, rng, world);
-  addMovingCars(p, rng, world);
+  if (p.traffic_seed < 0) {
+    addMovingCars(p, rng, world);
+  } else {
+    Rng traffic{mix64(static_cast<uint64_t>(p.traffic_seed) ^ 0x7AFF1C5EEDull)};
+    addMovingCars(p, traffic, world);
+  }
 
   double xmin = 1e300, ymin = 1e300, xmax = -1e300, ymax = -1e300;
   for (const Road& r : world.roads)

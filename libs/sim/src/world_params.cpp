@@ -15,7 +15,7 @@ namespace roadslam::sim {
   X(parked_car_prob) X(parking_angle_deg) X(moving_car_speed_kmh) X(hill_amplitude_m) X(hill_wavelength_m)         \
   X(tunnel_start_m) X(tunnel_length_m) X(tunnel_height_m) X(grid_cell_m) X(margin_m)          \
   X(road_cross_slope) X(road_roughness_m) X(road_roughness_wavelength_m) X(hedge_prob) X(hedge_height_m)
-#define RS_INTS(X) X(streets) X(lanes_per_side) X(moving_cars) X(canopy_lobes)
+#define RS_INTS(X) X(streets) X(lanes_per_side) X(moving_cars) X(traffic_seed) X(canopy_lobes)
 
 void WorldParams::fields(ParamTable& t) {
 #define RS_FIELD(k) t.num(#k, k);

@@ -159,3 +159,39 @@ TEST(Scenarios, CarReturnsCountThePointsOnEachCar) {
   EXPECT_GT(max_per_sample, 50u);  // some car is close and seen
   EXPECT_GE(agree, 0.99 * total);
 }
+
+// A second drive of the same streets (issue 22): traffic_seed redraws the moving cars alone (the static
+// world stays, prism for prism), start_offset_m starts (and ends) the drive that far along the closed
+// route, in the same direction, on the same route points.
+TEST(Scenarios, TrafficSeedAndStartOffsetMakeASecondDriveOfTheSameStreets) {
+  ScenarioParams p = ScenarioParams::fromFile(iniPath("urban-loop.ini"));
+  const Simulator a(p);
+  p.world.traffic_seed = 7;
+  p.trajectory.start_offset_m = 250;
+  const Simulator b(p);
+  ASSERT_EQ(a.world().prisms.size(), b.world().prisms.size());
+  for (std::size_t i = 0; i < a.world().prisms.size(); ++i) ASSERT_EQ(a.world().prisms[i].cx, b.world().prisms[i].cx);
+  ASSERT_EQ(a.world().cars.size(), b.world().cars.size());
+  int moved = 0;
+  for (std::size_t i = 0; i < a.world().cars.size(); ++i) moved += a.world().cars[i].s0_m != b.world().cars[i].s0_m;
+  EXPECT_EQ(moved, static_cast<int>(a.world().cars.size()));
+  // the start: the original route's point 250 m along (within the 0.5 m route spacing), same heading
+  Vec2 q;
+  double heading = 0;
+  pointAtArcLength(a.route(), 250, q, heading);
+  const VehicleState& s0 = b.trajectory().states().front();
+  EXPECT_LT(std::hypot(s0.x - q.x, s0.y - q.y), 0.5);
+  EXPECT_NEAR(std::remainder(s0.yaw - heading, 2 * M_PI), 0.0, 0.05);
+  EXPECT_NEAR(b.trajectory().distance_m(), a.trajectory().distance_m(), 1.0);  // one whole lap still
+  const VehicleState& s1 = b.trajectory().states().back();
+  EXPECT_LT(std::hypot(s1.x - q.x, s1.y - q.y), 3.0);
+  // an open route has no other start
+  ScenarioParams h = ScenarioParams::fromFile(iniPath("highway.ini"));
+  h.trajectory.start_offset_m = 10;
+  try {
+    const Simulator s(h);
+    FAIL() << "start_offset_m accepted on an open route";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("start_offset_m"), std::string::npos) << e.what();
+  }
+}

@@ -16,6 +16,7 @@
 
 #include <cmath>
 #include <Eigen/Geometry>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -80,10 +81,10 @@ struct LoopClosureParams {
   double place_consistency_ratio = 0.1;     ///< ... plus this fraction of the path between the keyframes [-]
   double place_consistency_rot_rad = 5.0 * M_PI / 180.0;  ///< [rad]; ini place_consistency_rot_deg
   double place_consistency_rot_rad_per_m = 10.0 * M_PI / 180.0 / 100.0;  ///< [rad/m]; ini place_consistency_rot_deg_per_100m
-  /// Multiplies a place loop's fine ICP information [-]. Place loops pair whole submaps (overlap ~1, inlier
-  /// RMSE ~0.17 m): at full information MRPT's Levenberg-Marquardt stopped with the graph 4.5 m off an
-  /// exact (3 mm) loop edge on the simulated second lap and the residual test rejected every such loop.
-  double place_information_scale = 0.01;
+  /// Multiplies a place loop's fine ICP information [-]. 0.01 was needed with MRPT's optimiser, which left
+  /// the graph 4.5 m off exact (3 mm) place loops at full information (its first refused step ended it,
+  /// pose_graph_solver.h); with [pose_graph] optimizer = lm full information closes them (MapperSim tests).
+  double place_information_scale = 1.0;
   place::ScanContextParams place;          ///< [loop_closure_place]
   registration::GlobalParams global;       ///< [loop_closure_global], its refinement [loop_closure_global_fine]
 
@@ -120,9 +121,25 @@ LoopResult verifyLoop(const std::vector<Keyframe>& kfs, const PoseVector& T_map_
 std::vector<size_t> findPlaceCandidates(const place::ScanContextDatabase& db, const std::vector<Keyframe>& kfs,
                                         size_t query, const LoopClosureParams& p);
 
-/// A place candidate: the two keyframes registered with no guess (global registration), then the fine ICP
-/// of verifyLoop's submaps from that pose, with its fitness and overlap checks and the place_consistency_* bounds.
+/// Global-registration features of keyframes (registration::computeFeatures of their points), computed on
+/// first use and kept: a keyframe enters many candidate pairs, and its features are most of a pair's cost.
+class KeyframeFeatures {
+ public:
+  /// Features of keyframe \p i of \p kfs for \p p (the same params on every call).
+  const registration::FeatureCloud& of(const std::vector<Keyframe>& kfs, size_t i, const registration::GlobalParams& p);
+  /// Forgets keyframe \p i's features (its points changed).
+  void invalidate(size_t i);
+  size_t computed() const { return computed_; }  ///< features computed so far [-]
+
+ private:
+  std::vector<std::unique_ptr<registration::FeatureCloud>> f_;
+  size_t computed_ = 0;
+};
+
+/// A place candidate: the two keyframes registered with no guess (global registration, their features from
+/// \p features), then the fine ICP of verifyLoop's submaps from that pose, with its fitness and overlap checks
+/// and the place_consistency_* bounds.
 LoopResult verifyPlaceLoop(const std::vector<Keyframe>& kfs, const PoseVector& T_map_kf, size_t query, size_t match,
-                           const LoopClosureParams& p);
+                           const LoopClosureParams& p, KeyframeFeatures& features);
 
 }  // namespace roadslam::mapping

@@ -63,6 +63,7 @@ class Mapper {
     auto& pts = kfs_.at(kf).points_lidar;
     const size_t before = pts.size();
     pts.erase(std::remove_if(pts.begin(), pts.end(), drop), pts.end());
+    if (pts.size() != before) features_.invalidate(kf);
     return before - pts.size();
   }
   PoseVector keyframePoses() const { return graph_.poses(); }  ///< optimised T_map_kf
@@ -85,6 +86,7 @@ class Mapper {
   std::vector<Keyframe> kfs_;
   std::vector<LoopResult> loops_;
   place::ScanContextDatabase places_;  ///< keyframe descriptors (LoopCandidates other than Radius)
+  KeyframeFeatures features_;          ///< keyframes' global-registration features (place candidates)
   std::vector<long> frame_kf_;  ///< keyframe id each frame index follows (-1: none yet)
   double path_m_ = 0;
   double last_query_path_m_ = -1e9, last_loop_path_m_ = -1e9;

@@ -1,13 +1,16 @@
 #pragma once
 /// \file pose_graph.h
-/// 3D pose graph of keyframes: MRPT's CNetworkOfPoses3DInf optimised with its sparse
-/// Levenberg-Marquardt (mrpt::graphslam::optimize_graph_spa_levmarq). The MRPT headers stay in
+/// 3D pose graph of keyframes: MRPT's CNetworkOfPoses3DInf (the store and its VERTEX3/EDGE3 text
+/// format) optimised by our sparse Levenberg-Marquardt (src/pose_graph_solver.h; [pose_graph] optimizer
+/// = mrpt_levmarq runs mrpt::graphslam::optimize_graph_spa_levmarq instead). The MRPT headers stay in
 /// pose_graph.cpp (graphslam/levmarq.h alone costs ~4 s per translation unit).
 ///
 /// Frames: node i holds T_map_keyframe_i (map = world frame of the odometry, anchored at node 0,
 /// which stays fixed). Edge (i, j) measures T_i_j = T_map_i^-1 * T_map_j. Information matrices are
-/// 6x6 in the order [tx ty tz rx ry rz] (m, rad), the order of the SE(3) logarithm MRPT's optimiser
-/// uses for the residual, which is also the order of registration::RegistrationResult::information.
+/// 6x6 in the order [tx ty tz rx ry rz] (m, rad) of the residual plog(T_i_j^-1 T_map_i^-1 T_map_j) =
+/// [t; rotation vector], MRPT's pseudo-logarithm, an error in the frame of node j as the edge predicts
+/// it (a right perturbation of the measurement), which is also the order and frame of
+/// registration::RegistrationResult::information for T_target_source.
 
 #include <cmath>
 #include <Eigen/Geometry>
@@ -28,9 +31,15 @@ namespace roadslam::mapping {
 using Matrix6d = Eigen::Matrix<double, 6, 6>;
 using PoseVector = std::vector<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>>;
 
+/// Ini values: lm (ours: steps accepted on the information-weighted cost, pose_graph_solver.h) |
+/// mrpt_levmarq (MRPT 2.5.8's optimize_graph_spa_levmarq, which accepts steps on the unweighted error
+/// and stalls when edges' information differs by orders of magnitude; kept for comparison).
+enum class GraphOptimizer { Lm, MrptLevmarq };
+
 /// Ini section [pose_graph].
 struct PoseGraphParams {
   int max_iterations = 100;               ///< Levenberg-Marquardt iterations per optimisation [-]
+  GraphOptimizer optimizer = GraphOptimizer::Lm;  ///< ini optimizer
   bool use_registration_information = true;  ///< odometry edges carry the registration information
   double odometry_information_scale = 1.0;   ///< multiplies the registration information [-]
   /// Keep the registration information's directions (false), or only its translation and rotation
@@ -63,7 +72,7 @@ struct PoseGraphParams {
 
 struct OptimizeStats {
   int iterations = 0;       ///< LM iterations run [-]
-  double final_error = 0;   ///< sum of squared Mahalanobis residuals at the end [-]
+  double final_error = 0;   ///< sum of squared Mahalanobis residuals at the end [-] (mrpt_levmarq: unweighted)
   double ms = 0;            ///< wall time [ms]
 };
 
@@ -76,6 +85,12 @@ struct OptimizeStats {
 /// with such parallel edges ended with every edge shorter than both of its measurements).
 Eigen::Isometry3d fuseMeasurements(const Eigen::Isometry3d& T_a, const Matrix6d& I_a, const Eigen::Isometry3d& T_b,
                                    const Matrix6d& I_b);
+
+/// A registration's information (registration.h: left perturbations in the target frame, exp(delta) *
+/// T_target_source) as the graph's (right perturbations, T_target_source * pexp(e), the edge residual's
+/// frame): Ad^T I Ad with Ad the SE(3) adjoint of \p T_target_source in [t, r] order. Translation blocks
+/// keep their directions only when the two frames are aligned; a turned revisit rotates them.
+Matrix6d sourceFrameInformation(const Matrix6d& I_target, const Eigen::Isometry3d& T_target_source);
 
 class PoseGraph {
  public:
@@ -104,7 +119,8 @@ class PoseGraph {
 
   /// Writes MRPT's text graph format (VERTEX3 / EDGE3 lines) atomically; throws naming the path.
   void saveToTextFile(const std::string& path) const;
-  /// Information of an odometry edge from the registration's information (see PoseGraphParams).
+  /// Information of an odometry edge from the registration's information, already in the keyframe's
+  /// lidar frame (sourceFrameInformation of the odometry's, which is about its map frame; see PoseGraphParams).
   Matrix6d odometryInformation(const Matrix6d& registration_information) const;
   /// Information of a CAN edge over \p distance_m [m] in the lidar frame: the base-frame information
   /// (PoseGraphParams can_*) moved through the mounting T_base_lidar, I_lidar = Ad^T I_base Ad with

@@ -20,6 +20,7 @@
 /// failures, a degenerate refinement (a weak direction, e.g. along a corridor), low overlap. A pose is never returned as converged on such an input.
 
 #include <Eigen/Geometry>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -61,17 +62,29 @@ struct GlobalParams {
   void saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& section = "global_registration") const;
 };
 
-/// A cloud prepared for global registration (computed once per keyframe and reused for many pairs).
+/// A kd-tree over one cloud's FPFH descriptors (built once, queried by every pair the cloud enters).
+class FeatureIndex;
+
+/// A cloud prepared for global registration: everything a pair needs that depends on one cloud only
+/// (features, their kd-tree, the refinement's target structures), computed once per keyframe and reused
+/// for many pairs, so a pair costs only the matching, RANSAC and the refinement.
 struct FeatureCloud {
   PointCloud points;           ///< at GlobalParams::voxel_m, the cloud's frame [m]
   std::vector<int> keypoints;  ///< indices into points [-]
   std::vector<Fpfh> features;  ///< one per keypoint
   PointCloud refine_points;    ///< at GlobalParams::refine_voxel_m [m]
   size_t input_points = 0;     ///< finite points given [-]
+  /// kd-tree over features (owns a copy of them); null: built per pair
+  std::shared_ptr<const FeatureIndex> index;
+  /// refine_points as the refinement's target (GlobalParams::fine); null: built per pair
+  std::shared_ptr<const Target> refine_target;
 };
 
-/// Features of \p points (its own frame, the sensor at the origin [m]; non-finite points dropped).
-FeatureCloud computeFeatures(const PointCloud& points, const GlobalParams& params);
+/// Features of \p points (its own frame, the sensor at the origin [m]; non-finite points dropped), with
+/// the feature kd-tree and the refinement target built for \p params (use the FeatureCloud with the
+/// same params only). \p as_target false leaves refine_target null (a cloud only ever registered as the
+/// source needs none).
+FeatureCloud computeFeatures(const PointCloud& points, const GlobalParams& params, bool as_target = true);
 
 /// What the global stage found, for benchmarks and diagnostics.
 struct GlobalDiagnostics {

@@ -28,6 +28,9 @@ struct TrajectoryParams {
   double start_standing_s = 2.0;     ///< standing still before driving off [s]
   double end_standing_s = 1.0;       ///< standing still after arriving [s]
   int laps = 1;                      ///< closed routes: number of laps [-]
+  /// Closed routes: the drive starts (and ends) this far along the route from the layout's start,
+  /// in the same direction (another drive of the same streets from another start) [m]
+  double start_offset_m = 0;
   double track_width_m = 1.6;        ///< for the wheel speeds and the wheel contacts [m]
   double wheelbase_m = 2.7;          ///< rear to front axle, for the wheel contacts on a rough road [m]
   /// Suspension (both 0 = rigid): body pitch = -k_pitch * longitudinal acceleration (nose down when
@@ -43,6 +46,10 @@ struct TrajectoryParams {
   void saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& section) const;
   static std::vector<std::string> keys();
 };
+
+/// \p route (closed, finalized) restarting at its centreline point nearest past \p start_offset_m
+/// (modulo its length) [m]; throws on an open route, naming the key.
+Road routeStartingAt(const Road& route, double start_offset_m);
 
 /// Vehicle state at time t: pose of the vehicle frame in the world frame (T_world_vehicle as
 /// translation + ZYX Euler angles) and its motion.

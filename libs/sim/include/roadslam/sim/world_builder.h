@@ -41,6 +41,9 @@ struct WorldParams {
   double parking_angle_deg = 0;     ///< 0 parallel (6.5 m slots), 90 perpendicular (2.7 m slots,
                                     ///< needs parking_width_m >= 4.6) [deg in the ini]
   int moving_cars = 6;              ///< cars driving on the roads [-]
+  /// Seed of the moving cars alone (another drive of the same streets with other traffic) [-];
+  /// -1: drawn from the world seed after the roadside objects (the original worlds, unchanged)
+  int traffic_seed = -1;
   double moving_car_speed_kmh = 40;  ///< their mean speed (stored in m/s) [km/h in the ini]
   double hill_amplitude_m = 0;      ///< ground height amplitude [m]
   double hill_wavelength_m = 400;   ///< [m]
