@@ -1,0 +1,58 @@
+#include "roadslam/mapping/gnss_fusion_online.h"
+
+#include <algorithm>
+
+namespace roadslam::mapping {
+
+void OnlineGnssFusion::addFix(const GnssFactor& f) { fixes_.push_back(f); }
+
+std::optional<Eigen::Isometry3d> OnlineGnssFusion::addNode(double t_s, const Eigen::Isometry3d& T_map_node) {
+  t_.push_back(t_s);
+  T_.push_back(T_map_node);
+  while (t_.size() > 1 && t_.front() < t_s - p_.online_window_s) {
+    t_.pop_front();
+    T_.pop_front();
+  }
+  while (!fixes_.empty() && fixes_.front().t_s < t_.front() - p_.max_time_offset_s) fixes_.pop_front();
+  if (t_s - last_solve_s_ >= p_.online_solve_period_s) solve();
+  if (!anchored_) return std::nullopt;
+  return C_ * T_map_node;
+}
+
+void OnlineGnssFusion::solve() {
+  last_solve_s_ = t_.back();
+  const std::vector<double> stamps(t_.begin(), t_.end());
+  const PoseVector poses(T_.begin(), T_.end());
+  const std::vector<GnssFactor> fixes(fixes_.begin(), fixes_.end());
+  const GnssFusionResult r = fuseGnss(stamps, poses, fixes, p_);
+  ++stats_.solves;
+  stats_.ms_total += r.ms;
+  stats_.ms_max = std::max(stats_.ms_max, r.ms);
+  if (!r.ok) {  // keep the last correction: the odometry carries the pose on
+    ++stats_.failed;
+    return;
+  }
+  stats_.rejected += r.rejected;
+  C_ = r.T_enu_node.back() * poses.back().inverse();
+  anchored_ = true;
+}
+
+std::vector<std::optional<Eigen::Isometry3d>> replayOnline(const std::vector<double>& stamps_s,
+                                                           const PoseVector& T_map_node,
+                                                           const std::vector<GnssFactor>& fixes,
+                                                           const GnssFusionParams& p, GnssOnlineStats* stats) {
+  std::vector<const GnssFactor*> order;
+  for (const auto& f : fixes) order.push_back(&f);
+  std::stable_sort(order.begin(), order.end(), [](const GnssFactor* a, const GnssFactor* b) { return a->t_s < b->t_s; });
+  OnlineGnssFusion online(p);
+  std::vector<std::optional<Eigen::Isometry3d>> out;
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < stamps_s.size(); ++i) {
+    while (k < order.size() && order[k]->t_s <= stamps_s[i]) online.addFix(*order[k++]);
+    out.push_back(online.addNode(stamps_s[i], T_map_node[i]));
+  }
+  if (stats) *stats = online.stats();
+  return out;
+}
+
+}  // namespace roadslam::mapping
