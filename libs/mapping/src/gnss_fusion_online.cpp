@@ -16,7 +16,16 @@ std::optional<Eigen::Isometry3d> OnlineGnssFusion::addNode(double t_s, const Eig
   while (!fixes_.empty() && fixes_.front().t_s < t_.front() - p_.max_time_offset_s) fixes_.pop_front();
   if (t_s - last_solve_s_ >= p_.online_solve_period_s) solve();
   if (!anchored_) return std::nullopt;
-  return C_ * T_map_node;
+  return published(t_s) * T_map_node;
+}
+
+Eigen::Isometry3d OnlineGnssFusion::published(double t_s) const {
+  const double a = p_.online_blend_s > 0 ? std::clamp((t_s - blend_start_s_) / p_.online_blend_s, 0.0, 1.0) : 1.0;
+  if (a >= 1.0) return C_to_;
+  Eigen::Isometry3d C = Eigen::Isometry3d::Identity();
+  C.linear() = Eigen::Quaterniond(C_from_.rotation()).slerp(a, Eigen::Quaterniond(C_to_.rotation())).toRotationMatrix();
+  C.translation() = (1 - a) * C_from_.translation() + a * C_to_.translation();
+  return C;
 }
 
 void OnlineGnssFusion::solve() {
@@ -33,7 +42,10 @@ void OnlineGnssFusion::solve() {
     return;
   }
   stats_.rejected += r.rejected;
-  C_ = r.T_enu_node.back() * poses.back().inverse();
+  const Eigen::Isometry3d C_new = r.T_enu_node.back() * poses.back().inverse();
+  C_from_ = anchored_ ? published(last_solve_s_) : C_new;  // the first correction applies at once
+  C_to_ = C_new;
+  blend_start_s_ = last_solve_s_;
   anchored_ = true;
 }
 

@@ -171,11 +171,15 @@ int simFigures(int argc, char** argv) {
     std::snprintf(notes, sizeof(notes), "%zu used, %zu rejected (%zu multipath epochs), %d iterations, %.0f ms", r.used,
                   r.rejected, gr.multipath_epochs, r.iterations, r.ms);
     row("fused (" + v.name + ")", errors(fused, truth), notes);
-    onlineRow(v.name, odo_traj, in.factors, fp, world, fe, gtAt, static_cast<double>(sp.start_epoch_s) + v.outage_start + v.outage_len,
-              v.outage_len > 0);
+    const double t_reacq = static_cast<double>(sp.start_epoch_s) + v.outage_start + v.outage_len;
+    onlineRow(v.name, odo_traj, in.factors, fp, world, fe, gtAt, t_reacq, v.outage_len > 0);
+    if (v.outage_len > 0) {  // the blending's share: the same without it
+      auto jump = fp;
+      jump.online_blend_s = 0;
+      onlineRow(v.name + ", online_blend_s = 0", odo_traj, in.factors, jump, world, fe, gtAt, t_reacq, true);
+    }
     // steps: the fused path's step against the true step, worst near reacquisition and anywhere
     double worst = 0, worst_reacq = 0;
-    const double t_reacq = static_cast<double>(sp.start_epoch_s) + v.outage_start + v.outage_len;
     for (size_t i = 1; i < fused.size(); ++i) {
       const double d = ((fused[i] - fused[i - 1]) - (truth[i] - truth[i - 1])).norm();
       worst = std::max(worst, d);

@@ -66,6 +66,9 @@ struct GnssFusionParams {
   /// how often it is re-solved; between solves the last correction carries the odometry forward.
   double online_window_s = 60.0;         ///< [s]
   double online_solve_period_s = 1.0;    ///< [s]
+  /// A new correction is blended in over this long (linear in translation, slerp in rotation) instead
+  /// of jumping: each re-solve moves the newest pose by a few decimetres of noise [s]; 0 = jump.
+  double online_blend_s = 1.0;
 
   Eigen::Vector3d lever() const { return {lever_x_m, lever_y_m, lever_z_m}; }
   void fields(ParamTable& t);

@@ -5,7 +5,9 @@
 /// the frames of the last GnssFusionParams::online_window_s and the fixes among them are re-solved
 /// every online_solve_period_s; the newest frame's fused pose gives the correction
 /// C = T_enu_node * T_map_node^-1, and every frame until the next solve is published as C T_map_node
-/// (the odometry carries the pose forward between solves and through outages).
+/// (the odometry carries the pose forward between solves and through outages). A new correction is
+/// blended in over online_blend_s from the one published at that moment, so a re-solve never makes
+/// the published pose jump by its whole change at once.
 ///
 /// The input must itself be causal: the odometry's own poses, not the loop-corrected ones (a loop
 /// closure moves past poses after the fact).
@@ -33,17 +35,19 @@ class OnlineGnssFusion {
   /// so far, or nothing before the first solve that could run.
   std::optional<Eigen::Isometry3d> addNode(double t_s, const Eigen::Isometry3d& T_map_node);
   bool anchored() const { return anchored_; }
-  /// The current correction T_enu_map (identity before the first solve).
-  const Eigen::Isometry3d& correction() const { return C_; }
+  /// The correction T_enu_map of the newest solve (identity before the first).
+  const Eigen::Isometry3d& correction() const { return C_to_; }
   const GnssOnlineStats& stats() const { return stats_; }
 
  private:
   void solve();
+  Eigen::Isometry3d published(double t_s) const;  ///< the blended correction at t_s
   GnssFusionParams p_;
   std::deque<double> t_;
   std::deque<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>> T_;
   std::deque<GnssFactor> fixes_;
-  Eigen::Isometry3d C_ = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d C_from_ = Eigen::Isometry3d::Identity(), C_to_ = Eigen::Isometry3d::Identity();
+  double blend_start_s_ = 0;
   bool anchored_ = false;
   double last_solve_s_ = -1e300;
   GnssOnlineStats stats_;
