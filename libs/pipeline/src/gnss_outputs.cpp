@@ -63,7 +63,9 @@ GnssInput gnssInputFromFixes(const std::vector<sources::TimedGpsFix>& fixes, con
     gnss::GnssFix g;
     g.has_position = true;
     g.rmc_status = 'A';
-    g.position = {f.fix.latitude_deg, f.fix.longitude_deg, 0.0};
+    g.quality = f.quality;
+    g.hdop = f.hdop;
+    g.position = {f.fix.latitude_deg, f.fix.longitude_deg, std::isfinite(f.h_m) ? f.h_m : 0.0};
     g.t_receive_s = f.stamp_s;
     g.t_receiver_s = f.fix.epochSeconds();
     in.log.fixes.push_back(g);
@@ -72,12 +74,17 @@ GnssInput gnssInputFromFixes(const std::vector<sources::TimedGpsFix>& fixes, con
   if (in.log.fixes.empty()) throw std::runtime_error("the input carries no valid GPS fix (" + std::to_string(fixes.size()) + " fixes read)");
   in.origin = in.log.fixes.front().position;
   const gnss::EnuFrame enu(in.origin);
-  const double s = p.fallback_sigma_m;
-  for (const auto& f : in.log.fixes) {
+  for (size_t k = 0; k < in.log.fixes.size(); ++k) {
+    const auto& f = in.log.fixes[k];
     mapping::GnssFactor g;
     g.t_s = f.stamp(p.receiver_time);
     g.p_enu = enu.toEnu(f.position);
-    g.cov = Eigen::Vector3d(s * s, s * s, 1e6).asDiagonal();
+    // a GGA's HDOP gives the covariance (nmea.h covarianceEnu); RMC alone: fallback sigma, height free
+    g.cov = f.covarianceEnu(p.uere_m, p.fallback_sigma_m);
+    if (!std::isfinite(f.hdop)) {
+      const double s = p.fallback_sigma_m;
+      g.cov = Eigen::Vector3d(s * s, s * s, 1e6).asDiagonal();
+    }
     in.factors.push_back(g);
   }
   return in;

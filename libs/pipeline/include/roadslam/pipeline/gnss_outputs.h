@@ -42,10 +42,12 @@ struct GnssInput {
 /// Reads \p nmea_path; throws naming the file when it cannot be read or holds no valid fix.
 GnssInput readGnssInput(const std::string& nmea_path, const mapping::GnssFusionParams& p);
 
-/// The valid fixes an input carried (sources::ScanSource::takeGpsFixes: RMC only), in the ENU frame at
-/// the first: horizontal sigma fallback_sigma_m, the height unknown (sigma 1 km, the fix's height 0).
+/// The valid fixes an input carried (sources::ScanSource::takeGpsFixes: a Velodyne's RMC, and from a
+/// rawlog every CObservationGPS with RMC or GGA: roadslam-grab's GNSS epochs, a car's CAN_GPS), in the
+/// ENU frame at the first. With a GGA HDOP: sigma HDOP x uere_m horizontally, twice that up, the GGA
+/// height; else sigma fallback_sigma_m horizontally and the height unknown (sigma 1 km).
 /// Stamped with the fix's UTC time when p.receiver_time and it has a date, else the capture time.
-/// The "log" counts epochs, fixes and "no fix" (RMC 'V'). Throws when none is valid.
+/// The "log" counts epochs, fixes and "no fix" (RMC 'V', GGA quality 0). Throws when none is valid.
 GnssInput gnssInputFromFixes(const std::vector<sources::TimedGpsFix>& fixes, const std::string& describe,
                              const mapping::GnssFusionParams& p);
 
