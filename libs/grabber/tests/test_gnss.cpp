@@ -103,7 +103,7 @@ TEST(GrabGnss, SerialPtyEpochsInTimeOrderWithCan) {
   test::TempDir dir("gnss_serial");
   std::string can = with_can ? "can = can\n" : "";
   std::string can_sec = with_can ? "[can]\nsource = candump\ncandump_file = " + log + "\nvehicle_ini = " + vini + "\n" : "";
-  const std::string ini = test::testIni(can + "gnss = gnss\nreorder_window_ms = 300\n") + can_sec +
+  const std::string ini = test::testIni(can + "gnss = gnss\nreorder_window_ms = 1000\n") + can_sec +
                           "[gnss]\nsource = serial\nbaud = 115200\nepoch_idle_ms = 60\ndevice = " + pty.name + "\n";
   Grabber g(test::paramsFromText(ini), dir.str());
   const double t_start = std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
