@@ -30,6 +30,11 @@ Eigen::Isometry3d OnlineGnssFusion::published(double t_s) const {
 
 void OnlineGnssFusion::solve() {
   last_solve_s_ = t_.back();
+  if (!anchored_ && p_.online_min_path_m > 0) {
+    double path = 0;
+    for (std::size_t i = 1; i < T_.size(); ++i) path += (T_[i].translation() - T_[i - 1].translation()).norm();
+    if (path < p_.online_min_path_m) return;  // not a solve yet: too little path to anchor on
+  }
   const std::vector<double> stamps(t_.begin(), t_.end());
   const PoseVector poses(T_.begin(), T_.end());
   const std::vector<GnssFactor> fixes(fixes_.begin(), fixes_.end());

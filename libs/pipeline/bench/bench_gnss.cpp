@@ -178,6 +178,11 @@ int simFigures(int argc, char** argv) {
       jump.online_blend_s = 0;
       onlineRow(v.name + ", online_blend_s = 0", odo_traj, in.factors, jump, world, fe, gtAt, t_reacq, true);
     }
+    if (v.outage_len == 0 && v.mp_len == 0 && v.bias_walk == 0) {  // the first anchoring on 50 m of path
+      auto late = fp;
+      late.online_min_path_m = 50;
+      onlineRow(v.name + ", online_min_path_m = 50", odo_traj, in.factors, late, world, fe, gtAt, t_reacq, false);
+    }
     // steps: the fused path's step against the true step, worst near reacquisition and anywhere
     double worst = 0, worst_reacq = 0;
     for (size_t i = 1; i < fused.size(); ++i) {
@@ -350,6 +355,26 @@ int rav4Figures(int argc, char** argv) {
     std::snprintf(notes, sizeof(notes), "scored from its first solve (t = %.0f s), %zu solves, %zu failed",
                   ot.empty() ? 0.0 : ot.front() - rt.front(), ost.solves, ost.failed);
     row(std::string("online, causal, ") + s + " noise (raw DR)", errors(oe, orf), notes);
+    if (sigma == 1.0) {  // the first anchoring on 50 m of path
+      auto late = fp;
+      late.online_min_path_m = 50;
+      const auto on50 = mapping::replayOnline(raw.t, raw.T, fixes, late, &ost);
+      std::vector<double> t50;
+      PoseVector T50;
+      for (size_t i = 0; i < on50.size(); ++i)
+        if (on50[i]) {
+          t50.push_back(raw.t[i]);
+          T50.push_back(*on50[i]);
+        }
+      std::vector<Eigen::Vector3d> e50, r50;
+      for (size_t i = 0; !t50.empty() && i < n_eval; ++i)
+        if (rt[i] >= t50.front()) {
+          e50.push_back(mapping::interpolatePose(t50, T50, rt[i]).translation());
+          r50.push_back(ref[i]);
+        }
+      std::snprintf(notes, sizeof(notes), "scored from its first solve (t = %.0f s)", t50.empty() ? 0.0 : t50.front() - rt.front());
+      row("online, causal, 1 m noise (raw DR), online_min_path_m = 50", errors(e50, r50), notes);
+    }
   }
   return 0;
 }

@@ -69,6 +69,9 @@ struct GnssFusionParams {
   /// A new correction is blended in over this long (linear in translation, slerp in rotation) instead
   /// of jumping: each re-solve moves the newest pose by a few decimetres of noise [s]; 0 = jump.
   double online_blend_s = 1.0;
+  /// The first correction waits until the window's path is this long: on a few metres the heading
+  /// (and so the position ahead) is poorly observed [m]; 0 = as soon as a solve runs.
+  double online_min_path_m = 0.0;
 
   Eigen::Vector3d lever() const { return {lever_x_m, lever_y_m, lever_z_m}; }
   void fields(ParamTable& t);
