@@ -14,6 +14,7 @@ PACKAGES=(
   python3-can python3-canmatrix python3-numpy can-utils tcpdump
   chromium parallel slurm-wlm munge ffmpeg
   libgeographiclib-dev   # libs/gnss: WGS84, ECEF, ENU (LocalCartesian) and UTM (issue 23)
+  libgps-dev gpsd        # libs/sources: gpsd client (roadslam-grab [gnss] source = gpsd); gpsd runs in its test
   libgl-dev xvfb xauth   # roadslam-view: OpenGL (window screenshots); its window test runs under xvfb-run
 )
 

@@ -150,6 +150,10 @@ void makeFiles() {
   write(w / "sim-bad-value.ini", "[scenario]\nduration_s = -5\n");
   write(w / "sim-open-route-offset.ini", fileText(kSrc + "/ini/sim/highway.ini") + "\n[trajectory]\nstart_offset_m = 50\n");
   write(w / "grab-typo.ini", fileText(kSrc + "/ini/grab.ini") + "\n[grab]\nsegmnet_mb = 5\n");
+  const std::string grab_gnss = "[grab]\nsensors = l\ngnss = gnss\n[l]\ndata_port = 0\nposition_port = 0\n[gnss]\n";
+  write(w / "grab-gnss-no-log.ini", grab_gnss + "source = nmea_log\n");
+  write(w / "grab-gpsd-down.ini", grab_gnss + "source = gpsd\ngpsd_host = 127.0.0.1\ngpsd_port = 1\n");
+  write(w / "grab-serial-missing.ini", grab_gnss + "source = serial\ndevice = /dev/roadslam-no-such-tty\n");
 }
 
 struct Row {
@@ -244,6 +248,9 @@ const Row kTable[] = {
   // roadslam-grab
   {"grab-typo-key",        "roadslam-grab --config {W}/grab-typo.ini --out {O} --duration 0.1", 1, "segmnet_mb"},
   {"grab-missing",         "roadslam-grab --config {W}/nope.ini --out {O}", 105, "File does not exist"},
+  {"grab-gnss-no-log",     "roadslam-grab --config {W}/grab-gnss-no-log.ini --out {O} --duration 0.1", 1, "[gnss] nmea_file: required"},
+  {"grab-gpsd-down",       "roadslam-grab --config {W}/grab-gpsd-down.ini --out {O} --duration 0.1", 1, "gpsd at 127.0.0.1:1"},
+  {"grab-serial-missing",  "roadslam-grab --config {W}/grab-serial-missing.ini --out {O} --duration 0.1", 1, "GNSS serial '/dev/roadslam-no-such-tty'"},
   // roadslam-view live
   {"view-live-silent",     "roadslam-view --udp 0 --render {O}/x.png --timeout 0.3", 1, "no sweep arrived from UDP port"},
   {"view-live-and-rec",    "roadslam-view {W}/truncated.pcap --udp 0", 2, "give one of a recording, --udp PORT or --grab INI"},

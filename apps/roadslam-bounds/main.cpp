@@ -18,6 +18,9 @@ int main(int argc, char** argv) {
       ->check(CLI::ExistingFile);
   app.add_option("--times", req.times_path, "KITTI folder: its times file (default: times.txt beside or one level up)")
       ->check(CLI::ExistingFile);
+  app.add_option("--georef", req.georef_path,
+                 "map_georef.json of roadslam-map --gnss: also write boundaries.geojson / .kml (poses: that run's trajectory.tum)")
+      ->check(CLI::ExistingFile);
   app.add_option("--png-every", req.png_every, "draw every N-th sweep into OUT/frames (0 = none)");
   app.add_option("--max-frames", req.max_frames, "stop after this many sweeps (0 = all)");
   app.add_flag("--whole-drive", req.whole_drive,

@@ -55,6 +55,18 @@ Grabber::Grabber(const GrabParams& params, const std::string& out_dir)
       g.can->source = std::make_unique<can::SocketCanSource>(cp.socketcan);
     }
   }
+  const GnssParams& gp = params.gnss;
+  if (gp.source != GnssParams::Source::None) {
+    g.gnss = std::make_unique<GnssRt>(params.writer.queue_capacity);
+    if (gp.source == GnssParams::Source::Serial)
+      g.gnss->source = std::make_unique<sources::SerialNmeaSource>(gp.device, gp.baud);
+    else if (gp.source == GnssParams::Source::Gpsd)
+      g.gnss->source = std::make_unique<sources::GpsdNmeaSource>(gp.gpsd_host, gp.gpsd_port, gp.gpsd_device);
+    else {
+      g.gnss->source = std::make_unique<sources::NmeaLogReplaySource>(gp.nmea_file, gp.replay_speed);
+      g.gnss->replay = true;
+    }
+  }
   if (!out_dir.empty()) writeSessionFiles(params, out_dir);
   g.writer_task = makeWriter(g);
 }
@@ -110,6 +122,10 @@ void Grabber::start() {
     g.can->last_frame_s = g.start_s;
     g.can->thread = std::thread([&g] { g.canLoop(); });
   }
+  if (g.gnss) {
+    g.gnss->last_line_s = g.start_s;
+    g.gnss->thread = std::thread([&g] { g.gnssLoop(); });
+  }
   g.writer_thread = std::thread([&g] { g.writer_task->run(); });
 }
 
@@ -121,6 +137,7 @@ void Grabber::stop() {
   for (auto& s : g.sensors)
     if (s->thread.joinable()) s->thread.join();
   if (g.can && g.can->thread.joinable()) g.can->thread.join();
+  if (g.gnss && g.gnss->thread.joinable()) g.gnss->thread.join();
   g.writing = false;  // the writer drains every queue, then closes the files
   if (g.writer_thread.joinable()) g.writer_thread.join();
   writeSummary(status());

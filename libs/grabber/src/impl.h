@@ -16,7 +16,13 @@
 #include "roadslam/grabber/bounded_queue.h"
 #include "roadslam/grabber/grabber.h"
 #include "roadslam/grabber/sweep_grouper.h"
+#include "roadslam/gnss/nmea.h"
+#include "roadslam/sources/nmea_source.h"
 #include "roadslam/sources/udp_receiver.h"
+
+namespace mrpt::obs {
+class CObservationGPS;
+}
 
 namespace roadslam::grabber {
 
@@ -75,6 +81,32 @@ struct CanRt {
   explicit CanRt(std::size_t capacity) : queue(capacity) {}
 };
 
+/// A GNSS line for the NMEA sidecar, or (obs set) a completed receiver epoch for the rawlog.
+struct GnssItem {
+  sources::NmeaLine line;
+  std::shared_ptr<mrpt::obs::CObservationGPS> obs;
+  double stamp_s = 0;  ///< host receive time: of the line, or of the epoch's first sentence [s]
+};
+
+struct GnssRt {
+  std::unique_ptr<sources::NmeaSource> source;
+  bool replay = false;  // an NMEA log: restamp per GnssParams::restamp
+  BoundedQueue<GnssItem> queue;
+  std::thread thread;
+  std::atomic<std::uint64_t> lines{0}, epochs{0}, queue_drops{0}, split_epochs{0};
+  std::atomic<double> last_line_s{0};  // host time of the last line [s]
+  std::mutex mutex;                    // guards the fields below
+  gnss::NmeaCounters nmea;             // the parser's counters, copied after each line
+  std::vector<std::string> problems;   // the parser's first problems
+  gnss::GnssFix last_fix;              // the last valid epoch
+  std::string error;                   // why the source stopped, if it did
+  std::atomic<bool> ended{false};
+  bool silent = false;                 // watchdog state (under Impl::status_mutex)
+  std::uint64_t silent_events = 0;
+
+  explicit GnssRt(std::size_t capacity) : queue(capacity) {}
+};
+
 /// Writer counters, written by the writer thread only.
 struct WriterCounters {
   std::atomic<std::uint64_t> observations{0}, sweeps{0}, packets{0}, gps{0}, bytes{0}, late{0},
@@ -99,6 +131,7 @@ struct Grabber::Impl {
   ObservationTap tap;
   std::vector<std::unique_ptr<SensorRt>> sensors;
   std::unique_ptr<CanRt> can;
+  std::unique_ptr<GnssRt> gnss;
   WriterCounters writer;
   std::unique_ptr<WriterTask> writer_task;
   std::thread writer_thread;
@@ -111,6 +144,7 @@ struct Grabber::Impl {
 
   void sensorLoop(SensorRt& s);
   void canLoop();
+  void gnssLoop();
 };
 
 }  // namespace roadslam::grabber

@@ -37,6 +37,12 @@ const NameTable<CanParams::Source>& canSourceNames() {
   return t;
 }
 
+const NameTable<GnssParams::Source>& gnssSourceNames() {
+  using S = GnssParams::Source;
+  static const NameTable<S> t{{S::None, "none"}, {S::Serial, "serial"}, {S::Gpsd, "gpsd"}, {S::NmeaLog, "nmea_log"}};
+  return t;
+}
+
 /// The keys of a section read by several tables.
 std::vector<std::string> joined(std::vector<std::vector<std::string>> parts) {
   std::vector<std::string> out;
@@ -95,6 +101,40 @@ void CanParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::
   saveFields(*this, cfg, sec);
 }
 
+void GnssParams::fields(ParamTable& t) {
+  t.choice("source", source, gnssSourceNames());
+  t.text("device", device);
+  t.num("baud", baud);
+  t.text("gpsd_host", gpsd_host);
+  t.num("gpsd_port", gpsd_port);
+  t.text("gpsd_device", gpsd_device);
+  t.text("nmea_file", nmea_file);
+  t.num("replay_speed", replay_speed);
+  t.flag("restamp", restamp);
+  t.text("label", label);
+  t.scaled("epoch_idle_ms", epoch_idle_s, unit::kMs);
+  t.scaled("max_gap_ms", max_gap_s, unit::kMs);
+  t.scaled("silent_after_ms", silent_after_s, unit::kMs);
+}
+
+void GnssParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& sec) {
+  rejectUnknown(cfg, sec, fieldKeys<GnssParams>());
+  loadFields(*this, cfg, sec);
+  if (silent_after_s <= 0) throw std::runtime_error("[" + sec + "] silent_after_ms: must be > 0");
+  if (epoch_idle_s <= 0) throw std::runtime_error("[" + sec + "] epoch_idle_ms: must be > 0");
+  if (max_gap_s <= 0) throw std::runtime_error("[" + sec + "] max_gap_ms: must be > 0");
+  if (replay_speed < 0) throw std::runtime_error("[" + sec + "] replay_speed: must be >= 0");
+  if (gpsd_port < 1 || gpsd_port > 65535) throw std::runtime_error("[" + sec + "] gpsd_port: must be 1..65535");
+  if (source == Source::NmeaLog && nmea_file.empty())
+    throw std::runtime_error("[" + sec + "] nmea_file: required when source = nmea_log");
+  if (source == Source::Serial && device.empty())
+    throw std::runtime_error("[" + sec + "] device: required when source = serial");
+}
+
+void GnssParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& sec) const {
+  saveFields(*this, cfg, sec);
+}
+
 void WriterParams::fields(ParamTable& t) {
   t.num("queue_capacity", queue_capacity);
   t.num("can_queue_capacity", can_queue_capacity);
@@ -105,6 +145,7 @@ void WriterParams::fields(ParamTable& t) {
   t.num("compression_level", compression_level);
   t.flag("pcap_sidecar", pcap_sidecar);
   t.flag("candump_sidecar", candump_sidecar);
+  t.flag("nmea_sidecar", nmea_sidecar);
   t.scaled("status_period_ms", status_period_s, unit::kMs);
   t.text("file_prefix", file_prefix);
 }
@@ -125,7 +166,7 @@ void WriterParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const st
 }
 
 void GrabParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg) {
-  rejectUnknown(cfg, "grab", joined({{"sensors", "can"}, fieldKeys<WriterParams>()}));
+  rejectUnknown(cfg, "grab", joined({{"sensors", "can", "gnss"}, fieldKeys<WriterParams>()}));
   writer.loadFromConfigFile(cfg, "grab");
   const auto names = splitList(readString(cfg, "grab", "sensors", ""));
   if (names.empty()) throw std::runtime_error("[grab] sensors: at least one sensor section is required");
@@ -143,6 +184,9 @@ void GrabParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg) {
   const std::string can_sec = readString(cfg, "grab", "can", "");
   can = CanParams{};
   if (!can_sec.empty()) can.loadFromConfigFile(cfg, can_sec);
+  const std::string gnss_sec = readString(cfg, "grab", "gnss", "");
+  gnss = GnssParams{};
+  if (!gnss_sec.empty()) gnss.loadFromConfigFile(cfg, gnss_sec);
 }
 
 void GrabParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg) const {
@@ -150,9 +194,11 @@ void GrabParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg) const {
   for (const auto& s : sensors) names += (names.empty() ? "" : ",") + s.section;
   cfg.write("grab", "sensors", names);
   cfg.write("grab", "can", std::string(can.source == CanParams::Source::None ? "" : "can"));
+  cfg.write("grab", "gnss", std::string(gnss.source == GnssParams::Source::None ? "" : "gnss"));
   writer.saveToConfigFile(cfg, "grab");
   for (const auto& s : sensors) s.saveToConfigFile(cfg);
   if (can.source != CanParams::Source::None) can.saveToConfigFile(cfg, "can");
+  if (gnss.source != GnssParams::Source::None) gnss.saveToConfigFile(cfg, "gnss");
 }
 
 GrabParams GrabParams::fromFile(const std::string& path) {
@@ -171,6 +217,7 @@ GrabParams GrabParams::fromFile(const std::string& path) {
   for (auto& s : p.sensors) resolve(s.scan.calibration_file);
   resolve(p.can.candump_file);
   resolve(p.can.vehicle_ini);
+  resolve(p.gnss.nmea_file);
   return p;
 }
 

@@ -8,6 +8,41 @@
 #include "roadslam/common/atomic_file.h"
 
 namespace roadslam::grabber {
+namespace {
+
+void gnssStatus(GnssRt& r, const GnssParams& p, bool running, double now, GrabStatus& st) {
+  GnssStatus& o = st.gnss;
+  o.enabled = true;
+  o.source = r.source->describe();
+  o.lines = r.lines;
+  o.epochs = r.epochs;
+  o.split_epochs = r.split_epochs;
+  o.queue_drops = r.queue_drops;
+  o.queue_depth = r.queue.size();
+  o.queue_high_water = r.queue.highWater();
+  {
+    std::lock_guard<std::mutex> lock(r.mutex);
+    o.nmea = r.nmea;
+    o.problems = r.problems;
+    o.quality = r.last_fix.quality;
+    o.satellites = r.last_fix.satellites;
+    o.hdop = r.last_fix.hdop;
+    o.error = r.error;
+  }
+  const double quiet = now - r.last_line_s;
+  if (running && !r.silent && quiet > p.silent_after_s) {
+    r.silent = true;
+    ++r.silent_events;
+    st.events.push_back(fmt::format("GNSS: silent for {:.1f} s (no sentence from {})", quiet, o.source));
+  } else if (r.silent && quiet <= p.silent_after_s) {
+    r.silent = false;
+    st.events.push_back("GNSS: receiving again");
+  }
+  o.silent = r.silent;
+  o.silent_events = r.silent_events;
+}
+
+}  // namespace
 
 GrabStatus Grabber::status() {
   Impl& g = *impl_;
@@ -82,6 +117,7 @@ GrabStatus Grabber::status() {
     std::lock_guard<std::mutex> el(c.error_mutex);
     st.can.error = c.error;
   }
+  if (g.gnss) gnssStatus(*g.gnss, g.params.gnss, running, now, st);
   g.rate_prev_s = now;
   WriterStatus& w = st.writer;
   w.observations = g.writer.observations;
@@ -110,6 +146,11 @@ std::string Grabber::formatStatus(const GrabStatus& s) {
                         s.can.frames, s.can.error_frames, s.can.bus_off,
                         s.can.kernel_drops + s.can.queue_drops, s.can.queue_depth,
                         s.can.silent ? " SILENT" : "");
+  if (s.gnss.enabled)
+    line += fmt::format(" GNSS: {} fixes, q {} sat {} hdop {:.1f}, bad {} nofix {}{} |", s.gnss.epochs,
+                        s.gnss.quality, s.gnss.satellites, s.gnss.hdop,
+                        s.gnss.nmea.bad_checksum + s.gnss.nmea.malformed, s.gnss.nmea.no_fix,
+                        s.gnss.silent ? " SILENT" : "");
   if (s.writer.segments == 0)  // monitoring: the first segment of a recording opens with the Grabber
     line += fmt::format(" not recording: {} sweeps, pending {}", s.writer.sweeps, s.writer.pending);
   else
@@ -118,6 +159,19 @@ std::string Grabber::formatStatus(const GrabStatus& s) {
   if (s.writer.write_errors) line += fmt::format(", {} WRITE ERRORS: {}", s.writer.write_errors, s.writer.error);
   return line;
 }
+
+namespace {
+nlohmann::json gnssJson(const GnssStatus& g) {
+  if (!g.enabled) return nullptr;
+  nlohmann::json nmea = nlohmann::json::object();
+  for (const auto& [name, n] : g.nmea.named()) nmea[name] = n;
+  return {{"source", g.source},       {"lines", g.lines},
+          {"epochs", g.epochs},       {"split_epochs", g.split_epochs},
+          {"queue_drops", g.queue_drops}, {"queue_high_water", g.queue_high_water},
+          {"nmea", nmea},             {"problems", g.problems},
+          {"silent_events", g.silent_events}, {"error", g.error}};
+}
+}  // namespace
 
 void Grabber::writeSummary(const GrabStatus& s) const {
   using nlohmann::json;
@@ -159,6 +213,7 @@ void Grabber::writeSummary(const GrabStatus& s) const {
             {"can_error", s.can.error},
             {"can_silent_events", s.can.silent_events},
             {"can_queue_high_water", s.can.queue_high_water},
+            {"gnss", gnssJson(s.gnss)},
             {"sensors", sensors}};
   writeFileAtomically(impl_->out_dir + "/summary.json", j.dump(2) + "\n");
 }

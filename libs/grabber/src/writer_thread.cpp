@@ -18,6 +18,7 @@
 #include "roadslam/pcap/pcap_writer.h"
 #include "roadslam/sources/gps_observation.h"
 #include "roadslam/vehicle/dead_reckoning.h"
+#include "roadslam/vehicle/rawlog_export.h"
 #include "roadslam/velodyne/position.h"
 
 namespace roadslam::grabber {
@@ -28,11 +29,13 @@ static_assert(sizeof(CObservationVelodyneScan::TVelodyneRawPacket) == velodyne::
               "MRPT's packed packet struct must match the 1206-byte UDP payload");
 constexpr auto kIdleSleep = std::chrono::milliseconds(2);
 
-/// An observation waiting for its turn: a sensor item, or a CAN frame (sensor < 0).
+/// An observation waiting for its turn: a sensor item, a CAN frame (sensor < 0, no obs), or an
+/// observation already made (obs: a GNSS epoch).
 struct Pending {
   int sensor = -1;
   SensorItem item;
   can::CanFrame frame;
+  std::shared_ptr<mrpt::obs::CObservation> obs;
 };
 
 class Writer : public WriterTask {
@@ -79,6 +82,7 @@ class Writer : public WriterTask {
   std::vector<mrpt::obs::VelodyneCalibration> calib_;
   std::vector<std::unique_ptr<pcap::PcapWriter>> pcap_;
   std::FILE* candump_ = nullptr;
+  std::FILE* nmea_ = nullptr;  // gnss_NNN.nmea.log: the libs/gnss/nmea.h log format
   std::size_t sidecar_segment_ = 0;  // the sidecars follow the rawlog segment index
   std::unique_ptr<vehicle::VehicleDecoder> decoder_;
   std::unique_ptr<vehicle::DeadReckoning> dr_;
@@ -161,6 +165,11 @@ void Writer::openSidecars() {
     candump_ = std::fopen(path.c_str(), "w");
     if (!candump_) throw std::runtime_error("cannot create '" + path + "'");
   }
+  if (g_.gnss && g_.params.writer.nmea_sidecar) {
+    const std::string path = g_.out_dir + "/gnss" + idx + ".nmea.log";
+    nmea_ = std::fopen(path.c_str(), "w");
+    if (!nmea_) throw std::runtime_error("cannot create '" + path + "'");
+  }
 }
 
 void Writer::closeSidecars() {
@@ -168,6 +177,8 @@ void Writer::closeSidecars() {
   pcap_.clear();
   if (candump_) std::fclose(candump_);
   candump_ = nullptr;
+  if (nmea_) std::fclose(nmea_);
+  nmea_ = nullptr;
 }
 
 bool Writer::drainQueues() {
@@ -204,6 +215,19 @@ bool Writer::drainQueues() {
       if (decoder_) pending_.emplace(p.frame.timeSeconds(), p);
     }
   }
+  if (g_.gnss) {
+    GnssItem it;
+    while (g_.gnss->queue.tryPop(it)) {
+      got = true;
+      if (!it.obs) {
+        if (nmea_) std::fprintf(nmea_, "%.6f %s\n", it.line.receive_s, it.line.text.c_str());
+        continue;
+      }
+      Pending p;
+      p.obs = std::move(it.obs);
+      pending_.emplace(it.stamp_s, std::move(p));
+    }
+  }
   return got;
 }
 
@@ -218,7 +242,10 @@ void Writer::emitUpTo(double stamp_s) {
 
 void Writer::emit(Pending& p) {
   guarded([&] {
-    if (p.sensor < 0) writeVehicle(p.frame);
+    if (p.obs) {
+      writeObs(p.obs);
+      g_.writer.gps.fetch_add(1);
+    } else if (p.sensor < 0) writeVehicle(p.frame);
     else if (p.item.sweep) writeSweep(p.item);
     else writePosition(p.item);
   });
@@ -298,6 +325,10 @@ void Writer::writeVehicle(const can::CanFrame& f) {
     writeObs(imu);
     g_.can->vehicle_obs.fetch_add(1);
   }
+  if (vehicle::gpsUpdated(vstate_, mask)) {
+    writeObs(vehicle::gpsObservation(vstate_, "CAN_GPS"));
+    g_.can->vehicle_obs.fetch_add(1);
+  }
 }
 
 void Writer::flushAll() {
@@ -307,6 +338,8 @@ void Writer::flushAll() {
   });
   if (candump_ && std::fflush(candump_) != 0)
     guarded([] { throw std::runtime_error("write error on the candump sidecar"); });
+  if (nmea_ && std::fflush(nmea_) != 0)
+    guarded([] { throw std::runtime_error("write error on the NMEA sidecar"); });
 }
 
 void Writer::updateCounters() {

@@ -163,6 +163,9 @@ TEST(GrabParams, ShippedIniLoads) {
   EXPECT_TRUE(std::filesystem::exists(p.can.vehicle_ini)) << p.can.vehicle_ini;
   EXPECT_DOUBLE_EQ(p.writer.flush_period_s, 0.5);
   EXPECT_DOUBLE_EQ(p.writer.rotate_size_bytes, 512e6);
+  EXPECT_EQ(p.gnss.source, GnssParams::Source::Gpsd);
+  EXPECT_EQ(p.gnss.gpsd_port, 2947);
+  EXPECT_DOUBLE_EQ(p.gnss.epoch_idle_s, 0.1);
   // Round trip through saveToConfigFile.
   mrpt::config::CConfigFileMemory cfg;
   p.saveToConfigFile(cfg);
@@ -172,6 +175,8 @@ TEST(GrabParams, ShippedIniLoads) {
   EXPECT_NEAR(q.sensors[0].scan.yaw_rad, p.sensors[0].scan.yaw_rad, 1e-12);
   EXPECT_DOUBLE_EQ(q.writer.reorder_window_s, p.writer.reorder_window_s);
   EXPECT_EQ(q.can.vehicle_ini, p.can.vehicle_ini);
+  EXPECT_EQ(q.gnss.source, p.gnss.source);
+  EXPECT_DOUBLE_EQ(q.gnss.silent_after_s, p.gnss.silent_after_s);
 }
 
 TEST(GrabParams, ErrorsNameTheKey) {

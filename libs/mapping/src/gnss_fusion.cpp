@@ -140,6 +140,10 @@ void GnssFusionParams::fields(ParamTable& t) {
   t.num("uere_m", uere_m);
   t.num("fallback_sigma_m", fallback_sigma_m);
   t.flag("receiver_time", receiver_time);
+  t.num("online_window_s", online_window_s);
+  t.num("online_solve_period_s", online_solve_period_s);
+  t.num("online_blend_s", online_blend_s);
+  t.num("online_min_path_m", online_min_path_m);
 }
 
 void GnssFusionParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& s) {
@@ -152,6 +156,8 @@ void GnssFusionParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& c
                              "attitude_prior_sigma_deg, max_iterations, uere_m, fallback_sigma_m and edge_vertical_scale must be > 0, "
                              "the per-metre sigmas and max_time_offset_s >= 0");
   }
+  if (online_window_s <= 0 || online_solve_period_s <= 0 || online_blend_s < 0 || online_min_path_m < 0)
+    throw std::runtime_error("[" + s + "] online_window_s, online_solve_period_s: must be > 0, online_blend_s and online_min_path_m >= 0");
 }
 
 void GnssFusionParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& s) const {

@@ -5,9 +5,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iostream>
 #include <random>
 
 #include "roadslam/mapping/gnss_fusion.h"
+#include "roadslam/mapping/gnss_fusion_online.h"
 
 using namespace roadslam::mapping;
 
@@ -162,4 +164,45 @@ TEST(GnssFusion, TooFewFixesOrNoMotionIsAStatus) {
   PoseVector still(d.t.size(), Eigen::Isometry3d::Identity());
   const auto s = fuseGnss(d.t, still, makeFixes(makeDrive(0.0, 0.1), Eigen::Vector3d::Zero(), 0.1, 3), GnssFusionParams{});
   EXPECT_FALSE(s.ok);
+}
+
+// The online mode: causal (a frame's pose does not change when later fixes do) and, on the drifting
+// drive (60 s, a 20 s window to keep the test short), closer to the truth than the fixes alone and
+// the odometry alone.
+TEST(GnssFusionOnline, CausalAndBetterThanEitherInput) {
+  const Drive d = makeDrive(60);
+  const Eigen::Vector3d lever(0.5, 0.2, 1.5);
+  const auto fixes = makeFixes(d, lever, 1.0, 7);
+  GnssFusionParams p = params(lever);
+  p.online_window_s = 20;
+  GnssOnlineStats st;
+  const auto online = replayOnline(d.t, d.odom, fixes, p, &st);
+  auto late = fixes;  // every fix after t = 30 s moved 30 m east
+  for (auto& f : late) {
+    if (f.t_s > 30) f.p_enu.x() += 30;
+  }
+  const auto online_late = replayOnline(d.t, d.odom, late, p);
+  PoseVector est, truth, odo_enu, fix_only;
+  for (size_t i = 0; i < d.t.size(); ++i) {
+    if (d.t[i] <= 30) {
+      ASSERT_EQ(online[i].has_value(), online_late[i].has_value());
+      if (online[i]) {
+        EXPECT_TRUE(online[i]->isApprox(*online_late[i], 1e-12)) << "frame " << i;
+      }
+    }
+    if (!online[i]) continue;
+    est.push_back(*online[i]);
+    truth.push_back(d.truth[i]);
+    odo_enu.push_back(d.T_enu_map * d.odom[i]);
+    Eigen::Isometry3d F = d.truth[i];
+    F.translation() = fixes[i].p_enu - d.truth[i].rotation() * lever;
+    fix_only.push_back(F);
+  }
+  ASSERT_GT(est.size(), d.t.size() * 9 / 10) << "anchored late";
+  const double on = ate(est, truth, true), gnss = ate(fix_only, truth, true), odo = ate(odo_enu, truth, true);
+  EXPECT_LT(on, 0.7 * gnss) << "online " << on << " gnss " << gnss << " odometry " << odo;
+  EXPECT_LT(on, 0.3 * odo);
+  std::cout << "online 2D ATE " << on << " m, fixes alone " << gnss << " m, odometry alone " << odo << " m\n";
+  EXPECT_LE(st.failed, 2u);  // the first solves: fewer than 3 fixes, no motion yet
+  EXPECT_GE(st.solves, 55u);
 }

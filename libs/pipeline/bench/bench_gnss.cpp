@@ -21,6 +21,7 @@
 #include "roadslam/datasets/trajectory_io.h"
 #include "roadslam/gnss/geo.h"
 #include "roadslam/mapping/gnss_fusion.h"
+#include "roadslam/mapping/gnss_fusion_online.h"
 #include "roadslam/pipeline/gnss_outputs.h"
 #include "roadslam/sim/eigen.h"
 #include "roadslam/sim/simulator.h"
@@ -72,12 +73,42 @@ void row(const std::string& name, const Err& e, const std::string& extra = "") {
   std::printf("| %-44s | %7.3f | %7.3f | %7.2f | %s\n", name.c_str(), e.rms3, e.rms2, e.max2, extra.c_str());
 }
 
+/// The online (causal) mode on the odometry's own trajectory: its error over the frames it anchored,
+/// and the largest step error (fused step against the true step) anywhere and within 2 s of \p t_reacq.
+template <class GtAt>
+void onlineRow(const std::string& name, const datasets::Trajectory& odo, const std::vector<mapping::GnssFactor>& fixes,
+               const mapping::GnssFusionParams& fp, const gnss::EnuFrame& world, const gnss::EnuFrame& fe, GtAt gtAt,
+               double t_reacq, bool outage) {
+  mapping::GnssOnlineStats st;
+  const auto on = mapping::replayOnline(odo.stamps_s, odo.poses, fixes, fp, &st);
+  std::vector<Eigen::Vector3d> est, truth;
+  std::vector<double> t;
+  for (size_t i = 0; i < on.size(); ++i) {
+    if (!on[i]) continue;
+    est.push_back(world.toEnu(fe.toGeodetic(on[i]->translation())));
+    truth.push_back(gtAt(odo.stamps_s[i]).translation());
+    t.push_back(odo.stamps_s[i]);
+  }
+  double worst = 0, worst_reacq = 0;
+  for (size_t i = 1; i < est.size(); ++i) {
+    const double d = ((est[i] - est[i - 1]) - (truth[i] - truth[i - 1])).norm();
+    worst = std::max(worst, d);
+    if (outage && std::abs(t[i] - t_reacq) < 2.0) worst_reacq = std::max(worst_reacq, d);
+  }
+  char notes[300];
+  std::snprintf(notes, sizeof(notes), "%zu of %zu frames anchored, %zu solves, %.1f ms per solve (max %.0f), largest step error %.3f m%s",
+                est.size(), on.size(), st.solves, st.solves ? st.ms_total / double(st.solves) : 0.0, st.ms_max, worst,
+                outage ? (", " + std::to_string(worst_reacq).substr(0, 5) + " m within 2 s of reacquisition").c_str() : "");
+  row("online, causal (" + name + ")", errors(est, truth), notes);
+}
+
 int simFigures(int argc, char** argv) {
   const auto sp0 = sim::ScenarioParams::fromFile(arg(argc, argv, "--scenario"));
   const std::string sim_dir = arg(argc, argv, "--sim"), run = arg(argc, argv, "--run");
   mapping::GnssFusionParams fp;
   fp.loadFromConfigFile(*loadIniFile(arg(argc, argv, "--config")), "gnss_fusion");
   const auto traj = datasets::readTum(run + "/trajectory.tum");
+  const auto odo_traj = datasets::readTum(run + "/trajectory_odometry.tum");  // causal: the online mode's input
   const auto gt = datasets::readTum(sim_dir + "/gt_trajectory.tum");
   const gnss::EnuFrame world({sp0.origin_lat_deg, sp0.origin_lon_deg, sp0.gnss.origin_h_m});
   auto gtAt = [&](double t) { return mapping::interpolatePose(gt.stamps_s, gt.poses, t); };
@@ -140,9 +171,20 @@ int simFigures(int argc, char** argv) {
     std::snprintf(notes, sizeof(notes), "%zu used, %zu rejected (%zu multipath epochs), %d iterations, %.0f ms", r.used,
                   r.rejected, gr.multipath_epochs, r.iterations, r.ms);
     row("fused (" + v.name + ")", errors(fused, truth), notes);
+    const double t_reacq = static_cast<double>(sp.start_epoch_s) + v.outage_start + v.outage_len;
+    onlineRow(v.name, odo_traj, in.factors, fp, world, fe, gtAt, t_reacq, v.outage_len > 0);
+    if (v.outage_len > 0) {  // the blending's share: the same without it
+      auto jump = fp;
+      jump.online_blend_s = 0;
+      onlineRow(v.name + ", online_blend_s = 0", odo_traj, in.factors, jump, world, fe, gtAt, t_reacq, true);
+    }
+    if (v.outage_len == 0 && v.mp_len == 0 && v.bias_walk == 0) {  // the first anchoring on 50 m of path
+      auto late = fp;
+      late.online_min_path_m = 50;
+      onlineRow(v.name + ", online_min_path_m = 50", odo_traj, in.factors, late, world, fe, gtAt, t_reacq, false);
+    }
     // steps: the fused path's step against the true step, worst near reacquisition and anywhere
     double worst = 0, worst_reacq = 0;
-    const double t_reacq = static_cast<double>(sp.start_epoch_s) + v.outage_start + v.outage_len;
     for (size_t i = 1; i < fused.size(); ++i) {
       const double d = ((fused[i] - fused[i - 1]) - (truth[i] - truth[i - 1])).norm();
       worst = std::max(worst, d);
@@ -294,6 +336,45 @@ int rav4Figures(int argc, char** argv) {
     std::snprintf(notes, sizeof(notes), "%s: %zu used, %zu rejected, %d iterations%s, %.0f ms", r.status.c_str(), r.used,
                   r.rejected, r.iterations, r.converged ? "" : " (max)", r.ms);
     row(std::string("fused, ") + s + " noise (bias-corrected DR)", errors(at(cal.t, r.T_enu_node), ref_eval), notes);
+    // online: causal, so on the raw dead reckoning (the bias above is estimated from every fix)
+    mapping::GnssOnlineStats ost;
+    const auto on = mapping::replayOnline(raw.t, raw.T, fixes, fp, &ost);
+    std::vector<double> ot;
+    PoseVector oT;
+    for (size_t i = 0; i < on.size(); ++i)
+      if (on[i]) {
+        ot.push_back(raw.t[i]);
+        oT.push_back(*on[i]);
+      }
+    std::vector<Eigen::Vector3d> oe, orf;
+    for (size_t i = 0; !ot.empty() && i < n_eval; ++i)
+      if (rt[i] >= ot.front()) {
+        oe.push_back(mapping::interpolatePose(ot, oT, rt[i]).translation());
+        orf.push_back(ref[i]);
+      }
+    std::snprintf(notes, sizeof(notes), "scored from its first solve (t = %.0f s), %zu solves, %zu failed",
+                  ot.empty() ? 0.0 : ot.front() - rt.front(), ost.solves, ost.failed);
+    row(std::string("online, causal, ") + s + " noise (raw DR)", errors(oe, orf), notes);
+    if (sigma == 1.0) {  // the first anchoring on 50 m of path
+      auto late = fp;
+      late.online_min_path_m = 50;
+      const auto on50 = mapping::replayOnline(raw.t, raw.T, fixes, late, &ost);
+      std::vector<double> t50;
+      PoseVector T50;
+      for (size_t i = 0; i < on50.size(); ++i)
+        if (on50[i]) {
+          t50.push_back(raw.t[i]);
+          T50.push_back(*on50[i]);
+        }
+      std::vector<Eigen::Vector3d> e50, r50;
+      for (size_t i = 0; !t50.empty() && i < n_eval; ++i)
+        if (rt[i] >= t50.front()) {
+          e50.push_back(mapping::interpolatePose(t50, T50, rt[i]).translation());
+          r50.push_back(ref[i]);
+        }
+      std::snprintf(notes, sizeof(notes), "scored from its first solve (t = %.0f s)", t50.empty() ? 0.0 : t50.front() - rt.front());
+      row("online, causal, 1 m noise (raw DR), online_min_path_m = 50", errors(e50, r50), notes);
+    }
   }
   return 0;
 }

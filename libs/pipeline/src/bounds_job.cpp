@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <map>
+#include <optional>
 
 #include "roadslam/boundary/detector.h"
 #include "roadslam/boundary/output.h"
@@ -13,6 +14,7 @@
 #include "roadslam/common/stop_signal.h"
 #include "roadslam/datasets/kitti_scans.h"
 #include "roadslam/odometry/odometry.h"
+#include "roadslam/pipeline/gnss_outputs.h"
 #include "roadslam/pipeline/pipeline.h"
 #include "roadslam/velodyne/decoder_params.h"
 
@@ -20,6 +22,19 @@ namespace fs = std::filesystem;
 
 namespace roadslam::pipeline {
 namespace {
+
+/// The found sides of a sweep as map-frame polylines for the geo outputs.
+void addGeoLines(const boundary::BoundaryFrame& f, std::vector<GeoPolyline>& out) {
+  for (const auto* side : {&f.left, &f.right}) {
+    if (!side->found || side->polyline_map.size() < 2) continue;
+    GeoPolyline l;
+    l.stamp_s = f.stamp_s;
+    l.side = side == &f.left ? "left" : "right";
+    l.confidence = side->confidence;
+    for (const auto& v : side->polyline_map) l.p_map.emplace_back(v.x, v.y, v.z);
+    out.push_back(std::move(l));
+  }
+}
 
 bool enough(const BoundsRequest& req, size_t sweeps) { return stopRequested() || (req.max_frames && sweeps >= req.max_frames); }
 
@@ -100,8 +115,11 @@ nlohmann::json runBoundsJob(const BoundsRequest& req) {
   }
   const auto unknown_keys = cfg->checkEntries(req.allow_unknown_keys);
   auto source = openNonEmptySource(req.input_path, *cfg, req.times_path);
-  // a trajectory that cannot be read fails here, before any output
+  // a trajectory or georeference that cannot be read fails here, before any output
   std::unique_ptr<PoseStage> poses = poseStage(req, op);
+  std::optional<Georef> georef;
+  if (!req.georef_path.empty()) georef = readGeoref(req.georef_path);
+  std::vector<GeoPolyline> geo_lines;
   std::error_code ec;
   fs::create_directories(req.out_dir + "/frames", ec);
   if (ec) throw std::runtime_error("cannot create output folder '" + req.out_dir + "': " + ec.message());
@@ -134,10 +152,12 @@ nlohmann::json runBoundsJob(const BoundsRequest& req) {
     }
     tot.add(*pf->boundary);
     jsonl.stream() << toJson(*pf->boundary).dump() << "\n";
+    if (georef) addGeoLines(*pf->boundary, geo_lines);
     if (req.png_every > 0 && pf->boundary->index % static_cast<size_t>(req.png_every) == 0) drawFrame(req.out_dir, *pf, det, last_png);
     if (req.progress) bar.update(tot.frames);
   }
   jsonl.commit();
+  if (georef) writeGeoBoundaries(req.out_dir, geo_lines, *georef);
   if (!last_png.empty()) fs::copy_file(last_png, req.out_dir + "/top_view.png", fs::copy_options::overwrite_existing);
   const sources::ScanSource& stream = pipe.source();
   const double n = static_cast<double>(std::max<size_t>(tot.frames, 1));
@@ -147,6 +167,7 @@ nlohmann::json runBoundsJob(const BoundsRequest& req) {
                       {"right_found_rate", tot.right / n}, {"both_found_rate", tot.both / n},
                       {"status", tot.status}, {"not_found_reasons", tot.reasons},
                       {"poses", req.trajectory_path.empty() ? "odometry" : req.trajectory_path},
+                      {"geo_boundaries", geo_lines.size()},
                       {"mode", req.whole_drive ? "whole_drive" : "live"}, {"curb_map_cells", det.curbMap().size()}};
   if (req.whole_drive) s["ms_per_frame_first_pass_mean"] = drive.ms_mean;
   s["warnings"] = unknown_keys;

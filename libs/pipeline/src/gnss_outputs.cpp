@@ -1,6 +1,9 @@
 #include "roadslam/pipeline/gnss_outputs.h"
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
 #include <cstdio>
 #include <stdexcept>
 
@@ -60,7 +63,9 @@ GnssInput gnssInputFromFixes(const std::vector<sources::TimedGpsFix>& fixes, con
     gnss::GnssFix g;
     g.has_position = true;
     g.rmc_status = 'A';
-    g.position = {f.fix.latitude_deg, f.fix.longitude_deg, 0.0};
+    g.quality = f.quality;
+    g.hdop = f.hdop;
+    g.position = {f.fix.latitude_deg, f.fix.longitude_deg, std::isfinite(f.h_m) ? f.h_m : 0.0};
     g.t_receive_s = f.stamp_s;
     g.t_receiver_s = f.fix.epochSeconds();
     in.log.fixes.push_back(g);
@@ -69,15 +74,99 @@ GnssInput gnssInputFromFixes(const std::vector<sources::TimedGpsFix>& fixes, con
   if (in.log.fixes.empty()) throw std::runtime_error("the input carries no valid GPS fix (" + std::to_string(fixes.size()) + " fixes read)");
   in.origin = in.log.fixes.front().position;
   const gnss::EnuFrame enu(in.origin);
-  const double s = p.fallback_sigma_m;
-  for (const auto& f : in.log.fixes) {
+  for (size_t k = 0; k < in.log.fixes.size(); ++k) {
+    const auto& f = in.log.fixes[k];
     mapping::GnssFactor g;
     g.t_s = f.stamp(p.receiver_time);
     g.p_enu = enu.toEnu(f.position);
-    g.cov = Eigen::Vector3d(s * s, s * s, 1e6).asDiagonal();
+    // a GGA's HDOP gives the covariance (nmea.h covarianceEnu); RMC alone: fallback sigma, height free
+    g.cov = f.covarianceEnu(p.uere_m, p.fallback_sigma_m);
+    if (!std::isfinite(f.hdop)) {
+      const double s = p.fallback_sigma_m;
+      g.cov = Eigen::Vector3d(s * s, s * s, 1e6).asDiagonal();
+    }
     in.factors.push_back(g);
   }
   return in;
+}
+
+namespace {
+std::string tumLine(double t_s, const Eigen::Isometry3d& T) {
+  char line[200];
+  const Eigen::Vector3d t = T.translation();
+  const Eigen::Quaterniond q(T.rotation());
+  std::snprintf(line, sizeof(line), "%.6f %.4f %.4f %.4f %.9f %.9f %.9f %.9f\n", t_s, t.x(), t.y(), t.z(), q.x(),
+                q.y(), q.z(), q.w());
+  return line;
+}
+}  // namespace
+
+nlohmann::json writeOnlineGnss(const std::string& dir, const std::vector<double>& st, const mapping::PoseVector& T_odom,
+                               const GnssInput& in, const mapping::GnssFusionParams& p) {
+  mapping::GnssOnlineStats s;
+  const auto online = mapping::replayOnline(st, T_odom, in.factors, p, &s);
+  std::string tum;
+  std::size_t anchored = 0;
+  for (std::size_t i = 0; i < online.size(); ++i) {
+    if (!online[i]) continue;
+    tum += tumLine(st[i], *online[i]);
+    ++anchored;
+  }
+  if (anchored) writeFileAtomically(dir + "/trajectory_enu_online.tum", tum);
+  return {{"frames", online.size()},   {"anchored_frames", anchored},
+          {"solves", s.solves},        {"failed_solves", s.failed},
+          {"ms_per_solve", s.solves ? s.ms_total / double(s.solves) : 0.0}, {"ms_max", s.ms_max}};
+}
+
+Georef readGeoref(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot read georeference '" + path + "'");
+  nlohmann::json j;
+  try {
+    in >> j;
+  } catch (const std::exception& e) {
+    throw std::runtime_error(path + ": not JSON (" + e.what() + ")");
+  }
+  Georef g;
+  try {
+    const auto& o = j.at("enu_origin");
+    g.origin = {o.at("lat_deg").get<double>(), o.at("lon_deg").get<double>(), o.at("h_m").get<double>()};
+    const auto& M = j.at("T_enu_map");
+    for (int r = 0; r < 4; ++r)
+      for (int c = 0; c < 4; ++c) g.T_enu_map.matrix()(r, c) = M.at(std::size_t(r)).at(std::size_t(c)).get<double>();
+  } catch (const std::exception& e) {
+    throw std::runtime_error(path + ": enu_origin {lat_deg, lon_deg, h_m} and T_enu_map (4x4) expected (" + e.what() + ")");
+  }
+  return g;
+}
+
+void writeGeoBoundaries(const std::string& dir, const std::vector<GeoPolyline>& lines, const Georef& g) {
+  const gnss::EnuFrame enu(g.origin);
+  nlohmann::json features = nlohmann::json::array();
+  std::map<std::string, std::string> kml;  // side -> its LineStrings
+  char buf[96];
+  for (const auto& l : lines) {
+    nlohmann::json coords = nlohmann::json::array();
+    std::string& k = kml[l.side];
+    k += "<LineString><altitudeMode>absolute</altitudeMode><coordinates>";
+    for (const auto& p : l.p_map) {
+      const gnss::Geodetic q = enu.toGeodetic(g.T_enu_map * p);
+      coords.push_back({std::round(q.lon_deg * 1e9) / 1e9, std::round(q.lat_deg * 1e9) / 1e9, std::round(q.h_m * 1e3) / 1e3});
+      std::snprintf(buf, sizeof(buf), "%.9f,%.9f,%.3f ", q.lon_deg, q.lat_deg, q.h_m);
+      k += buf;
+    }
+    k += "</coordinates></LineString>\n";
+    features.push_back({{"type", "Feature"},
+                        {"properties", {{"stamp_s", l.stamp_s}, {"side", l.side}, {"confidence", l.confidence}}},
+                        {"geometry", {{"type", "LineString"}, {"coordinates", coords}}}});
+  }
+  writeFileAtomically(dir + "/boundaries.geojson",
+                      nlohmann::json{{"type", "FeatureCollection"}, {"features", features}}.dump() + "\n");
+  std::string doc = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<kml xmlns=\"http://www.opengis.net/kml/2.2\">\n"
+                    "<Document><name>roadslam road boundaries</name>\n";
+  for (const auto& [side, strings] : kml)
+    doc += "<Placemark><name>" + side + " boundary</name><MultiGeometry>\n" + strings + "</MultiGeometry></Placemark>\n";
+  writeFileAtomically(dir + "/boundaries.kml", doc + "</Document>\n</kml>\n");
 }
 
 void writeGeoTrajectory(const std::string& dir, const std::vector<double>& st, const mapping::PoseVector& T,
@@ -88,10 +177,7 @@ void writeGeoTrajectory(const std::string& dir, const std::vector<double>& st, c
   nlohmann::json line_coords = nlohmann::json::array();
   for (size_t i = 0; i < T.size(); ++i) {
     const Eigen::Vector3d t = T[i].translation();
-    const Eigen::Quaterniond q(T[i].rotation());
-    std::snprintf(line, sizeof(line), "%.6f %.4f %.4f %.4f %.9f %.9f %.9f %.9f\n", st[i], t.x(), t.y(), t.z(), q.x(),
-                  q.y(), q.z(), q.w());
-    tum += line;
+    tum += tumLine(st[i], T[i]);
     const gnss::Geodetic g = enu.toGeodetic(t);
     const gnss::Utm u = gnss::utmFromGeodetic(g, zone);
     zone = u.zone;
@@ -119,8 +205,29 @@ void writeGeoTrajectory(const std::string& dir, const std::vector<double>& st, c
                           kml + "\n</coordinates></LineString>\n</Placemark>\n</Document>\n</kml>\n");
 }
 
+nlohmann::json writeEnuMaps(const std::string& dir, const std::vector<mapping::Keyframe>& kfs,
+                            const std::vector<double>& st, const mapping::PoseVector& T_enu, const mapping::MapOutputParams& p) {
+  const std::string enu_dir = dir + "/enu";
+  std::error_code ec;
+  std::filesystem::create_directories(enu_dir, ec);
+  if (ec) throw std::runtime_error("cannot create '" + enu_dir + "': " + ec.message());
+  mapping::PoseVector T_enu_kf;
+  for (const auto& kf : kfs) T_enu_kf.push_back(mapping::interpolatePose(st, T_enu, kf.stamp_s));
+  const auto points = mapping::buildPointMap(kfs, T_enu_kf, p.point_map.voxel_m);
+  mapping::writePly(enu_dir + "/map.ply", points);
+  mapping::writePcd(enu_dir + "/map.pcd", points);
+  const mapping::Grid2D grid = mapping::buildGrid(kfs, T_enu_kf, p.grid);
+  mapping::writeGridPng(enu_dir + "/grid.png", enu_dir + "/grid.yaml", grid);
+  std::size_t occ = 0, fre = 0;
+  for (const auto c : grid.cells) {
+    occ += c == 100;
+    fre += c == 0;
+  }
+  return {{"dir", enu_dir}, {"points", points.size()}, {"grid_occupied_cells", occ}, {"grid_free_cells", fre}};
+}
+
 nlohmann::json fuseAndWriteGnss(const std::string& dir, const std::vector<double>& st, const mapping::PoseVector& T_map,
-                                const GnssInput& in, const mapping::GnssFusionParams& p) {
+                                const GnssInput& in, const mapping::GnssFusionParams& p, mapping::PoseVector* T_enu_out) {
   nlohmann::json j;
   j["input"] = in.path;
   j["nmea"] = in.log.counters.named();
@@ -137,6 +244,7 @@ nlohmann::json fuseAndWriteGnss(const std::string& dir, const std::vector<double
   j["rms_horizontal_residual_m"] = r.rms_inlier_m;
   j["ms"] = r.ms;
   if (!r.ok) return j;
+  if (T_enu_out) *T_enu_out = r.T_enu_node;
   const gnss::EnuFrame enu(in.origin);
   writeGeoTrajectory(dir, st, r.T_enu_node, enu);
   std::string fixes = "t,e_m,n_m,u_m,sigma_e_m,sigma_n_m,use\n";

@@ -357,14 +357,19 @@ MapOutcome runMapJob(const MapRequest& req) {
   }
   if (gnss_in) {
     std::vector<double> stamps;
-    mapping::PoseVector T;
+    mapping::PoseVector T, T_odom;
     for (size_t i = 0; i < out.frames.size(); ++i) {
       if (out.frames[i].status == odometry::FrameStatus::Skipped) continue;
       if (!stamps.empty() && out.frames[i].stamp_s <= stamps.back()) continue;
       stamps.push_back(out.frames[i].stamp_s);
       T.push_back(req.maps ? out.T_map_lidar[i] : out.frames[i].T_world_lidar);
+      T_odom.push_back(out.frames[i].T_world_lidar);
     }
-    out.summary["gnss"] = fuseAndWriteGnss(req.out_dir, stamps, T, *gnss_in, params.gnss_fusion);
+    mapping::PoseVector T_enu;
+    out.summary["gnss"] = fuseAndWriteGnss(req.out_dir, stamps, T, *gnss_in, params.gnss_fusion, &T_enu);
+    if (maps && !T_enu.empty())
+      out.summary["gnss"]["enu_maps"] = writeEnuMaps(req.out_dir, mapper.keyframes(), stamps, T_enu, params.maps);
+    out.summary["gnss"]["online"] = writeOnlineGnss(req.out_dir, stamps, T_odom, *gnss_in, params.gnss_fusion);
     const auto& g = out.summary["gnss"];
     if (g["status"] != "ok") out.summary["warnings"].push_back("GNSS fusion not done: " + g["status"].get<std::string>());
     for (const auto& [name, n] : gnss_in->log.counters.named()) {

@@ -4,6 +4,8 @@
 // frame, which is the ENU frame at ([scenario] origin, [gnss] origin_h_m) (GeographicLib converts).
 #include <gtest/gtest.h>
 
+#include <iostream>
+
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -11,6 +13,7 @@
 #include "roadslam/datasets/trajectory_io.h"
 #include "roadslam/gnss/geo.h"
 #include "roadslam/mapping/gnss_fusion.h"
+#include "roadslam/pipeline/gnss_outputs.h"
 #include "roadslam/pipeline/map_job.h"
 #include "sim_cache.h"
 
@@ -66,6 +69,46 @@ TEST(GnssJob, SmallLoopFusedGeoreferencedOutputs) {
   }
   EXPECT_LT(std::sqrt(sq / fused.poses.size()), 0.30);
 
+  // the online mode (causal, on the odometry's own poses): same ENU frame, anchored within seconds,
+  // worse than the batch (it cannot use later fixes), better than the fixes' 1 m noise
+  const auto online = datasets::readTum(out + "/trajectory_enu_online.tum");
+  EXPECT_GT(online.poses.size(), fused.poses.size() * 8 / 10) << g["online"].dump();  // 473 of 516 when written
+  double sq_on = 0;
+  for (size_t i = 0; i < online.poses.size(); ++i) {
+    const Eigen::Vector3d p = world.toEnu(fused_enu.toGeodetic(online.poses[i].translation()));
+    const Eigen::Vector3d t = mapping::interpolatePose(gt.stamps_s, gt.poses, online.stamps_s[i]).translation();
+    sq_on += (p - t).head<2>().squaredNorm();
+  }
+  const double ate_online = std::sqrt(sq_on / std::max<size_t>(1, online.poses.size()));
+  std::cout << "online 2D ATE " << ate_online << " m, batch " << std::sqrt(sq / fused.poses.size()) << " m\n";
+  EXPECT_LT(ate_online, 0.8);
+  EXPECT_EQ(g["online"]["anchored_frames"].get<size_t>(), online.poses.size());
+
+  // road boundaries in GeoJSON / KML (roadslam-bounds --georef): a polyline through the map-frame
+  // positions of two frames lands, through map_georef.json, where the fused trajectory put them
+  // (within the fusion's own correction of the odometry), and its WGS84 goes back to ENU within 1 mm
+  const auto odo = datasets::readTum(out + "/trajectory_odometry.tum");
+  ASSERT_EQ(odo.poses.size(), fused.poses.size());
+  const pipeline::Georef gr = pipeline::readGeoref(out + "/map_georef.json");
+  pipeline::GeoPolyline line;
+  line.side = "left";
+  for (size_t i : {size_t(0), fused.poses.size() / 2}) line.p_map.push_back(odo.poses[i].translation());
+  pipeline::writeGeoBoundaries(out, {line}, gr);
+  nlohmann::json bj;
+  std::ifstream(out + "/boundaries.geojson") >> bj;
+  const auto& bc = bj["features"][0]["geometry"]["coordinates"];
+  ASSERT_EQ(bc.size(), 2u);
+  for (size_t k = 0; k < 2; ++k) {
+    const size_t i = k == 0 ? 0 : fused.poses.size() / 2;
+    const gnss::Geodetic q{bc[k][1].get<double>(), bc[k][0].get<double>(), bc[k][2].get<double>()};
+    const Eigen::Vector3d e = fused_enu.toEnu(q);
+    EXPECT_LT((e - gr.T_enu_map * line.p_map[k]).norm(), 0.002);
+    EXPECT_LT((e - fused.poses[i].translation()).head<2>().norm(), 1.0);
+  }
+  std::ifstream bk(out + "/boundaries.kml");
+  const std::string kb((std::istreambuf_iterator<char>(bk)), std::istreambuf_iterator<char>());
+  EXPECT_NE(kb.find("<name>left boundary</name>"), std::string::npos);
+
   // GeoJSON and KML: one coordinate per frame, [lon, lat, h] the same point as trajectory_geo.csv
   nlohmann::json gj;
   std::ifstream(out + "/trajectory.geojson") >> gj;
@@ -94,4 +137,38 @@ TEST(GnssJob, SmallLoopFusedGeoreferencedOutputs) {
     EXPECT_NEAR(E, exact.easting_m, 0.01);
     EXPECT_NEAR(N, exact.northing_m, 0.01);
   }
+}
+
+// Maps rebuilt at the fused poses: keyframe points land at T_enu_lidar(stamp) p (the pose
+// interpolated at the keyframe's stamp), read back from enu/map.ply.
+TEST(GnssJob, EnuMapsAtTheFusedPoses) {
+  const std::string out = std::string(ROADSLAM_BINARY_DIR) + "/test-out/gnss-enu-maps";
+  std::filesystem::create_directories(out);
+  std::vector<mapping::Keyframe> kfs(2);
+  kfs[0].stamp_s = 10.0;
+  kfs[1].stamp_s = 10.5;  // halfway between the two poses
+  for (auto& kf : kfs)
+    for (int i = 0; i < 5; ++i) kf.points_lidar.emplace_back(float(2 * i + 3), float(i % 2 ? 4 : -4), 0.5f);
+  mapping::PoseVector T(2, Eigen::Isometry3d::Identity());
+  T[0].translation() = Eigen::Vector3d(100, 200, 3);
+  T[1].linear() = Eigen::AngleAxisd(0.2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  T[1].translation() = Eigen::Vector3d(110, 204, 3);
+  const std::vector<double> st{10.0, 11.0};
+  mapping::MapOutputParams mp;
+  mp.point_map.voxel_m = 0.05;
+  const auto j = pipeline::writeEnuMaps(out, kfs, st, T, mp);
+  EXPECT_EQ(j["points"].get<size_t>(), 10u);
+  std::ifstream ply(out + "/enu/map.ply", std::ios::binary);
+  std::string header, line;
+  while (std::getline(ply, line) && line != "end_header") header += line + "\n";
+  std::vector<Eigen::Vector3f> pts(10);
+  ply.read(reinterpret_cast<char*>(pts.data()), std::streamsize(pts.size() * sizeof(Eigen::Vector3f)));
+  ASSERT_TRUE(ply) << header;
+  const Eigen::Isometry3d T_mid = mapping::interpolatePose(st, T, 10.5);
+  for (size_t i = 0; i < 5; ++i) {
+    EXPECT_LT((pts[i].cast<double>() - T[0] * kfs[0].points_lidar[i].cast<double>()).norm(), 1e-4);
+    EXPECT_LT((pts[5 + i].cast<double>() - T_mid * kfs[1].points_lidar[i].cast<double>()).norm(), 1e-4);
+  }
+  EXPECT_TRUE(std::filesystem::exists(out + "/enu/grid.png"));
+  EXPECT_TRUE(std::filesystem::exists(out + "/enu/grid.yaml"));
 }

@@ -35,10 +35,21 @@ TimedGpsFix fixFromObservation(const mrpt::obs::CObservationGPS& o) {
   const auto ts = o.originalReceivedTimestamp != INVALID_TIMESTAMP ? o.originalReceivedTimestamp
                                                                     : o.timestamp;
   t.stamp_s = mrpt::Clock::toDouble(ts);
-  const auto& f = o.getMsgByClass<mrpt::obs::gnss::Message_NMEA_RMC>().fields;
   velodyne::GpsFix& fix = t.fix;
+  if (o.hasMsgClass<mrpt::obs::gnss::Message_NMEA_GGA>()) {
+    const auto& g = o.getMsgByClass<mrpt::obs::gnss::Message_NMEA_GGA>().fields;
+    t.quality = g.fix_quality;
+    t.h_m = g.altitude_meters + g.geoidal_distance;  // ellipsoidal = MSL altitude + separation (NMEA GGA)
+    if (g.thereis_HDOP) t.hdop = g.HDOP;
+    fix.time_of_day_s = g.UTCTime.hour * 3600.0 + g.UTCTime.minute * 60.0 + g.UTCTime.sec;
+    fix.valid = g.fix_quality > 0;
+    fix.latitude_deg = g.latitude_degrees;
+    fix.longitude_deg = g.longitude_degrees;
+  }
+  if (!o.hasMsgClass<mrpt::obs::gnss::Message_NMEA_RMC>()) return t;
+  const auto& f = o.getMsgByClass<mrpt::obs::gnss::Message_NMEA_RMC>().fields;
   fix.time_of_day_s = f.UTCTime.hour * 3600.0 + f.UTCTime.minute * 60.0 + f.UTCTime.sec;
-  fix.valid = f.validity_char == 'A';
+  fix.valid = f.validity_char == 'A' && t.quality != 0;
   fix.day = f.date_day;
   fix.month = f.date_month;
   fix.year = f.date_year == 0 ? 0 : 2000 + f.date_year;
@@ -108,7 +119,7 @@ bool RawlogPacketSource::readMore() {
     for (auto& pkt : packetsOfScan(*v, ports_.data_port))
       if (accountPacket(ports_, pkt, stats_, gaps_)) queue_.push_back(std::move(pkt));
   } else if (auto g = std::dynamic_pointer_cast<mrpt::obs::CObservationGPS>(obs)) {
-    if (g->hasMsgClass<mrpt::obs::gnss::Message_NMEA_RMC>()) {
+    if (g->hasMsgClass<mrpt::obs::gnss::Message_NMEA_RMC>() || g->hasMsgClass<mrpt::obs::gnss::Message_NMEA_GGA>()) {
       gps_.push_back(fixFromObservation(*g));
       ++stats_.position_packets;
     } else {

@@ -2,11 +2,17 @@
 // receiver's UTC time as the timestamp and the host receive time as originalReceivedTimestamp.
 #include <gtest/gtest.h>
 #include <mrpt/obs/CObservationGPS.h>
+#include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/obs/CRawlog.h>
+#include <mrpt/serialization/CArchive.h>
+
+#include <cmath>
 
 #include <filesystem>
 
 #include "roadslam/gnss/nmea.h"
+#include "roadslam/sources/gps_observation.h"
+#include "roadslam/sources/rawlog_source.h"
 #include "roadslam/sources/rawlog_writer.h"
 
 using namespace roadslam;
@@ -62,5 +68,55 @@ TEST(GnssRawlog, NmeaEpochsAreCObservationGps) {
   EXPECT_EQ(rmc.date_year, 23);
   ASSERT_TRUE(g->hasMsgClass<mrpt::obs::gnss::Message_NMEA_VTG>());
   EXPECT_NEAR(g->getMsgByClass<mrpt::obs::gnss::Message_NMEA_VTG>().fields.ground_speed_kmh, 90.0, 1e-2);
+  std::filesystem::remove(path);
+}
+
+// A rawlog's CObservationGPS read back as fixes: an RMC + GGA epoch (roadslam-grab's GNSS thread)
+// keeps its GGA height, HDOP and quality; a GGA alone (a car's CAN_GPS) is a fix too; a GGA with
+// quality 0 is no fix.
+TEST(GnssRawlog, RawlogSourceReadsGgaFixes) {
+  gnss::GnssFix f;
+  f.time_of_day_s = 22 * 3600 + 13 * 60 + 20;
+  f.t_receiver_s = 1700000000.0;
+  f.t_receive_s = 1700000000.08;
+  f.has_position = true;
+  f.position = {48.137, 11.575, 545.25};
+  f.quality = 1;
+  f.hdop = 1.3;
+  f.rmc_status = 'A';
+  const auto path = std::filesystem::temp_directory_path() / "roadslam_gnss_gga.rawlog";
+  {
+    mrpt::io::CFileGZOutputStream out(path.string());
+    auto ar = mrpt::serialization::archiveFrom(out);
+    mrpt::obs::CObservationGPS epoch;
+    sources::fillGnssObservation(f, "GNSS", epoch);
+    ar << epoch;
+    mrpt::obs::CObservationGPS gga_only;
+    mrpt::obs::gnss::Message_NMEA_GGA gga;
+    gga.fields.latitude_degrees = 37.5;
+    gga.fields.longitude_degrees = -122.25;
+    gga.fields.altitude_meters = 12.5;
+    gga.fields.fix_quality = 1;
+    gga_only.setMsg(gga);
+    gga_only.timestamp = mrpt::Clock::fromDouble(1700000001.0);
+    ar << gga_only;
+    gga.fields.fix_quality = 0;
+    gga_only.setMsg(gga);
+    ar << gga_only;
+  }
+  sources::RawlogPacketSource src(path.string());
+  while (!src.finished()) src.next();
+  const auto fixes = src.takeDecodedFixes();
+  ASSERT_EQ(fixes.size(), 3u);
+  EXPECT_TRUE(fixes[0].fix.valid);
+  EXPECT_NEAR(fixes[0].h_m, 545.25, 1e-3);
+  EXPECT_NEAR(fixes[0].hdop, 1.3, 1e-6);
+  EXPECT_EQ(fixes[0].quality, 1);
+  EXPECT_NEAR(fixes[0].fix.epochSeconds(), 1700000000.0, 1e-3);
+  EXPECT_TRUE(fixes[1].fix.valid);
+  EXPECT_NEAR(fixes[1].fix.latitude_deg, 37.5, 1e-9);
+  EXPECT_NEAR(fixes[1].h_m, 12.5, 1e-9);
+  EXPECT_TRUE(std::isnan(fixes[1].hdop));
+  EXPECT_FALSE(fixes[2].fix.valid);
   std::filesystem::remove(path);
 }

@@ -18,12 +18,13 @@ constexpr double kG = 9.80665;  // standard gravity [m/s^2]
 const char* quantityKey(Quantity q) {
   static const char* kKeys[kQuantityCount] = {"wheel_fl",       "wheel_fr", "wheel_rl", "wheel_rr",
                                               "vehicle_speed",  "yaw_rate", "steering_angle", "accel_x",
-                                              "accel_y",        "gear",     "latitude", "longitude"};
+                                              "accel_y",        "gear",     "latitude", "longitude",
+                                              "gnss_height"};
   return kKeys[static_cast<int>(q)];
 }
 
 double unitScale(const std::string& u) {
-  if (u == "mps" || u == "mps2" || u == "rad" || u == "rad_s" || u == "deg_wgs84" || u == "raw" || u.empty()) {
+  if (u == "mps" || u == "mps2" || u == "rad" || u == "rad_s" || u == "deg_wgs84" || u == "m" || u == "raw" || u.empty()) {
     return 1.0;
   }
   if (u == "kmh") return 1.0 / 3.6;
@@ -32,7 +33,7 @@ double unitScale(const std::string& u) {
   if (u == "g") return kG;
   if (u == "pct_g") return kG / 100.0;
   throw std::invalid_argument("unknown unit '" + u +
-                              "' (accepted: mps kmh mph rad deg rad_s deg_s mps2 g pct_g deg_wgs84 raw)");
+                              "' (accepted: mps kmh mph rad deg rad_s deg_s mps2 g pct_g deg_wgs84 m raw)");
 }
 
 std::string VehicleParams::dbcPath() const {

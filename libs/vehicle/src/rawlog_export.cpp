@@ -53,22 +53,28 @@ void writeImu(mrpt::serialization::CArchive& ar, const VehicleState& s, UpdateMa
   ar << imu;
 }
 
-void writeGps(mrpt::serialization::CArchive& ar, const VehicleState& s, const std::string& label) {
-  mrpt::obs::CObservationGPS gps;
-  gps.sensorLabel = label;
-  gps.timestamp = stamp(s.t_s);
+}  // namespace
+
+std::shared_ptr<mrpt::obs::CObservationGPS> gpsObservation(const VehicleState& s, const std::string& label) {
+  auto gps = std::make_shared<mrpt::obs::CObservationGPS>();
+  gps->sensorLabel = label;
+  gps->timestamp = stamp(s.t_s);
+  gps->originalReceivedTimestamp = gps->timestamp;
   mrpt::obs::gnss::Message_NMEA_GGA gga;
   gga.fields.latitude_degrees = s.value(Quantity::kLatitude);
   gga.fields.longitude_degrees = s.value(Quantity::kLongitude);
+  if (s.has(Quantity::kGnssHeight)) {
+    gga.fields.altitude_meters = s.value(Quantity::kGnssHeight);
+    gga.fields.orthometric_altitude = gga.fields.altitude_meters;
+  }
   gga.fields.fix_quality = 1;
   const double tod = std::fmod(s.t_s, 86400.0);
   gga.fields.UTCTime.hour = static_cast<uint8_t>(tod / 3600);
   gga.fields.UTCTime.minute = static_cast<uint8_t>(std::fmod(tod, 3600) / 60);
   gga.fields.UTCTime.sec = std::fmod(tod, 60.0);
-  gps.setMsg(gga);
-  ar << gps;
+  gps->setMsg(gga);
+  return gps;
 }
-}  // namespace
 
 RawlogExportStats exportRawlog(const std::vector<can::CanFrame>& frames, VehicleDecoder& decoder,
                                const DeadReckoningParams& dr_params, const RawlogExportParams& params,
@@ -82,7 +88,6 @@ RawlogExportStats exportRawlog(const std::vector<can::CanFrame>& frames, Vehicle
     DeadReckoning dr(dr_params, decoder.params());
     VehicleState s;
     constexpr UpdateMask kImuMask = bit(Quantity::kYawRate) | bit(Quantity::kAccelX) | bit(Quantity::kAccelY);
-    constexpr UpdateMask kGpsMask = bit(Quantity::kLatitude) | bit(Quantity::kLongitude);
     for (const can::CanFrame& f : frames) {
       const UpdateMask mask = decoder.process(f, s);
       if (!mask) continue;
@@ -101,8 +106,8 @@ RawlogExportStats exportRawlog(const std::vector<can::CanFrame>& frames, Vehicle
         writeImu(ar, s, mask, params.imu_label);
         ++st.imu;
       }
-      if ((mask & kGpsMask) && (s.valid & kGpsMask) == kGpsMask) {
-        writeGps(ar, s, params.gps_label);
+      if (gpsUpdated(s, mask)) {
+        ar << *gpsObservation(s, params.gps_label);
         ++st.gps;
       }
     }

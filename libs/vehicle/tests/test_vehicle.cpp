@@ -96,8 +96,10 @@ TEST(VehicleParams, EveryShippedIniLoadsAndMapsExistingSignals) {
     // the checkout), the ini's own folder for the simulator's DBC, which the project wrote itself
     const VehicleParams p = loadVehicleIni(e.path().string());
     EXPECT_FALSE(p.name.empty());
-    EXPECT_TRUE(p.at(Quantity::kWheelFL).present());
-    EXPECT_TRUE(p.at(Quantity::kSteeringAngle).present());
+    // a speed, and a way to turn or a position (tesla-model-s: speed and the car's own GNSS only)
+    EXPECT_TRUE(p.at(Quantity::kWheelFL).present() || p.at(Quantity::kVehicleSpeed).present());
+    EXPECT_TRUE(p.at(Quantity::kSteeringAngle).present() ||
+                (p.at(Quantity::kLatitude).present() && p.at(Quantity::kLongitude).present()));
     ++n;
     if (!fs::exists(p.dbcPath())) {
       std::cout << "DBC " << p.dbcPath() << " absent: signal names not checked\n";
@@ -111,7 +113,7 @@ TEST(VehicleParams, EveryShippedIniLoadsAndMapsExistingSignals) {
     EXPECT_EQ(again.at(Quantity::kWheelRR).signal, p.at(Quantity::kWheelRR).signal);
     EXPECT_EQ(again.dbcPath(), p.dbcPath());
   }
-  EXPECT_EQ(n, 6U);  // toyota-rav4-2017, honda-civic-2019, bmw-e9x, vw-mqb, hyundai-kia, roadslam-sim
+  EXPECT_EQ(n, 7U);  // toyota-rav4-2017, honda-civic-2019, bmw-e9x, vw-mqb, hyundai-kia, tesla-model-s, roadslam-sim
 }
 
 TEST(VehicleParams, BadValuesNameTheKey) {

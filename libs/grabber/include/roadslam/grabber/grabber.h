@@ -4,10 +4,12 @@
 ///  - one receiving thread per LiDAR (sources::UdpReceiver: data + position port, kernel receive
 ///    stamps), grouping data packets into sweeps (SweepGrouper);
 ///  - one CAN thread (SocketCAN, or a candump log / an open socket for tests);
+///  - one GNSS thread (NMEA 0183 from a serial port or gpsd, or an NMEA log replayed), each receiver
+///    epoch a CObservationGPS with the receiver's UTC and the host receive time;
 ///  - one writer thread that merges everything in time order into the rawlog segments
 ///    (SegmentWriter: CObservationVelodyneScan per sweep with the raw packets, CObservationGPS per
 ///    position packet, vehicle observations from libs/vehicle) and the lossless sidecars
-///    (<sensor>.pcap, can.candump.log).
+///    (<sensor>.pcap, can.candump.log, gnss.nmea.log).
 /// Receivers never wait for the disk: queues are bounded and what does not fit is counted as
 /// dropped. A status snapshot is available at any time (status()); stop() drains and closes.
 
@@ -19,6 +21,7 @@
 #include <thread>
 #include <vector>
 
+#include "roadslam/gnss/nmea.h"
 #include "roadslam/grabber/params.h"
 
 namespace mrpt::obs {
@@ -60,7 +63,7 @@ struct CanStatus {
   std::uint64_t kernel_drops = 0;       ///< SO_RXQ_OVFL / bad log lines [count]
   std::uint64_t malformed = 0;          ///< datagrams of an unexpected size [count]
   std::uint64_t queue_drops = 0;        ///< frames dropped because the writer queue was full [count]
-  std::uint64_t vehicle_observations = 0;  ///< MRPT observations decoded from CAN [count]
+  std::uint64_t vehicle_observations = 0;  ///< MRPT observations decoded from CAN (odometry, IMU, GPS) [count]
   std::size_t queue_depth = 0;
   std::size_t queue_high_water = 0;     ///< largest queue_depth so far [count]
   double rate_fps = 0;                  ///< frames per second over the last status period [1/s]
@@ -69,9 +72,28 @@ struct CanStatus {
   std::string error;                    ///< why the CAN source stopped, if it did
 };
 
+struct GnssStatus {
+  bool enabled = false;
+  std::string source;                   ///< "serial:/dev/ttyACM0", "gpsd:localhost:2947", "nmea-log:..."
+  std::uint64_t lines = 0;              ///< sentences received [count]
+  std::uint64_t epochs = 0;             ///< valid receiver epochs (fixes) queued for the rawlog [count]
+  std::uint64_t split_epochs = 0;       ///< late parts of an epoch already written (epoch_idle_ms too short) [count]
+  std::uint64_t queue_drops = 0;        ///< lines / epochs dropped because the writer queue was full [count]
+  gnss::NmeaCounters nmea;              ///< checksum errors, no fix, time jumps, other datums ...
+  std::vector<std::string> problems;    ///< the first parsing problems, "line N: what"
+  int quality = -1;                     ///< GGA quality of the last fix (-1: none yet)
+  int satellites = 0;                   ///< of the last fix
+  double hdop = gnss::kNaN;             ///< of the last fix
+  std::size_t queue_depth = 0, queue_high_water = 0;
+  bool silent = false;                  ///< no sentence for GnssParams::silent_after_s
+  std::uint64_t silent_events = 0;
+  std::string error;                    ///< why the GNSS source stopped, if it did
+};
+
 struct WriterStatus {
   std::uint64_t observations = 0;       ///< objects in the rawlog [count]
-  std::uint64_t sweeps = 0, packets = 0, gps = 0;  ///< written [count]
+  std::uint64_t sweeps = 0, packets = 0;  ///< written [count]
+  std::uint64_t gps = 0;                ///< CObservationGPS from the LiDARs' position packets and the GNSS receiver (CAN's: in vehicle_observations) [count]
   std::uint64_t bytes = 0;              ///< compressed rawlog bytes, all segments [bytes]
   std::size_t segments = 0;             ///< rawlog files [count]
   std::size_t pending = 0;              ///< observations held for time ordering [count]
@@ -85,6 +107,7 @@ struct GrabStatus {
   double elapsed_s = 0;
   std::vector<SensorStatus> sensors;
   CanStatus can;
+  GnssStatus gnss;
   WriterStatus writer;
   std::vector<std::string> events;      ///< watchdog messages since the last status() call
 };

@@ -4,10 +4,12 @@
 ///
 ///     [grab]            sensors = front,rear   ; section names of the LiDARs (comma separated)
 ///                       can = can              ; section of the CAN source, empty = no CAN
+///                       gnss = gnss            ; section of the GNSS receiver, empty = none
 ///                       queue_capacity, rotate_size_mb, rotate_period_s, flush_period_ms, ...
 ///     [front]           data_port, position_port, bind_address, source_filter, ... (UdpReceiver)
 ///                       sensor_label, model, calibration_file, x_m.., yaw_deg.. (RawlogWriter keys)
 ///     [can]             source = socketcan|candump|none, interface, candump_file, vehicle_ini ...
+///     [gnss]            source = serial|gpsd|nmea_log|none, device, baud, gpsd_host, nmea_file ...
 ///
 /// Units: SI inside; ini keys with a unit suffix (_ms, _mb) are converted on load.
 
@@ -66,6 +68,31 @@ struct CanParams {
   void saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& sec) const;
 };
 
+/// An NMEA 0183 GNSS receiver (sources/nmea_source.h): a serial port, a gpsd daemon, an NMEA log
+/// replayed (tests, re-recording), or none.
+struct GnssParams {
+  enum class Source { None, Serial, Gpsd, NmeaLog };
+  Source source = Source::None;
+  std::string device = "/dev/ttyACM0";  ///< serial device
+  int baud = 9600;                      ///< serial speed [bit/s]
+  std::string gpsd_host = "localhost";
+  int gpsd_port = 2947;                 ///< gpsd's TCP port
+  std::string gpsd_device;              ///< only this receiver of gpsd's (its path), empty = all
+  std::string nmea_file;                ///< log replayed when source = nmea_log
+  double replay_speed = 1.0;            ///< replay pace: multiple of the recorded spacing, 0 = at once [-]
+  bool restamp = true;                  ///< replayed lines get the host receive time (one clock)
+  std::string label = "GNSS";           ///< sensorLabel of the CObservationGPS
+  /// An epoch (the sentences sharing one UTC time) is complete when the next one starts or when no
+  /// sentence came for this long: receivers send an epoch as one burst [s] (ini: epoch_idle_ms).
+  double epoch_idle_s = 0.1;
+  double max_gap_s = 2.0;               ///< epochs further apart count as a time jump [s] (ini: max_gap_ms)
+  double silent_after_s = 3.0;          ///< watchdog: no sentence for this long = silent [s] (ini: silent_after_ms)
+
+  void fields(ParamTable& t);
+  void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& sec);
+  void saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& sec) const;
+};
+
 /// Queues, file rotation and the writer's clock.
 struct WriterParams {
   std::size_t queue_capacity = 512;   ///< per-source queue: sweeps / position packets / CAN frames [items]
@@ -77,6 +104,7 @@ struct WriterParams {
   int compression_level = 1;          ///< gzip level 0..9 [-]
   bool pcap_sidecar = true;           ///< also write <sensor>.pcap (every packet, lossless)
   bool candump_sidecar = true;        ///< also write can.candump.log
+  bool nmea_sidecar = true;           ///< also write gnss.nmea.log (every line, its receive time)
   double status_period_s = 1.0;       ///< status line / summary.json refresh [s]
   std::string file_prefix = "grab";   ///< segments are <prefix>_000.rawlog, _001 ...
 
@@ -89,6 +117,7 @@ struct WriterParams {
 struct GrabParams {
   std::vector<SensorParams> sensors;
   CanParams can;
+  GnssParams gnss;
   WriterParams writer;
 
   /// Loads [grab] and the sections it names; throws naming the file/section/key on a bad value,

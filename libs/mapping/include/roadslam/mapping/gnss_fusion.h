@@ -62,6 +62,16 @@ struct GnssFusionParams {
   double uere_m = 3.0;                   ///< user equivalent range error: sigma = HDOP x uere without GST [m]
   double fallback_sigma_m = 5.0;         ///< sigma of a fix with neither GST nor HDOP [m]
   bool receiver_time = true;             ///< stamp fixes with the receiver's time (else the receive time)
+  /// The online (causal) mode, gnss_fusion_online.h: the window of past frames and fixes solved, and
+  /// how often it is re-solved; between solves the last correction carries the odometry forward.
+  double online_window_s = 60.0;         ///< [s]
+  double online_solve_period_s = 1.0;    ///< [s]
+  /// A new correction is blended in over this long (linear in translation, slerp in rotation) instead
+  /// of jumping: each re-solve moves the newest pose by a few decimetres of noise [s]; 0 = jump.
+  double online_blend_s = 1.0;
+  /// The first correction waits until the window's path is this long: on a few metres the heading
+  /// (and so the position ahead) is poorly observed [m]; 0 = as soon as a solve runs.
+  double online_min_path_m = 0.0;
 
   Eigen::Vector3d lever() const { return {lever_x_m, lever_y_m, lever_z_m}; }
   void fields(ParamTable& t);

@@ -16,6 +16,10 @@ struct BoundsRequest {
   std::string input_path;       ///< recording
   std::string out_dir;          ///< created when missing
   std::string trajectory_path;  ///< TUM T_map_lidar; empty = run the odometry
+  /// map_georef.json of `roadslam-map --gnss` (its T_enu_map and ENU origin): also write the found
+  /// boundaries as boundaries.geojson / boundaries.kml (gnss_outputs.h). The poses must be in that
+  /// run's map frame (its trajectory.tum). Empty = no geo outputs.
+  std::string georef_path;
   std::string times_path;       ///< KITTI folder input: its times file when not times.txt beside/above (optional)
   int png_every = 10;           ///< draw every N-th sweep (0 = none) [-]
   size_t max_frames = 0;        ///< 0 = all

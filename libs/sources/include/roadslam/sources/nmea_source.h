@@ -1,12 +1,13 @@
 #pragma once
 /// \file nmea_source.h
-/// GNSS receivers that speak NMEA 0183, behind one interface with a live and a replay backend
-/// (issue 23): a serial port (termios, raw 8N1), and an NMEA log (libs/gnss/nmea.h format) replayed
-/// with its recorded receive times. Each line comes with its host receive time (CLOCK_REALTIME when
-/// the line's end was read). recordNmea() writes what it reads in the log format, which the replay
-/// backend, `roadslam-map --gnss` and `roadslam-rawlog nmea` read: the recording format is the replay
-/// format. (gpsd, Debian `gpsd` / `libgps-dev`, is not wired: a gpsd socket in raw mode gives the same
-/// lines, `gpspipe -r` into a log file works today.)
+/// GNSS receivers that speak NMEA 0183, behind one interface with two live backends and a replay
+/// backend (issue 23): a serial port (termios, raw 8N1), a gpsd daemon (libgps, Debian `libgps-dev`:
+/// gpsd passes the receiver's sentences through in NMEA watch mode), and an NMEA log
+/// (libs/gnss/nmea.h format) replayed with its recorded receive times. Each line comes with its host
+/// receive time (CLOCK_REALTIME when the line's end was read; through gpsd, when gpsd's copy was
+/// read, a few ms after the receiver sent it). recordNmea() writes what it reads in the log format,
+/// which the replay backend, `roadslam-map --gnss` and `roadslam-rawlog nmea` read: the recording
+/// format is the replay format.
 
 #include <memory>
 #include <string>
@@ -48,6 +49,28 @@ class SerialNmeaSource : public NmeaSource {
   std::string device_, buffer_, error_;
   int fd_ = -1;
   std::size_t max_line_ = 512;  ///< a longer line without LF is noise: dropped
+};
+
+/// A gpsd client (gpsd's JSON protocol, `?WATCH={"enable":true,"nmea":true}` through libgps): the
+/// NMEA sentences gpsd relays from its receivers (of \p device only, when not empty). gpsd's own
+/// JSON reports are skipped and counted (jsonLines()). Throws naming host:port when gpsd cannot be
+/// reached; a lost connection ends the source (End, errorMessage()).
+class GpsdNmeaSource : public NmeaSource {
+ public:
+  GpsdNmeaSource(const std::string& host, int port, const std::string& device = "");
+  ~GpsdNmeaSource() override;
+  GpsdNmeaSource(const GpsdNmeaSource&) = delete;
+  GpsdNmeaSource& operator=(const GpsdNmeaSource&) = delete;
+  NmeaRead read(NmeaLine& out, int timeout_ms) override;
+  std::string describe() const override { return "gpsd:" + where_; }
+  std::string errorMessage() const override { return error_; }
+  std::size_t jsonLines() const { return json_lines_; }
+
+ private:
+  struct Impl;  // libgps's gps_data_t stays in gpsd_source.cpp
+  std::unique_ptr<Impl> impl_;
+  std::string where_, error_;
+  std::size_t json_lines_ = 0;
 };
 
 /// An NMEA log replayed: lines with a receive time keep it; lines without one take the time of the

@@ -33,6 +33,7 @@ enum class Quantity : int {
   kAccelX, kAccelY,                       ///< longitudinal / lateral acceleration [m/s^2]
   kGear,                                  ///< raw gear value (no unit)
   kLatitude, kLongitude,                  ///< WGS84 [deg]
+  kGnssHeight,                            ///< GNSS height [m] (the car's own reference: ellipsoid or sea level)
   kCount
 };
 constexpr int kQuantityCount = static_cast<int>(Quantity::kCount);

@@ -6,16 +6,21 @@
 ///    `velocityLocal` = (v, 0, w) in the body frame [m/s, rad/s], hasVelocities = true;
 ///  - mrpt::obs::CObservationIMU per yaw-rate / acceleration update: IMU_WZ [rad/s],
 ///    IMU_X_ACC / IMU_Y_ACC [m/s^2] (body axes x forward, y left; only the fields the car reports);
-///  - mrpt::obs::CObservationGPS (NMEA GGA) when the car reports latitude and longitude;
+///  - mrpt::obs::CObservationGPS (NMEA GGA) when the car reports latitude and longitude (and its
+///    height when it reports one: gnss_height);
 ///  - every input frame, unchanged, in "<rawlog without .rawlog>.candump.log".
 
 #include <roadslam/vehicle/dead_reckoning.h>
 
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace mrpt::config {
 class CConfigFileBase;
+}
+namespace mrpt::obs {
+class CObservationGPS;
 }
 
 namespace roadslam {
@@ -41,6 +46,17 @@ struct RawlogExportStats {
   std::size_t sidecar_frames = 0;              ///< frames in the candump sidecar
   std::string sidecar_path;
 };
+
+/// The quantities that make a GNSS fix from the CAN bus.
+constexpr UpdateMask kGpsMask = bit(Quantity::kLatitude) | bit(Quantity::kLongitude);
+/// True when the frame that updated \p mask brought a new position and both coordinates are known.
+inline bool gpsUpdated(const VehicleState& s, UpdateMask mask) {
+  return (mask & kGpsMask) && (s.valid & kGpsMask) == kGpsMask;
+}
+/// The car's GNSS position as a CObservationGPS (NMEA GGA, fix quality 1, UTC time of day of the
+/// frame, altitude = gnss_height when reported), stamped with the frame time; shared by the rawlog
+/// export and roadslam-grab.
+std::shared_ptr<mrpt::obs::CObservationGPS> gpsObservation(const VehicleState& s, const std::string& label);
 
 /// Sidecar path of a rawlog: "out.rawlog" -> "out.candump.log".
 std::string sidecarPath(const std::string& rawlog_path);

@@ -1,0 +1,64 @@
+#pragma once
+/// \file gnss_fusion_online.h
+/// The online GNSS mode (issue 23): corrects the pose published while driving, using only what has
+/// arrived so far (causal: no later fix, no later frame). A sliding-window smoother over fuseGnss():
+/// the frames of the last GnssFusionParams::online_window_s and the fixes among them are re-solved
+/// every online_solve_period_s; the newest frame's fused pose gives the correction
+/// C = T_enu_node * T_map_node^-1, and every frame until the next solve is published as C T_map_node
+/// (the odometry carries the pose forward between solves and through outages). A new correction is
+/// blended in over online_blend_s from the one published at that moment, so a re-solve never makes
+/// the published pose jump by its whole change at once.
+///
+/// The input must itself be causal: the odometry's own poses, not the loop-corrected ones (a loop
+/// closure moves past poses after the fact).
+
+#include <deque>
+#include <optional>
+
+#include "roadslam/mapping/gnss_fusion.h"
+
+namespace roadslam::mapping {
+
+struct GnssOnlineStats {
+  std::size_t solves = 0;        ///< window solves run [count]
+  std::size_t failed = 0;        ///< solves that could not run (too few fixes, too little motion) [count]
+  std::size_t rejected = 0;      ///< fixes the newest solve counted rejected, summed over solves [count]
+  double ms_total = 0, ms_max = 0;  ///< solve wall time [ms]
+};
+
+class OnlineGnssFusion {
+ public:
+  explicit OnlineGnssFusion(const GnssFusionParams& p) : p_(p) {}
+  /// A fix, as it arrives (its time t_s on the frames' clock, increasing).
+  void addFix(const GnssFactor& f);
+  /// The frame at \p t_s with its odometry pose; returns its corrected T_enu_node from the fixes added
+  /// so far, or nothing before the first solve that could run.
+  std::optional<Eigen::Isometry3d> addNode(double t_s, const Eigen::Isometry3d& T_map_node);
+  bool anchored() const { return anchored_; }
+  /// The correction T_enu_map of the newest solve (identity before the first).
+  const Eigen::Isometry3d& correction() const { return C_to_; }
+  const GnssOnlineStats& stats() const { return stats_; }
+
+ private:
+  void solve();
+  Eigen::Isometry3d published(double t_s) const;  ///< the blended correction at t_s
+  GnssFusionParams p_;
+  std::deque<double> t_;
+  std::deque<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>> T_;
+  std::deque<GnssFactor> fixes_;
+  Eigen::Isometry3d C_from_ = Eigen::Isometry3d::Identity(), C_to_ = Eigen::Isometry3d::Identity();
+  double blend_start_s_ = 0;
+  bool anchored_ = false;
+  double last_solve_s_ = -1e300;
+  GnssOnlineStats stats_;
+};
+
+/// The online mode replayed over a finished run: frames and fixes merged in time order (a fix is
+/// added once the frame clock reaches it). Returns one pose per frame; frames before the first
+/// solve are std::nullopt.
+std::vector<std::optional<Eigen::Isometry3d>> replayOnline(const std::vector<double>& stamps_s,
+                                                           const PoseVector& T_map_node,
+                                                           const std::vector<GnssFactor>& fixes,
+                                                           const GnssFusionParams& p, GnssOnlineStats* stats = nullptr);
+
+}  // namespace roadslam::mapping
