@@ -95,10 +95,12 @@ void onlineRow(const std::string& name, const datasets::Trajectory& odo, const s
     worst = std::max(worst, d);
     if (outage && std::abs(t[i] - t_reacq) < 2.0) worst_reacq = std::max(worst_reacq, d);
   }
-  char notes[300];
-  std::snprintf(notes, sizeof(notes), "%zu of %zu frames anchored, %zu solves, %.1f ms per solve (max %.0f), largest step error %.3f m%s",
+  char notes[400], bias[80] = "";
+  if (fp.online_yaw_rate_bias)
+    std::snprintf(bias, sizeof(bias), ", yaw-rate correction %.4f deg/s", st.yaw_rate_correction_radps * 180 / M_PI);
+  std::snprintf(notes, sizeof(notes), "%zu of %zu frames anchored, %zu solves, %.1f ms per solve (max %.0f), largest step error %.3f m%s%s",
                 est.size(), on.size(), st.solves, st.solves ? st.ms_total / double(st.solves) : 0.0, st.ms_max, worst,
-                outage ? (", " + std::to_string(worst_reacq).substr(0, 5) + " m within 2 s of reacquisition").c_str() : "");
+                outage ? (", " + std::to_string(worst_reacq).substr(0, 5) + " m within 2 s of reacquisition").c_str() : "", bias);
   row("online, causal (" + name + ")", errors(est, truth), notes);
 }
 
@@ -173,6 +175,9 @@ int simFigures(int argc, char** argv) {
     row("fused (" + v.name + ")", errors(fused, truth), notes);
     const double t_reacq = static_cast<double>(sp.start_epoch_s) + v.outage_start + v.outage_len;
     onlineRow(v.name, odo_traj, in.factors, fp, world, fe, gtAt, t_reacq, v.outage_len > 0);
+    auto biased = fp;  // the same with the yaw-rate bias state, side by side
+    biased.online_yaw_rate_bias = true;
+    onlineRow(v.name + ", online_yaw_rate_bias", odo_traj, in.factors, biased, world, fe, gtAt, t_reacq, v.outage_len > 0);
     if (v.outage_len > 0) {  // the blending's share: the same without it
       auto jump = fp;
       jump.online_blend_s = 0;
@@ -332,29 +337,37 @@ int rav4Figures(int argc, char** argv) {
     char b[80];
     std::snprintf(b, sizeof(b), "yaw-rate bias %.3f deg/s from the fixes' course", bias.bias_radps * 180 / M_PI);
     row(std::string("dead reckoning, bias from the ") + s + " fixes", errors(at(cal.t, cal.T), ref_eval), b);
-    char notes[200];
+    char notes[300];
     std::snprintf(notes, sizeof(notes), "%s: %zu used, %zu rejected, %d iterations%s, %.0f ms", r.status.c_str(), r.used,
                   r.rejected, r.iterations, r.converged ? "" : " (max)", r.ms);
     row(std::string("fused, ") + s + " noise (bias-corrected DR)", errors(at(cal.t, r.T_enu_node), ref_eval), notes);
-    // online: causal, so on the raw dead reckoning (the bias above is estimated from every fix)
+    // online: causal, so on the raw dead reckoning (the bias above is estimated from every fix); without
+    // and with its own causal yaw-rate bias state
+    for (bool with_bias : {false, true}) {
+      auto op = fp;
+      op.online_yaw_rate_bias = with_bias;
+      mapping::GnssOnlineStats ost;
+      const auto on = mapping::replayOnline(raw.t, raw.T, fixes, op, &ost);
+      std::vector<double> ot;
+      PoseVector oT;
+      for (size_t i = 0; i < on.size(); ++i)
+        if (on[i]) {
+          ot.push_back(raw.t[i]);
+          oT.push_back(*on[i]);
+        }
+      std::vector<Eigen::Vector3d> oe, orf;
+      for (size_t i = 0; !ot.empty() && i < n_eval; ++i)
+        if (rt[i] >= ot.front()) {
+          oe.push_back(mapping::interpolatePose(ot, oT, rt[i]).translation());
+          orf.push_back(ref[i]);
+        }
+      std::snprintf(notes, sizeof(notes), "scored from its first solve (t = %.0f s), %zu solves, %zu failed%s",
+                    ot.empty() ? 0.0 : ot.front() - rt.front(), ost.solves, ost.failed,
+                    with_bias ? (", yaw-rate bias " + std::to_string(-ost.yaw_rate_correction_radps * 180 / M_PI).substr(0, 6) +
+                                 " deg/s at the end, " + std::to_string(ost.bias_updates) + " updates").c_str() : "");
+      row(std::string("online, causal, ") + s + " noise (raw DR)" + (with_bias ? ", bias state" : ""), errors(oe, orf), notes);
+    }
     mapping::GnssOnlineStats ost;
-    const auto on = mapping::replayOnline(raw.t, raw.T, fixes, fp, &ost);
-    std::vector<double> ot;
-    PoseVector oT;
-    for (size_t i = 0; i < on.size(); ++i)
-      if (on[i]) {
-        ot.push_back(raw.t[i]);
-        oT.push_back(*on[i]);
-      }
-    std::vector<Eigen::Vector3d> oe, orf;
-    for (size_t i = 0; !ot.empty() && i < n_eval; ++i)
-      if (rt[i] >= ot.front()) {
-        oe.push_back(mapping::interpolatePose(ot, oT, rt[i]).translation());
-        orf.push_back(ref[i]);
-      }
-    std::snprintf(notes, sizeof(notes), "scored from its first solve (t = %.0f s), %zu solves, %zu failed",
-                  ot.empty() ? 0.0 : ot.front() - rt.front(), ost.solves, ost.failed);
-    row(std::string("online, causal, ") + s + " noise (raw DR)", errors(oe, orf), notes);
     if (sigma == 1.0) {  // the first anchoring on 50 m of path
       auto late = fp;
       late.online_min_path_m = 50;

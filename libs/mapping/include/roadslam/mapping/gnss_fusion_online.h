@@ -9,6 +9,14 @@
 /// blended in over online_blend_s from the one published at that moment, so a re-solve never makes
 /// the published pose jump by its whole change at once.
 ///
+/// With online_yaw_rate_bias, a yaw-rate correction c [rad/s] is a state carried from solve to solve:
+/// the odometry is re-integrated with its increments turned by c dt about the map's z axis (the
+/// increment's translation stays in the previous heading: R' = Rz(c dt) R ΔR, t' = t + R Δt), the
+/// window is solved on that, and c grows by the slope of the fused-minus-input heading over the
+/// window's time (weighted least squares line, heading unwrapped). Tight rotation factors let a solve
+/// bend only part of a residual bias, so c converges over a few solves rather than at once; each
+/// window is rebuilt with the current c so the slope measures only what is left.
+///
 /// The input must itself be causal: the odometry's own poses, not the loop-corrected ones (a loop
 /// closure moves past poses after the fact).
 
@@ -24,6 +32,8 @@ struct GnssOnlineStats {
   std::size_t failed = 0;        ///< solves that could not run (too few fixes, too little motion) [count]
   std::size_t rejected = 0;      ///< fixes the newest solve counted rejected, summed over solves [count]
   double ms_total = 0, ms_max = 0;  ///< solve wall time [ms]
+  double yaw_rate_correction_radps = 0;  ///< c, the newest estimate (minus the odometry's yaw-rate bias) [rad/s]
+  std::size_t bias_updates = 0;  ///< solves that updated c [count]
 };
 
 class OnlineGnssFusion {
@@ -41,10 +51,16 @@ class OnlineGnssFusion {
 
  private:
   void solve();
-  Eigen::Isometry3d published(double t_s) const;  ///< the blended correction at t_s
+  /// Pose after \p T_prev by the odometry increment \p d over \p dt_s, turned by the yaw-rate correction.
+  Eigen::Isometry3d step(const Eigen::Isometry3d& T_prev, const Eigen::Isometry3d& d, double dt_s) const;
+  void updateBias(const PoseVector& window, const PoseVector& fused);
+  /// The node's pose by the correction blended at t_s.
+  Eigen::Isometry3d published(double t_s, const Eigen::Isometry3d& T_map_node) const;
   GnssFusionParams p_;
   std::deque<double> t_;
-  std::deque<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>> T_;
+  std::deque<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>> T_;  ///< as given
+  std::deque<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>> D_;  ///< re-integrated with c as it was
+  double c_radps_ = 0;
   std::deque<GnssFactor> fixes_;
   Eigen::Isometry3d C_from_ = Eigen::Isometry3d::Identity(), C_to_ = Eigen::Isometry3d::Identity();
   double blend_start_s_ = 0;
