@@ -334,6 +334,18 @@ int rav4Figures(int argc, char** argv) {
     std::snprintf(s, sizeof(s), "%.0f m", sigma);
     row(std::string("fixes alone, 1 Hz, ") + s + " noise, interpolated", errors(at(ft, fT), ref_eval),
         std::to_string(fixes.size()) + " fixes");
+    // fixes alone, causal (the online mode's fair peer): the newest fix carried on by the velocity of
+    // the last two, t in [t_k, t_k+1)
+    std::vector<Eigen::Vector3d> fc;
+    for (size_t i = 0; i < n_eval; ++i) {
+      size_t k = 0;
+      while (k + 1 < fixes.size() && fixes[k + 1].t_s <= rt[i]) ++k;
+      const Eigen::Vector3d v = k == 0 ? Eigen::Vector3d::Zero()
+                                       : Eigen::Vector3d((fixes[k].p_enu - fixes[k - 1].p_enu) / (fixes[k].t_s - fixes[k - 1].t_s));
+      fc.push_back(fixes[k].p_enu + v * (rt[i] - fixes[k].t_s));
+    }
+    row(std::string("fixes alone, causal, ") + s + " noise, extrapolated", errors(fc, ref_eval),
+        "the newest fix + the last two fixes' velocity x age");
     char b[80];
     std::snprintf(b, sizeof(b), "yaw-rate bias %.3f deg/s from the fixes' course", bias.bias_radps * 180 / M_PI);
     row(std::string("dead reckoning, bias from the ") + s + " fixes", errors(at(cal.t, cal.T), ref_eval), b);
