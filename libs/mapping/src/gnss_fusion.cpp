@@ -145,6 +145,7 @@ void GnssFusionParams::fields(ParamTable& t) {
   t.num("online_blend_s", online_blend_s);
   t.num("online_min_path_m", online_min_path_m);
   t.flag("online_yaw_rate_bias", online_yaw_rate_bias);
+  t.flag("online_odometry_scale", online_odometry_scale);
   t.num("online_bias_min_path_m", online_bias_min_path_m);
 }
 

@@ -23,7 +23,9 @@ std::optional<Eigen::Isometry3d> OnlineGnssFusion::addNode(double t_s, const Eig
 }
 
 Eigen::Isometry3d OnlineGnssFusion::step(const Eigen::Isometry3d& T_prev, const Eigen::Isometry3d& d, double dt_s) const {
-  Eigen::Isometry3d T = T_prev * d;
+  Eigen::Isometry3d d_scaled = d;
+  d_scaled.translation() *= scale_;
+  Eigen::Isometry3d T = T_prev * d_scaled;
   if (c_radps_ != 0) T.linear() = Eigen::AngleAxisd(c_radps_ * dt_s, Eigen::Vector3d::UnitZ()).toRotationMatrix() * T.linear();
   return T;
 }
@@ -48,10 +50,23 @@ void OnlineGnssFusion::updateBias(const PoseVector& window, const PoseVector& fu
     sw += w, st += w * t, sy += w * unwrapped, stt += w * t * t, sty += w * t * unwrapped;
   }
   const double den = sw * stt - st * st;
-  if (den <= 0) return;
-  c_radps_ += (sw * sty - st * sy) / den;
+  if (p_.online_yaw_rate_bias && den > 0) {
+    c_radps_ += (sw * sty - st * sy) / den;
+    stats_.yaw_rate_correction_radps = c_radps_;
+  }
+  if (p_.online_odometry_scale) {
+    // the fused steps against the input steps turned into ENU by the fused heading: the least-squares
+    // ratio sum(f.u) / sum(u.u), linear in f so the fixes' noise does not lengthen it
+    double fu = 0, uu = 0;
+    for (std::size_t i = 1; i < window.size(); ++i) {
+      const Eigen::Vector3d u = fused[i - 1].linear() * (window[i - 1].inverse() * window[i]).translation();
+      fu += (fused[i].translation() - fused[i - 1].translation()).dot(u);
+      uu += u.squaredNorm();
+    }
+    if (uu > 0) scale_ *= fu / uu;
+    stats_.scale = scale_;
+  }
   ++stats_.bias_updates;
-  stats_.yaw_rate_correction_radps = c_radps_;
 }
 
 Eigen::Isometry3d OnlineGnssFusion::published(double t_s, const Eigen::Isometry3d& T_map_node) const {
@@ -86,7 +101,7 @@ void OnlineGnssFusion::solve() {
     return;
   }
   stats_.rejected += r.rejected;
-  if (p_.online_yaw_rate_bias) updateBias(poses, r.T_enu_node);
+  if (p_.online_yaw_rate_bias || p_.online_odometry_scale) updateBias(poses, r.T_enu_node);
   // the frames to come extend the stream as integrated so far (D_), so the correction maps its newest pose
   const Eigen::Isometry3d C_new = r.T_enu_node.back() * D_.back().inverse();
   C_from_ = anchored_ ? published(last_solve_s_, D_.back()) * D_.back().inverse() : C_new;  // the first correction applies at once

@@ -97,7 +97,7 @@ void onlineRow(const std::string& name, const datasets::Trajectory& odo, const s
   }
   char notes[400], bias[80] = "";
   if (fp.online_yaw_rate_bias)
-    std::snprintf(bias, sizeof(bias), ", yaw-rate correction %.4f deg/s", st.yaw_rate_correction_radps * 180 / M_PI);
+    std::snprintf(bias, sizeof(bias), ", yaw-rate correction %.4f deg/s, scale %.5f", st.yaw_rate_correction_radps * 180 / M_PI, st.scale);
   std::snprintf(notes, sizeof(notes), "%zu of %zu frames anchored, %zu solves, %.1f ms per solve (max %.0f), largest step error %.3f m%s%s",
                 est.size(), on.size(), st.solves, st.solves ? st.ms_total / double(st.solves) : 0.0, st.ms_max, worst,
                 outage ? (", " + std::to_string(worst_reacq).substr(0, 5) + " m within 2 s of reacquisition").c_str() : "", bias);
@@ -178,6 +178,8 @@ int simFigures(int argc, char** argv) {
     auto biased = fp;  // the same with the yaw-rate bias state, side by side
     biased.online_yaw_rate_bias = true;
     onlineRow(v.name + ", online_yaw_rate_bias", odo_traj, in.factors, biased, world, fe, gtAt, t_reacq, v.outage_len > 0);
+    biased.online_odometry_scale = true;
+    onlineRow(v.name + ", + online_odometry_scale", odo_traj, in.factors, biased, world, fe, gtAt, t_reacq, v.outage_len > 0);
     if (v.outage_len > 0) {  // the blending's share: the same without it
       auto jump = fp;
       jump.online_blend_s = 0;
@@ -355,9 +357,11 @@ int rav4Figures(int argc, char** argv) {
     row(std::string("fused, ") + s + " noise (bias-corrected DR)", errors(at(cal.t, r.T_enu_node), ref_eval), notes);
     // online: causal, so on the raw dead reckoning (the bias above is estimated from every fix); without
     // and with its own causal yaw-rate bias state
-    for (bool with_bias : {false, true}) {
+    for (int mode : {0, 1, 2}) {  // no state, the yaw-rate bias, the bias and the scale
+      const bool with_bias = mode > 0;
       auto op = fp;
       op.online_yaw_rate_bias = with_bias;
+      op.online_odometry_scale = mode == 2;
       mapping::GnssOnlineStats ost;
       const auto on = mapping::replayOnline(raw.t, raw.T, fixes, op, &ost);
       std::vector<double> ot;
@@ -376,8 +380,10 @@ int rav4Figures(int argc, char** argv) {
       std::snprintf(notes, sizeof(notes), "scored from its first solve (t = %.0f s), %zu solves, %zu failed%s",
                     ot.empty() ? 0.0 : ot.front() - rt.front(), ost.solves, ost.failed,
                     with_bias ? (", yaw-rate bias " + std::to_string(-ost.yaw_rate_correction_radps * 180 / M_PI).substr(0, 6) +
-                                 " deg/s at the end, " + std::to_string(ost.bias_updates) + " updates").c_str() : "");
-      row(std::string("online, causal, ") + s + " noise (raw DR)" + (with_bias ? ", bias state" : ""), errors(oe, orf), notes);
+                                 " deg/s, scale " + std::to_string(ost.scale).substr(0, 6) + " at the end, " +
+                                 std::to_string(ost.bias_updates) + " updates").c_str() : "");
+      row(std::string("online, causal, ") + s + " noise (raw DR)" + (mode == 1 ? ", bias state" : mode == 2 ? ", bias + scale" : ""),
+          errors(oe, orf), notes);
     }
     mapping::GnssOnlineStats ost;
     if (sigma == 1.0) {  // the first anchoring on 50 m of path

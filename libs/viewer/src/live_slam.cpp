@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <chrono>
 
+#include <mrpt/obs/CObservationGPS.h>
+
 #include "roadslam/common/config.h"
 #include "roadslam/datasets/kitti_scans.h"
+#include "roadslam/pipeline/live_gnss.h"
 #include "roadslam/pipeline/pipeline.h"
 #include "roadslam/sources/observation_packet_source.h"
 #include "roadslam/sources/sweep_source.h"
@@ -15,6 +18,7 @@ namespace roadslam::viewer {
 struct LiveSlam::Impl {
   std::unique_ptr<pipeline::Pipeline> pipe;
   sources::ObservationPacketSource* live = nullptr;  // owned by the pipeline's source
+  std::unique_ptr<pipeline::LiveGnss> gnss;          // live: the online GNSS correction
 };
 
 namespace {
@@ -23,8 +27,10 @@ struct Config {
   std::unique_ptr<CheckedConfig> cfg;
   odometry::Params odometry;
   velodyne::DecoderParams decoder;
+  mapping::GnssFusionParams gnss;
   explicit Config(const std::string& path) : cfg(loadIniFile(path)) {
     odometry.loadFromConfigFile(*cfg);
+    gnss.loadFromConfigFile(*cfg, "gnss_fusion");
     decoder.loadFromConfigFile(*cfg, "velodyne");
     datasets::KittiParams kp;  // read by a KITTI source; loaded so that its keys are checked too
     kp.loadFromConfigFile(*cfg, "kitti");
@@ -50,6 +56,7 @@ LiveSlam::LiveSlam(const std::string& config_ini, const std::string& sensor_labe
   c.cfg->checkEntries(false);
   auto packets = std::make_unique<sources::ObservationPacketSource>(sensor_label, name);
   impl_->live = packets.get();
+  impl_->gnss = std::make_unique<pipeline::LiveGnss>(c.gnss);
   auto sweeps = std::make_unique<sources::SweepSource>(std::move(packets), c.decoder);
   pipeline::Stages stages;
   stages.poses = std::make_unique<pipeline::OdometryPoses>(c.odometry, false);
@@ -58,8 +65,14 @@ LiveSlam::LiveSlam(const std::string& config_ini, const std::string& sensor_labe
 }
 
 void LiveSlam::post(const std::shared_ptr<mrpt::obs::CObservation>& obs) {
-  if (impl_->live) impl_->live->post(obs);
+  if (!impl_->live) return;
+  if (const auto* g = dynamic_cast<const mrpt::obs::CObservationGPS*>(obs.get()))
+    impl_->gnss->post(sources::gpsFixFromObservation(*g));
+  else
+    impl_->live->post(obs);
 }
+
+const pipeline::LiveGnss* LiveSlam::gnss() const { return impl_->gnss.get(); }
 
 void LiveSlam::close() {
   if (impl_->live) impl_->live->close();
@@ -85,6 +98,7 @@ void LiveSlam::run(Impl& impl) {
       out.keyframe = r.keyframe;
       out.ms = r.ms_total;
       out.inliers = r.inliers;
+      if (impl.gnss && r.status != odometry::FrameStatus::Skipped) out.T_enu_lidar = impl.gnss->correct(r.stamp_s, r.T_world_lidar);
       if (r.status != odometry::FrameStatus::Skipped) model_.postFrame(out);
       last_stamp_s_ = r.stamp_s;
       ++frames_;

@@ -17,6 +17,10 @@
 /// bend only part of a residual bias, so c converges over a few solves rather than at once; each
 /// window is rebuilt with the current c so the slope measures only what is left.
 ///
+/// With online_odometry_scale, a scale of the increments' translation is carried the same way: it is
+/// multiplied by the least-squares ratio of the fused steps to the input steps (turned into ENU by
+/// the fused heading) over the window.
+///
 /// The input must itself be causal: the odometry's own poses, not the loop-corrected ones (a loop
 /// closure moves past poses after the fact).
 
@@ -33,7 +37,8 @@ struct GnssOnlineStats {
   std::size_t rejected = 0;      ///< fixes the newest solve counted rejected, summed over solves [count]
   double ms_total = 0, ms_max = 0;  ///< solve wall time [ms]
   double yaw_rate_correction_radps = 0;  ///< c, the newest estimate (minus the odometry's yaw-rate bias) [rad/s]
-  std::size_t bias_updates = 0;  ///< solves that updated c [count]
+  double scale = 1;              ///< the odometry's translation scale estimate (online_odometry_scale) [-]
+  std::size_t bias_updates = 0;  ///< solves that updated c or the scale [count]
 };
 
 class OnlineGnssFusion {
@@ -61,6 +66,7 @@ class OnlineGnssFusion {
   std::deque<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>> T_;  ///< as given
   std::deque<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>> D_;  ///< re-integrated with c as it was
   double c_radps_ = 0;
+  double scale_ = 1;  ///< multiplies the increments' translation
   std::deque<GnssFactor> fixes_;
   Eigen::Isometry3d C_from_ = Eigen::Isometry3d::Identity(), C_to_ = Eigen::Isometry3d::Identity();
   double blend_start_s_ = 0;
