@@ -144,6 +144,9 @@ void GnssFusionParams::fields(ParamTable& t) {
   t.num("online_solve_period_s", online_solve_period_s);
   t.num("online_blend_s", online_blend_s);
   t.num("online_min_path_m", online_min_path_m);
+  t.flag("online_yaw_rate_bias", online_yaw_rate_bias);
+  t.flag("online_odometry_scale", online_odometry_scale);
+  t.num("online_bias_min_path_m", online_bias_min_path_m);
 }
 
 void GnssFusionParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& s) {
@@ -156,8 +159,10 @@ void GnssFusionParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& c
                              "attitude_prior_sigma_deg, max_iterations, uere_m, fallback_sigma_m and edge_vertical_scale must be > 0, "
                              "the per-metre sigmas and max_time_offset_s >= 0");
   }
-  if (online_window_s <= 0 || online_solve_period_s <= 0 || online_blend_s < 0 || online_min_path_m < 0)
-    throw std::runtime_error("[" + s + "] online_window_s, online_solve_period_s: must be > 0, online_blend_s and online_min_path_m >= 0");
+  if (online_window_s <= 0 || online_solve_period_s <= 0 || online_blend_s < 0 || online_min_path_m < 0 ||
+      online_bias_min_path_m < 0)
+    throw std::runtime_error("[" + s + "] online_window_s, online_solve_period_s: must be > 0, online_blend_s, "
+                             "online_min_path_m and online_bias_min_path_m >= 0");
 }
 
 void GnssFusionParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& s) const {

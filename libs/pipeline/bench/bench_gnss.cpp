@@ -95,10 +95,12 @@ void onlineRow(const std::string& name, const datasets::Trajectory& odo, const s
     worst = std::max(worst, d);
     if (outage && std::abs(t[i] - t_reacq) < 2.0) worst_reacq = std::max(worst_reacq, d);
   }
-  char notes[300];
-  std::snprintf(notes, sizeof(notes), "%zu of %zu frames anchored, %zu solves, %.1f ms per solve (max %.0f), largest step error %.3f m%s",
+  char notes[400], bias[80] = "";
+  if (fp.online_yaw_rate_bias)
+    std::snprintf(bias, sizeof(bias), ", yaw-rate correction %.4f deg/s, scale %.5f", st.yaw_rate_correction_radps * 180 / M_PI, st.scale);
+  std::snprintf(notes, sizeof(notes), "%zu of %zu frames anchored, %zu solves, %.1f ms per solve (max %.0f), largest step error %.3f m%s%s",
                 est.size(), on.size(), st.solves, st.solves ? st.ms_total / double(st.solves) : 0.0, st.ms_max, worst,
-                outage ? (", " + std::to_string(worst_reacq).substr(0, 5) + " m within 2 s of reacquisition").c_str() : "");
+                outage ? (", " + std::to_string(worst_reacq).substr(0, 5) + " m within 2 s of reacquisition").c_str() : "", bias);
   row("online, causal (" + name + ")", errors(est, truth), notes);
 }
 
@@ -173,6 +175,11 @@ int simFigures(int argc, char** argv) {
     row("fused (" + v.name + ")", errors(fused, truth), notes);
     const double t_reacq = static_cast<double>(sp.start_epoch_s) + v.outage_start + v.outage_len;
     onlineRow(v.name, odo_traj, in.factors, fp, world, fe, gtAt, t_reacq, v.outage_len > 0);
+    auto biased = fp;  // the same with the yaw-rate bias state, side by side
+    biased.online_yaw_rate_bias = true;
+    onlineRow(v.name + ", online_yaw_rate_bias", odo_traj, in.factors, biased, world, fe, gtAt, t_reacq, v.outage_len > 0);
+    biased.online_odometry_scale = true;
+    onlineRow(v.name + ", + online_odometry_scale", odo_traj, in.factors, biased, world, fe, gtAt, t_reacq, v.outage_len > 0);
     if (v.outage_len > 0) {  // the blending's share: the same without it
       auto jump = fp;
       jump.online_blend_s = 0;
@@ -329,32 +336,56 @@ int rav4Figures(int argc, char** argv) {
     std::snprintf(s, sizeof(s), "%.0f m", sigma);
     row(std::string("fixes alone, 1 Hz, ") + s + " noise, interpolated", errors(at(ft, fT), ref_eval),
         std::to_string(fixes.size()) + " fixes");
+    // fixes alone, causal (the online mode's fair peer): the newest fix carried on by the velocity of
+    // the last two, t in [t_k, t_k+1)
+    std::vector<Eigen::Vector3d> fc;
+    for (size_t i = 0; i < n_eval; ++i) {
+      size_t k = 0;
+      while (k + 1 < fixes.size() && fixes[k + 1].t_s <= rt[i]) ++k;
+      const Eigen::Vector3d v = k == 0 ? Eigen::Vector3d::Zero()
+                                       : Eigen::Vector3d((fixes[k].p_enu - fixes[k - 1].p_enu) / (fixes[k].t_s - fixes[k - 1].t_s));
+      fc.push_back(fixes[k].p_enu + v * (rt[i] - fixes[k].t_s));
+    }
+    row(std::string("fixes alone, causal, ") + s + " noise, extrapolated", errors(fc, ref_eval),
+        "the newest fix + the last two fixes' velocity x age");
     char b[80];
     std::snprintf(b, sizeof(b), "yaw-rate bias %.3f deg/s from the fixes' course", bias.bias_radps * 180 / M_PI);
     row(std::string("dead reckoning, bias from the ") + s + " fixes", errors(at(cal.t, cal.T), ref_eval), b);
-    char notes[200];
+    char notes[300];
     std::snprintf(notes, sizeof(notes), "%s: %zu used, %zu rejected, %d iterations%s, %.0f ms", r.status.c_str(), r.used,
                   r.rejected, r.iterations, r.converged ? "" : " (max)", r.ms);
     row(std::string("fused, ") + s + " noise (bias-corrected DR)", errors(at(cal.t, r.T_enu_node), ref_eval), notes);
-    // online: causal, so on the raw dead reckoning (the bias above is estimated from every fix)
+    // online: causal, so on the raw dead reckoning (the bias above is estimated from every fix); without
+    // and with its own causal yaw-rate bias state
+    for (int mode : {0, 1, 2}) {  // no state, the yaw-rate bias, the bias and the scale
+      const bool with_bias = mode > 0;
+      auto op = fp;
+      op.online_yaw_rate_bias = with_bias;
+      op.online_odometry_scale = mode == 2;
+      mapping::GnssOnlineStats ost;
+      const auto on = mapping::replayOnline(raw.t, raw.T, fixes, op, &ost);
+      std::vector<double> ot;
+      PoseVector oT;
+      for (size_t i = 0; i < on.size(); ++i)
+        if (on[i]) {
+          ot.push_back(raw.t[i]);
+          oT.push_back(*on[i]);
+        }
+      std::vector<Eigen::Vector3d> oe, orf;
+      for (size_t i = 0; !ot.empty() && i < n_eval; ++i)
+        if (rt[i] >= ot.front()) {
+          oe.push_back(mapping::interpolatePose(ot, oT, rt[i]).translation());
+          orf.push_back(ref[i]);
+        }
+      std::snprintf(notes, sizeof(notes), "scored from its first solve (t = %.0f s), %zu solves, %zu failed%s",
+                    ot.empty() ? 0.0 : ot.front() - rt.front(), ost.solves, ost.failed,
+                    with_bias ? (", yaw-rate bias " + std::to_string(-ost.yaw_rate_correction_radps * 180 / M_PI).substr(0, 6) +
+                                 " deg/s, scale " + std::to_string(ost.scale).substr(0, 6) + " at the end, " +
+                                 std::to_string(ost.bias_updates) + " updates").c_str() : "");
+      row(std::string("online, causal, ") + s + " noise (raw DR)" + (mode == 1 ? ", bias state" : mode == 2 ? ", bias + scale" : ""),
+          errors(oe, orf), notes);
+    }
     mapping::GnssOnlineStats ost;
-    const auto on = mapping::replayOnline(raw.t, raw.T, fixes, fp, &ost);
-    std::vector<double> ot;
-    PoseVector oT;
-    for (size_t i = 0; i < on.size(); ++i)
-      if (on[i]) {
-        ot.push_back(raw.t[i]);
-        oT.push_back(*on[i]);
-      }
-    std::vector<Eigen::Vector3d> oe, orf;
-    for (size_t i = 0; !ot.empty() && i < n_eval; ++i)
-      if (rt[i] >= ot.front()) {
-        oe.push_back(mapping::interpolatePose(ot, oT, rt[i]).translation());
-        orf.push_back(ref[i]);
-      }
-    std::snprintf(notes, sizeof(notes), "scored from its first solve (t = %.0f s), %zu solves, %zu failed",
-                  ot.empty() ? 0.0 : ot.front() - rt.front(), ost.solves, ost.failed);
-    row(std::string("online, causal, ") + s + " noise (raw DR)", errors(oe, orf), notes);
     if (sigma == 1.0) {  // the first anchoring on 50 m of path
       auto late = fp;
       late.online_min_path_m = 50;

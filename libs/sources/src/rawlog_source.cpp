@@ -30,7 +30,19 @@ uint32_t packetCounter_us(const CObservationVelodyneScan::TVelodyneRawPacket& ra
 
 constexpr double kKnot_mps = 1852.0 / 3600.0;
 
-TimedGpsFix fixFromObservation(const mrpt::obs::CObservationGPS& o) {
+// MRPT nests exceptions ("==== MRPT exception ====\nMessage: ...\nOriginal exception: ...");
+// the innermost "Message:" line names the cause on one line.
+std::string innermostMessage(const std::string& what) {
+  const auto at = what.rfind("Message:");
+  if (at == std::string::npos) return what.substr(0, what.find('\n'));
+  std::string line = what.substr(at + 8, what.find('\n', at) - at - 8);
+  line.erase(0, line.find_first_not_of(' '));
+  return line;
+}
+
+}  // namespace
+
+TimedGpsFix gpsFixFromObservation(const mrpt::obs::CObservationGPS& o) {
   TimedGpsFix t;
   const auto ts = o.originalReceivedTimestamp != INVALID_TIMESTAMP ? o.originalReceivedTimestamp
                                                                     : o.timestamp;
@@ -59,17 +71,6 @@ TimedGpsFix fixFromObservation(const mrpt::obs::CObservationGPS& o) {
   fix.course_rad = f.direction_degrees * M_PI / 180.0;
   return t;
 }
-// MRPT nests exceptions ("==== MRPT exception ====\nMessage: ...\nOriginal exception: ...");
-// the innermost "Message:" line names the cause on one line.
-std::string innermostMessage(const std::string& what) {
-  const auto at = what.rfind("Message:");
-  if (at == std::string::npos) return what.substr(0, what.find('\n'));
-  std::string line = what.substr(at + 8, what.find('\n', at) - at - 8);
-  line.erase(0, line.find_first_not_of(' '));
-  return line;
-}
-
-}  // namespace
 
 struct RawlogPacketSource::Impl {
   mrpt::io::CFileGZInputStream in;
@@ -120,7 +121,7 @@ bool RawlogPacketSource::readMore() {
       if (accountPacket(ports_, pkt, stats_, gaps_)) queue_.push_back(std::move(pkt));
   } else if (auto g = std::dynamic_pointer_cast<mrpt::obs::CObservationGPS>(obs)) {
     if (g->hasMsgClass<mrpt::obs::gnss::Message_NMEA_RMC>() || g->hasMsgClass<mrpt::obs::gnss::Message_NMEA_GGA>()) {
-      gps_.push_back(fixFromObservation(*g));
+      gps_.push_back(gpsFixFromObservation(*g));
       ++stats_.position_packets;
     } else {
       ++stats_.skipped_packets;

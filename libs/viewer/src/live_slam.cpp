@@ -4,9 +4,12 @@
 #include <chrono>
 #include <cmath>
 
+#include <mrpt/obs/CObservationGPS.h>
+
 #include "roadslam/common/config.h"
 #include "roadslam/datasets/kitti_scans.h"
 #include "roadslam/objects/stage.h"
+#include "roadslam/pipeline/live_gnss.h"
 #include "roadslam/pipeline/pipeline.h"
 #include "roadslam/sources/observation_packet_source.h"
 #include "roadslam/sources/sweep_source.h"
@@ -18,6 +21,7 @@ struct LiveSlam::Impl {
   std::unique_ptr<objects::ObjectsStage> objects;  // with [objects] enabled; lent to the pipeline
   std::unique_ptr<pipeline::Pipeline> pipe;
   sources::ObservationPacketSource* live = nullptr;  // owned by the pipeline's source
+  std::unique_ptr<pipeline::LiveGnss> gnss;          // live: the online GNSS correction
 };
 
 namespace {
@@ -28,10 +32,12 @@ struct Config {
   velodyne::DecoderParams decoder;
   objects::ClusterParams objects;
   objects::TrackerParams tracking;
+  mapping::GnssFusionParams gnss;
   explicit Config(const std::string& path) : cfg(loadIniFile(path)) {
     odometry.loadFromConfigFile(*cfg);
     objects.loadFromConfigFile(*cfg, "objects", "preprocess");
     tracking.loadFromConfigFile(*cfg, "tracking");
+    gnss.loadFromConfigFile(*cfg, "gnss_fusion");
     decoder.loadFromConfigFile(*cfg, "velodyne");
     datasets::KittiParams kp;  // read by a KITTI source; loaded so that its keys are checked too
     kp.loadFromConfigFile(*cfg, "kitti");
@@ -86,14 +92,21 @@ LiveSlam::LiveSlam(const std::string& config_ini, const std::string& sensor_labe
   c.cfg->checkEntries(false);
   auto packets = std::make_unique<sources::ObservationPacketSource>(sensor_label, name);
   impl_->live = packets.get();
+  impl_->gnss = std::make_unique<pipeline::LiveGnss>(c.gnss);
   auto sweeps = std::make_unique<sources::SweepSource>(std::move(packets), c.decoder);
   impl_->pipe = std::make_unique<pipeline::Pipeline>(std::move(sweeps), stagesFor(c, impl_->objects));
   thread_ = std::thread([this] { run(*impl_); });
 }
 
 void LiveSlam::post(const std::shared_ptr<mrpt::obs::CObservation>& obs) {
-  if (impl_->live) impl_->live->post(obs);
+  if (!impl_->live) return;
+  if (const auto* g = dynamic_cast<const mrpt::obs::CObservationGPS*>(obs.get()))
+    impl_->gnss->post(sources::gpsFixFromObservation(*g));
+  else
+    impl_->live->post(obs);
 }
+
+const pipeline::LiveGnss* LiveSlam::gnss() const { return impl_->gnss.get(); }
 
 void LiveSlam::close() {
   if (impl_->live) impl_->live->close();
@@ -119,6 +132,7 @@ void LiveSlam::run(Impl& impl) {
       out.keyframe = r.keyframe;
       out.ms = r.ms_total;
       out.inliers = r.inliers;
+      if (impl.gnss && r.status != odometry::FrameStatus::Skipped) out.T_enu_lidar = impl.gnss->correct(r.stamp_s, r.T_world_lidar);
       if (r.status != odometry::FrameStatus::Skipped) model_.postFrame(out);
       if (f->objects) model_.postObjects(boxesOf(*f));
       last_stamp_s_ = r.stamp_s;

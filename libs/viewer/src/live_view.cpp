@@ -4,6 +4,8 @@
 #include <thread>
 
 #include "roadslam/viewer/app.h"
+#include "roadslam/gnss/geo.h"
+#include "roadslam/pipeline/live_gnss.h"
 #include "roadslam/viewer/live_slam.h"
 #include "roadslam/viewer/render.h"
 #include "roadslam/viewer/replay.h"
@@ -64,7 +66,10 @@ int runLiveView(const ViewRequest& req, std::ostream& out, std::ostream& err) {
   replay.options().color_by = req.color_by;
   replay.options().camera = req.camera;
   if (!headless) {
-    window.status = [&feed] { return feed.statusLine(); };
+    window.status = [&feed, odometry] {
+      const pipeline::LiveGnss* g = odometry ? odometry->gnss() : nullptr;
+      return feed.statusLine() + (g && g->counts().epochs > 0 ? " | " + g->statusLine() : "");
+    };
     const int code = runWindow(replay, window, out, err);
     feed.stop();
     out << feed.statusLine() << "\n";
@@ -93,6 +98,22 @@ int runLiveView(const ViewRequest& req, std::ostream& out, std::ostream& err) {
       out << at;
     }
     out << "\n";
+    const pipeline::LiveGnss* g = slam->gnss();
+    if (g && g->counts().epochs > 0) {
+      out << g->statusLine();
+      const FrameResult* last = nullptr;  // the newest corrected frame
+      for (const auto& f : model.frames())
+        if (f.T_enu_lidar) last = &f;
+      if (last && g->origin()) {
+        const Eigen::Vector3d p = last->T_enu_lidar->translation();
+        const gnss::Geodetic geo = gnss::EnuFrame(*g->origin()).toGeodetic(p);
+        char at[200];
+        std::snprintf(at, sizeof at, "; the last corrected frame (t = %.3f s) at ENU %.3f %.3f %.3f m, lat %.8f lon %.8f h %.3f",
+                      last->stamp_s, p.x(), p.y(), p.z(), geo.lat_deg, geo.lon_deg, geo.h_m);
+        out << at;
+      }
+      out << "\n";
+    }
     if (!slam->error().empty()) err << "roadslam-view: warning: the odometry stopped: " << slam->error() << "\n";
   }
   out << summaryLine(model) << "\n";

@@ -72,6 +72,16 @@ struct GnssFusionParams {
   /// The first correction waits until the window's path is this long: on a few metres the heading
   /// (and so the position ahead) is poorly observed [m]; 0 = as soon as a solve runs.
   double online_min_path_m = 0.0;
+  /// Estimate the odometry's yaw-rate bias in the online mode (gnss_fusion_online.h): a dead reckoning
+  /// from a gyro or wheel speeds turns its heading at a constant offset that a 60 s window cannot bend
+  /// away under tight rotation factors (the RAV4 drive: -0.4 deg/s, 24 deg over a window).
+  bool online_yaw_rate_bias = false;
+  /// Estimate the odometry's scale in the online mode alike: wheel speeds off by a few tenths of a
+  /// percent put metres into a 60 s window that tight translation factors cannot absorb.
+  bool online_odometry_scale = false;
+  /// ... the bias and the scale only from windows whose path is at least this long: on less, the
+  /// fixes' course and path length are noise [m].
+  double online_bias_min_path_m = 100.0;
 
   Eigen::Vector3d lever() const { return {lever_x_m, lever_y_m, lever_z_m}; }
   void fields(ParamTable& t);

@@ -9,6 +9,18 @@
 /// blended in over online_blend_s from the one published at that moment, so a re-solve never makes
 /// the published pose jump by its whole change at once.
 ///
+/// With online_yaw_rate_bias, a yaw-rate correction c [rad/s] is a state carried from solve to solve:
+/// the odometry is re-integrated with its increments turned by c dt about the map's z axis (the
+/// increment's translation stays in the previous heading: R' = Rz(c dt) R ΔR, t' = t + R Δt), the
+/// window is solved on that, and c grows by the slope of the fused-minus-input heading over the
+/// window's time (weighted least squares line, heading unwrapped). Tight rotation factors let a solve
+/// bend only part of a residual bias, so c converges over a few solves rather than at once; each
+/// window is rebuilt with the current c so the slope measures only what is left.
+///
+/// With online_odometry_scale, a scale of the increments' translation is carried the same way: it is
+/// multiplied by the least-squares ratio of the fused steps to the input steps (turned into ENU by
+/// the fused heading) over the window.
+///
 /// The input must itself be causal: the odometry's own poses, not the loop-corrected ones (a loop
 /// closure moves past poses after the fact).
 
@@ -24,6 +36,9 @@ struct GnssOnlineStats {
   std::size_t failed = 0;        ///< solves that could not run (too few fixes, too little motion) [count]
   std::size_t rejected = 0;      ///< fixes the newest solve counted rejected, summed over solves [count]
   double ms_total = 0, ms_max = 0;  ///< solve wall time [ms]
+  double yaw_rate_correction_radps = 0;  ///< c, the newest estimate (minus the odometry's yaw-rate bias) [rad/s]
+  double scale = 1;              ///< the odometry's translation scale estimate (online_odometry_scale) [-]
+  std::size_t bias_updates = 0;  ///< solves that updated c or the scale [count]
 };
 
 class OnlineGnssFusion {
@@ -41,10 +56,17 @@ class OnlineGnssFusion {
 
  private:
   void solve();
-  Eigen::Isometry3d published(double t_s) const;  ///< the blended correction at t_s
+  /// Pose after \p T_prev by the odometry increment \p d over \p dt_s, turned by the yaw-rate correction.
+  Eigen::Isometry3d step(const Eigen::Isometry3d& T_prev, const Eigen::Isometry3d& d, double dt_s) const;
+  void updateBias(const PoseVector& window, const PoseVector& fused);
+  /// The node's pose by the correction blended at t_s.
+  Eigen::Isometry3d published(double t_s, const Eigen::Isometry3d& T_map_node) const;
   GnssFusionParams p_;
   std::deque<double> t_;
-  std::deque<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>> T_;
+  std::deque<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>> T_;  ///< as given
+  std::deque<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>> D_;  ///< re-integrated with c as it was
+  double c_radps_ = 0;
+  double scale_ = 1;  ///< multiplies the increments' translation
   std::deque<GnssFactor> fixes_;
   Eigen::Isometry3d C_from_ = Eigen::Isometry3d::Identity(), C_to_ = Eigen::Isometry3d::Identity();
   double blend_start_s_ = 0;

@@ -9,6 +9,10 @@
 #include "roadslam/velodyne/packet.h"
 #include "roadslam/velodyne/position.h"
 
+namespace mrpt::obs {
+class CObservationGPS;
+}
+
 namespace roadslam::sources {
 
 struct TimedGpsFix {
@@ -24,5 +28,9 @@ struct TimedGpsFix {
 /// Decodes a 512-byte position packet; nullopt when it holds no RMC sentence (early VLP-16
 /// firmware sends an empty NMEA field) or the sentence is malformed.
 std::optional<TimedGpsFix> decodeGpsFix(const velodyne::RawPacket& pkt);
+
+/// A CObservationGPS record's fix: its GGA (position, height, HDOP, quality) and RMC (date, speed,
+/// course), stamped with the receive time (originalReceivedTimestamp, else timestamp).
+TimedGpsFix gpsFixFromObservation(const mrpt::obs::CObservationGPS& o);
 
 }  // namespace roadslam::sources

@@ -15,6 +15,10 @@ namespace mrpt::obs {
 class CObservation;
 }
 
+namespace roadslam::pipeline {
+class LiveGnss;
+}
+
 namespace roadslam::viewer {
 
 class LiveSlam {
@@ -25,8 +29,8 @@ class LiveSlam {
   /// The odometry on a live sensor: \p sensor_label's sweeps as the live view's grabber taps them
   /// (post them with post(); close() once the feed stopped). Decoded with the config's [velodyne].
   LiveSlam(const std::string& config_ini, const std::string& sensor_label, const std::string& name, ViewerModel& model);
-  /// Live: hands an observation to the odometry's source (thread-safe; others than the sensor's
-  /// sweeps are ignored).
+  /// Live: hands an observation to the odometry's source (thread-safe; a CObservationGPS goes to the
+  /// GNSS correction, others than the sensor's sweeps are ignored).
   void post(const std::shared_ptr<mrpt::obs::CObservation>& obs);
   /// Live: no more observations; the odometry finishes what it has.
   void close();
@@ -40,6 +44,9 @@ class LiveSlam {
   bool waitUntil(double t_s, double timeout_s = 1e9);
   bool done() const { return done_; }
   std::size_t frames() const { return frames_; }
+  /// Live: the online GNSS correction of the odometry's poses (pipeline/live_gnss.h), fed by the
+  /// CObservationGPS records posted (a grab ini's [gnss] receiver, a car's CAN_GPS); null on a recording.
+  const pipeline::LiveGnss* gnss() const;
   /// The problem that stopped the odometry, if one did (empty otherwise).
   std::string error() const;
 

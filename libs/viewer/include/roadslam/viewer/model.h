@@ -36,6 +36,8 @@ struct FrameResult {
   bool keyframe = false;
   double ms = std::nan("");       ///< the odometry's wall time for the sweep (frames.csv ms_total) [ms]
   double inliers = std::nan("");  ///< registration inliers [-]
+  /// Live with GNSS: the online correction's pose in the ENU frame at the first fix (LiveSlam::gnss).
+  std::optional<Eigen::Isometry3d> T_enu_lidar;
 };
 
 /// An accepted loop closure between two frames (their lidar positions in the map frame [m]).

@@ -1,0 +1,52 @@
+#pragma once
+/// \file live_gnss.h
+/// The online GNSS correction on a live feed (issue 23): CObservationGPS records as they arrive
+/// (roadslam-grab's receiver epochs, a car's CAN_GPS) and the odometry's frames, in one
+/// mapping::OnlineGnssFusion. The ENU frame is at the first valid fix (as gnss_outputs.h).
+/// Fixes are stamped with their receive time: the frames of a live feed carry the host's receive
+/// time, and the receiver's UTC is another clock (a replayed log's is the recording's day).
+/// Thread-safe: fixes are posted from the feed's thread, frames corrected on the odometry's.
+
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "roadslam/gnss/geo.h"
+#include "roadslam/mapping/gnss_fusion_online.h"
+#include "roadslam/sources/gps_fix.h"
+
+namespace roadslam::pipeline {
+
+struct LiveGnssCounts {
+  std::size_t epochs = 0, no_fix = 0;  ///< records posted, and those without a valid fix [count]
+  std::size_t fixes = 0;               ///< valid fixes handed to the online mode [count]
+  std::size_t solves = 0, failed = 0, rejected = 0;  ///< mapping::GnssOnlineStats [count]
+  bool anchored = false;
+};
+
+class LiveGnss {
+ public:
+  explicit LiveGnss(const mapping::GnssFusionParams& p) : online_(p), p_(p) {}
+  /// A fix as it arrived (any thread).
+  void post(const sources::TimedGpsFix& f);
+  /// The frame at \p t_s with the odometry's pose; its T_enu_lidar once the online mode anchored.
+  /// The fixes posted with a stamp up to \p t_s are added first (causal).
+  std::optional<Eigen::Isometry3d> correct(double t_s, const Eigen::Isometry3d& T_map_lidar);
+  LiveGnssCounts counts() const;
+  /// "GNSS: N fixes (M no fix), S solves, R rejected, corrected | waiting for fixes" for a status line.
+  std::string statusLine() const;
+  /// The ENU origin (the first valid fix), when one arrived.
+  std::optional<gnss::Geodetic> origin() const;
+
+ private:
+  mutable std::mutex m_;
+  std::vector<sources::TimedGpsFix> pending_;
+  std::optional<gnss::EnuFrame> enu_;
+  std::optional<gnss::Geodetic> origin_;
+  mapping::OnlineGnssFusion online_;
+  mapping::GnssFusionParams p_;
+  LiveGnssCounts counts_;
+};
+
+}  // namespace roadslam::pipeline

@@ -1,0 +1,76 @@
+#include "roadslam/pipeline/live_gnss.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "roadslam/gnss/nmea.h"
+
+namespace roadslam::pipeline {
+
+void LiveGnss::post(const sources::TimedGpsFix& f) {
+  std::lock_guard<std::mutex> lock(m_);
+  ++counts_.epochs;
+  if (!f.fix.valid) {
+    ++counts_.no_fix;
+    return;
+  }
+  pending_.push_back(f);
+}
+
+std::optional<Eigen::Isometry3d> LiveGnss::correct(double t_s, const Eigen::Isometry3d& T_map_lidar) {
+  std::lock_guard<std::mutex> lock(m_);
+  std::stable_sort(pending_.begin(), pending_.end(),
+                   [](const sources::TimedGpsFix& a, const sources::TimedGpsFix& b) { return a.stamp_s < b.stamp_s; });
+  std::size_t k = 0;
+  for (; k < pending_.size() && pending_[k].stamp_s <= t_s; ++k) {
+    const auto& f = pending_[k];
+    gnss::GnssFix g;  // as gnssInputFromFixes: GGA HDOP x uere, else the fallback sigma and the height free
+    g.has_position = true;
+    g.quality = f.quality;
+    g.hdop = f.hdop;
+    g.position = {f.fix.latitude_deg, f.fix.longitude_deg, std::isfinite(f.h_m) ? f.h_m : 0.0};
+    if (!enu_) {
+      origin_ = g.position;
+      enu_.emplace(g.position);
+    }
+    mapping::GnssFactor factor;
+    factor.t_s = f.stamp_s;
+    factor.p_enu = enu_->toEnu(g.position);
+    factor.cov = g.covarianceEnu(p_.uere_m, p_.fallback_sigma_m);
+    if (!std::isfinite(f.hdop)) {
+      const double s = p_.fallback_sigma_m;
+      factor.cov = Eigen::Vector3d(s * s, s * s, 1e6).asDiagonal();
+    }
+    online_.addFix(factor);
+    ++counts_.fixes;
+  }
+  pending_.erase(pending_.begin(), pending_.begin() + static_cast<long>(k));
+  const auto T = online_.addNode(t_s, T_map_lidar);
+  const auto& st = online_.stats();
+  counts_.solves = st.solves;
+  counts_.failed = st.failed;
+  counts_.rejected = st.rejected;
+  counts_.anchored = online_.anchored();
+  return T;
+}
+
+LiveGnssCounts LiveGnss::counts() const {
+  std::lock_guard<std::mutex> lock(m_);
+  return counts_;
+}
+
+std::optional<gnss::Geodetic> LiveGnss::origin() const {
+  std::lock_guard<std::mutex> lock(m_);
+  return origin_;
+}
+
+std::string LiveGnss::statusLine() const {
+  const LiveGnssCounts c = counts();
+  char s[200];
+  std::snprintf(s, sizeof s, "GNSS: %zu fixes (%zu no fix), %zu solves (%zu failed), %zu rejected, %s", c.fixes, c.no_fix,
+                c.solves, c.failed, c.rejected, c.anchored ? "corrected" : "waiting for fixes");
+  return s;
+}
+
+}  // namespace roadslam::pipeline
