@@ -13,6 +13,7 @@
 
 #include "roadslam/objects/stage.h"
 #include "roadslam/sources/recording.h"
+#include "boxroom.h"
 #include "roadslam/viewer/render.h"
 #include "roadslam/viewer/replay.h"
 
@@ -21,20 +22,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path tempDir() {
-  const fs::path d = fs::temp_directory_path() / ("roadslam_viewer_objects_" + std::to_string(getpid()));
-  fs::create_directories(d);
-  return d;
-}
-
-const std::string& boxroomRawlog() {
-  static const std::string path = [] {
-    const std::string p = (tempDir() / "boxroom.rawlog").string();
-    roadslam::sources::convertToRawlog(std::string(ROADSLAM_SOURCE_DIR) + "/rawlogs/boxroom-vlp16.pcap", p);
-    return p;
-  }();
-  return path;
-}
+using roadslam::viewer::test::boxroomRawlog;
+using roadslam::viewer::test::tempDir;
 
 roadslam::objects::Track track(int id, bool moving, double x, double y, double vx, double vy) {
   roadslam::objects::Track t;

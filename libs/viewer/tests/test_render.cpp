@@ -16,6 +16,7 @@
 
 #include "roadslam/mapping/maps.h"
 #include "roadslam/sources/recording.h"
+#include "boxroom.h"
 #include "roadslam/viewer/render.h"
 #include "roadslam/viewer/replay.h"
 
@@ -24,25 +25,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
+using roadslam::viewer::test::boxroomRawlog;
+using roadslam::viewer::test::tempDir;
+
 // The trajectory's magenta (SceneColors::trajectory), also where lines are blended with the
 // background: red and blue alike, no green. The jet colour map of the sweep never gives that hue.
 bool isTrajectoryHue(int r, int g, int b) { return r > 100 && b > 100 && g < 40 && std::abs(r - b) < 30; }
-
-fs::path tempDir() {
-  const fs::path d = fs::temp_directory_path() / ("roadslam_viewer_" + std::to_string(getpid()));
-  fs::create_directories(d);
-  return d;
-}
-
-// The bundled box room (6 sweeps of a static VLP-16) as a rawlog, once per test binary.
-const std::string& boxroomRawlog() {
-  static const std::string path = [] {
-    const std::string p = (tempDir() / "boxroom.rawlog").string();
-    roadslam::sources::convertToRawlog(std::string(ROADSLAM_SOURCE_DIR) + "/rawlogs/boxroom-vlp16.pcap", p);
-    return p;
-  }();
-  return path;
-}
 
 std::string slurp(const std::string& p) {
   std::ifstream f(p, std::ios::binary);
