@@ -1,3 +1,4 @@
+#include <filesystem>
 #include "sim_drive.h"
 
 #include <cmath>
@@ -63,6 +64,25 @@ double ateRmse(const PoseVector& gt, const PoseVector& est) {
   m.stamps_s.resize(gt.size());
   for (size_t i = 0; i < gt.size(); ++i) m.stamps_s[i] = static_cast<double>(i);
   return eval::computeMetrics(m).ate_rmse_m;
+}
+
+MapFolder gtMapFolder(const std::vector<SimFrame>& frames, size_t end, const std::string& dir) {
+  std::vector<Keyframe> kfs;
+  PoseVector T_map_kf;
+  double path = 0;
+  for (size_t i = 0; i < end; ++i) {
+    if (i > 0) path += (frames[i].T_world_lidar_gt.translation() - frames[i - 1].T_world_lidar_gt.translation()).norm();
+    if (!kfs.empty() && path - kfs.back().path_m < 2.0) continue;
+    Keyframe k;
+    k.frame_index = i;
+    k.path_m = path;
+    for (const auto& q : registration::voxelDownsample(frames[i].points_lidar, 0.3)) k.points_lidar.push_back(q.cast<float>());
+    kfs.push_back(std::move(k));
+    T_map_kf.push_back(frames[i].T_world_lidar_gt);
+  }
+  std::filesystem::create_directories(dir);
+  writeMapFolder(dir, kfs, T_map_kf, place::ScanContextParams{});
+  return readMapFolder(dir);
 }
 
 }  // namespace roadslam::mapping::test

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "roadslam/mapping/map_folder.h"
 #include "roadslam/mapping/pose_graph.h"
 #include "roadslam/odometry/odometry.h"
 #include "roadslam/sim/simulator.h"
@@ -32,5 +33,9 @@ std::vector<SimFrame> simulateDrive(const sim::ScenarioParams& p, const DriftMod
 
 /// ATE RMSE [m] of \p est against \p gt after SE(3) alignment (Umeyama, roadslam::eval).
 double ateRmse(const PoseVector& gt, const PoseVector& est);
+
+/// A map folder of frames [0, \p end) at their true poses (a keyframe every 2 m of path, 0.3 m voxels),
+/// written to \p dir and read back: the prior map of the localization tests.
+MapFolder gtMapFolder(const std::vector<SimFrame>& frames, size_t end, const std::string& dir);
 
 }  // namespace roadslam::mapping::test

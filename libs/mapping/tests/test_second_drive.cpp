@@ -36,25 +36,6 @@ sim::ScenarioParams smallLoop(double seconds) {
 }
 
 /// Map folder of \p frames: a keyframe every 2 m of path at the true poses, points at 0.3 m.
-MapFolder mapOf(const std::vector<test::SimFrame>& frames, const std::string& dir) {
-  std::vector<Keyframe> kfs;
-  PoseVector T_map_kf;
-  double path = 0;
-  for (size_t i = 0; i < frames.size(); ++i) {
-    if (i > 0) path += (frames[i].T_world_lidar_gt.translation() - frames[i - 1].T_world_lidar_gt.translation()).norm();
-    if (!kfs.empty() && path - kfs.back().path_m < 2.0) continue;
-    Keyframe k;
-    k.frame_index = i;
-    k.path_m = path;
-    for (const auto& q : registration::voxelDownsample(frames[i].points_lidar, 0.3)) k.points_lidar.push_back(q.cast<float>());
-    kfs.push_back(std::move(k));
-    T_map_kf.push_back(frames[i].T_world_lidar_gt);
-  }
-  std::filesystem::create_directories(dir);
-  writeMapFolder(dir, kfs, T_map_kf, place::ScanContextParams{});
-  return readMapFolder(dir);
-}
-
 }  // namespace
 
 TEST(SecondDrive, LocalizedInTheFirstDrivesMapFromAnUnknownStart) {
@@ -67,7 +48,7 @@ TEST(SecondDrive, LocalizedInTheFirstDrivesMapFromAnUnknownStart) {
   const Eigen::Isometry3d T_w1_w2 = T_sim_w1.inverse() * T_sim_w2;
   ASSERT_GT((T_w1_w2.translation()).norm(), 20.0) << "drive 2 must start elsewhere";
 
-  Localizer loc(mapOf(drive1, std::string(ROADSLAM_BINARY_DIR) + "/test-out-second-drive-map"));
+  Localizer loc(gtMapFolder(drive1, drive1.size(), std::string(ROADSLAM_BINARY_DIR) + "/test-out-second-drive-map"));
   int lost = 0, relocalized = 0, n = 0, first_localized = -1;
   double sum_e2 = 0, worst = 0, ms_track = 0, ms_reloc = 0;
   for (size_t i = 0; i < drive2.size(); ++i) {
