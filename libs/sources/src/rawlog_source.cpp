@@ -47,6 +47,7 @@ TimedGpsFix gpsFixFromObservation(const mrpt::obs::CObservationGPS& o) {
   const auto ts = o.originalReceivedTimestamp != INVALID_TIMESTAMP ? o.originalReceivedTimestamp
                                                                     : o.timestamp;
   t.stamp_s = mrpt::Clock::toDouble(ts);
+  t.label = o.sensorLabel;
   velodyne::GpsFix& fix = t.fix;
   if (o.hasMsgClass<mrpt::obs::gnss::Message_NMEA_GGA>()) {
     const auto& g = o.getMsgByClass<mrpt::obs::gnss::Message_NMEA_GGA>().fields;
