@@ -104,7 +104,7 @@ TEST(AppsCli, VersionNamesProgramVersionCommitAndBuildType) {
     const std::string start = std::string(p) + " " + ROADSLAM_PROJECT_VERSION + " (commit ";
     ASSERT_EQ(r.out.rfind(start, 0), 0u) << r.out;
     const std::string rest = r.out.substr(start.size());
-    EXPECT_EQ(rest.substr(0, rest.find(',')), recorded) << p << ": " << r.out;
+    EXPECT_EQ(rest.substr(0, rest.find(',')), recorded) << p << " was linked before the build tree last recorded the commit: " << r.out;
     EXPECT_NE(rest.find(", " ROADSLAM_BUILD_TYPE " build)\n"), std::string::npos) << r.out;
   }
 }

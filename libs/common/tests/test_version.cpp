@@ -36,7 +36,7 @@ TEST(Version, TextNamesProgramVersionCommitAndBuildType) {
 // where git or the repository is absent.
 TEST(Version, CommitIsTheOneTheBuildRecorded) {
   const std::string commit = roadslam::gitCommit();
-  EXPECT_EQ(commit, roadslam::recordedGitCommit(ROADSLAM_BINARY_DIR)) << "version.cpp was not rebuilt after the header changed";
+  EXPECT_EQ(commit, roadslam::recordedGitCommit(ROADSLAM_BINARY_DIR)) << "this binary was linked before the build tree last recorded the commit (a partial build since): rebuild it";
   const std::string hash = commit.substr(0, commit.find("-dirty"));
   ASSERT_TRUE(commit == hash || commit == hash + "-dirty") << commit;
   if (run("git -C '" ROADSLAM_SOURCE_DIR "' rev-parse --git-dir 2>/dev/null").empty()) {
