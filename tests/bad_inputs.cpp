@@ -140,6 +140,31 @@ void makeFiles() {
   write(w / "no-fix.nmea", "$GPGGA,000001.00,,,,,0,00,99.9,,M,,M,,*5E\n$GPGGA,000002.00,4808.0,N,01134.0,E,1,08,0.9,0,M,0,M,,*00\n");
   write(w / "some-bad.nmea", "$GPRMC,000001.00,A,4808.0000,N,01134.0000,E,0.0,0.0,010124,,,A*5A\nnot nmea\n"
                              "$GPGGA,000002.00,4808.0,N,01134.0,E,1,08,0.9,0,M,0,M,,*00\n");
+  const std::string rmc1 = "$GPRMC,000001.00,A,4808.0000,N,01134.0000,E,0.0,0.0,010124,,,A*5A\n";
+  const std::string rmc2 = "$GPRMC,000002.00,A,4808.0000,N,01134.0000,E,0.0,0.0,010124,,,A*59\n";
+  const std::string rmc3 = "$GPRMC,000003.00,A,4808.0000,N,01134.0000,E,0.0,0.0,010124,,,A*58\n";
+  write(w / "malformed.nmea", rmc1 + "$GPRMC,12ab,A*0A\n" + rmc2);  // checksum right, time field not a time
+  write(w / "backwards.nmea", rmc3 + rmc2 + "$GPRMC,000004.00,A,4808.0000,N,01134.0000,E,0.0,0.0,010124,,,A*5F\n");
+  write(w / "void.nmea", "$GPRMC,000001.00,V,4808.0000,N,01134.0000,E,0.0,0.0,010124,,,A*4D\n"
+                         "$GPRMC,000002.00,V,4808.0000,N,01134.0000,E,0.0,0.0,010124,,,A*4E\n");
+  write(w / "empty.nmea", "");
+  // [gnss_fusion] keys (line 2 of each)
+  write(w / "gnss-typo.ini", "[gnss_fusion]\nuere_mm = 3\n");
+  write(w / "gnss-negative-uere.ini", "[gnss_fusion]\nuere_m = -1\n");
+  write(w / "gnss-zero-sigma-r.ini", "[gnss_fusion]\nedge_sigma_r_deg = 0\n");
+  write(w / "gnss-no-iterations.ini", "[gnss_fusion]\nmax_iterations = 0\n");
+  write(w / "gnss-negative-blend.ini", "[gnss_fusion]\nonline_blend_s = -1\n");
+  write(w / "gnss-bad-kernel.ini", "[gnss_fusion]\nkernel = tukey\n");
+  write(w / "gnss-bad-bool.ini", "[gnss_fusion]\nreceiver_time = maybe\n");
+  // a rawlog with two GPS sources: the box-room capture's position packets ("GPS") and a receiver's
+  // epochs ("RECEIVER"), two rawlogs made by roadslam-rawlog and concatenated (gzip members)
+  write(w / "receiver.nmea", rmc1 + rmc2 + rmc3);
+  const std::string rawlog_app = binDir() + "/roadslam-rawlog ";
+  const std::string quiet = " > /dev/null 2>&1";
+  if (std::system((rawlog_app + "convert " + kSrc + "/rawlogs/boxroom-vlp16.pcap " + (w / "box.rawlog").string() + quiet).c_str()) == 0 &&
+      std::system((rawlog_app + "nmea " + (w / "receiver.nmea").string() + " " + (w / "receiver.rawlog").string() +
+                   " --label RECEIVER" + quiet).c_str()) == 0)
+    write(w / "two-gps.rawlog", fileText(w / "box.rawlog") + fileText(w / "receiver.rawlog"));
   // trajectories
   write(w / "three-columns.tum", "1 2 3\n");
   write(w / "words.tum", "# t x y z qx qy qz qw\n1.0 0 0 zero 0 0 0 1\n");
@@ -189,7 +214,7 @@ const Row kTable[] = {
   {"map-typo-key",         "roadslam-map --config {W}/typo-key.ini --input {W}/truncated.pcap --out {O}", 1, "unknown key 'voxel_sise_m' in [odometry]"},
   {"map-typo-section",     "roadslam-map --config {W}/typo-section.ini --input {W}/truncated.pcap --out {O}", 1, "unknown section [odometri] (nearest known: [odometry])"},
   {"map-typo-allowed",     "roadslam-map --config {W}/typo-key.ini --input {W}/truncated.pcap --out {O} --quiet --allow-unknown-keys", 0, "warning: "},
-  {"map-not-a-number",     "roadslam-map --config {W}/not-a-number.ini --input {W}/truncated.pcap --out {O}", 1, "[preprocess] voxel_size_m = 'abc' is not a number"},
+  {"map-not-a-number",     "roadslam-map --config {W}/not-a-number.ini --input {W}/truncated.pcap --out {O}", 1, "not-a-number.ini:2: [preprocess] voxel_size_m = 'abc' is not a number"},
   {"map-bad-matcher",      "roadslam-map --config {W}/bad-matcher.ini --input {W}/truncated.pcap --out {O}", 1, "expected voxel_map or registration"},
   {"map-bad-graph-optimizer", "roadslam-map --config {W}/bad-graph-optimizer.ini --input {W}/truncated.pcap --out {O}", 1, "optimizer = 'g2o': expected lm or mrpt_levmarq"},
   {"map-negative-voxel",   "roadslam-map --config {W}/negative-voxel.ini --input {W}/truncated.pcap --out {O}", 1, "must be positive"},
@@ -229,6 +254,21 @@ const Row kTable[] = {
   {"can-vehicle-typo",     "roadslam-can odometry --vehicle {W}/vehicle-typo.ini --data-root {S}/ini/vehicles {W}/half-good.log --out {O}/odo.tum", 1, "unknown key 'wheelbase_mm' in [vehicle] (nearest known: wheelbase_m)"},
   {"map-gnss-no-fix",      "roadslam-map --config {S}/ini/default.ini --input {W}/truncated.pcap --out {O} --gnss {W}/no-fix.nmea", 1, "holds no valid fix"},
   {"map-gnss-missing",     "roadslam-map --config {S}/ini/default.ini --input {W}/truncated.pcap --out {O} --gnss {W}/nope.nmea", 105, "File does not exist"},
+  {"map-gnss-empty",       "roadslam-map --config {S}/ini/default.ini --input {W}/truncated.pcap --out {O} --gnss {W}/empty.nmea", 1, "empty.nmea' holds no valid fix (0 lines"},
+  {"map-gnss-void-fixes",  "roadslam-map --config {S}/ini/default.ini --input {W}/truncated.pcap --out {O} --gnss {W}/void.nmea", 1, "void.nmea' holds no valid fix (2 lines, 0 with a bad checksum, 2 epochs without a fix)"},
+  {"map-gnss-malformed",   "roadslam-map --config {S}/ini/default.ini --input {W}/truncated.pcap --out {O} --gnss {W}/malformed.nmea --quiet", 0, "warning: GNSS log: 1 x malformed"},
+  {"map-gnss-backwards",   "roadslam-map --config {S}/ini/default.ini --input {W}/truncated.pcap --out {O} --gnss {W}/backwards.nmea --quiet", 0, "warning: GNSS log: 1 x time backwards"},
+  {"map-gnss-typo-key",    "roadslam-map --config {W}/gnss-typo.ini --input {W}/truncated.pcap --out {O}", 1, "gnss-typo.ini:2: unknown key 'uere_mm' in [gnss_fusion] (nearest known: uere_m)"},
+  {"map-gnss-negative-uere", "roadslam-map --config {W}/gnss-negative-uere.ini --input {W}/truncated.pcap --out {O}", 1, "gnss-negative-uere.ini:2: [gnss_fusion] uere_m = -1: must be > 0"},
+  {"map-gnss-zero-sigma-r", "roadslam-map --config {W}/gnss-zero-sigma-r.ini --input {W}/truncated.pcap --out {O}", 1, "gnss-zero-sigma-r.ini:2: [gnss_fusion] edge_sigma_r_deg = 0: must be > 0"},
+  {"map-gnss-no-iterations", "roadslam-map --config {W}/gnss-no-iterations.ini --input {W}/truncated.pcap --out {O}", 1, "gnss-no-iterations.ini:2: [gnss_fusion] max_iterations = 0: must be at least 1"},
+  {"map-gnss-negative-blend", "roadslam-map --config {W}/gnss-negative-blend.ini --input {W}/truncated.pcap --out {O}", 1, "gnss-negative-blend.ini:2: [gnss_fusion] online_blend_s = -1: must be >= 0"},
+  {"map-gnss-bad-kernel",  "roadslam-map --config {W}/gnss-bad-kernel.ini --input {W}/truncated.pcap --out {O}", 1, "kernel = 'tukey'"},
+  {"map-gnss-bad-bool",    "roadslam-map --config {W}/gnss-bad-bool.ini --input {W}/truncated.pcap --out {O}", 1, "gnss-bad-bool.ini:2: [gnss_fusion] receiver_time = 'maybe' is not a boolean"},
+  {"map-gnss-two-sources", "roadslam-map --config {S}/ini/default.ini --input {W}/two-gps.rawlog --out {O} --gnss-from-input", 1, "two-gps.rawlog' carries several GPS sources (GPS (5 records), RECEIVER (3 records)); choose the one to fuse with --gnss-label LABEL"},
+  {"map-gnss-label-absent", "roadslam-map --config {S}/ini/default.ini --input {W}/two-gps.rawlog --out {O} --gnss-from-input --gnss-label CAN_GPS", 1, "--gnss-label CAN_GPS: '"},
+  {"map-gnss-label-alone", "roadslam-map --config {S}/ini/default.ini --input {W}/two-gps.rawlog --out {O} --gnss-label GPS", 107, "--gnss-label requires --gnss-from-input"},
+  {"map-gnss-label-chosen", "roadslam-map --config {S}/ini/default.ini --input {W}/two-gps.rawlog --out {O} --gnss-from-input --gnss-label RECEIVER --json", 0, "(RECEIVER)"},
   // roadslam-rawlog
   {"rawlog-nmea-bad-lines","roadslam-rawlog nmea {W}/some-bad.nmea {W}/some-bad.rawlog", 0, "2 bad checksum"},
   {"rawlog-info-random",   "roadslam-rawlog info {W}/random.rawlog", 1, "not a readable MRPT rawlog"},

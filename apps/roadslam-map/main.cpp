@@ -21,8 +21,11 @@ int main(int argc, char** argv) {
   app.add_option("--vehicle", req.vehicle_ini_path, "the car's vehicle ini (ini/vehicles/...), with --can")->check(CLI::ExistingFile);
   app.add_option("--gnss", req.gnss_path, "NMEA log of the same drive: GNSS fused at the end, geo-referenced outputs")
       ->check(CLI::ExistingFile);
-  app.add_flag("--gnss-from-input", req.gnss_from_input,
-               "fuse the GPS fixes the input carries (Velodyne $GPRMC position packets) instead of --gnss");
+  auto* from_input = app.add_flag("--gnss-from-input", req.gnss_from_input,
+                                  "fuse the GPS fixes the input carries (position packets, a rawlog's GPS records) instead of --gnss");
+  app.add_option("--gnss-label", req.gnss_label,
+                 "with --gnss-from-input: the sensor label of the GPS source to fuse when the input has several (e.g. CAN_GPS)")
+      ->needs(from_input);
   app.add_option("--prior-map", req.prior_map_dir,
                  "map folder of an earlier run: localize each sweep in it (no mapping); localization.csv per sweep")
       ->check(CLI::ExistingDirectory);

@@ -17,8 +17,11 @@ std::string configSource(const mrpt::config::CConfigFileBase& cfg) {
 }
 
 namespace {
+/// "file:line: [section] key" (the key's line when the ini is a CheckedConfig that has it).
 std::string where(const mrpt::config::CConfigFileBase& cfg, const std::string& section,
                   const std::string& key) {
+  if (auto f = dynamic_cast<const CheckedConfig*>(&cfg); f && f->lineOf(section, key) > 0)
+    return f->path() + ":" + std::to_string(f->lineOf(section, key)) + ": [" + section + "] " + key;
   return configSource(cfg) + "[" + section + "] " + key;
 }
 std::string raw(const mrpt::config::CConfigFileBase& cfg, const std::string& section,

@@ -143,17 +143,24 @@ TEST(MotMetrics, HiddenAndFarCarsAreDontCare) {
   std::filesystem::remove_all(d);
 }
 
-// Ghost voxels: an OctoMap with one occupied voxel on a car's swept path (0.8 m above its ground,
-// inside its box) and one beside the lane; the map frame is the world (identity poses).
-TEST(MotMetrics, GhostVoxelsAreTheOccupiedLeavesOnTheSweptPaths) {
-  const std::string d = tmpDir();
+/// The ghost tests' drive in \p d: one 4.5 x 1.8 x 1.5 m car moving along +x at 10 m/s for 1 s from
+/// the world origin (gt_objects.json, 11 samples), the GT lidar standing at the origin
+/// (gt_trajectory.tum), and the run's poses \p run_tum (trajectory.tum).
+static void writeOneCarDrive(const std::string& d, const std::string& run_tum) {
   nlohmann::json track = nlohmann::json::array();
   for (int k = 0; k <= 10; ++k) track.push_back({1000.0 + 0.1 * k, 1.0 * k, 0.0, 0.0, 0.0, 50, 5.0});
   const nlohmann::json gt = {{"frame", "world"},
                              {"moving_cars", {{{"id", 0}, {"length_m", 4.5}, {"width_m", 1.8}, {"height_m", 1.5}, {"track", track}}}}};
   std::ofstream(d + "/gt_objects.json") << gt.dump();
   std::ofstream(d + "/gt_trajectory.tum") << "1000 0 0 0 0 0 0 1\n1001 0 0 0 0 0 0 1\n";
-  std::ofstream(d + "/trajectory.tum") << "1000 0 0 0 0 0 0 1\n";
+  std::ofstream(d + "/trajectory.tum") << run_tum;
+}
+
+// Ghost voxels: an OctoMap with one occupied voxel on a car's swept path (0.8 m above its ground,
+// inside its box) and one beside the lane; the map frame is the world (identity poses).
+TEST(MotMetrics, GhostVoxelsAreTheOccupiedLeavesOnTheSweptPaths) {
+  const std::string d = tmpDir();
+  writeOneCarDrive(d, "1000 0 0 0 0 0 0 1\n");
   octomap::OcTree tree(0.2);
   tree.updateNode(octomap::point3d(5.0f, 0.3f, 0.8f), true);   // on the path
   tree.updateNode(octomap::point3d(5.0f, 6.0f, 0.8f), true);   // beside it
@@ -171,13 +178,7 @@ TEST(MotMetrics, GhostVoxelsAreTheOccupiedLeavesOnTheSweptPaths) {
 // lane in map coordinates (where no car was placed by the run) is not.
 TEST(MotMetrics, GhostsFollowTheRunsPoseOfTheirTimeUnderDrift) {
   const std::string d = tmpDir();
-  nlohmann::json track = nlohmann::json::array();
-  for (int k = 0; k <= 10; ++k) track.push_back({1000.0 + 0.1 * k, 1.0 * k, 0.0, 0.0, 0.0, 50, 5.0});
-  const nlohmann::json gt = {{"frame", "world"},
-                             {"moving_cars", {{{"id", 0}, {"length_m", 4.5}, {"width_m", 1.8}, {"height_m", 1.5}, {"track", track}}}}};
-  std::ofstream(d + "/gt_objects.json") << gt.dump();
-  std::ofstream(d + "/gt_trajectory.tum") << "1000 0 0 0 0 0 0 1\n1001 0 0 0 0 0 0 1\n";
-  std::ofstream(d + "/trajectory.tum") << "1000 0 0 0 0 0 0 1\n1001 0 3 0 0 0 0 1\n";
+  writeOneCarDrive(d, "1000 0 0 0 0 0 0 1\n1001 0 3 0 0 0 0 1\n");
   const std::vector<Eigen::Vector3f> pts = {{10.0f, 3.0f, 0.8f},   // the car at t = 1001, placed by the drifted pose
                                             {10.0f, 0.0f, 0.8f},   // on the lane in map coordinates: static
                                             {0.0f, 0.0f, 0.8f}};   // the car at t = 1000 (no drift yet)

@@ -42,21 +42,9 @@ std::string readText(const std::string& p) {
 /// 3 s of the urban loop, simulated once per build tree (30 sweeps, GT beside).
 const std::string& drive() {
   static const std::string dir = [] {
-    const std::string d = std::string(ROADSLAM_BINARY_DIR) + "/test_data/experiment_urban3";
-    if (!fs::exists(d + "/gt_trajectory.tum")) {
-      // simulated beside and renamed: ctest runs these tests as parallel processes
-      const std::string tmp = d + ".tmp" + std::to_string(::getpid());
-      auto p = sim::ScenarioParams::fromFile(kSrc + "/ini/sim/urban-loop.ini");
-      p.duration_s = 3.0;
-      sim::Simulator s(p);
-      sim::OutputOptions o;
-      o.dir = tmp;
-      sim::runToDirectory(s, o);
-      std::error_code ec;
-      fs::rename(tmp, d, ec);
-      if (ec) fs::remove_all(tmp);
-    }
-    return d;
+    auto p = sim::ScenarioParams::fromFile(kSrc + "/ini/sim/urban-loop.ini");
+    p.duration_s = 3.0;
+    return sim::simulateOnce(p, std::string(ROADSLAM_BINARY_DIR) + "/test_data/experiment_urban3");
   }();
   return dir;
 }

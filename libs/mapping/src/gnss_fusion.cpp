@@ -9,6 +9,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "roadslam/common/checked_config.h"
 #include "roadslam/common/config.h"
 #include "roadslam/common/param_table.h"
 
@@ -152,17 +153,28 @@ void GnssFusionParams::fields(ParamTable& t) {
 void GnssFusionParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& s) {
   loadFields(*this, cfg, s);
   rejectUnknownKeys(cfg, s, fieldKeys<GnssFusionParams>());
-  if (edge_sigma_t_m <= 0 || edge_sigma_r_rad <= 0 || edge_sigma_t_per_m < 0 || edge_sigma_r_rad_per_m < 0 ||
-      kernel_width <= 0 || outlier_gate <= 0 || max_time_offset_s < 0 || attitude_prior_sigma_rad <= 0 ||
-      max_iterations < 1 || uere_m <= 0 || fallback_sigma_m <= 0 || edge_vertical_scale <= 0) {
-    throw std::runtime_error("[" + s + "]: edge_sigma_t_m, edge_sigma_r_deg, kernel_width, outlier_gate, "
-                             "attitude_prior_sigma_deg, max_iterations, uere_m, fallback_sigma_m and edge_vertical_scale must be > 0, "
-                             "the per-metre sigmas and max_time_offset_s >= 0");
-  }
-  if (online_window_s <= 0 || online_solve_period_s <= 0 || online_blend_s < 0 || online_min_path_m < 0 ||
-      online_bias_min_path_m < 0)
-    throw std::runtime_error("[" + s + "] online_window_s, online_solve_period_s: must be > 0, online_blend_s, "
-                             "online_min_path_m and online_bias_min_path_m >= 0");
+  constexpr double kDeg = 180.0 / M_PI;  // angles are checked as written (degrees)
+  const std::pair<const char*, double> positive[] = {
+      {"edge_sigma_t_m", edge_sigma_t_m},   {"edge_sigma_r_deg", edge_sigma_r_rad * kDeg},
+      {"kernel_width", kernel_width},       {"outlier_gate", outlier_gate},
+      {"attitude_prior_sigma_deg", attitude_prior_sigma_rad * kDeg},
+      {"max_iterations", max_iterations >= 1 ? 1.0 : 0.0},
+      {"uere_m", uere_m},                   {"fallback_sigma_m", fallback_sigma_m},
+      {"edge_vertical_scale", edge_vertical_scale},
+      {"online_window_s", online_window_s}, {"online_solve_period_s", online_solve_period_s}};
+  const std::pair<const char*, double> non_negative[] = {
+      {"edge_sigma_t_per_m", edge_sigma_t_per_m}, {"edge_sigma_r_deg_per_m", edge_sigma_r_rad_per_m * kDeg},
+      {"max_time_offset_s", max_time_offset_s},   {"online_blend_s", online_blend_s},
+      {"online_min_path_m", online_min_path_m},   {"online_bias_min_path_m", online_bias_min_path_m}};
+  auto refuse = [&](const char* key, const char* bound) {
+    const auto* file = dynamic_cast<const CheckedConfig*>(&cfg);
+    const std::string at = file ? file->path() + ":" + std::to_string(file->lineOf(s, key)) + ": " : configSource(cfg);
+    throw std::runtime_error(at + "[" + s + "] " + key + " = " + cfg.read_string(s, key, "", false) + ": must be " + bound);
+  };
+  for (const auto& [key, v] : positive)
+    if (!(v > 0)) refuse(key, std::string(key) == "max_iterations" ? "at least 1" : "> 0");
+  for (const auto& [key, v] : non_negative)
+    if (!(v >= 0)) refuse(key, ">= 0");
 }
 
 void GnssFusionParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& s) const {

@@ -12,11 +12,10 @@
 #include "roadslam/common/config.h"
 #include "roadslam/common/progress.h"
 #include "roadslam/common/stop_signal.h"
-#include "roadslam/datasets/kitti_scans.h"
+#include "roadslam/sources/scan_source.h"
 #include "roadslam/odometry/odometry.h"
 #include "roadslam/pipeline/gnss_outputs.h"
 #include "roadslam/pipeline/pipeline.h"
-#include "roadslam/velodyne/decoder_params.h"
 
 namespace fs = std::filesystem;
 
@@ -107,12 +106,7 @@ nlohmann::json runBoundsJob(const BoundsRequest& req) {
   // what the sweeps' source and the odometry read, in every mode, so their keys are checked too
   odometry::Params op;
   op.loadFromConfigFile(*cfg);
-  {
-    velodyne::DecoderParams dp;
-    dp.loadFromConfigFile(*cfg, "velodyne");
-    datasets::KittiParams kp;
-    kp.loadFromConfigFile(*cfg, "kitti");
-  }
+  sources::loadSourceSections(*cfg);
   const auto unknown_keys = cfg->checkEntries(req.allow_unknown_keys);
   auto source = openNonEmptySource(req.input_path, *cfg, req.times_path);
   // a trajectory or georeference that cannot be read fails here, before any output

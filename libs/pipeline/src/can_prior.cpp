@@ -12,11 +12,8 @@
 namespace roadslam::pipeline {
 
 struct CanPriorStream::Impl {
-  Impl(const std::string& log, const std::string& ini, const mrpt::config::CConfigFileBase& cfg)
-      : path(log),
-        reader(log),
-        decoder(vehicle::loadVehicleIni(ini)),
-        prior(loadPriorParams(cfg), decoder.params()) {}
+  Impl(const std::string& log_path, const std::string& ini, const mrpt::config::CConfigFileBase& cfg)
+      : path(log_path), log(log_path, vehicle::loadVehicleIni(ini)), prior(loadPriorParams(cfg), log.decoder().params()) {}
 
   static pipeline::VehiclePriorParams loadPriorParams(const mrpt::config::CConfigFileBase& cfg) {
     pipeline::VehiclePriorParams p;
@@ -26,29 +23,12 @@ struct CanPriorStream::Impl {
 
   /// Feeds every frame stamped up to \p t_s [s].
   void advanceTo(double t_s) {
-    const auto t_us = static_cast<std::int64_t>(t_s * 1e6);
-    while (!ended) {
-      if (!have_pending) {
-        if (!reader.next(pending)) {
-          ended = true;
-          break;
-        }
-        have_pending = true;
-      }
-      if (pending.t_us > t_us) break;
-      prior.update(state, decoder.process(pending, state));
-      have_pending = false;
-      ++frames;
-    }
+    frames += log.readUntil(t_s, [this](const vehicle::VehicleState& s, vehicle::UpdateMask m) { prior.update(s, m); });
   }
 
   std::string path;
-  can::CandumpReader reader;
-  vehicle::VehicleDecoder decoder;
+  vehicle::VehicleLogReader log;
   pipeline::VehiclePrior prior;
-  vehicle::VehicleState state;
-  can::CanFrame pending;
-  bool have_pending = false, ended = false;
   size_t frames = 0;
 };
 

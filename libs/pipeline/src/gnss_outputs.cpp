@@ -50,6 +50,21 @@ GnssInput readGnssInput(const std::string& path, const mapping::GnssFusionParams
   return in;
 }
 
+std::string chooseGpsSource(const std::map<std::string, std::size_t>& sources, const std::string& wanted,
+                            const std::string& input) {
+  if (wanted.empty() && sources.size() <= 1) return sources.empty() ? "" : sources.begin()->first;
+  if (!wanted.empty() && sources.count(wanted)) return wanted;
+  std::string present;
+  for (const auto& [label, n] : sources)
+    present += (present.empty() ? "" : ", ") + label + (n ? " (" + std::to_string(n) + (n == 1 ? " record)" : " records)") : "");
+  if (!wanted.empty()) {
+    throw std::runtime_error("--gnss-label " + wanted + ": '" + input + "' has no GPS source of that label (" +
+                             (present.empty() ? "it has none" : "it has " + present) + ")");
+  }
+  throw std::runtime_error("'" + input + "' carries several GPS sources (" + present +
+                           "); choose the one to fuse with --gnss-label LABEL");
+}
+
 GnssInput gnssInputFromFixes(const std::vector<sources::TimedGpsFix>& fixes, const std::string& describe,
                              const mapping::GnssFusionParams& p) {
   GnssInput in;

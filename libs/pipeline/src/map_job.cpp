@@ -220,6 +220,13 @@ struct PriorMapRun {
   }
 };
 
+/// Appends the fixes of the GPS source \p label to \p kept.
+void keepFixes(const std::vector<sources::TimedGpsFix>& fixes, const std::string& label,
+               std::vector<sources::TimedGpsFix>& kept) {
+  for (const auto& f : fixes)
+    if (f.label == label) kept.push_back(f);
+}
+
 }  // namespace
 
 MapOutcome runMapJob(const MapRequest& req) {
@@ -236,6 +243,9 @@ MapOutcome runMapJob(const MapRequest& req) {
   std::optional<GnssInput> gnss_in;  // read before the run: a bad log fails before hours of processing
   if (!req.gnss_path.empty() && req.gnss_from_input) throw std::runtime_error("--gnss and --gnss-from-input exclude each other");
   if (!req.gnss_path.empty()) gnss_in = readGnssInput(req.gnss_path, params.gnss_fusion);
+  if (!req.gnss_label.empty() && !req.gnss_from_input) throw std::runtime_error("--gnss-label needs --gnss-from-input");
+  std::string gps_label;  // with gnss_from_input: the one GPS source fused
+  if (req.gnss_from_input) gps_label = chooseGpsSource(sources::gpsSourcesOf(req.input_path), req.gnss_label, req.input_path);
   std::vector<sources::TimedGpsFix> input_fixes;  // with gnss_from_input: taken from the source per sweep
   prepareOutDir(req.out_dir);
   writeFileAtomically(req.out_dir + "/config_used.ini", params.used());
@@ -270,10 +280,7 @@ MapOutcome runMapJob(const MapRequest& req) {
     if (req.max_frames && out.frames.size() >= req.max_frames) break;
     auto f = pipe.next();
     if (!f) break;
-    if (req.gnss_from_input) {
-      auto fx = pipe.source().takeGpsFixes();
-      input_fixes.insert(input_fixes.end(), fx.begin(), fx.end());
-    }
+    if (req.gnss_from_input) keepFixes(pipe.source().takeGpsFixes(), gps_label, input_fixes);
     if (objects_stage) objects_out.add(*f, *objects_stage);
     if (localize) prior.add(f->index, f->pose.stamp_s, f->pose);
     out.frames.push_back(std::move(*f->pose.odometry));
@@ -347,10 +354,10 @@ MapOutcome runMapJob(const MapRequest& req) {
                            {"ms_total", ms.ms_total}};
   }
   if (req.gnss_from_input) {
-    auto fx = pipe.source().takeGpsFixes();
-    input_fixes.insert(input_fixes.end(), fx.begin(), fx.end());
+    keepFixes(pipe.source().takeGpsFixes(), gps_label, input_fixes);
     try {
-      gnss_in = gnssInputFromFixes(input_fixes, "GPS fixes of " + stream->describe(), params.gnss_fusion);
+      gnss_in = gnssInputFromFixes(input_fixes, "GPS fixes of " + stream->describe() + " (" + gps_label + ")",
+                                   params.gnss_fusion);
     } catch (const std::exception& e) {
       out.summary["warnings"].push_back(std::string("GNSS fusion not done: ") + e.what());
     }

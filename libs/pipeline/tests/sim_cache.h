@@ -4,7 +4,6 @@
 #include <filesystem>
 #include <string>
 
-#include "roadslam/common/atomic_file.h"
 #include "roadslam/sim/outputs.h"
 
 namespace roadslam::pipeline::test {
@@ -20,14 +19,7 @@ inline sim::ScenarioParams smallLoop() {
 
 /// Simulates \p p into ROADSLAM_BINARY_DIR/test-cache/<name> unless done before; returns the folder.
 inline std::string simulateOnce(const sim::ScenarioParams& p, const std::string& name) {
-  const std::string dir = std::string(ROADSLAM_BINARY_DIR) + "/test-cache/" + name;
-  if (std::filesystem::exists(dir + "/.complete")) return dir;
-  sim::Simulator s(p);
-  sim::OutputOptions opt;
-  opt.dir = dir;
-  sim::runToDirectory(s, opt);
-  writeFileAtomically(dir + "/.complete", "");
-  return dir;
+  return sim::simulateOnce(p, std::string(ROADSLAM_BINARY_DIR) + "/test-cache/" + name);
 }
 
 }  // namespace roadslam::pipeline::test

@@ -9,12 +9,14 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <tuple>
 
 #include "roadslam/datasets/trajectory_io.h"
 #include "roadslam/gnss/geo.h"
 #include "roadslam/mapping/gnss_fusion.h"
 #include "roadslam/pipeline/gnss_outputs.h"
 #include "roadslam/pipeline/map_job.h"
+#include "roadslam/sources/recording.h"
 #include "sim_cache.h"
 
 using namespace roadslam;
@@ -171,4 +173,54 @@ TEST(GnssJob, EnuMapsAtTheFusedPoses) {
   }
   EXPECT_TRUE(std::filesystem::exists(out + "/enu/grid.png"));
   EXPECT_TRUE(std::filesystem::exists(out + "/enu/grid.yaml"));
+}
+
+// --gnss-from-input on a rawlog with two GPS sources: the bundled box-room capture converted to a
+// rawlog (its Velodyne's 5 RMC position packets become CObservationGPS "GPS") followed by a second
+// rawlog of 3 receiver epochs under "RECEIVER" (concatenated gzip members read as one stream).
+// Several sources and no choice, or a label that is absent, is refused before the run naming both;
+// a chosen source is fused alone (its fix count, not the 8 of the mix); a one-source rawlog needs
+// no choice.
+TEST(GnssJob, FromInputFusesOneChosenGpsSource) {
+  const std::string dir = std::string(ROADSLAM_BINARY_DIR) + "/test-out/gnss-from-input-sources";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  sources::convertToRawlog(std::string(ROADSLAM_SOURCE_DIR) + "/rawlogs/boxroom-vlp16.pcap", dir + "/box.rawlog");
+  std::ofstream(dir + "/r.nmea") << "$GPRMC,000001.00,A,4808.0000,N,01134.0000,E,0.0,0.0,010124,,,A*5A\n"
+                                    "$GPRMC,000002.00,A,4808.0000,N,01134.0000,E,0.0,0.0,010124,,,A*59\n"
+                                    "$GPRMC,000003.00,A,4808.0000,N,01134.0000,E,0.0,0.0,010124,,,A*58\n";
+  ASSERT_EQ(sources::nmeaLogToRawlog(dir + "/r.nmea", dir + "/r.rawlog", "RECEIVER").epochs, 3u);
+  {
+    std::ofstream two(dir + "/two.rawlog", std::ios::binary);
+    for (const char* part : {"/box.rawlog", "/r.rawlog"}) two << std::ifstream(dir + part, std::ios::binary).rdbuf();
+  }
+  auto run = [&](const std::string& input, const std::string& label) {
+    pipeline::MapRequest req;
+    req.config_path = std::string(ROADSLAM_SOURCE_DIR) + "/ini/default.ini";
+    req.input_path = dir + input;
+    req.out_dir = dir + "/out";
+    req.progress = false;
+    req.maps = false;
+    req.gnss_from_input = true;
+    req.gnss_label = label;
+    return pipeline::runMapJob(req);
+  };
+  auto message = [&](const std::string& label) {
+    try {
+      run("/two.rawlog", label);
+    } catch (const std::exception& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message("").find("several GPS sources (GPS (5 records), RECEIVER (3 records))"), std::string::npos) << message("");
+  EXPECT_NE(message("CAN_GPS").find("--gnss-label CAN_GPS"), std::string::npos);
+  EXPECT_NE(message("CAN_GPS").find("it has GPS (5 records), RECEIVER (3 records)"), std::string::npos) << message("CAN_GPS");
+  for (const auto& [input, label, fixes] : {std::tuple<std::string, std::string, size_t>{"/two.rawlog", "RECEIVER", 3},
+                                            {"/two.rawlog", "GPS", 5}, {"/box.rawlog", "", 5}}) {
+    const auto o = run(input, label);
+    const auto& g = o.summary["gnss"];
+    EXPECT_EQ(g["fixes"].get<size_t>(), fixes) << input << " " << label << ": " << g.dump(1);
+    EXPECT_NE(g["input"].get<std::string>().find("(" + (label.empty() ? std::string("GPS") : label) + ")"), std::string::npos);
+  }
 }

@@ -43,20 +43,9 @@ constexpr double kCutFrom_s = 2.0, kCutTo_s = 2.5;      // the hole cut into the
 /// 5 s of the urban loop, simulated once per build tree (velodyne.pcap, can.log, gt_trajectory.tum).
 const std::string& drive() {
   static const std::string dir = [] {
-    const std::string d = std::string(ROADSLAM_BINARY_DIR) + "/test_data/recording_report_urban5";
-    if (!fs::exists(d + "/gt_trajectory.tum")) {
-      const std::string tmp = d + ".tmp" + std::to_string(::getpid());  // ctest runs tests in parallel
-      auto p = sim::ScenarioParams::fromFile(kSrc + "/ini/sim/urban-loop.ini");
-      p.duration_s = 5.0;
-      sim::Simulator s(p);
-      sim::OutputOptions o;
-      o.dir = tmp;
-      sim::runToDirectory(s, o);
-      std::error_code ec;
-      fs::rename(tmp, d, ec);
-      if (ec) fs::remove_all(tmp);
-    }
-    return d;
+    auto p = sim::ScenarioParams::fromFile(kSrc + "/ini/sim/urban-loop.ini");
+    p.duration_s = 5.0;
+    return sim::simulateOnce(p, std::string(ROADSLAM_BINARY_DIR) + "/test_data/recording_report_urban5");
   }();
   return dir;
 }

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <unistd.h>
 #include <nlohmann/json.hpp>
 
 #include "roadslam/can/candump.h"
@@ -217,6 +218,22 @@ RunReport runToDirectory(Simulator& sim, const OutputOptions& opt) {
   }
   writeFileAtomically(d + "summary.json", j.dump(1) + "\n");
   return rep;
+}
+
+std::string simulateOnce(const ScenarioParams& p, const std::string& dir) {
+  namespace fs = std::filesystem;
+  if (fs::exists(dir + "/.complete")) return dir;
+  const std::string tmp = dir + ".tmp" + std::to_string(::getpid());
+  Simulator s(p);
+  OutputOptions o;
+  o.dir = tmp;
+  runToDirectory(s, o);
+  writeFileAtomically(tmp + "/.complete", "");
+  std::error_code ec;
+  if (!fs::exists(dir + "/.complete")) fs::remove_all(dir, ec);  // an older, unfinished folder
+  fs::rename(tmp, dir, ec);
+  if (ec) fs::remove_all(tmp, ec);  // another process finished first
+  return dir;
 }
 
 }  // namespace roadslam::sim

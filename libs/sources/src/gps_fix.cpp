@@ -1,12 +1,39 @@
 #include "roadslam/sources/gps_fix.h"
 
+#include <filesystem>
+
+#include "roadslam/sources/rawlog_index.h"
+#include "roadslam/sources/rawlog_session.h"
+
+namespace fs = std::filesystem;
+
 namespace roadslam::sources {
 
 std::optional<TimedGpsFix> decodeGpsFix(const velodyne::RawPacket& pkt) {
   velodyne::PositionPacket pos;
   if (!velodyne::decodePositionPacket(pkt.payload.data(), pkt.payload.size(), pos) || !pos.has_fix)
     return std::nullopt;
-  return TimedGpsFix{pkt.stamp_s, pos.fix};
+  TimedGpsFix t;
+  t.stamp_s = pkt.stamp_s;
+  t.fix = pos.fix;
+  t.label = kPositionPacketsLabel;
+  return t;
+}
+
+std::map<std::string, std::size_t> gpsSourcesOf(const std::string& path) {
+  const std::string ext = fs::path(path).extension().string();
+  if (ext == ".pcap" || ext == ".pcapng") return {{kPositionPacketsLabel, 0}};
+  std::vector<std::string> files = fs::is_directory(path) ? RawlogSession::segmentsOf(path) : std::vector<std::string>{};
+  if (ext == ".rawlog" || ext == ".gz") files = {path};
+  RawlogIndexOptions opt;
+  opt.write_cache = false;  // a mapping run leaves the recording's folder as it found it
+  std::map<std::string, std::size_t> out;
+  for (const auto& f : files) {
+    const auto index = RawlogIndex::open(f, opt);
+    for (std::size_t i = 0; i < index->size(); ++i)
+      if (index->className(i).find("CObservationGPS") != std::string::npos) ++out[index->label(i)];
+  }
+  return out;
 }
 
 }  // namespace roadslam::sources

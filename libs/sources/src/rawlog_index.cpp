@@ -21,21 +21,16 @@
 
 #include "roadslam/common/atomic_file.h"
 #include "rawlog_index_impl.h"
+#include "mrpt_message.h"
 
 namespace roadslam::sources {
+
+using detail::innermostMessage;
 
 using detail::GzAccessPoint;
 using detail::SeekableStream;
 
 namespace {
-// MRPT nests exceptions; the innermost "Message:" line names the cause on one line.
-std::string innermostMessage(const std::string& what) {
-  const auto at = what.rfind("Message:");
-  if (at == std::string::npos) return what.substr(0, what.find('\n'));
-  std::string line = what.substr(at + 8, what.find('\n', at) - at - 8);
-  line.erase(0, line.find_first_not_of(' '));
-  return line;
-}
 
 // "Stored object has class 'X' which is not registered!" -> X
 std::optional<std::string> unregisteredClass(const std::string& what) {

@@ -11,8 +11,11 @@
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
+#include "mrpt_message.h"
 
 namespace roadslam::sources {
+
+using detail::innermostMessage;
 
 using mrpt::obs::CObservationVelodyneScan;
 
@@ -30,15 +33,6 @@ uint32_t packetCounter_us(const CObservationVelodyneScan::TVelodyneRawPacket& ra
 
 constexpr double kKnot_mps = 1852.0 / 3600.0;
 
-// MRPT nests exceptions ("==== MRPT exception ====\nMessage: ...\nOriginal exception: ...");
-// the innermost "Message:" line names the cause on one line.
-std::string innermostMessage(const std::string& what) {
-  const auto at = what.rfind("Message:");
-  if (at == std::string::npos) return what.substr(0, what.find('\n'));
-  std::string line = what.substr(at + 8, what.find('\n', at) - at - 8);
-  line.erase(0, line.find_first_not_of(' '));
-  return line;
-}
 
 }  // namespace
 
@@ -47,6 +41,7 @@ TimedGpsFix gpsFixFromObservation(const mrpt::obs::CObservationGPS& o) {
   const auto ts = o.originalReceivedTimestamp != INVALID_TIMESTAMP ? o.originalReceivedTimestamp
                                                                     : o.timestamp;
   t.stamp_s = mrpt::Clock::toDouble(ts);
+  t.label = o.sensorLabel;
   velodyne::GpsFix& fix = t.fix;
   if (o.hasMsgClass<mrpt::obs::gnss::Message_NMEA_GGA>()) {
     const auto& g = o.getMsgByClass<mrpt::obs::gnss::Message_NMEA_GGA>().fields;

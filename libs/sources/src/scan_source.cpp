@@ -101,4 +101,11 @@ std::unique_ptr<ScanSource> openScanSource(const std::string& path, const mrpt::
                            "': unknown kind (expected .pcap, .rawlog or a folder of KITTI .bin sweeps)");
 }
 
+void loadSourceSections(const mrpt::config::CConfigFileBase& cfg) {
+  velodyne::DecoderParams dp;
+  dp.loadFromConfigFile(cfg, "velodyne");
+  datasets::KittiParams kp;
+  kp.loadFromConfigFile(cfg, "kitti");
+}
+
 }  // namespace roadslam::sources

@@ -105,4 +105,23 @@ UpdateMask VehicleDecoder::process(const can::CanFrame& f, VehicleState& state) 
   return mask;
 }
 
+VehicleLogReader::VehicleLogReader(const std::string& log, const VehicleParams& params)
+    : reader_(log), decoder_(params) {}
+
+std::size_t VehicleLogReader::readUntil(double t_s, const std::function<void(const VehicleState&, UpdateMask)>& on_frame) {
+  const double t_us = t_s * 1e6;  // a double: +infinity reads to the end
+  std::size_t n = 0;
+  while (!ended_) {
+    if (!have_pending_ && !(have_pending_ = reader_.next(pending_))) {
+      ended_ = true;
+      break;
+    }
+    if (static_cast<double>(pending_.t_us) > t_us) break;
+    on_frame(state_, decoder_.process(pending_, state_));
+    have_pending_ = false;
+    ++n;
+  }
+  return n;
+}
+
 }  // namespace roadslam::vehicle

@@ -9,6 +9,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
+#include <fstream>
+#include <unistd.h>
+#include <limits>
 #include <filesystem>
 
 using namespace roadslam::vehicle;
@@ -144,6 +148,44 @@ TEST(VehicleDecoder, AppliesUnitsAddAndSignFlags) {
   short_frame.len = 1;
   EXPECT_EQ(dec.process(short_frame, s), 0U);
   EXPECT_EQ(dec.stats().short_frames, 1U);
+}
+
+// A candump log streamed up to given times: each frame once, in order, none past the time (the
+// first one past it waits for the next call), its state as the decoder gives it; the log's bad line
+// is counted, not fatal.
+TEST(VehicleLogReader, ReadsEachFrameOnceUpToTheTimeGiven) {
+  const fs::path dir = fs::temp_directory_path() / ("roadslam-vehicle-log-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  std::ofstream(dir / "x.dbc") << kDbc;
+  VehicleParams p = testParams();
+  p.dbc = (dir / "x.dbc").string();
+  std::vector<CanFrame> frames = {wheels(1.0, 36.0), yaw(1.05, -5.0), wheels(1.1, 72.0), yaw(1.15, 2.0), wheels(1.2, 18.0)};
+  for (auto& f : frames) f.setInterface("can0");
+  roadslam::can::writeCandumpFile((dir / "drive.log").string(), frames);
+  std::ofstream(dir / "drive.log", std::ios::app) << "not a frame\n";
+  VehicleLogReader log((dir / "drive.log").string(), p);
+  std::vector<double> t, speed;
+  auto keep = [&](const VehicleState& s, UpdateMask m) {
+    t.push_back(s.t_s);
+    speed.push_back(m & kWheelMask ? s.speed() : -1.0);
+  };
+  EXPECT_EQ(log.readUntil(0.5, keep), 0u);
+  EXPECT_EQ(log.readUntil(1.1, keep), 3u);  // 1.0, 1.05 and 1.1 (at the time given)
+  EXPECT_EQ(log.readUntil(1.1, keep), 0u);
+  EXPECT_FALSE(log.ended());
+  EXPECT_EQ(log.readUntil(std::numeric_limits<double>::infinity(), keep), 2u);
+  EXPECT_TRUE(log.ended());
+  const std::vector<double> t_log = {1.0, 1.05, 1.1, 1.15, 1.2};
+  ASSERT_EQ(t.size(), t_log.size());
+  for (size_t i = 0; i < t.size(); ++i) EXPECT_NEAR(t[i], t_log[i], 1e-9);
+  ASSERT_EQ(speed.size(), 5u);
+  EXPECT_NEAR(speed[0], 10.0, 1e-9);
+  EXPECT_EQ(speed[1], -1.0);
+  EXPECT_NEAR(speed[2], 20.0, 1e-9);
+  EXPECT_NEAR(speed[4], 5.0, 1e-9);
+  EXPECT_EQ(log.logStats().bad, 1u);
+  EXPECT_EQ(log.decoder().stats().used, 5u);
+  fs::remove_all(dir);
 }
 
 TEST(DeadReckoning, CircleMatchesClosedForm) {

@@ -7,7 +7,7 @@
 #include <mrpt/obs/CObservationGPS.h>
 
 #include "roadslam/common/config.h"
-#include "roadslam/datasets/kitti_scans.h"
+#include "roadslam/sources/scan_source.h"
 #include "roadslam/objects/stage.h"
 #include "roadslam/pipeline/live_gnss.h"
 #include "roadslam/pipeline/pipeline.h"
@@ -38,9 +38,8 @@ struct Config {
     objects.loadFromConfigFile(*cfg, "objects", "preprocess");
     tracking.loadFromConfigFile(*cfg, "tracking");
     gnss.loadFromConfigFile(*cfg, "gnss_fusion");
+    sources::loadSourceSections(*cfg);  // a recording's source reads them: their keys are checked too
     decoder.loadFromConfigFile(*cfg, "velodyne");
-    datasets::KittiParams kp;  // read by a KITTI source; loaded so that its keys are checked too
-    kp.loadFromConfigFile(*cfg, "kitti");
   }
 };
 

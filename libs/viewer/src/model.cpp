@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <thread>
 #include <cstring>
 #include <filesystem>
@@ -272,14 +273,10 @@ const ObjectBoxes* ViewerModel::objectsNear(double t_s, double tol_s) const {
 
 void ViewerModel::loadCan(const std::string& log, const std::string& vehicle_ini) {
   if (vehicle_ini.empty()) throw std::runtime_error("--can needs --vehicle (the car's vehicle ini)");
-  vehicle::VehicleDecoder decoder(vehicle::loadVehicleIni(vehicle_ini));
-  can::CandumpReader reader(log);
-  vehicle::VehicleState state;
-  can::CanFrame frame;
-  while (reader.next(frame)) {
-    if (!decoder.process(frame, state)) continue;
-    const double t = static_cast<double>(frame.t_us) * 1e-6;
-    if (!can_.empty() && t - can_.back().t_s < 0.05) continue;
+  vehicle::VehicleLogReader reader(log, vehicle::loadVehicleIni(vehicle_ini));
+  reader.readUntil(std::numeric_limits<double>::infinity(), [this](const vehicle::VehicleState& state, vehicle::UpdateMask mask) {
+    const double t = state.t_s;
+    if (!mask || (!can_.empty() && t - can_.back().t_s < 0.05)) return;
     CanSample c;
     c.t_s = t;
     const bool wheels = state.has(vehicle::Quantity::kWheelFL) || state.has(vehicle::Quantity::kVehicleSpeed);
@@ -287,8 +284,8 @@ void ViewerModel::loadCan(const std::string& log, const std::string& vehicle_ini
     if (state.has(vehicle::Quantity::kYawRate)) c.yaw_rate_rad_s = state.value(vehicle::Quantity::kYawRate);
     if (state.has(vehicle::Quantity::kSteeringAngle)) c.steering_rad = state.value(vehicle::Quantity::kSteeringAngle);
     addCanSample(c);
-  }
-  const auto& st = reader.stats();
+  });
+  const auto& st = reader.logStats();
   if (st.bad > 0) warnings_.push_back("CAN log '" + log + "': " + std::to_string(st.bad) + " of " + std::to_string(st.lines) + " lines unreadable, skipped");
   if (can_.empty()) warnings_.push_back("CAN log '" + log + "': no frame the vehicle ini '" + vehicle_ini + "' decodes");
   else checkOverlap("CAN log '" + log + "' times", can_.front().t_s, can_.back().t_s);

@@ -15,4 +15,10 @@ const char* buildType();       ///< CMAKE_BUILD_TYPE, e.g. "Release"
 /// One line: "<program> <version> (commit <hash>, <build type> build)".
 std::string versionText(const std::string& program);
 
+/// The commit the build tree \p build_dir last recorded for --version (the ROADSLAM_GIT_COMMIT of its
+/// generated libs/common/generated/roadslam/common/git_version.h, as it is on disk now): what every
+/// program linked in that build must report, however the source tree has moved since. "" when the
+/// file is absent or holds no such line.
+std::string recordedGitCommit(const std::string& build_dir);
+
 }  // namespace roadslam

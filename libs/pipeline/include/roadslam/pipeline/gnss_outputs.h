@@ -18,6 +18,7 @@
 ///                         scale): a map point p [m] lies at UTM  offset + k Rot(convergence) (T_enu_map p)_en
 /// and a "gnss" object in summary.json (parser counts by name, fusion counts, rms, status).
 
+#include <map>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -41,6 +42,14 @@ struct GnssInput {
 
 /// Reads \p nmea_path; throws naming the file when it cannot be read or holds no valid fix.
 GnssInput readGnssInput(const std::string& nmea_path, const mapping::GnssFusionParams& p);
+
+/// The GPS source `--gnss-from-input` fuses, from \p sources (label -> GPS records, 0 = not counted:
+/// sources::gpsSourcesOf(\p input)): \p wanted when given, else the one source there is; "" when
+/// there is none and none is wanted (the fusion is then skipped with a warning). Throws naming the
+/// sources present (with their record counts) when \p wanted is not one of them, or when there are
+/// several and none is wanted: fixes of several receivers are never mixed into one fusion.
+std::string chooseGpsSource(const std::map<std::string, std::size_t>& sources, const std::string& wanted,
+                            const std::string& input);
 
 /// The valid fixes an input carried (sources::ScanSource::takeGpsFixes: a Velodyne's RMC, and from a
 /// rawlog every CObservationGPS with RMC or GGA: roadslam-grab's GNSS epochs, a car's CAN_GPS), in the

@@ -50,6 +50,12 @@ struct RunReport {
 /// Simulates \p sim into \p opt.dir (and UDP); throws naming the file on I/O errors.
 RunReport runToDirectory(Simulator& sim, const OutputOptions& opt);
 
+/// Simulates \p p into \p dir (runToDirectory, no UDP) unless a finished run is there; returns \p dir.
+/// For tests that share one drive per build tree: the run is written beside (dir.tmp<pid>), marked
+/// finished (dir/.complete) and renamed into place, so test processes running in parallel and a run
+/// interrupted part way never leave a half-written folder in use.
+std::string simulateOnce(const ScenarioParams& p, const std::string& dir);
+
 /// Top view: world primitives, roads, curbs (green), route (red), start (circle) to a PNG.
 void drawTopView(const Simulator& sim, const std::string& png_path, int max_px = 1600);
 

@@ -3,8 +3,11 @@
 /// A GPS fix with the time it was received: the $GPRMC sentence a Velodyne forwards in its
 /// position packets (decoded by libs/velodyne's position.h), or an MRPT CObservationGPS record.
 
+#include <cstddef>
 #include <limits>
+#include <map>
 #include <optional>
+#include <string>
 
 #include "roadslam/velodyne/packet.h"
 #include "roadslam/velodyne/position.h"
@@ -23,7 +26,15 @@ struct TimedGpsFix {
   double h_m = std::numeric_limits<double>::quiet_NaN();   ///< height: GGA altitude + geoid separation [m]
   double hdop = std::numeric_limits<double>::quiet_NaN();  ///< [-]
   int quality = -1;                                        ///< GGA fix quality; -1 without GGA
+  /// The sensor it came from: a CObservationGPS record's sensorLabel (roadslam-grab's
+  /// `<lidar>_GPS`, a receiver's `[gnss] label`, `CAN_GPS`), kPositionPacketsLabel for a capture's
+  /// Velodyne position packets.
+  std::string label;
 };
+
+/// TimedGpsFix::label of the fixes a .pcap's Velodyne position packets carry (a capture has no
+/// sensorLabel; it holds one Velodyne).
+inline const char* const kPositionPacketsLabel = "position_packets";
 
 /// Decodes a 512-byte position packet; nullopt when it holds no RMC sentence (early VLP-16
 /// firmware sends an empty NMEA field) or the sentence is malformed.
@@ -32,5 +43,12 @@ std::optional<TimedGpsFix> decodeGpsFix(const velodyne::RawPacket& pkt);
 /// A CObservationGPS record's fix: its GGA (position, height, HDOP, quality) and RMC (date, speed,
 /// course), stamped with the receive time (originalReceivedTimestamp, else timestamp).
 TimedGpsFix gpsFixFromObservation(const mrpt::obs::CObservationGPS& o);
+
+/// The GPS sources of the recording \p path, by TimedGpsFix::label: a rawlog's or a roadslam-grab
+/// session folder's CObservationGPS records counted per sensorLabel (from each file's index,
+/// rawlog_index.h; a fresh sidecar is read, none is written); a .pcap gives {kPositionPacketsLabel, 0}
+/// (0: not counted); a KITTI folder or anything else, none. Throws naming the file when a rawlog
+/// cannot be read at all.
+std::map<std::string, std::size_t> gpsSourcesOf(const std::string& path);
 
 }  // namespace roadslam::sources

@@ -64,4 +64,9 @@ class ScanSource {
 std::unique_ptr<ScanSource> openScanSource(const std::string& path, const mrpt::config::CConfigFileBase& cfg,
                                            const std::string& times_path = "");
 
+/// Loads the sections openScanSource() reads for any kind of input ([velodyne], [kitti]) from \p cfg
+/// and drops them: a job that checks its ini's keys (checked_config.h) before it knows the input's
+/// kind counts their keys as read, and a bad value fails there, naming the key.
+void loadSourceSections(const mrpt::config::CConfigFileBase& cfg);
+
 }  // namespace roadslam::sources

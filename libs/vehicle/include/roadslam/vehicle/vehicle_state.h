@@ -4,13 +4,16 @@
 /// car reports, in SI units and ISO 8855 body axes (x forward, y left, z up, yaw CCW positive).
 /// Consumers (dead reckoning, rawlog export, later the odometry prior) only see VehicleState.
 
+#include <roadslam/can/candump.h>
 #include <roadslam/can/decoder.h>
 #include <roadslam/can/frame.h>
 #include <roadslam/vehicle/params.h>
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <memory>
+#include <string>
 
 namespace roadslam::vehicle {
 
@@ -66,6 +69,30 @@ class VehicleDecoder {
   std::vector<double> scratch_;
   std::vector<double> reverse_values_;
   VehicleDecodeStats stats_;
+};
+
+/// A recorded drive's candump log (can/candump.h) replayed through a VehicleDecoder, frame by frame
+/// in log order, up to a time: the one loop behind every consumer of a recorded CAN log that streams
+/// it (roadslam-map's motion prior, the viewer's CAN samples).
+class VehicleLogReader {
+ public:
+  /// Opens \p log with the car's \p params; throws naming the log or the DBC when either cannot be read.
+  VehicleLogReader(const std::string& log, const VehicleParams& params);
+
+  /// Reads on through the frames stamped at or before \p t_s [s since Unix epoch] (to the end with
+  /// +infinity), calling \p on_frame(state, mask) after each (mask 0: the frame updated nothing). The
+  /// first frame past \p t_s is kept for the next call. Returns the frames read.
+  std::size_t readUntil(double t_s, const std::function<void(const VehicleState&, UpdateMask)>& on_frame);
+  bool ended() const { return ended_; }
+  const can::CandumpStats& logStats() const { return reader_.stats(); }
+  const VehicleDecoder& decoder() const { return decoder_; }
+
+ private:
+  can::CandumpReader reader_;
+  VehicleDecoder decoder_;
+  VehicleState state_;
+  can::CanFrame pending_;
+  bool have_pending_ = false, ended_ = false;
 };
 
 }  // namespace roadslam::vehicle
