@@ -92,11 +92,11 @@ struct CtrvParams {
 struct ImmParams {
   double cv_accel_sigma_mps2 = 1.5;      ///< CV model: white-acceleration noise (TrackerParams::accel_sigma_mps2's role) [m/s^2]
   double ct_accel_sigma_mps2 = 1.5;      ///< CT model: white-acceleration noise [m/s^2]
-  double ct_turn_accel_sigma_radps2 = 20.0 * 3.14159265358979323846 / 180.0;  ///< CT model: turn-rate noise; ini `imm_ct_turn_accel_sigma_degps2` [rad/s^2]
+  double ct_turn_accel_sigma_radps2 = 360.0 * 3.14159265358979323846 / 180.0;  ///< CT model: turn-rate noise (a simulated corner: 60 deg/s within 0.3 s); ini `imm_ct_turn_accel_sigma_degps2` [rad/s^2]
   double init_turn_rate_sigma_radps = 20.0 * 3.14159265358979323846 / 180.0;  ///< CT turn rate uncertainty of a new track; ini `imm_init_turn_rate_sigma_degps` [rad/s]
   /// CT model: the turn rate is clamped to this and its standard deviation capped at it (a static
   /// object's turn rate is unobservable); ini `imm_max_turn_rate_degps` [rad/s]
-  double max_turn_rate_radps = 90.0 * 3.14159265358979323846 / 180.0;
+  double max_turn_rate_radps = 180.0 * 3.14159265358979323846 / 180.0;
   double cv_sojourn_s = 4.0;             ///< mean time in the CV model before a turn [s]
   double ct_sojourn_s = 2.0;             ///< mean time in the CT model (a turn at a junction) [s]
   double init_ct_probability = 0.1;      ///< CT model probability of a new track [-]
