@@ -35,7 +35,7 @@ struct BoxRecord {
 struct Track {
   int id = 0;                         ///< stable, from 1
   TrackState state = TrackState::Tentative;
-  Eigen::Vector4d x = Eigen::Vector4d::Zero();  ///< [x, y, vx, vy], map frame [m, m/s] (CTRV: its view of s)
+  Eigen::Vector4d x = Eigen::Vector4d::Zero();  ///< [x, y, vx, vy], map frame [m, m/s] (CTRV: its view of s; IMM: the models combined)
   Eigen::Matrix4d P = Eigen::Matrix4d::Identity();
   /// MotionModel::Ctrv: the filter's own state [x, y, v, psi, omega] (v signed: a car may be seen
   /// driving along either end of its box) and covariance [m, m, m/s, rad, rad/s]
