@@ -66,6 +66,7 @@ TEST(MotMetrics, CountsMatchesSwitchesAndFalsePositivesOfKnownTracks) {
   EXPECT_NEAR(m.speed_error_mean_mps, 0.5, 1e-6);
   EXPECT_EQ(m.gt_cars_seen, 1u);
   EXPECT_EQ(m.id_switches_after_gap, 0u);  // the car was matched the frame before (0.1 s)
+  EXPECT_EQ(m.id_switches_in_view, 1u);     // ... and never left the view (no returns in the file: by range only)
   eval::MotParams p;
   p.switch_gap_s = 0.05, p.keep_events = true;
   const auto tight = eval::evaluateMotFiles(d + "/gt_objects.json", d + "/gt_trajectory.tum", d, p);
