@@ -11,8 +11,9 @@ using Mat5 = Eigen::Matrix<double, 5, 5>;
 constexpr int kCv = 0, kCt = 1;
 constexpr double kMinLikelihood = 1e-300;  // keeps the probabilities' normalisation finite
 
-/// Coordinated turn transition over \p T and its Jacobian (Bar-Shalom et al. 2001, Sec. 11.7: x' = x +
-/// sin(wT)/w vx - (1-cos wT)/w vy, y' = y + (1-cos wT)/w vx + sin(wT)/w vy, v' = R(wT) v, w' = w; the EKF's Jacobian); omega -> 0 is the constant velocity limit (series of sin(wT)/w, (1-cos wT)/w).
+/// Coordinated turn transition over \p T and its Jacobian \p F (Bar-Shalom et al. 2001, Sec. 11.7):
+/// x' = x + sin(wT)/w vx - (1-cos wT)/w vy, y' = y + (1-cos wT)/w vx + sin(wT)/w vy, v' = R(wT) v, w' = w.
+/// omega -> 0 is the constant velocity limit (the series of sin(wT)/w and (1-cos wT)/w).
 Vec5 ctMove(const Vec5& s, double T, Mat5* F) {
   const double w = s(4), vx = s(2), vy = s(3), wT = w * T;
   const bool straight = std::abs(wT) < 1e-6;
