@@ -11,28 +11,6 @@ using Mat5 = Eigen::Matrix<double, 5, 5>;
 constexpr int kCv = 0, kCt = 1;
 constexpr double kMinLikelihood = 1e-300;  // keeps the probabilities' normalisation finite
 
-/// Coordinated turn transition over \p T and its Jacobian \p F (Bar-Shalom et al. 2001, Sec. 11.7):
-/// x' = x + sin(wT)/w vx - (1-cos wT)/w vy, y' = y + (1-cos wT)/w vx + sin(wT)/w vy, v' = R(wT) v, w' = w.
-/// omega -> 0 is the constant velocity limit (the series of sin(wT)/w and (1-cos wT)/w).
-Vec5 ctMove(const Vec5& s, double T, Mat5* F) {
-  const double w = s(4), vx = s(2), vy = s(3), wT = w * T;
-  const bool straight = std::abs(wT) < 1e-6;
-  const double sw = straight ? T : std::sin(wT) / w, cw = straight ? 0.5 * w * T * T : (1 - std::cos(wT)) / w;
-  const double c = std::cos(wT), sn = std::sin(wT);
-  Vec5 o;
-  o << s(0) + sw * vx - cw * vy, s(1) + cw * vx + sw * vy, c * vx - sn * vy, sn * vx + c * vy, w;
-  if (F) {
-    // d(sin wT / w)/dw and d((1 - cos wT)/w)/dw (their limits at w = 0: 0 and T^2/2)
-    const double dsw = straight ? 0 : (T * c - sw) / w, dcw = straight ? 0.5 * T * T : (T * sn - cw) / w;
-    F->setIdentity();
-    (*F)(0, 2) = sw, (*F)(0, 3) = -cw, (*F)(0, 4) = dsw * vx - dcw * vy;
-    (*F)(1, 2) = cw, (*F)(1, 3) = sw, (*F)(1, 4) = dcw * vx + dsw * vy;
-    (*F)(2, 2) = c, (*F)(2, 3) = -sn, (*F)(2, 4) = -T * (sn * vx + c * vy);
-    (*F)(3, 2) = sn, (*F)(3, 3) = c, (*F)(3, 4) = T * (c * vx - sn * vy);
-  }
-  return o;
-}
-
 /// Discrete white-acceleration noise on x, y (Bar-Shalom et al. 2001, Sec. 6.3.2, discrete white
 /// noise acceleration: G q G^T with G = [T^2/2, T]) and a white turn-rate increment sigma_w^2 T on omega.
 Mat5 noise(double T, double accel_sigma, double omega_var) {
@@ -77,6 +55,28 @@ void combine(Track& tr) {
 }
 
 }  // namespace
+
+/// Coordinated turn transition over \p T and its Jacobian \p F (Bar-Shalom et al. 2001, Sec. 11.7):
+/// x' = x + sin(wT)/w vx - (1-cos wT)/w vy, y' = y + (1-cos wT)/w vx + sin(wT)/w vy, v' = R(wT) v, w' = w.
+/// omega -> 0 is the constant velocity limit (the series of sin(wT)/w and (1-cos wT)/w).
+Vec5 ctMove(const Vec5& s, double T, Mat5* F) {
+  const double w = s(4), vx = s(2), vy = s(3), wT = w * T;
+  const bool straight = std::abs(wT) < 1e-6;
+  const double sw = straight ? T : std::sin(wT) / w, cw = straight ? 0.5 * w * T * T : (1 - std::cos(wT)) / w;
+  const double c = std::cos(wT), sn = std::sin(wT);
+  Vec5 o;
+  o << s(0) + sw * vx - cw * vy, s(1) + cw * vx + sw * vy, c * vx - sn * vy, sn * vx + c * vy, w;
+  if (F) {
+    // d(sin wT / w)/dw and d((1 - cos wT)/w)/dw (their limits at w = 0: 0 and T^2/2)
+    const double dsw = straight ? 0 : (T * c - sw) / w, dcw = straight ? 0.5 * T * T : (T * sn - cw) / w;
+    F->setIdentity();
+    (*F)(0, 2) = sw, (*F)(0, 3) = -cw, (*F)(0, 4) = dsw * vx - dcw * vy;
+    (*F)(1, 2) = cw, (*F)(1, 3) = sw, (*F)(1, 4) = dcw * vx + dsw * vy;
+    (*F)(2, 2) = c, (*F)(2, 3) = -sn, (*F)(2, 4) = -T * (sn * vx + c * vy);
+    (*F)(3, 2) = sn, (*F)(3, 3) = c, (*F)(3, 4) = T * (c * vx - sn * vy);
+  }
+  return o;
+}
 
 void init(Track& tr, const TrackerParams& p) {
   Vec5 x;

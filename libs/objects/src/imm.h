@@ -14,6 +14,9 @@
 
 namespace roadslam::objects::imm {
 
+/// The coordinated turn transition of \p s = [x, y, vx, vy, omega] over \p T [s]; \p F: its Jacobian.
+Eigen::Matrix<double, 5, 1> ctMove(const Eigen::Matrix<double, 5, 1>& s, double T, Eigen::Matrix<double, 5, 5>* F);
+
 /// Both models start from the track's 4-D state (Track::x, Track::P) with omega = 0 and the
 /// CT model's turn rate uncertainty; model probabilities ImmParams::init_ct_probability.
 void init(Track& tr, const TrackerParams& p);

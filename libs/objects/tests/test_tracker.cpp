@@ -9,6 +9,7 @@
 
 #include "roadslam/objects/stage.h"
 #include "roadslam/objects/tracker.h"
+#include "../src/imm.h"
 #include "synthetic_boxes.h"
 
 using namespace roadslam::objects;
@@ -277,4 +278,32 @@ TEST(Tracker, TheImmFollowsACarThroughACornerWithOneId) {
   EXPECT_NEAR(t.speed(), 9.5, 0.5);
   Tracker cv{TrackerParams{}};
   EXPECT_GT(driveThroughACorner(cv).ids.size(), 1u);  // the corner is one a constant velocity gate loses
+}
+
+// The coordinated turn's Jacobian (analytic, src/imm.cpp) against central differences of its transition,
+// turning and straight (omega = 0: the series limit), and the transition against the closed form: a
+// quarter circle at omega = pi/2 over 1 s from (0, 0) heading east at 10 m/s ends at (r, r), r = v / omega.
+TEST(Imm, TheCoordinatedTurnsJacobianIsItsTransitionsDerivative) {
+  using Vec5 = Eigen::Matrix<double, 5, 1>;
+  using Mat5 = Eigen::Matrix<double, 5, 5>;
+  for (const double w : {0.7, -1.3, 0.0}) {
+    Vec5 s;
+    s << 3, -2, 8, 2.5, w;
+    Mat5 F;
+    imm::ctMove(s, 0.1, &F);
+    for (int k = 0; k < 5; ++k) {
+      Vec5 d = Vec5::Zero();
+      d(k) = 1e-6;
+      const Vec5 num = (imm::ctMove(s + d, 0.1, nullptr) - imm::ctMove(s - d, 0.1, nullptr)) / 2e-6;
+      EXPECT_LT((F.col(k) - num).norm(), 1e-6) << "column " << k << ", omega " << w;
+    }
+  }
+  Vec5 s;
+  s << 0, 0, 10, 0, M_PI / 2;
+  const Vec5 o = imm::ctMove(s, 1.0, nullptr);
+  const double r = 10 / (M_PI / 2);
+  EXPECT_NEAR(o(0), r, 1e-9);
+  EXPECT_NEAR(o(1), r, 1e-9);
+  EXPECT_NEAR(o(2), 0, 1e-9);
+  EXPECT_NEAR(o(3), 10, 1e-9);
 }
