@@ -66,6 +66,7 @@ TEST(MotMetrics, CountsMatchesSwitchesAndFalsePositivesOfKnownTracks) {
   EXPECT_NEAR(m.speed_error_mean_mps, 0.5, 1e-6);
   EXPECT_EQ(m.gt_cars_seen, 1u);
   EXPECT_EQ(m.id_switches_after_gap, 0u);  // the car was matched the frame before (0.1 s)
+  EXPECT_EQ(m.id_switches_in_view, 1u);     // ... and never left the view (no returns in the file: by range only)
   eval::MotParams p;
   p.switch_gap_s = 0.05, p.keep_events = true;
   const auto tight = eval::evaluateMotFiles(d + "/gt_objects.json", d + "/gt_trajectory.tum", d, p);
@@ -140,6 +141,60 @@ TEST(MotMetrics, HiddenAndFarCarsAreDontCare) {
   const auto all = eval::evaluateMotFiles(d + "/gt_objects.json", d + "/gt_trajectory.tum", d, p);
   EXPECT_EQ(all.gt, 41u);
   EXPECT_EQ(all.matches, 36u);
+  std::filesystem::remove_all(d);
+}
+
+// The second id-switch figure: a car followed by track 1 in frames 0..19 and by track 2 from frame 25 on,
+// with \p between_returns lidar points on it in frames 20..24 and no track there. With 0 points it left the
+// sensor's view: CLEAR MOT's switch stays, KITTI's convention (id_switches_in_view) forgets it; with 5
+// (hidden in part, don't care) it stayed in view and both count it.
+static eval::MotMetrics switchAcrossFrames(const std::string& d, int between_returns) {
+  const double t0 = 1000.0;
+  nlohmann::json track = nlohmann::json::array();
+  for (int k = 0; k <= 40; ++k) {
+    const double x = -20.0 + 1.0 * k;
+    track.push_back({t0 + 0.1 * k, x, 5.0, 0.0, 0.0, (k >= 20 && k < 25) ? between_returns : 50, std::hypot(x, 5.0)});
+  }
+  const nlohmann::json gt = {{"frame", "world"},
+                             {"moving_cars", {{{"id", 0}, {"length_m", 4.5}, {"width_m", 1.8}, {"height_m", 1.5}, {"track", track}}}}};
+  std::ofstream(d + "/gt_objects.json") << gt.dump();
+  std::ofstream g(d + "/gt_trajectory.tum"), e(d + "/trajectory_odometry.tum"), tr(d + "/tracks.csv");
+  tr << "frame,stamp_s,track_id,x,y,vx,vy,speed_mps,heading_rad,length_m,width_m,z_min,z_max,moving,hits,misses,age_s\n";
+  for (int k = 0; k <= 40; ++k) {
+    const double t = t0 + 0.1 * k;
+    char line[256];
+    std::snprintf(line, sizeof(line), "%.6f 0 0 0 0 0 0 1\n", t);
+    g << line;
+    e << line;
+    if (k >= 20 && k < 25) continue;
+    std::snprintf(line, sizeof(line), "%d,%.6f,%d,%.3f,5.0,10,0,10,0,4.5,1.8,-1,0.5,1,%d,0,1\n", k, t, k < 20 ? 1 : 2, -20.0 + 1.0 * k,
+                  k + 3);
+    tr << line;
+  }
+  g.close(), e.close(), tr.close();
+  eval::MotParams p;
+  p.keep_events = true;
+  return eval::evaluateMotFiles(d + "/gt_objects.json", d + "/gt_trajectory.tum", d, p);
+}
+
+TEST(MotMetrics, ASwitchAfterTheCarLeftTheViewIsCountedApart) {
+  const std::string d = tmpDir();
+  const auto away = switchAcrossFrames(d, 0);
+  EXPECT_EQ(away.id_switches, 1u);
+  EXPECT_EQ(away.id_switches_in_view, 0u);
+  EXPECT_EQ(away.misses, 0u);  // no point on the car: don't care
+  const auto hidden = switchAcrossFrames(d, 5);
+  EXPECT_EQ(hidden.id_switches, 1u);
+  EXPECT_EQ(hidden.id_switches_in_view, 1u);
+  EXPECT_NEAR(hidden.id_switches_in_view_per_100s, hidden.id_switches_per_100s, 1e-9);
+  for (const auto* m : {&away, &hidden}) {
+    for (const auto& e : m->events) {
+      if (e.kind == "id_switch") {
+        EXPECT_EQ(e.left_view, m == &away ? 1 : 0);
+      }
+    }
+  }
+  EXPECT_NE(eval::eventsCsv(away).find(",0.60,1\n"), std::string::npos) << eval::eventsCsv(away);  // gap_s, left_view
   std::filesystem::remove_all(d);
 }
 

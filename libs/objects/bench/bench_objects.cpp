@@ -26,7 +26,7 @@ void BM_ClusterAndTrack(benchmark::State& st) {
   ClusterParams p;
   p.method = static_cast<ClusterMethod>(st.range(0));
   TrackerParams tp;
-  tp.motion_model = st.range(1) ? MotionModel::Ctrv : MotionModel::ConstantVelocity;
+  tp.motion_model = static_cast<MotionModel>(st.range(1));
   Tracker tr(tp);
   double t = 0;
   size_t objects = 0;
@@ -42,6 +42,6 @@ void BM_ClusterAndTrack(benchmark::State& st) {
 }  // namespace
 
 BENCHMARK(BM_GroundLabels)->Unit(benchmark::kMillisecond);
-// method: 0 range image, 1 Euclidean, 2 DBSCAN; motion model: 0 CV, 1 CTRV
-BENCHMARK(BM_ClusterAndTrack)->Args({0, 0})->Args({1, 0})->Args({2, 0})->Args({0, 1})->Unit(benchmark::kMillisecond);
+// method: 0 range image, 1 Euclidean, 2 DBSCAN; motion model: 0 CV, 1 CTRV, 2 IMM
+BENCHMARK(BM_ClusterAndTrack)->Args({0, 0})->Args({1, 0})->Args({2, 0})->Args({0, 1})->Args({0, 2})->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();

@@ -18,7 +18,7 @@ const NameTable<ClusterMethod>& methodNames() {
 }
 
 const NameTable<MotionModel>& modelNames() {
-  static const NameTable<MotionModel> t = {{MotionModel::ConstantVelocity, "cv"}, {MotionModel::Ctrv, "ctrv"}};
+  static const NameTable<MotionModel> t = {{MotionModel::ConstantVelocity, "cv"}, {MotionModel::Ctrv, "ctrv"}, {MotionModel::Imm, "imm"}};
   return t;
 }
 
@@ -86,9 +86,21 @@ void CtrvParams::fields(ParamTable& t) {
   t.angle("ctrv_init_yaw_rate_sigma_degps", init_yaw_rate_sigma_radps);
 }
 
+void ImmParams::fields(ParamTable& t) {
+  t.num("imm_cv_accel_sigma_mps2", cv_accel_sigma_mps2);
+  t.num("imm_ct_accel_sigma_mps2", ct_accel_sigma_mps2);
+  t.angle("imm_ct_turn_accel_sigma_degps2", ct_turn_accel_sigma_radps2);
+  t.angle("imm_init_turn_rate_sigma_degps", init_turn_rate_sigma_radps);
+  t.angle("imm_max_turn_rate_degps", max_turn_rate_radps);
+  t.num("imm_cv_sojourn_s", cv_sojourn_s);
+  t.num("imm_ct_sojourn_s", ct_sojourn_s);
+  t.num("imm_init_ct_probability", init_ct_probability);
+}
+
 void TrackerParams::fields(ParamTable& t) {
   t.choice("motion_model", motion_model, modelNames());
   ctrv.fields(t);
+  imm.fields(t);
   t.num("gate_m", gate_m);
   t.num("gate_sigma", gate_sigma);
   t.num("size_weight", size_weight);
@@ -124,9 +136,11 @@ void TrackerParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, c
   }
   if (gate_m <= 0 || accel_sigma_mps2 <= 0 || meas_sigma_m <= 0 || init_speed_sigma_mps <= 0 || confirm_hits < 1 ||
       max_misses < 0 || output_max_misses < 0 || tentative_max_misses < 0 || max_dt_s <= 0 || ctrv.accel_sigma_mps2 <= 0 || ctrv.yaw_accel_sigma_radps2 <= 0 ||
-      ctrv.init_yaw_rate_sigma_radps <= 0) {
+      ctrv.init_yaw_rate_sigma_radps <= 0 || imm.cv_accel_sigma_mps2 <= 0 || imm.ct_accel_sigma_mps2 <= 0 ||
+      imm.ct_turn_accel_sigma_radps2 <= 0 || imm.init_turn_rate_sigma_radps <= 0 || imm.max_turn_rate_radps <= 0 || imm.cv_sojourn_s <= 0 ||
+      imm.ct_sojourn_s <= 0 || !(imm.init_ct_probability > 0 && imm.init_ct_probability < 1)) {
     throw std::runtime_error("[" + s + "] gate_m, accel_sigma_mps2, meas_sigma_m, init_speed_sigma_mps, max_dt_s, "
-                             "ctrv_* > 0, confirm_hits >= 1, max_misses, output_max_misses and tentative_max_misses >= 0 are required");
+                             "ctrv_* and imm_* > 0, 0 < imm_init_ct_probability < 1, confirm_hits >= 1, max_misses, output_max_misses and tentative_max_misses >= 0 are required");
   }
 }
 

@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 
+#include "imm.h"
+
 namespace roadslam::objects {
 namespace {
 
@@ -195,6 +197,10 @@ void Tracker::predict(double t) {
       if (dt > 0) predictCtrv(tr, dt);
       continue;
     }
+    if (p_.motion_model == MotionModel::Imm) {
+      if (dt > 0) imm::predict(tr, dt, p_);
+      continue;
+    }
     tr.x = F * tr.x;
     tr.P = F * tr.P * F.transpose() + Q;
   }
@@ -234,6 +240,7 @@ namespace {
 void correct(Track& tr, const Eigen::Vector2d& z, double dt, const TrackerParams& p_) {
   // The detection is where the object was when the beam swept it, dt after the state's time:
   // h(x) = position + dt * velocity (CV: H = [I, dt I], linear; CTRV: its Jacobian).
+  if (p_.motion_model == MotionModel::Imm) return imm::correct(tr, z, dt, p_);
   const Eigen::Matrix2d R = Eigen::Matrix2d::Identity() * p_.meas_sigma_m * p_.meas_sigma_m;
   if (p_.motion_model == MotionModel::Ctrv) {
     const double v = tr.s(2), c = std::cos(tr.s(3)), sn = std::sin(tr.s(3));
@@ -337,6 +344,7 @@ Track born(int id, const Detection& d, const Eigen::Vector2d& s, double t, int j
   tr.x.head<2>() = tr.s.head<2>() = centre;
   growToCarBehindFace(tr, d, s, p_);
   if (p_.motion_model == MotionModel::Ctrv) ctrvView(tr);
+  if (p_.motion_model == MotionModel::Imm) imm::init(tr, p_);
   tr.z_min = d.z_min, tr.z_max = d.z_max, tr.top_height = d.top;
   tr.hits = 1, tr.t_birth = tr.t_last = t, tr.birth_xy = tr.x.head<2>(), tr.last_detection = j;
   remember(tr, d, t);

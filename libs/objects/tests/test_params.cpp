@@ -31,6 +31,27 @@ TEST(ObjectsParams, SaveLoadRoundTrip) {
   EXPECT_NEAR(t2.ctrv.yaw_accel_sigma_radps2, 0.25, 1e-7);
 }
 
+TEST(ObjectsParams, ImmKeysRoundTrip) {
+  TrackerParams t;
+  t.motion_model = MotionModel::Imm, t.imm.max_turn_rate_radps = 1.2, t.imm.ct_sojourn_s = 3.5, t.imm.init_ct_probability = 0.2;
+  mrpt::config::CConfigFileMemory ini;
+  t.saveToConfigFile(ini);
+  EXPECT_EQ(ini.read_string("tracking", "motion_model", ""), "imm");
+  TrackerParams t2;
+  t2.loadFromConfigFile(ini);
+  EXPECT_EQ(t2.motion_model, MotionModel::Imm);
+  EXPECT_NEAR(t2.imm.max_turn_rate_radps, 1.2, 1e-7);  // saved in deg/s, as text
+  EXPECT_DOUBLE_EQ(t2.imm.ct_sojourn_s, 3.5);
+  EXPECT_DOUBLE_EQ(t2.imm.init_ct_probability, 0.2);
+  ini.write("tracking", "imm_init_ct_probability", 1.5);
+  try {
+    t2.loadFromConfigFile(ini);
+    FAIL();
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("[tracking]"), std::string::npos) << e.what();
+  }
+}
+
 TEST(ObjectsParams, BadValuesNameTheSection) {
   mrpt::config::CConfigFileMemory ini;
   ini.write("objects", "method", std::string("kmeans"));

@@ -17,6 +17,14 @@
 /// order of x-y centre distance (optimal while cars stand farther apart than twice the match
 /// distance); a GT whose hypothesis changed is an id switch.
 /// MOTA = 1 - (misses + false positives + id switches) / GT; MOTP = mean matched distance [m].
+/// A second id-switch figure, never instead of the first: CLEAR MOT (Sec. 2.1.1) and MOTChallenge
+/// (Milan et al., "MOT16: A Benchmark for Multi-Object Tracking", arXiv:1603.00831: a switch against the
+/// target's last assignment, however long ago) keep a car's
+/// correspondence however long it is away, so a car that leaves the sensor's view and comes back under
+/// a new id is a switch; KITTI's tracking devkit (evaluate_tracking.py) forgets it in every frame where
+/// the car is absent or ignored (last_id = -1). MotMetrics::id_switches_in_view applies KITTI's reset only
+/// to frames where the car was out of the sensor's view: beyond max_range_m + dont_care_margin_m, or
+/// with no lidar point on its box (`returns` 0). A car hidden in part or missed in view still counts.
 /// The GT holds only moving cars: an unmatched hypothesis is a false positive only when it is
 /// labelled moving (static tracks on parked cars, poles and walls are nobody's mistake here).
 
@@ -48,6 +56,7 @@ struct MotEvent {
   int returns = -1;                 ///< the GT car's points in the turn (-1 unknown or no GT car)
   double nearest_m = -1;            ///< miss: nearest confirmed track (any label); false positive: nearest GT car (any) [m]
   double gap_s = -1;                ///< id switch: time since the car's last match [s] (-1 other kinds)
+  int left_view = -1;               ///< id switch: 1 the car was out of the sensor's view since its last match, else 0 (-1 other kinds)
 };
 
 struct MotMetrics {
@@ -62,6 +71,11 @@ struct MotMetrics {
   /// of id_switches, those of a car unmatched for more than MotParams::switch_gap_s before: a car that
   /// comes back into range (around the block) under a new id; lidar boxes alone cannot re-identify it
   size_t id_switches_after_gap = 0;
+  /// of id_switches, those of a car that never left the sensor's view since its last match (beyond
+  /// MotParams::max_range_m + dont_care_margin_m or no lidar point on it): the second figure, KITTI's
+  /// convention for objects that leave the field of view (see the file comment)
+  size_t id_switches_in_view = 0;
+  double id_switches_in_view_per_100s = 0;
   double moving_label_fraction = 0;  ///< of the matches, the ones labelled moving
   size_t gt_cars_seen = 0;          ///< distinct GT cars that came within range (and were seen)
   size_t dont_care = 0;             ///< GT car-frames in range (or just beyond) not counted: too few returns or far
@@ -69,7 +83,7 @@ struct MotMetrics {
   std::vector<MotEvent> events;     ///< with MotParams::keep_events
 };
 
-/// MotMetrics::events as CSV: t,kind,gt_id,track_id,range_m,returns,nearest_m,gap_s
+/// MotMetrics::events as CSV: t,kind,gt_id,track_id,range_m,returns,nearest_m,gap_s,left_view
 std::string eventsCsv(const MotMetrics& m);
 
 /// Scores \p run_dir (tracks.csv, trajectory_odometry.tum of roadslam-map with [objects] enabled)

@@ -21,9 +21,9 @@ enum class ClusterMethod { RangeImage, Euclidean, Dbscan };
 std::string toString(ClusterMethod m);
 ClusterMethod clusterMethodFromString(const std::string& s);  ///< throws std::invalid_argument
 
-/// Motion model of the tracks' Kalman filters: constant velocity (linear) or constant turn rate and
-/// velocity (extended KF).
-enum class MotionModel { ConstantVelocity, Ctrv };
+/// Motion model of the tracks' Kalman filters: constant velocity (linear), constant turn rate and
+/// velocity (extended KF), or an interacting multiple model of constant velocity and coordinated turn.
+enum class MotionModel { ConstantVelocity, Ctrv, Imm };
 std::string toString(MotionModel m);
 
 /// Segmentation ([objects]).
@@ -86,12 +86,31 @@ struct CtrvParams {
   void fields(ParamTable& t);
 };
 
+/// The IMM's models and Markov chain ([tracking] imm_* keys): constant velocity and coordinated turn on
+/// the state [x, y, vx, vy, omega] (Blom and Bar-Shalom 1988; Bar-Shalom, Li and Kirubarajan 2001,
+/// Sec. 11.6.6 and 11.7). The chain leaves a model at the rate 1 / its mean sojourn time.
+struct ImmParams {
+  double cv_accel_sigma_mps2 = 1.5;      ///< CV model: white-acceleration noise (TrackerParams::accel_sigma_mps2's role) [m/s^2]
+  double ct_accel_sigma_mps2 = 1.5;      ///< CT model: white-acceleration noise [m/s^2]
+  double ct_turn_accel_sigma_radps2 = 360.0 * 3.14159265358979323846 / 180.0;  ///< CT model: turn-rate noise (a simulated corner: 60 deg/s within 0.3 s); ini `imm_ct_turn_accel_sigma_degps2` [rad/s^2]
+  double init_turn_rate_sigma_radps = 20.0 * 3.14159265358979323846 / 180.0;  ///< CT turn rate uncertainty of a new track; ini `imm_init_turn_rate_sigma_degps` [rad/s]
+  /// CT model: the turn rate is clamped to this and its standard deviation capped at it (a static
+  /// object's turn rate is unobservable); ini `imm_max_turn_rate_degps` [rad/s]
+  double max_turn_rate_radps = 180.0 * 3.14159265358979323846 / 180.0;
+  double cv_sojourn_s = 4.0;             ///< mean time in the CV model before a turn [s]
+  double ct_sojourn_s = 2.0;             ///< mean time in the CT model (a turn at a junction) [s]
+  double init_ct_probability = 0.1;      ///< CT model probability of a new track [-]
+
+  void fields(ParamTable& t);
+};
+
 /// Tracking ([tracking]): a Kalman filter per track in the map frame (constant velocity, or CTRV as
 /// an extended KF), global nearest-neighbour association (Hungarian on gated x-y distances), birth,
 /// confirmation, death.
 struct TrackerParams {
-  MotionModel motion_model = MotionModel::ConstantVelocity;  ///< cv or ctrv [-]
+  MotionModel motion_model = MotionModel::ConstantVelocity;  ///< cv, ctrv or imm [-]
   CtrvParams ctrv;                       ///< motion_model = ctrv: keys ctrv_*
+  ImmParams imm;                         ///< motion_model = imm: keys imm_*
   double gate_m = 2.5;                   ///< a detection farther than this from a track's prediction is no match [m]
   double gate_sigma = 3.0;               ///< ... or farther than this many standard deviations (innovation covariance) [-]
   double size_weight = 0.5;              ///< association cost per metre of extent difference (along + across) [-]

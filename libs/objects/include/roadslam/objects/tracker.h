@@ -1,7 +1,8 @@
 #pragma once
 /// \file tracker.h
 /// Multi-object tracking in the map frame: a Kalman filter per track on the box centre, constant
-/// velocity (state x, y, vx, vy) or CTRV (x, y, v, psi, omega; an extended KF, TrackerParams::motion_model), global nearest-neighbour association (Hungarian assignment on x-y
+/// velocity (state x, y, vx, vy), CTRV (x, y, v, psi, omega; an extended KF) or an IMM of constant velocity
+/// and coordinated turn (x, y, vx, vy, omega; TrackerParams::motion_model), global nearest-neighbour association (Hungarian assignment on x-y
 /// distances inside a gate), birth of a tentative track from an unmatched detection, confirmation
 /// after TrackerParams::confirm_hits hits, death after max_misses misses; stable ids; a static /
 /// moving label from the filtered speed and the distance travelled since birth.
@@ -11,6 +12,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -33,12 +35,17 @@ struct BoxRecord {
 struct Track {
   int id = 0;                         ///< stable, from 1
   TrackState state = TrackState::Tentative;
-  Eigen::Vector4d x = Eigen::Vector4d::Zero();  ///< [x, y, vx, vy], map frame [m, m/s] (CTRV: its view of s)
+  Eigen::Vector4d x = Eigen::Vector4d::Zero();  ///< [x, y, vx, vy], map frame [m, m/s] (CTRV: its view of s; IMM: the models combined)
   Eigen::Matrix4d P = Eigen::Matrix4d::Identity();
   /// MotionModel::Ctrv: the filter's own state [x, y, v, psi, omega] (v signed: a car may be seen
   /// driving along either end of its box) and covariance [m, m, m/s, rad, rad/s]
   Eigen::Matrix<double, 5, 1> s = Eigen::Matrix<double, 5, 1>::Zero();
   Eigen::Matrix<double, 5, 5> S = Eigen::Matrix<double, 5, 5>::Identity();
+  /// MotionModel::Imm: each model's state [x, y, vx, vy, omega] and covariance (0: constant velocity,
+  /// 1: coordinated turn) [m, m, m/s, m/s, rad/s], and the model probabilities [-]; x, P: their combination
+  std::array<Eigen::Matrix<double, 5, 1>, 2> imm_x{};
+  std::array<Eigen::Matrix<double, 5, 5>, 2> imm_P{};
+  Eigen::Vector2d imm_mu = Eigen::Vector2d(1, 0);
   double length = 0, width = 0;       ///< largest extents seen along / across the heading [m]
   double heading = 0;                 ///< [rad], from the velocity once moving, else the box's
   double z_min = 0, z_max = 0;        ///< last detection's heights, map frame [m]

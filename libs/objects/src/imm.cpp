@@ -1,0 +1,145 @@
+#include "imm.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace roadslam::objects::imm {
+namespace {
+
+using Vec5 = Eigen::Matrix<double, 5, 1>;
+using Mat5 = Eigen::Matrix<double, 5, 5>;
+constexpr int kCv = 0, kCt = 1;
+constexpr double kMinLikelihood = 1e-300;  // keeps the probabilities' normalisation finite
+
+/// Discrete white-acceleration noise on x, y (Bar-Shalom et al. 2001, Sec. 6.3.2, discrete white
+/// noise acceleration: G q G^T with G = [T^2/2, T]) and a white turn-rate increment sigma_w^2 T on omega.
+Mat5 noise(double T, double accel_sigma, double omega_var) {
+  const double q = accel_sigma * accel_sigma;
+  Mat5 Q = Mat5::Zero();
+  Q(0, 0) = Q(1, 1) = T * T * T * T / 4 * q;
+  Q(0, 2) = Q(2, 0) = Q(1, 3) = Q(3, 1) = T * T * T / 2 * q;
+  Q(2, 2) = Q(3, 3) = T * T * q;
+  Q(4, 4) = omega_var;
+  return Q;
+}
+
+/// A car turns at most at \p max [rad/s]: the CT model's turn rate is clamped to it and its variance
+/// capped at max^2 (row and column 4 scaled: D P D stays positive semi-definite). A static object's turn
+/// rate is unobservable and would otherwise grow without bound, and with it the velocity's covariance.
+void boundTurnRate(Vec5& x, Mat5& P, double max) {
+  x(4) = std::clamp(x(4), -max, max);
+  if (P(4, 4) <= max * max) return;
+  const double f = max / std::sqrt(P(4, 4));
+  P.row(4) *= f;
+  P.col(4) *= f;
+}
+
+/// The Markov chain's transition probabilities over \p T: the model is left at the rate 1 / mean sojourn.
+Eigen::Matrix2d transitions(double T, const ImmParams& p) {
+  const double leave_cv = 1 - std::exp(-T / p.cv_sojourn_s), leave_ct = 1 - std::exp(-T / p.ct_sojourn_s);
+  Eigen::Matrix2d Pi;
+  Pi << 1 - leave_cv, leave_cv, leave_ct, 1 - leave_ct;
+  return Pi;
+}
+
+/// The combination, x = sum_j mu_j x_j, P = sum_j mu_j (P_j + (x_j - x)(x_j - x)^T), into the track's 4-D view.
+void combine(Track& tr) {
+  Vec5 x = tr.imm_mu(kCv) * tr.imm_x[kCv] + tr.imm_mu(kCt) * tr.imm_x[kCt];
+  Mat5 P = Mat5::Zero();
+  for (int j : {kCv, kCt}) {
+    const Vec5 d = tr.imm_x[j] - x;
+    P += tr.imm_mu(j) * (tr.imm_P[j] + d * d.transpose());
+  }
+  tr.x = x.head<4>();
+  tr.P = P.topLeftCorner<4, 4>();
+}
+
+}  // namespace
+
+/// Coordinated turn transition over \p T and its Jacobian \p F (Bar-Shalom et al. 2001, Sec. 11.7):
+/// x' = x + sin(wT)/w vx - (1-cos wT)/w vy, y' = y + (1-cos wT)/w vx + sin(wT)/w vy, v' = R(wT) v, w' = w.
+/// omega -> 0 is the constant velocity limit (the series of sin(wT)/w and (1-cos wT)/w).
+Vec5 ctMove(const Vec5& s, double T, Mat5* F) {
+  const double w = s(4), vx = s(2), vy = s(3), wT = w * T;
+  const bool straight = std::abs(wT) < 1e-6;
+  const double sw = straight ? T : std::sin(wT) / w, cw = straight ? 0.5 * w * T * T : (1 - std::cos(wT)) / w;
+  const double c = std::cos(wT), sn = std::sin(wT);
+  Vec5 o;
+  o << s(0) + sw * vx - cw * vy, s(1) + cw * vx + sw * vy, c * vx - sn * vy, sn * vx + c * vy, w;
+  if (F) {
+    // d(sin wT / w)/dw and d((1 - cos wT)/w)/dw (their limits at w = 0: 0 and T^2/2)
+    const double dsw = straight ? 0 : (T * c - sw) / w, dcw = straight ? 0.5 * T * T : (T * sn - cw) / w;
+    F->setIdentity();
+    (*F)(0, 2) = sw, (*F)(0, 3) = -cw, (*F)(0, 4) = dsw * vx - dcw * vy;
+    (*F)(1, 2) = cw, (*F)(1, 3) = sw, (*F)(1, 4) = dcw * vx + dsw * vy;
+    (*F)(2, 2) = c, (*F)(2, 3) = -sn, (*F)(2, 4) = -T * (sn * vx + c * vy);
+    (*F)(3, 2) = sn, (*F)(3, 3) = c, (*F)(3, 4) = T * (c * vx - sn * vy);
+  }
+  return o;
+}
+
+void init(Track& tr, const TrackerParams& p) {
+  Vec5 x;
+  x << tr.x, 0;
+  Mat5 P = Mat5::Zero();
+  P.topLeftCorner<4, 4>() = tr.P;
+  P(4, 4) = p.imm.init_turn_rate_sigma_radps * p.imm.init_turn_rate_sigma_radps;
+  tr.imm_x = {x, x};
+  tr.imm_P = {P, P};
+  tr.imm_P[kCv](4, 4) = 0;  // the CV model has omega = 0
+  tr.imm_mu << 1 - p.imm.init_ct_probability, p.imm.init_ct_probability;
+}
+
+void predict(Track& tr, double T, const TrackerParams& p) {
+  const Eigen::Matrix2d Pi = transitions(T, p.imm);
+  // mixing probabilities mu_{i|j} = p_ij mu_i / cbar_j, cbar_j = sum_i p_ij mu_i (interaction)
+  const Eigen::Vector2d cbar = Pi.transpose() * tr.imm_mu;
+  std::array<Vec5, 2> x0;
+  std::array<Mat5, 2> P0;
+  for (int j : {kCv, kCt}) {
+    x0[j].setZero(), P0[j].setZero();
+    for (int i : {kCv, kCt}) x0[j] += Pi(i, j) * tr.imm_mu(i) / cbar(j) * tr.imm_x[i];  // x0_j = sum_i mu_{i|j} x_i
+    for (int i : {kCv, kCt}) {
+      const Vec5 d = tr.imm_x[i] - x0[j];
+      P0[j] += Pi(i, j) * tr.imm_mu(i) / cbar(j) * (tr.imm_P[i] + d * d.transpose());  // P0_j
+    }
+  }
+  // model-matched prediction from the mixed x0_j, P0_j: CV keeps omega at 0, CT turns (EKF)
+  Mat5 F_cv = Mat5::Identity();
+  F_cv(0, 2) = F_cv(1, 3) = T;
+  F_cv(4, 4) = 0;
+  tr.imm_x[kCv] = F_cv * x0[kCv];
+  tr.imm_P[kCv] = F_cv * P0[kCv] * F_cv.transpose() + noise(T, p.imm.cv_accel_sigma_mps2, 0);
+  Mat5 F_ct;
+  tr.imm_x[kCt] = ctMove(x0[kCt], T, &F_ct);
+  const double qw = p.imm.ct_turn_accel_sigma_radps2 * p.imm.ct_turn_accel_sigma_radps2 * T;
+  tr.imm_P[kCt] = F_ct * P0[kCt] * F_ct.transpose() + noise(T, p.imm.ct_accel_sigma_mps2, qw);
+  boundTurnRate(tr.imm_x[kCt], tr.imm_P[kCt], p.imm.max_turn_rate_radps);
+  // with no detection the model probabilities are the predicted ones, cbar (a miss keeps them)
+  tr.imm_mu = cbar;
+  combine(tr);
+}
+
+void correct(Track& tr, const Eigen::Vector2d& z, double dt_meas, const TrackerParams& p) {
+  Eigen::Matrix<double, 2, 5> H = Eigen::Matrix<double, 2, 5>::Zero();
+  H(0, 0) = H(1, 1) = 1;
+  H(0, 2) = H(1, 3) = dt_meas;
+  const Eigen::Matrix2d R = Eigen::Matrix2d::Identity() * p.meas_sigma_m * p.meas_sigma_m;
+  Eigen::Vector2d lik;
+  for (int j : {kCv, kCt}) {
+    const Eigen::Vector2d nu = z - H * tr.imm_x[j];
+    const Eigen::Matrix2d S = H * tr.imm_P[j] * H.transpose() + R;
+    const Eigen::Matrix<double, 5, 2> K = tr.imm_P[j] * H.transpose() * S.inverse();
+    tr.imm_x[j] += K * nu;
+    tr.imm_P[j] = (Mat5::Identity() - K * H) * tr.imm_P[j];
+    if (j == kCt) boundTurnRate(tr.imm_x[j], tr.imm_P[j], p.imm.max_turn_rate_radps);
+    // the innovation's Gaussian likelihood Lambda_j = N(nu; 0, S)
+    lik(j) = std::exp(-0.5 * nu.dot(S.inverse() * nu)) / (2 * M_PI * std::sqrt(S.determinant()));
+  }
+  // model probabilities mu_j = Lambda_j cbar_j / sum_k Lambda_k cbar_k (cbar: Track::imm_mu after predict)
+  const Eigen::Vector2d w = (lik.array() + kMinLikelihood).matrix().cwiseProduct(tr.imm_mu);
+  tr.imm_mu = w / w.sum();
+  combine(tr);
+}
+
+}  // namespace roadslam::objects::imm
