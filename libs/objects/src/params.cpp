@@ -74,6 +74,9 @@ void ClusterParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, c
                              "0 < lshape_step_deg <= 45, map_delay_s, retro_extrapolate_s and ground_max_bridge_m >= 0 are required");
   }
   ground.loadFromConfigFile(c, ground_section);
+  // 0: the reach of the sweeps the maps are built from, so no car the map keeps goes unsegmented
+  if (max_range_m <= 0) max_range_m = c.read_double(ground_section, "max_range_m", kMapReachDefault_m);
+  if (max_range_m <= min_range_m) throw std::runtime_error("[" + s + "] max_range_m must exceed min_range_m (0: [" + ground_section + "] max_range_m)");
 }
 
 void ClusterParams::saveToConfigFile(mrpt::config::CConfigFileBase& c, const std::string& s) const {
