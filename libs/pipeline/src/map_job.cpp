@@ -264,6 +264,7 @@ MapOutcome runMapJob(const MapRequest& req) {
   stages.remove_moving_from_maps = params.objects.remove_moving_from_maps;
   stages.removal_margin_m = params.objects.removal_margin_m;
   stages.remove_moving_from_odometry = params.objects.enabled && params.objects.remove_moving_from_odometry;
+  stages.odometry_erase_back_s = params.objects.odometry_erase_back_s;
   if (params.objects.enabled && params.objects.remove_moving_from_maps) stages.octomap_delay_s = params.objects.map_delay_s;
   Pipeline pipe(std::move(source), std::move(stages));
   const sources::ScanSource* stream = &pipe.source();

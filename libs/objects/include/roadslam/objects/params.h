@@ -58,6 +58,10 @@ struct ClusterParams {
   /// ... and, predicted to the next sweeps, out of the odometry's own local map (libs/pipeline hands
   /// them to the pose stage: the objects stage runs after the odometry) [-]
   bool remove_moving_from_odometry = false;
+  /// With remove_moving_from_odometry: each moving track's box also erases the odometry's local-map
+  /// voxels it swept over this long before now (what the car left there before its moving label,
+  /// ~1 s); 0: none [s]
+  double odometry_erase_back_s = 0.0;
   double removal_margin_m = 0.3;         ///< around a moving object's box, x-y and z [m]
   /// With the removal: keyframes reach the OctoMap this long after their sweep, so that the points of a
   /// car labelled moving later (its first sweeps, before the label) leave the keyframes first [s]
