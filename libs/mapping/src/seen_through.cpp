@@ -32,7 +32,7 @@ class RangeImage {
  public:
   static constexpr double kMaxElevation = 1.2;  // [rad] (69 deg: above any automotive lidar's field of view)
 
-  RangeImage(const SeenThroughParams& p)
+  explicit RangeImage(const SeenThroughParams& p)
       : az_res_(p.azimuth_res_rad), el_res_(p.elevation_res_rad),
         cols_(static_cast<int>(std::ceil(2 * M_PI / az_res_))),
         rows_(static_cast<int>(std::ceil(2 * kMaxElevation / el_res_))),
