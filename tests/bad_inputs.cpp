@@ -81,6 +81,8 @@ void makeFiles() {
   write(w / "bad-matcher.ini", "[odometry]\nmatcher = kiss\n");
   write(w / "bad-graph-optimizer.ini", "[pose_graph]\noptimizer = g2o\n");
   write(w / "negative-voxel.ini", "[odometry]\nmap_voxel_m = -1\n");
+  write(w / "seen-through-zero-tolerance.ini", "[seen_through]\nray_tolerance_m = 0\n");
+  write(w / "objects-reach-inside-body.ini", "[objects]\nmax_range_m = 1\n");
   write(w / "bad-spin.ini", "[kitti]\nspin = sideways\n");
   write(w / "bad-stamp-reference.ini", "[kitti]\nstamp_reference = centre\n");
   write(w / "bad-bool.ini", "[odometry]\ndeskew = maybe\n");
@@ -218,6 +220,8 @@ const Row kTable[] = {
   {"map-bad-matcher",      "roadslam-map --config {W}/bad-matcher.ini --input {W}/truncated.pcap --out {O}", 1, "expected voxel_map or registration"},
   {"map-bad-graph-optimizer", "roadslam-map --config {W}/bad-graph-optimizer.ini --input {W}/truncated.pcap --out {O}", 1, "optimizer = 'g2o': expected lm or mrpt_levmarq"},
   {"map-negative-voxel",   "roadslam-map --config {W}/negative-voxel.ini --input {W}/truncated.pcap --out {O}", 1, "must be positive"},
+  {"map-seen-through-zero-tolerance", "roadslam-map --config {W}/seen-through-zero-tolerance.ini --input {W}/truncated.pcap --out {O}", 1, "[seen_through]: need azimuth_res_deg, elevation_res_deg, ray_tolerance_m"},
+  {"map-objects-reach-inside-body", "roadslam-map --config {W}/objects-reach-inside-body.ini --input {W}/truncated.pcap --out {O}", 1, "[objects] max_range_m must exceed min_range_m"},
   {"map-bad-spin",         "roadslam-map --config {W}/bad-spin.ini --input {W}/truncated.pcap --out {O}", 1, "[kitti] spin = 'sideways'"},
   {"map-bad-stamp-ref",    "roadslam-map --config {W}/bad-stamp-reference.ini --input {W}/truncated.pcap --out {O}", 1, "expected start, middle or end"},
   {"map-bad-bool",         "roadslam-map --config {W}/bad-bool.ini --input {W}/truncated.pcap --out {O}", 1, "is not a boolean"},

@@ -13,12 +13,14 @@ void MapOutputParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cf
   point_map.loadFromConfigFile(cfg, "point_map");
   octomap.loadFromConfigFile(cfg, "octomap");
   grid.loadFromConfigFile(cfg, "grid");
+  seen_through.loadFromConfigFile(cfg, "seen_through");
 }
 
 void MapOutputParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg) const {
   point_map.saveToConfigFile(cfg, "point_map");
   octomap.saveToConfigFile(cfg, "octomap");
   grid.saveToConfigFile(cfg, "grid");
+  seen_through.saveToConfigFile(cfg, "seen_through");
 }
 
 MapOutputStats writeMaps(const std::string& dir, const Mapper& mapper, const PoseVector& trajectory,

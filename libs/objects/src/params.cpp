@@ -48,6 +48,7 @@ void ClusterParams::fields(ParamTable& t) {
   t.angle("lshape_step_deg", lshape_step_rad);
   t.flag("remove_moving_from_maps", remove_moving_from_maps);
   t.flag("remove_moving_from_odometry", remove_moving_from_odometry);
+  t.num("odometry_erase_back_s", odometry_erase_back_s);
   t.num("removal_margin_m", removal_margin_m);
   t.num("map_delay_s", map_delay_s);
   t.num("retro_extrapolate_s", retro_extrapolate_s);
@@ -68,12 +69,15 @@ void ClusterParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, c
     throw std::runtime_error("[" + s + "] " + e.what());
   }
   if (azimuth_bins < 16 || azimuth_window < 1 || ring_window < 0 || cluster_distance_m <= 0 || min_points < 1 ||
-      dbscan_min_points < 1 || lshape_step_rad <= 0 || lshape_step_rad > M_PI / 4 || map_delay_s < 0 || retro_extrapolate_s < 0 || ground_max_bridge_m < 0) {
+      dbscan_min_points < 1 || lshape_step_rad <= 0 || lshape_step_rad > M_PI / 4 || map_delay_s < 0 || retro_extrapolate_s < 0 || ground_max_bridge_m < 0 || odometry_erase_back_s < 0) {
     throw std::runtime_error("[" + s + "] azimuth_bins >= 16, azimuth_window >= 1, ring_window >= 0, "
                              "cluster_distance_m > 0, min_points >= 1, dbscan_min_points >= 1, "
-                             "0 < lshape_step_deg <= 45, map_delay_s, retro_extrapolate_s and ground_max_bridge_m >= 0 are required");
+                             "0 < lshape_step_deg <= 45, map_delay_s, retro_extrapolate_s, ground_max_bridge_m and odometry_erase_back_s >= 0 are required");
   }
   ground.loadFromConfigFile(c, ground_section);
+  // 0: the reach of the sweeps the maps are built from, so no car the map keeps goes unsegmented
+  if (max_range_m <= 0) max_range_m = c.read_double(ground_section, "max_range_m", kMapReachDefault_m);
+  if (max_range_m <= min_range_m) throw std::runtime_error("[" + s + "] max_range_m must exceed min_range_m (0: [" + ground_section + "] max_range_m)");
 }
 
 void ClusterParams::saveToConfigFile(mrpt::config::CConfigFileBase& c, const std::string& s) const {

@@ -280,6 +280,22 @@ bool MapExclusion::contains(const Eigen::Vector3d& p, double t_s) const {
          p.z() >= z_min_m && p.z() <= z_max_m;
 }
 
+size_t Odometry::setMapExclusions(std::vector<MapExclusion> boxes) {
+  exclusions_ = std::move(boxes);
+  constexpr double kStep_s = 0.05;  // half a sweep: a car at 15 m/s moves 0.75 m, inside its margins
+  size_t erased = 0;
+  for (const MapExclusion& b : exclusions_) {
+    if (b.erase_back_s <= 0 || params_.matcher != Matcher::VoxelMap) continue;
+    erased += gmap_.eraseVoxels([&](const Eigen::Vector3d& mean) {
+      for (double dt = 0; dt <= b.erase_back_s + 1e-9; dt += kStep_s) {
+        if (b.contains(mean, b.stamp_s - dt)) return true;
+      }
+      return false;
+    });
+  }
+  return erased;
+}
+
 int Odometry::updateMap(const Eigen::Isometry3d& T_world_lidar, double stamp_s) {
   // A bounded number of points of each frame per map voxel (KISS-ICP inserts the frame voxelised at
   // half the map voxel): a voxel then fills from several frames and rings, so the scan line of one

@@ -192,3 +192,39 @@ TEST(OdometryUnit, ExcludedBoxesKeepACarsPointsOutOfTheMap) {
     }
   }
 }
+
+// The same car, seen for 1 s before anything labelled it: its voxels are in the local map. A box on
+// it with erase_back_s = 1 s erases the voxels it swept over that second and nothing else.
+TEST(OdometryUnit, ExclusionBoxesEraseWhatTheCarLeftBeforeItsLabel) {
+  odometry::Odometry odo(testParams());
+  for (int i = 0; i < 10; ++i) {
+    Scan s = canyonSweep(0.8 * i, 300 + i);
+    for (double x = -2; x <= 2; x += 0.1)
+      for (double z = -1.5; z <= -0.5; z += 0.1) {
+        ScanPoint p;
+        p.x = static_cast<float>(5 + 1.2 * i + x - 0.8 * i), p.y = 3.f, p.z = static_cast<float>(z);
+        s.points.push_back(p);
+      }
+    s.stamp_s = 0.1 * i;
+    ASSERT_NE(odo.process(s).status, FrameStatus::NotConverged);
+  }
+  auto onPath = [](const Eigen::Vector3d& m) { return std::abs(m.y() - 3) < 0.6 && m.z() > -1.7 && m.z() < -0.3 && m.x() > 2 && m.x() < 19; };
+  auto count = [&](bool path) {
+    int n = 0;
+    for (const auto& m : odo.voxelMap().means()) n += onPath(m) == path;
+    return n;
+  };
+  const int car_before = count(true), rest_before = count(false);
+  ASSERT_GT(car_before, 5);
+  odometry::MapExclusion car;
+  car.stamp_s = 0.9, car.centre_world = {5 + 1.2 * 9, 3}, car.velocity_world_mps = {12, 0};
+  car.half_length_m = 2.3 + 0.3, car.half_width_m = 0.9 + 0.3, car.z_min_m = -1.8, car.z_max_m = -0.2;
+  odometry::MapExclusion no_erase = car;
+  no_erase.erase_back_s = 0;
+  EXPECT_EQ(odo.setMapExclusions({no_erase}), 0u);  // 0 s: its current box only keeps new points out
+  EXPECT_EQ(count(true), car_before);
+  car.erase_back_s = 1.0;
+  EXPECT_GE(odo.setMapExclusions({car}), static_cast<size_t>(car_before));  // and voxels too thin for a mean
+  EXPECT_EQ(count(true), 0);
+  EXPECT_EQ(count(false), rest_before);
+}

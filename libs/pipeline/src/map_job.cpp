@@ -253,7 +253,10 @@ MapOutcome runMapJob(const MapRequest& req) {
   MapOutcome out;
   mapping::Mapper mapper(params.mapper);
   std::unique_ptr<mapping::OctoMapWorker> octo;
-  if (maps && params.maps.octomap.enabled) octo = std::make_unique<mapping::OctoMapWorker>(params.maps.octomap);
+  // the seen-through pass changes the keyframes after the run: the OctoMap is then built from them at the end
+  if (maps && params.maps.octomap.enabled && !params.maps.seen_through.enabled) {
+    octo = std::make_unique<mapping::OctoMapWorker>(params.maps.octomap);
+  }
   std::unique_ptr<CanPriorStream> can;
   if (!req.can_log_path.empty()) can = std::make_unique<CanPriorStream>(req.can_log_path, req.vehicle_ini_path, *cfg);
   Stages stages;
@@ -271,6 +274,7 @@ MapOutcome runMapJob(const MapRequest& req) {
   stages.remove_moving_from_maps = params.objects.remove_moving_from_maps;
   stages.removal_margin_m = params.objects.removal_margin_m;
   stages.remove_moving_from_odometry = params.objects.enabled && params.objects.remove_moving_from_odometry;
+  stages.odometry_erase_back_s = params.objects.odometry_erase_back_s;
   if (params.objects.enabled && params.objects.remove_moving_from_maps) stages.octomap_delay_s = params.objects.map_delay_s;
   Pipeline pipe(std::move(source), std::move(stages));
   const sources::ScanSource* stream = &pipe.source();
@@ -346,6 +350,12 @@ MapOutcome runMapJob(const MapRequest& req) {
     out.summary["ms_mapping_total"] = pipe.totals().maps;
     std::vector<mapping::TopViewBox> boxes;
     for (const auto& [id, b] : objects_out.last_moving) boxes.push_back(b);
+    if (params.maps.seen_through.enabled) {
+      const auto st = mapping::removeSeenThrough(mapper, params.maps.point_map.voxel_m, params.maps.seen_through);
+      out.summary["seen_through"] = {{"voxels", st.voxels}, {"tested_voxels", st.tested_voxels},
+                                     {"references", st.references}, {"dynamic_voxels", st.dynamic_voxels},
+                                     {"removed_points", st.removed_points}, {"ms", st.ms}};
+    }
     const auto ms = mapping::writeMaps(req.out_dir, mapper, {out.T_map_lidar.begin(), out.T_map_lidar.end()},
                                        params.maps, octo.get(), boxes);
     out.summary["maps"] = {{"points", ms.points}, {"octomap_keyframes", ms.octomap_keyframes},

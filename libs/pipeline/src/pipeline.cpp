@@ -132,7 +132,8 @@ std::optional<PipelineFrame> Pipeline::next() {
     if (stages_.remove_moving_from_odometry) {
       const double t_tracks = f.pose.ok ? f.pose.t_ref : f.pose.stamp_s;
       stages_.poses->excludeFromMap(
-          movingExclusions(*f.objects, t_tracks, stages_.objects->tracker().params(), stages_.removal_margin_m));
+          movingExclusions(*f.objects, t_tracks, stages_.objects->tracker().params(), stages_.removal_margin_m, 0.1,
+                           stages_.odometry_erase_back_s));
     }
     f.ms.objects = msSince(t);
   }
@@ -169,7 +170,8 @@ std::optional<PipelineFrame> Pipeline::next() {
 }
 
 std::vector<odometry::MapExclusion> movingExclusions(const objects::ObjectsFrame& f, double t_s,
-                                                     const objects::TrackerParams& tp, double margin_m, double sweep_s) {
+                                                     const objects::TrackerParams& tp, double margin_m, double sweep_s,
+                                                     double erase_back_s) {
   std::vector<odometry::MapExclusion> out;
   for (const objects::Track& tr : f.tracks) {
     if (!tr.moving) continue;
@@ -181,6 +183,7 @@ std::vector<odometry::MapExclusion> movingExclusions(const objects::ObjectsFrame
     b.half_length_m = 0.5 * std::max(tr.length, tp.car_length_m) + tr.speed() * sweep_s + margin_m;
     b.half_width_m = 0.5 * std::max(tr.width, tp.car_width_m) + margin_m;
     b.z_min_m = tr.z_min - margin_m, b.z_max_m = tr.z_max + margin_m;
+    b.erase_back_s = erase_back_s;
     out.push_back(b);
   }
   return out;

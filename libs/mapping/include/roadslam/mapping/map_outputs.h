@@ -13,14 +13,16 @@
 #include "roadslam/mapping/maps.h"
 #include "roadslam/mapping/octo_map.h"
 #include "roadslam/mapping/octo_worker.h"
+#include "roadslam/mapping/seen_through.h"
 
 namespace roadslam::mapping {
 
-/// Ini sections [point_map], [octomap], [grid].
+/// Ini sections [point_map], [octomap], [grid], [seen_through].
 struct MapOutputParams {
   PointMapParams point_map;
   OctoMapParams octomap;
   GridParams grid;
+  SeenThroughParams seen_through;  ///< the pass the caller runs on the keyframes before writeMaps
 
   void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg);
   void saveToConfigFile(mrpt::config::CConfigFileBase& cfg) const;

@@ -26,6 +26,9 @@ ClusterMethod clusterMethodFromString(const std::string& s);  ///< throws std::i
 enum class MotionModel { ConstantVelocity, Ctrv, Imm };
 std::string toString(MotionModel m);
 
+/// [preprocess] max_range_m's default (libs/preprocess crop_filters), the reach [objects] max_range_m = 0 takes [m]
+constexpr double kMapReachDefault_m = 100.0;
+
 /// Segmentation ([objects]).
 struct ClusterParams {
   bool enabled = false;                  ///< roadslam-map runs the objects stage and writes objects.csv, tracks.csv [-]
@@ -37,7 +40,10 @@ struct ClusterParams {
   double min_height_m = 0.25;            ///< non-ground points at least this high above the local ground [m]
   double max_height_m = 3.0;             ///< ... and at most this high (tree crowns, bridges out) [m]
   double min_range_m = 2.0;              ///< points nearer (x-y) are the own car's body, not segmented [m]
-  double max_range_m = 50.0;             ///< points beyond (x-y distance from the lidar) are not segmented [m]
+  /// Points beyond (x-y distance from the lidar) are not segmented; 0 in the ini: the sweeps' own reach,
+  /// [preprocess] max_range_m (the point map keeps points to it: a car the stage does not reach leaves
+  /// its trail) [m]
+  double max_range_m = 100.0;
   int min_points = 8;                    ///< smaller clusters are no object [-]
   /// dbscan: a core point has this many points (itself included) within cluster_distance_m (Ester et
   /// al. 1996, MinPts; Open3D's cluster_dbscan min_points); other points join a core's cluster as its border [-]
@@ -52,6 +58,10 @@ struct ClusterParams {
   /// ... and, predicted to the next sweeps, out of the odometry's own local map (libs/pipeline hands
   /// them to the pose stage: the objects stage runs after the odometry) [-]
   bool remove_moving_from_odometry = false;
+  /// With remove_moving_from_odometry: each moving track's box also erases the odometry's local-map
+  /// voxels it swept over this long before now (what the car left there before its moving label,
+  /// ~1 s); 0: none [s]
+  double odometry_erase_back_s = 0.0;
   double removal_margin_m = 0.3;         ///< around a moving object's box, x-y and z [m]
   /// With the removal: keyframes reach the OctoMap this long after their sweep, so that the points of a
   /// car labelled moving later (its first sweeps, before the label) leave the keyframes first [s]

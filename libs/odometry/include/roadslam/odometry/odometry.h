@@ -156,6 +156,9 @@ struct MapExclusion {
   double yaw_rad = 0;                                           ///< direction of the length axis, world frame [rad]
   double half_length_m = 0, half_width_m = 0;                   ///< half extents, margins included [m]
   double z_min_m = -INFINITY, z_max_m = INFINITY;               ///< world frame [m]
+  /// setMapExclusions() also erases the local-map voxels whose mean the box held over this long
+  /// before stamp_s (the points the object left before it was labelled moving); 0: none [s]
+  double erase_back_s = 0;
   /// Whether \p p_world lies inside the box moved to time \p t_s.
   bool contains(const Eigen::Vector3d& p_world, double t_s) const;
 };
@@ -218,7 +221,9 @@ class Odometry {
   }
   /// Points inside \p boxes (each moved to the frame's pose time) stay out of the local-map updates
   /// of the frames processed after this call, until the next call replaces them (empty: none).
-  void setMapExclusions(std::vector<MapExclusion> boxes) { exclusions_ = std::move(boxes); }
+  /// Boxes with erase_back_s > 0 also erase the voxels of the local map they swept over that time
+  /// (voxel_map matcher; the other matchers' maps keep them); returns how many voxels went.
+  size_t setMapExclusions(std::vector<MapExclusion> boxes);
   const LocalMap& localMap() const { return map_; }
   const registration::GaussianVoxelMap& voxelMap() const { return gmap_; }
   /// Deskewed, preprocessed points of the last frame (lidar frame) [m] (for keyframe maps).

@@ -62,6 +62,9 @@ struct Stages {
   /// pose stage's own map (the odometry's local map) from the next sweep on (PoseStage::excludeFromMap):
   /// the objects stage comes after the odometry, so its answer reaches the odometry one sweep late.
   bool remove_moving_from_odometry = false;
+  /// ... and the boxes erase what their object left in that map over this long before ([objects]
+  /// odometry_erase_back_s) [s]
+  double odometry_erase_back_s = 0;
 };
 
 /// One sweep through the stages.
@@ -117,7 +120,7 @@ class Pipeline {
 /// grown by \p margin_m in x-y and z.
 std::vector<odometry::MapExclusion> movingExclusions(const objects::ObjectsFrame& f, double t_s,
                                                      const objects::TrackerParams& tp, double margin_m,
-                                                     double sweep_s = 0.1);
+                                                     double sweep_s = 0.1, double erase_back_s = 0);
 
 /// Opens the recording \p path (sources::openScanSource) and reads its first sweep: an input that
 /// gives none is an error ("input 'X' gives no sweep: <why>") before any output exists. The sweep

@@ -43,6 +43,21 @@ class GaussianVoxelMap {
   void insert(const std::vector<Eigen::Vector3d>& points_map, const std::vector<uint8_t>& is_ground = {});
   /// Drops voxels whose mean is farther than radius_m from \p origin_map [m].
   void removeFar(const Eigen::Vector3d& origin_map);
+  /// Drops the voxels whose mean (map frame [m]) \p drop is true for (a moving object's box); returns
+  /// how many. A voxel keeps only sums, not points: it goes whole.
+  template <class Pred>
+  size_t eraseVoxels(Pred&& drop) {
+    size_t n = 0;
+    for (auto it = voxels_.begin(); it != voxels_.end();) {
+      if (drop(static_cast<const Eigen::Vector3d&>(it->second.mean))) {
+        it = voxels_.erase(it);
+        ++n;
+      } else {
+        ++it;
+      }
+    }
+    return n;
+  }
   size_t numVoxels() const { return voxels_.size(); }
   bool empty() const { return voxels_.empty(); }
   /// Voxel means [m, map frame] (for pictures and keyframe maps).
