@@ -249,7 +249,8 @@ TEST(RoadslamViewApp, RunSlamDrawsTheObjectsRoadslamMapWrites) {
   };
   const std::string common = f.rawlog.string() + " --size 480x360 --camera top --at 0.5 --render ";
   const fs::path live = f.dir / "objects_live.png", recorded = f.dir / "objects_recorded.png", none = f.dir / "objects_none.png";
-  ASSERT_EQ(run(common + live.string() + " --run-slam " + on.string()).status, 0);
+  const AppRun lr = run(common + live.string() + " --run-slam " + on.string());
+  ASSERT_EQ(lr.status, 0) << lr.out;
   ASSERT_EQ(run(common + recorded.string() + " --run-slam " + src + "/ini/default.ini --map " + map.string()).status, 0);
   ASSERT_EQ(run(common + none.string() + " --run-slam " + src + "/ini/default.ini").status, 0);
   const auto a = khaki(live), b = khaki(recorded);

@@ -37,7 +37,7 @@ const std::vector<std::string>& knownSections() {
       "velodyne", "preprocess", "kitti", "registration", "odometry", "mapping", "pose_graph", "loop_closure",
       "loop_closure_coarse", "loop_closure_fine", "loop_closure_place", "loop_closure_global", "loop_closure_global_fine",
       "localization", "localization_track", "point_map", "octomap", "grid", "vehicle_prior", "ground",
-      "boundary", "objects", "tracking", "gnss_fusion", "scenario", "world", "trajectory", "lidar", "can", "gnss",
+      "boundary", "objects", "tracking", "seen_through", "gnss_fusion", "scenario", "world", "trajectory", "lidar", "can", "gnss",
       "grab", "vehicle"};
   return s;
 }

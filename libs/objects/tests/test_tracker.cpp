@@ -276,7 +276,9 @@ TEST(Tracker, TheImmFollowsACarThroughACornerWithOneId) {
   EXPECT_LT((t.x.head<2>() - r.car).norm(), 0.5);
   EXPECT_NEAR(std::atan2(t.x(3), t.x(2)), M_PI / 2, 0.15);
   EXPECT_NEAR(t.speed(), 9.5, 0.5);
-  Tracker cv{TrackerParams{}};
+  TrackerParams pcv;
+  pcv.motion_model = MotionModel::ConstantVelocity;
+  Tracker cv(pcv);
   EXPECT_GT(driveThroughACorner(cv).ids.size(), 1u);  // the corner is one a constant velocity gate loses
 }
 

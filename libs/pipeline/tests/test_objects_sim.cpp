@@ -10,11 +10,11 @@ using namespace roadslam::pipeline::objects_test;
 TEST(ObjectsSim, UrbanLoop25sTracksTheMovingCars) {
   const ObjectsRun r = runObjects("urban-loop", 25, "urban-loop-25s");
   EXPECT_GE(r.m.gt_cars_seen, 2u);
-  EXPECT_GE(r.m.mota, 0.88);  // measured 0.930 (GT: cars seen with >= 10 returns; 0.826 before the objects' own ground bridge)
-  EXPECT_LE(r.m.misses, 8u);  // measured 4 (10 before)
+  EXPECT_GE(r.m.mota, 0.88);  // measured 0.953 with the IMM (cv 0.930; GT: cars seen with >= 10 returns; 0.826 before the objects' own ground bridge)
+  EXPECT_LE(r.m.misses, 8u);  // measured 3 (cv 4; 10 before)
   EXPECT_LE(r.m.false_positives, 2u);  // measured 0 (3 before: a track coasting on after its car turned away)
-  EXPECT_LE(r.m.motp_m, 0.23);  // measured 0.198 m (0.227 m before the box's own extents)
-  EXPECT_LE(r.m.speed_error_mean_mps, 0.4);  // measured 0.22 m/s
+  EXPECT_LE(r.m.motp_m, 0.23);  // measured 0.161 m (cv 0.198; 0.227 m before the box's own extents)
+  EXPECT_LE(r.m.speed_error_mean_mps, 0.4);  // measured 0.30 m/s (cv 0.22: the IMM keeps and scores the car in its turn)
   EXPECT_FALSE(hasNaN(r.out_dir + "/tracks.csv"));
   EXPECT_FALSE(hasNaN(r.out_dir + "/objects.csv"));
   // per-frame cost of segmentation + tracking (ground labels apart), wall time on a shared 2-core machine
@@ -22,10 +22,10 @@ TEST(ObjectsSim, UrbanLoop25sTracksTheMovingCars) {
 }
 
 // The options on the same drive: DBSCAN clustering and the CTRV motion model (measured MOTA 0.930,
-// MOTP 0.188 m; range image + CV: 0.930, 0.198 m).
+// MOTP 0.179 m; range image + IMM: 0.953, 0.161 m).
 TEST(ObjectsSim, DbscanAndCtrvTrackTheMovingCarsToo) {
   const ObjectsRun r = runObjects("urban-loop", 25, "urban-loop-25s", false, true,
-                                  {{"method = range_image", "method = dbscan"}, {"motion_model = cv", "motion_model = ctrv"}},
+                                  {{"method = range_image", "method = dbscan"}, {"motion_model = imm", "motion_model = ctrv"}},
                                   "-dbscan-ctrv");
   EXPECT_EQ(r.summary["objects"]["tracks_ended"].value("diverged", 0), 0);
   EXPECT_GE(r.m.mota, 0.85);

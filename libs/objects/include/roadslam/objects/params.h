@@ -118,7 +118,7 @@ struct ImmParams {
 /// an extended KF), global nearest-neighbour association (Hungarian on gated x-y distances), birth,
 /// confirmation, death.
 struct TrackerParams {
-  MotionModel motion_model = MotionModel::ConstantVelocity;  ///< cv, ctrv or imm [-]
+  MotionModel motion_model = MotionModel::Imm;  ///< cv, ctrv or imm [-]
   CtrvParams ctrv;                       ///< motion_model = ctrv: keys ctrv_*
   ImmParams imm;                         ///< motion_model = imm: keys imm_*
   double gate_m = 2.5;                   ///< a detection farther than this from a track's prediction is no match [m]
