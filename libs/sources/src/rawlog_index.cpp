@@ -20,6 +20,7 @@
 #include <stdexcept>
 
 #include "roadslam/common/atomic_file.h"
+#include "mrpt_error.h"
 #include "rawlog_index_impl.h"
 
 namespace roadslam::sources {
@@ -28,14 +29,7 @@ using detail::GzAccessPoint;
 using detail::SeekableStream;
 
 namespace {
-// MRPT nests exceptions; the innermost "Message:" line names the cause on one line.
-std::string innermostMessage(const std::string& what) {
-  const auto at = what.rfind("Message:");
-  if (at == std::string::npos) return what.substr(0, what.find('\n'));
-  std::string line = what.substr(at + 8, what.find('\n', at) - at - 8);
-  line.erase(0, line.find_first_not_of(' '));
-  return line;
-}
+using detail::innermostMessage;
 
 // "Stored object has class 'X' which is not registered!" -> X
 std::optional<std::string> unregisteredClass(const std::string& what) {

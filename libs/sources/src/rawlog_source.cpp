@@ -12,6 +12,9 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "mrpt_error.h"
+#include "roadslam/common/param_table.h"
+
 namespace roadslam::sources {
 
 using mrpt::obs::CObservationVelodyneScan;
@@ -28,17 +31,9 @@ uint32_t packetCounter_us(const CObservationVelodyneScan::TVelodyneRawPacket& ra
          static_cast<uint32_t>(b[3]) << 24;
 }
 
-constexpr double kKnot_mps = 1852.0 / 3600.0;
+using unit::kKnot;
 
-// MRPT nests exceptions ("==== MRPT exception ====\nMessage: ...\nOriginal exception: ...");
-// the innermost "Message:" line names the cause on one line.
-std::string innermostMessage(const std::string& what) {
-  const auto at = what.rfind("Message:");
-  if (at == std::string::npos) return what.substr(0, what.find('\n'));
-  std::string line = what.substr(at + 8, what.find('\n', at) - at - 8);
-  line.erase(0, line.find_first_not_of(' '));
-  return line;
-}
+using detail::innermostMessage;
 
 }  // namespace
 
@@ -67,7 +62,7 @@ TimedGpsFix gpsFixFromObservation(const mrpt::obs::CObservationGPS& o) {
   fix.year = f.date_year == 0 ? 0 : 2000 + f.date_year;
   fix.latitude_deg = f.latitude_degrees;
   fix.longitude_deg = f.longitude_degrees;
-  fix.speed_mps = f.speed_knots * kKnot_mps;
+  fix.speed_mps = f.speed_knots * kKnot;
   fix.course_rad = f.direction_degrees * M_PI / 180.0;
   return t;
 }

@@ -1,0 +1,16 @@
+#pragma once
+// MRPT nests exceptions ("==== MRPT exception ====\nMessage: ...\nOriginal exception: ...");
+// the innermost "Message:" line names the cause on one line.
+#include <string>
+
+namespace roadslam::sources::detail {
+
+inline std::string innermostMessage(const std::string& what) {
+  const auto at = what.rfind("Message:");
+  if (at == std::string::npos) return what.substr(0, what.find('\n'));
+  std::string line = what.substr(at + 8, what.find('\n', at) - at - 8);
+  line.erase(0, line.find_first_not_of(' '));
+  return line;
+}
+
+}  // namespace roadslam::sources::detail
