@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The bad-input table (tests/bad_inputs.cpp) against the apps built with AddressSanitizer and
 # UndefinedBehaviorSanitizer in a build tree of their own (apps only, -O0: the table's inputs are
-# small, and it compiles fastest). ctest runs it as BadInputsUnderSanitizers (label `sanitize`);
+# small, and it compiles fastest; a unity build, ROADSLAM_UNITY=OFF in the environment turns it off).
+# ctest runs it as BadInputsUnderSanitizers (label `sanitize`);
 # by hand: bash scripts/sanitize.sh [BUILD_DIR]   (BUILD_DIR holds the built table, default build)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -10,7 +11,8 @@ SAN_DIR=$(realpath -m "${SAN_DIR:-$BUILD_DIR-sanitize}")
 mkdir -p "$SAN_DIR"
 echo "== configuring and building the apps with -fsanitize=address,undefined in $SAN_DIR"
 cmake -S . -B "$SAN_DIR" -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O0 -g1" \
-  -DROADSLAM_SANITIZE=ON -DROADSLAM_BUILD_TESTS=OFF -DROADSLAM_BUILD_BENCH=OFF > "$SAN_DIR/sanitize-configure.log"
+  -DROADSLAM_SANITIZE=ON -DROADSLAM_BUILD_TESTS=OFF -DROADSLAM_BUILD_BENCH=OFF \
+  -DROADSLAM_UNITY="${ROADSLAM_UNITY:-ON}" > "$SAN_DIR/sanitize-configure.log"
 if ! cmake --build "$SAN_DIR" -j"$(nproc)" --target roadslam-map roadslam-bounds roadslam-can roadslam-rawlog \
   roadslam-eval roadslam-sim roadslam-grab roadslam-experiment roadslam-report roadslam-view > "$SAN_DIR/sanitize-build.log" 2>&1; then
   tail -30 "$SAN_DIR/sanitize-build.log"

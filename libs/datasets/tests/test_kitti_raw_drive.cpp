@@ -6,11 +6,13 @@
 #include <fstream>
 #include <sstream>
 
+#include "kitti_data.h"
+
 namespace fs = std::filesystem;
 using namespace roadslam::datasets;
 
 namespace {
-const std::string kRaw = std::string(ROADSLAM_SHARED_DATA) + "/kitti/raw-2011_09_26-0001/";
+using roadslam::datasets::test::kRaw;
 
 /// num_points column of oxts_vehicle_pose.csv: counted by the XVIZ converter, not by our reader.
 std::vector<size_t> pointCountsFromCsv(const std::string& path) {

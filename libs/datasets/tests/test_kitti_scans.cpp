@@ -8,12 +8,14 @@
 #include <fstream>
 #include <unistd.h>
 
+#include "kitti_data.h"
+
 namespace fs = std::filesystem;
 using namespace roadslam;
 using namespace roadslam::datasets;
 
 namespace {
-const std::string kOdo = std::string(ROADSLAM_SHARED_DATA) + "/kitti/odometry-00-first16/";
+using roadslam::datasets::test::kOdo;
 
 fs::path tempDir(const std::string& name) {
   const fs::path dir =

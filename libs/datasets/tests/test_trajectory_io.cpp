@@ -6,12 +6,14 @@
 #include <fstream>
 #include <random>
 
+#include "kitti_data.h"
+
 namespace fs = std::filesystem;
 using namespace roadslam::datasets;
 
 namespace {
-const std::string kOdo = std::string(ROADSLAM_SHARED_DATA) + "/kitti/odometry-00-first16/";
-const std::string kRaw = std::string(ROADSLAM_SHARED_DATA) + "/kitti/raw-2011_09_26-0001/";
+using roadslam::datasets::test::kOdo;
+using roadslam::datasets::test::kRaw;
 
 std::string tempFile(const std::string& name) {
   const fs::path dir = fs::temp_directory_path() / ("roadslam_datasets_" + std::to_string(::getpid()));

@@ -2,7 +2,7 @@
 
 namespace roadslam::grabber {
 namespace {
-constexpr std::size_t kBlockSize = 100;
+using velodyne::kBlockSize;
 
 int blockAzimuth(const std::uint8_t* p, int block) {
   const std::uint8_t* b = p + std::size_t(block) * kBlockSize;

@@ -63,4 +63,11 @@ PointCloud corridorScene(double density, double noise, uint32_t seed) {
   return s.pts;
 }
 
+PointCloud transformed(const PointCloud& pts, const Eigen::Isometry3d& T) {
+  PointCloud out;
+  out.reserve(pts.size());
+  for (const auto& p : pts) out.push_back(T * p);
+  return out;
+}
+
 }  // namespace roadslam::registration::test

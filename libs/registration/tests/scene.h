@@ -3,6 +3,7 @@
 
 #include <roadslam/registration/point_cloud.h>
 
+#include <Eigen/Geometry>
 #include <cstdint>
 
 namespace roadslam::registration::test {
@@ -13,5 +14,8 @@ PointCloud structuredScene(double density_per_m2, double noise_m, uint32_t seed)
 
 /// Corridor along x: floor z=0 and walls y=+-2 m, x in [-30, 30] m: x translation is unobservable.
 PointCloud corridorScene(double density_per_m2, double noise_m, uint32_t seed);
+
+/// Every point of \p pts moved by \p T.
+PointCloud transformed(const PointCloud& pts, const Eigen::Isometry3d& T);
 
 }  // namespace roadslam::registration::test

@@ -18,11 +18,7 @@ Eigen::Isometry3d pose(double x, double y, double yaw_deg) {
   return T;
 }
 
-PointCloud transformed(const PointCloud& pts, const Eigen::Isometry3d& T) {
-  PointCloud out;
-  for (const auto& p : pts) out.push_back(T * p);
-  return out;
-}
+using test::transformed;
 
 // Rusu 2009: a point's FPFH depends only on its neighbourhood's shape. Moving the cloud and the
 // viewpoint together changes nothing but rounding.

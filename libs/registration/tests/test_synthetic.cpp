@@ -15,6 +15,7 @@ namespace {
 
 using test::corridorScene;
 using test::structuredScene;
+using test::transformed;
 
 Eigen::Isometry3d makePose(double x, double y, double z, double roll_deg, double pitch_deg, double yaw_deg) {
   const double d = M_PI / 180.0;
@@ -27,12 +28,6 @@ Eigen::Isometry3d makePose(double x, double y, double z, double roll_deg, double
   return T;
 }
 
-PointCloud transformed(const PointCloud& pts, const Eigen::Isometry3d& T) {
-  PointCloud out;
-  out.reserve(pts.size());
-  for (const auto& p : pts) out.push_back(T * p);
-  return out;
-}
 
 double translationError(const Eigen::Isometry3d& A, const Eigen::Isometry3d& B) {
   return (A.inverse() * B).translation().norm();

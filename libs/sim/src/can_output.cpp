@@ -15,8 +15,8 @@
 
 namespace roadslam::sim {
 namespace {
-constexpr double kDeg = 3.14159265358979323846 / 180;
-constexpr double kKmh = 1 / 3.6;
+using unit::kDeg;
+using unit::kKmh;
 constexpr int kGearDrive = 3;  // VAL_ 944 GEAR 3 "D"
 constexpr double kStillMps = 1e-3;  // below this a wheel does not turn [m/s]
 

@@ -7,11 +7,12 @@
 #include <stdexcept>
 
 #include "roadslam/common/config.h"
+#include "roadslam/common/param_table.h"
 
 namespace roadslam::sim {
 
 namespace {
-constexpr double kDeg = M_PI / 180.0;
+using unit::kDeg;
 using velodyne::kVlp16LaserPeriod_s;
 using velodyne::kVlp16Lasers;
 using velodyne::kVlp16SequencePeriod_s;

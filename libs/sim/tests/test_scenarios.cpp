@@ -6,11 +6,12 @@
 #include <filesystem>
 
 #include "roadslam/sim/simulator.h"
+#include "sim_test_util.h"
 
 using namespace roadslam::sim;
 
 namespace {
-std::string iniPath(const std::string& name) { return std::string(ROADSLAM_SOURCE_DIR) + "/ini/sim/" + name; }
+using roadslam::sim::test::iniPath;
 }  // namespace
 
 TEST(Scenarios, EveryShippedIniLoadsAndBuilds) {

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "roadslam/common/atomic_file.h"
+#include "roadslam/common/param_table.h"
 #include "roadslam/pcap/pcap_writer.h"
 #include "roadslam/velodyne/encoder.h"
 
@@ -17,7 +18,7 @@ namespace {
 
 using velodyne::kVlp16Lasers;
 using velodyne::kVlp16SequencesPerPacket;
-constexpr double kDeg = M_PI / 180.0;
+using unit::kDeg;
 // VLP-16 manual 63-9243, table 9-1: elevation of laser ids 0..15 in firing order [deg].
 constexpr std::array<double, kVlp16Lasers> kElevation_deg = {-15, 1, -13, 3, -11, 5, -9, 7,
                                                              -7,  9, -5, 11, -3, 13, -1, 15};

@@ -2,14 +2,16 @@
 
 #include <mrpt/obs/CObservationGPS.h>
 
+#include "roadslam/common/param_table.h"
+
 #include <algorithm>
 #include <cmath>
 #include <ctime>
 
 namespace roadslam::sources {
 namespace {
-constexpr double kDeg = M_PI / 180.0;
-constexpr double kKnot_mps = 1852.0 / 3600.0;  // international knot
+using unit::kDeg;
+using unit::kKnot;
 }  // namespace
 
 void fillGpsObservation(const velodyne::GpsFix& f, double stamp_s, const std::string& label,
@@ -23,7 +25,7 @@ void fillGpsObservation(const velodyne::GpsFix& f, double stamp_s, const std::st
   rmc.fields.validity_char = f.valid ? 'A' : 'V';
   rmc.fields.latitude_degrees = f.latitude_deg;
   rmc.fields.longitude_degrees = f.longitude_deg;
-  rmc.fields.speed_knots = f.speed_mps / kKnot_mps;
+  rmc.fields.speed_knots = f.speed_mps / kKnot;
   rmc.fields.direction_degrees = f.course_rad / kDeg;
   rmc.fields.date_day = uint8_t(f.day);
   rmc.fields.date_month = uint8_t(f.month);
@@ -60,7 +62,7 @@ void fillGnssObservation(const gnss::GnssFix& f, const std::string& label, mrpt:
     rmc.fields.validity_char = f.rmc_status;
     rmc.fields.latitude_degrees = f.position.lat_deg;
     rmc.fields.longitude_degrees = f.position.lon_deg;
-    rmc.fields.speed_knots = std::isfinite(f.speed_mps) ? f.speed_mps / kKnot_mps : 0.0;
+    rmc.fields.speed_knots = std::isfinite(f.speed_mps) ? f.speed_mps / kKnot : 0.0;
     rmc.fields.direction_degrees = std::isfinite(f.course_rad) ? f.course_rad / kDeg : 0.0;
     if (std::isfinite(f.t_receiver_s)) {
       const auto secs = static_cast<std::time_t>(std::floor(f.t_receiver_s));
@@ -75,7 +77,7 @@ void fillGnssObservation(const gnss::GnssFix& f, const std::string& label, mrpt:
   if (std::isfinite(f.speed_mps) || std::isfinite(f.course_rad)) {
     mrpt::obs::gnss::Message_NMEA_VTG vtg;
     vtg.fields.true_track = std::isfinite(f.course_rad) ? f.course_rad / kDeg : 0.0;
-    vtg.fields.ground_speed_knots = std::isfinite(f.speed_mps) ? f.speed_mps / kKnot_mps : 0.0;
+    vtg.fields.ground_speed_knots = std::isfinite(f.speed_mps) ? f.speed_mps / kKnot : 0.0;
     vtg.fields.ground_speed_kmh = std::isfinite(f.speed_mps) ? f.speed_mps * 3.6 : 0.0;
     out.setMsg(vtg);
   }

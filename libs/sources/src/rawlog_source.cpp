@@ -13,6 +13,8 @@
 #include <stdexcept>
 #include "mrpt_message.h"
 
+#include "roadslam/common/param_table.h"
+
 namespace roadslam::sources {
 
 using detail::innermostMessage;
@@ -31,7 +33,7 @@ uint32_t packetCounter_us(const CObservationVelodyneScan::TVelodyneRawPacket& ra
          static_cast<uint32_t>(b[3]) << 24;
 }
 
-constexpr double kKnot_mps = 1852.0 / 3600.0;
+using unit::kKnot;
 
 
 }  // namespace
@@ -62,7 +64,7 @@ TimedGpsFix gpsFixFromObservation(const mrpt::obs::CObservationGPS& o) {
   fix.year = f.date_year == 0 ? 0 : 2000 + f.date_year;
   fix.latitude_deg = f.latitude_degrees;
   fix.longitude_deg = f.longitude_degrees;
-  fix.speed_mps = f.speed_knots * kKnot_mps;
+  fix.speed_mps = f.speed_knots * kKnot;
   fix.course_rad = f.direction_degrees * M_PI / 180.0;
   return t;
 }

@@ -11,7 +11,6 @@
 
 namespace roadslam::vehicle {
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kEarthRadius = 6378137.0;  // WGS84 semi-major axis [m]
 
 // Integrated speed and yaw-rate angle of the samples up to time t (piecewise constant, held
@@ -121,9 +120,9 @@ ScaleEstimate estimateSpeedScale(const std::vector<MotionSample>& samples, const
     const GnssFix& b = fixes[i];
     if (!integ.covers(a.t_s) || !integ.covers(b.t_s)) continue;
     if (a.speed_mps < min_speed_mps || b.speed_mps < min_speed_mps) continue;
-    const double lat = 0.5 * (a.lat_deg + b.lat_deg) * kPi / 180.0;
-    const double dn = (b.lat_deg - a.lat_deg) * kPi / 180.0 * kEarthRadius;
-    const double de = (b.lon_deg - a.lon_deg) * kPi / 180.0 * kEarthRadius * std::cos(lat);
+    const double lat = 0.5 * (a.lat_deg + b.lat_deg) * M_PI / 180.0;
+    const double dn = (b.lat_deg - a.lat_deg) * M_PI / 180.0 * kEarthRadius;
+    const double de = (b.lon_deg - a.lon_deg) * M_PI / 180.0 * kEarthRadius * std::cos(lat);
     e.gnss_m += std::hypot(de, dn);
     e.wheels_m += integ.distanceAt(b.t_s) - integ.distanceAt(a.t_s);
     ++e.intervals;
@@ -141,12 +140,12 @@ BiasEstimate estimateYawRateBias(const std::vector<MotionSample>& samples, const
   bool first = true;
   for (const GnssFix& f : fixes) {
     if (f.speed_mps < min_speed_mps || !integ.covers(f.t_s)) continue;
-    const double heading = (90.0 - f.bearing_deg) * kPi / 180.0;  // ENU: CCW from east
+    const double heading = (90.0 - f.bearing_deg) * M_PI / 180.0;  // ENU: CCW from east
     if (first) {
       unwrapped = heading;
       first = false;
     } else {
-      unwrapped += std::remainder(heading - prev, 2 * kPi);
+      unwrapped += std::remainder(heading - prev, 2 * M_PI);
     }
     prev = heading;
     ts.push_back(f.t_s - fixes.front().t_s);

@@ -11,7 +11,6 @@
 
 namespace roadslam::vehicle {
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kG = 9.80665;  // standard gravity [m/s^2]
 }  // namespace
 
@@ -29,7 +28,7 @@ double unitScale(const std::string& u) {
   }
   if (u == "kmh") return 1.0 / 3.6;
   if (u == "mph") return 0.44704;
-  if (u == "deg" || u == "deg_s") return kPi / 180.0;
+  if (u == "deg" || u == "deg_s") return M_PI / 180.0;
   if (u == "g") return kG;
   if (u == "pct_g") return kG / 100.0;
   throw std::invalid_argument("unknown unit '" + u +

@@ -18,7 +18,7 @@ using namespace roadslam::vehicle;
 using roadslam::can::CanFrame;
 
 namespace {
-const char* kDbc = R"(BO_ 100 WHEELS: 8 X
+const char* kExportDbc = R"(BO_ 100 WHEELS: 8 X
  SG_ FL : 0|16@1+ (0.01,0) [0|0] "km/h" X
  SG_ FR : 16|16@1+ (0.01,0) [0|0] "km/h" X
  SG_ RL : 32|16@1+ (0.01,0) [0|0] "km/h" X
@@ -74,9 +74,9 @@ std::vector<CanFrame> frames() {
 TEST(RawlogExport, ObservationsReadBackAndSidecarIsLossless) {
   const std::string path = ::testing::TempDir() + "/roadslam_can_export.rawlog";
   const auto input = frames();
-  VehicleDecoder dec(params(), roadslam::can::parseDbc(kDbc));
+  VehicleDecoder dec(params(), roadslam::can::parseDbc(kExportDbc));
   const RawlogExportStats st = exportRawlog(input, dec, DeadReckoningParams{}, RawlogExportParams{}, path);
-  VehicleDecoder dec2(params(), roadslam::can::parseDbc(kDbc));
+  VehicleDecoder dec2(params(), roadslam::can::parseDbc(kExportDbc));
   const OdometryResult ref = runOdometry(input, dec2, DeadReckoningParams{});
   EXPECT_EQ(st.odometry, ref.poses.size() - 1);  // runOdometry also lists the start pose
   EXPECT_EQ(st.imu, 200U);

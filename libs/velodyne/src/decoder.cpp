@@ -7,10 +7,7 @@
 namespace roadslam::velodyne {
 namespace {
 
-constexpr double kDistanceUnit_m = 0.002;    // VLP-16 manual 9.3.1.3
-constexpr double kAzimuthUnit_rad = M_PI / 18000.0;  // 0.01 deg
-constexpr std::size_t kBlockSize = 100;
-constexpr std::size_t kTailOffset = 1200;
+constexpr double kAzimuthUnit_rad = kAzimuthUnit_deg * M_PI / 180.0;
 
 inline uint16_t le16(const uint8_t* p) { return static_cast<uint16_t>(p[0] | (p[1] << 8)); }
 

@@ -7,10 +7,6 @@
 namespace roadslam::velodyne {
 namespace {
 
-constexpr double kDistanceUnit_m = 0.002;  // VLP-16 manual 9.3.1.3: distance in 2 mm units
-constexpr std::size_t kBlockSize = 100;
-constexpr std::size_t kTimestampOffset = kBlocksPerPacket * kBlockSize;  // 1200
-
 void putU16(uint8_t* p, uint16_t v) {
   p[0] = static_cast<uint8_t>(v & 0xFF);
   p[1] = static_cast<uint8_t>(v >> 8);
@@ -70,9 +66,9 @@ DataPacketBytes encodeVlp16Packet(const std::array<FiringSequence, kVlp16Sequenc
                  last ? seq[s + 1].last : seq[s + 1].strongest);
     }
   }
-  putU32(pkt.data() + kTimestampOffset, timestamp_us);
-  pkt[kTimestampOffset + 4] = static_cast<uint8_t>(mode);
-  pkt[kTimestampOffset + 5] = static_cast<uint8_t>(product);
+  putU32(pkt.data() + kTailOffset, timestamp_us);
+  pkt[kTailOffset + 4] = static_cast<uint8_t>(mode);
+  pkt[kTailOffset + 5] = static_cast<uint8_t>(product);
   return pkt;
 }
 

@@ -7,15 +7,14 @@
 #include <cmath>
 #include <fstream>
 
+#include "oracle_util.h"
 #include "roadslam/velodyne/calibration.h"
 
 using namespace roadslam::velodyne;
 
 namespace {
 
-std::string dataFile(const std::string& name) {
-  return std::string(ROADSLAM_SHARED_DATA) + "/velodyne/" + name;
-}
+using roadslam::velodyne::test::dataFile;
 
 void expectSameTable(const Calibration& a, const Calibration& b, double tol_rad) {
   ASSERT_EQ(a.size(), b.size());

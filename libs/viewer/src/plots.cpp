@@ -7,7 +7,6 @@
 namespace roadslam::viewer {
 namespace {
 
-mrpt::img::TColor rgb(const unsigned char c[3]) { return {c[0], c[1], c[2]}; }
 
 }  // namespace
 

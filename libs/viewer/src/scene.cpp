@@ -23,7 +23,6 @@ namespace roadslam::viewer {
 namespace {
 constexpr double kRad2Deg = 180.0 / M_PI;
 
-mrpt::img::TColor rgb(const unsigned char c[3], unsigned char a = 255) { return {c[0], c[1], c[2], a}; }
 
 mrpt::opengl::CSetOfLines::Ptr polyline(const std::vector<Eigen::Vector3d>& pts, const unsigned char c[3],
                                         float width, bool closed = false) {

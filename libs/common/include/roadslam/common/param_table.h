@@ -34,6 +34,7 @@ constexpr double kMs = 1e-3;           ///< milliseconds -> seconds
 constexpr double kUs = 1e-6;           ///< microseconds -> seconds
 constexpr double kMb = 1e6;            ///< megabytes -> bytes
 constexpr double kKmh = 1 / 3.6;       ///< km/h -> m/s
+constexpr double kKnot = 1852.0 / 3600.0;  ///< international knots -> m/s (NMEA RMC speed)
 }  // namespace unit
 
 /// The names of an enum's values: toString and fromString both read this one table.

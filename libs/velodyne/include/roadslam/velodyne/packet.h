@@ -22,6 +22,11 @@ constexpr std::size_t kPositionPacketSize = 512;
 constexpr int kBlocksPerPacket = 12;
 constexpr int kChannelsPerBlock = 32;
 constexpr uint16_t kBlockFlag = 0xEEFF;
+constexpr std::size_t kBlockSize = 100;  ///< bytes per data block: flag, azimuth, 32 channels x 3
+/// u32 timestamp, u8 return mode, u8 product id after the 12 blocks (byte 1200)
+constexpr std::size_t kTailOffset = kBlocksPerPacket * kBlockSize;
+constexpr double kDistanceUnit_m = 0.002;  ///< a channel's distance in 2 mm units (manual 9.3.1.3)
+constexpr double kAzimuthUnit_deg = 0.01;  ///< a block's azimuth in 0.01 deg units
 constexpr uint16_t kDefaultDataPort = 2368;
 constexpr uint16_t kDefaultPositionPort = 8308;
 constexpr std::size_t kPositionTimestampOffset = 198;  ///< u32 [us past the hour] in a position packet

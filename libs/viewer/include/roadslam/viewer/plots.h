@@ -22,6 +22,9 @@ struct PlotColors {
   static constexpr unsigned char steering[3] = {255, 110, 170};   // CAN steering angle: pink, 0 mid-height
 };
 
+/// A PlotColors entry as an MRPT colour (alpha 255: opaque).
+inline mrpt::img::TColor rgb(const unsigned char c[3], unsigned char a = 255) { return {c[0], c[1], c[2], a}; }
+
 /// True when the model has something to plot: frames with figures (a map folder's frames.csv,
 /// --run-slam) or CAN signals (--can).
 bool hasFramePlots(const ViewerModel& model);
