@@ -52,6 +52,7 @@ void ClusterParams::fields(ParamTable& t) {
   t.num("removal_margin_m", removal_margin_m);
   t.num("map_delay_s", map_delay_s);
   t.num("retro_extrapolate_s", retro_extrapolate_s);
+  t.num("removal_floor_m", removal_floor_m);
   t.num("ground_max_bridge_m", ground_max_bridge_m);
 }
 

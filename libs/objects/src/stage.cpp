@@ -27,6 +27,12 @@ std::string fmt(const char* f, ...) {
   return buf;
 }
 
+/// \p b's floor lowered to \p floor_m above the ground under \p t's last detection (never raised;
+/// \p floor_m < 0: as it is). insideBox subtracts \p margin_m again.
+void lowerFloor(BoxRecord& b, const Track& t, double floor_m, double margin_m) {
+  if (floor_m >= 0) b.z_min = std::min(b.z_min, t.ground_z + floor_m + margin_m);
+}
+
 }  // namespace
 
 ObjectsFrame ObjectsStage::snapshot() const {
@@ -41,6 +47,7 @@ ObjectsFrame ObjectsStage::snapshot() const {
     b.length = std::max(t.length, tp.car_length_m) + 2 * t.speed() * kHalfSweep_s;
     b.width = std::max(t.width, tp.car_width_m);
     b.z_min = t.z_min, b.z_max = t.z_max;
+    lowerFloor(b, t, p_.removal_floor_m, p_.removal_margin_m);
     f.moving_boxes.push_back(b);
   }
   return f;
@@ -68,6 +75,7 @@ ObjectsFrame ObjectsStage::process(const Scan& scan, const Eigen::Isometry3d& T_
   }
   for (const Track& t : tracker_.tracks()) {
     if (!t.moving || t.moving_since != t_s) continue;
+    const size_t first = f.retro.size();
     f.retro.insert(f.retro.end(), t.history->begin(), t.history->end());
     // the car drove where its velocity leads back: car-sized boxes along that path since its birth (the
     // parts of the car its detections missed) and for p_.retro_extrapolate_s before (seen too far or
@@ -84,6 +92,7 @@ ObjectsFrame ObjectsStage::process(const Scan& scan, const Eigen::Isometry3d& T_
       b.z_min = t.z_min, b.z_max = t.z_max;
       f.retro.push_back(b);
     }
+    for (size_t k = first; k < f.retro.size(); ++k) lowerFloor(f.retro[k], t, p_.removal_floor_m, p_.removal_margin_m);
   }
   f.ms_track = msSince(t0);
   f.objects = std::move(objs);
