@@ -261,6 +261,40 @@ TEST(ObjectsStage, ACoastingTrackLeavesTheOutputsBeforeItEnds) {
   }
 }
 
+// The same car, its points gone (fallen below min_points as it drives away): with
+// forward_extrapolate_s its box outlives the track, carried along its velocity (on the car's true
+// path within 1 m) for that long and while within the objects' reach of the lidar; 0: none.
+TEST(ObjectsStage, AnEndedMovingTrackKeepsABoxAlongItsVelocity) {
+  for (const double fwd : {1.5, 0.0}) {
+    ClusterParams cp;
+    cp.min_points = 4;
+    cp.forward_extrapolate_s = fwd;
+    TrackerParams tp;
+    ObjectsStage stage(cp, tp);
+    const double v = 10.0;
+    int k = 0;
+    for (; k < 25; ++k) stage.process(test::castSweep({{-12.0 + v * 0.1 * k, 6.0, 0.0, 4.5, 1.8, 1.5}}), Eigen::Isometry3d::Identity(), 0.1 * k);
+    int boxed_after_end = 0;
+    double last_boxed_t = -1;
+    for (int n = 0; n < 40; ++n, ++k) {
+      const double t = 0.1 * k;
+      const ObjectsFrame f = stage.process(test::castSweep({}), Eigen::Isometry3d::Identity(), t);
+      if (!stage.tracker().tracks().empty() || f.moving_boxes.empty()) continue;
+      ++boxed_after_end, last_boxed_t = t;
+      ASSERT_EQ(f.moving_boxes.size(), 1u);
+      EXPECT_NEAR(f.moving_boxes[0].centre.x(), -12.0 + v * t, 1.0) << "t " << t;
+      EXPECT_NEAR(f.moving_boxes[0].centre.y(), 6.0, 0.5);
+    }
+    SCOPED_TRACE(fwd);
+    if (fwd > 0) {
+      EXPECT_GT(boxed_after_end, 5);
+      EXPECT_LE(last_boxed_t, 2.4 + tp.max_misses * 0.1 + fwd + 1e-6);  // ended at the last coasting sweep
+    } else {
+      EXPECT_EQ(boxed_after_end, 0);
+    }
+  }
+}
+
 // A car 30 m away drives east at 9.5 m/s, turns left at 60 deg/s through 90 deg (a simulated corner)
 // and drives north; its full boxes with 0.1 m noise (seeded). The IMM's coordinated turn model takes
 // over in the turn (its probability above 0.5) and one track follows the car throughout: the same id,

@@ -77,6 +77,9 @@ struct ClusterParams {
   /// (docs/benchmarks.md, session 12). A car's ground clearance: the road and curbs stay. Negative:
   /// the detections' lowest point only [m]
   double removal_floor_m = 0.2;
+  /// A moving track that ends (its car fell below min_points, receding) keeps a box carried along its
+  /// velocity for this long, so the car's last sparse sweeps leave the maps too; 0: none [s]
+  double forward_extrapolate_s = 0.0;
   preprocess::GroundSegParams ground;    ///< ground labels: read from [preprocess] seg_* (the odometry's), not saved here
   /// The objects' own ground labels let a new ground line bridge at most this far from the last ground
   /// prototype (GroundSegParams::max_bridge_m, 30 m for the odometry): a far car's face, hit by one ring
