@@ -66,6 +66,9 @@ int main(int argc, char** argv) {
   double o_ghost_range = 0;
   objects->add_option("--ghost-range", o_ghost_range,
                       "with --ghosts: also count the ghosts of the paths swept within this range of the lidar [m]");
+  bool o_ghost_unseen = false;
+  objects->add_flag("--ghosts-unseen", o_ghost_unseen,
+                    "with --ghosts: the paths also sweep the GT samples where the car had no lidar return (before session 12)");
   CLI11_PARSE(app, argc, argv);
   try {
     if (*objects) {
@@ -78,11 +81,13 @@ int main(int argc, char** argv) {
       auto j = roadslam::eval::toJson(m);
       std::string text = roadslam::eval::toText(m);
       if (o_ghosts) {
-        const auto g = roadslam::eval::countGhostPoints(o_gt, o_traj, o_run + "/trajectory.tum", o_run + "/map.ply");
+        const auto g = roadslam::eval::countGhostPoints(o_gt, o_traj, o_run + "/trajectory.tum", o_run + "/map.ply", 0.3, 0,
+                                                        !o_ghost_unseen);
         j["map_points"] = g.map_points, j["ghost_points"] = g.ghost_points;
         text += "ghost points        " + std::to_string(g.ghost_points) + " of " + std::to_string(g.map_points) + " map points\n";
         if (std::ifstream(o_run + "/map.bt")) {
-          const auto v = roadslam::eval::countGhostVoxels(o_gt, o_traj, o_run + "/trajectory.tum", o_run + "/map.bt");
+          const auto v = roadslam::eval::countGhostVoxels(o_gt, o_traj, o_run + "/trajectory.tum", o_run + "/map.bt", 0.3, 0,
+                                                          !o_ghost_unseen);
           j["octomap_occupied_leaves"] = v.map_points, j["octomap_ghost_leaves"] = v.ghost_points;
           text += "ghost voxels        " + std::to_string(v.ghost_points) + " of " + std::to_string(v.map_points) +
                   " occupied OctoMap leaves (map.bt)\n";
@@ -90,11 +95,11 @@ int main(int argc, char** argv) {
       }
       if (o_ghosts && o_ghost_range > 0) {
         const std::string tr = o_run + "/trajectory.tum";
-        const auto g = roadslam::eval::countGhostPoints(o_gt, o_traj, tr, o_run + "/map.ply", 0.3, o_ghost_range);
+        const auto g = roadslam::eval::countGhostPoints(o_gt, o_traj, tr, o_run + "/map.ply", 0.3, o_ghost_range, !o_ghost_unseen);
         j["ghost_points_within_range"] = g.ghost_points;
         text += "ghost points        " + std::to_string(g.ghost_points) + " on paths swept within the ghost range\n";
         if (std::ifstream(o_run + "/map.bt")) {
-          const auto v = roadslam::eval::countGhostVoxels(o_gt, o_traj, tr, o_run + "/map.bt", 0.3, o_ghost_range);
+          const auto v = roadslam::eval::countGhostVoxels(o_gt, o_traj, tr, o_run + "/map.bt", 0.3, o_ghost_range, !o_ghost_unseen);
           j["octomap_ghost_leaves_within_range"] = v.ghost_points;
           text += "ghost voxels        " + std::to_string(v.ghost_points) + " on paths swept within the ghost range\n";
         }

@@ -287,7 +287,7 @@ MotMetrics evaluateMotFiles(const std::string& gt_objects_json, const std::strin
 
 GhostCount countGhostsAmong(const std::string& gt_objects_json, const std::string& gt_trajectory_tum,
                             const std::string& run_trajectory_tum, const std::vector<Eigen::Vector3f>& points_map,
-                            double margin_m, double max_range_m) {
+                            double margin_m, double max_range_m, bool seen_only) {
   std::ifstream fo(gt_objects_json);
   if (!fo) throw std::runtime_error("cannot read '" + gt_objects_json + "'");
   const auto j = nlohmann::json::parse(fo, nullptr, false);
@@ -306,6 +306,7 @@ GhostCount countGhostsAmong(const std::string& gt_objects_json, const std::strin
     const double hl = 0.5 * c["length_m"].get<double>() + margin_m, hw = 0.5 * c["width_m"].get<double>() + margin_m;
     const double h = c["height_m"].get<double>();
     for (const auto& q : c["track"]) {
+      if (seen_only && q.size() > 5 && q[5].get<int>() <= 0) continue;  // no return: it left nothing then
       // the car's points at time t entered the map through the run's pose of that time, so its box is
       // carried into the map by T_map_world(t) = T_map_lidar(t) * T_world_lidar_gt(t)^-1: drift then
       // moves the ghosts and the box together (times outside the run take its nearest end)
@@ -345,7 +346,7 @@ GhostCount countGhostsAmong(const std::string& gt_objects_json, const std::strin
 
 GhostCount countGhostPoints(const std::string& gt_objects_json, const std::string& gt_trajectory_tum,
                             const std::string& run_trajectory_tum, const std::string& map_ply, double margin_m,
-                            double max_range_m) {
+                            double max_range_m, bool seen_only) {
   // the map's points (binary little-endian float xyz, as roadslam-map writes map.ply)
   std::ifstream fp(map_ply, std::ios::binary);
   if (!fp) throw std::runtime_error("cannot read '" + map_ply + "'");
@@ -359,7 +360,7 @@ GhostCount countGhostPoints(const std::string& gt_objects_json, const std::strin
   if (static_cast<size_t>(fp.gcount()) != xyz.size() * sizeof(float)) throw std::runtime_error("'" + map_ply + "' is truncated");
   std::vector<Eigen::Vector3f> pts(n);
   for (size_t i = 0; i < n; ++i) pts[i] = {xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]};
-  return countGhostsAmong(gt_objects_json, gt_trajectory_tum, run_trajectory_tum, pts, margin_m, max_range_m);
+  return countGhostsAmong(gt_objects_json, gt_trajectory_tum, run_trajectory_tum, pts, margin_m, max_range_m, seen_only);
 }
 
 nlohmann::json toJson(const MotMetrics& m) {

@@ -201,9 +201,9 @@ TEST(MotMetrics, ASwitchAfterTheCarLeftTheViewIsCountedApart) {
 /// The ghost tests' drive in \p d: one 4.5 x 1.8 x 1.5 m car moving along +x at 10 m/s for 1 s from
 /// the world origin (gt_objects.json, 11 samples), the GT lidar standing at the origin
 /// (gt_trajectory.tum), and the run's poses \p run_tum (trajectory.tum).
-static void writeOneCarDrive(const std::string& d, const std::string& run_tum) {
+static void writeOneCarDrive(const std::string& d, const std::string& run_tum, int last_seen_sample = 10) {
   nlohmann::json track = nlohmann::json::array();
-  for (int k = 0; k <= 10; ++k) track.push_back({1000.0 + 0.1 * k, 1.0 * k, 0.0, 0.0, 0.0, 50, 5.0});
+  for (int k = 0; k <= 10; ++k) track.push_back({1000.0 + 0.1 * k, 1.0 * k, 0.0, 0.0, 0.0, k <= last_seen_sample ? 50 : 0, 5.0});
   const nlohmann::json gt = {{"frame", "world"},
                              {"moving_cars", {{{"id", 0}, {"length_m", 4.5}, {"width_m", 1.8}, {"height_m", 1.5}, {"track", track}}}}};
   std::ofstream(d + "/gt_objects.json") << gt.dump();
@@ -224,6 +224,21 @@ TEST(MotMetrics, GhostVoxelsAreTheOccupiedLeavesOnTheSweptPaths) {
   const auto g = eval::countGhostVoxels(d + "/gt_objects.json", d + "/gt_trajectory.tum", d + "/trajectory.tum", d + "/map.bt");
   EXPECT_EQ(g.map_points, 2u);
   EXPECT_EQ(g.ghost_points, 1u);
+  std::filesystem::remove_all(d);
+}
+
+// A car the lidar no longer hits (gt_objects.json returns 0 from t = 1000.5: hidden or out of reach)
+// puts no point in the map: a point on its later path is a static one (the road there, under a pose's
+// attitude error), not a ghost, unless the unseen samples are asked for too.
+TEST(MotMetrics, GhostsComeOnlyFromSamplesTheLidarHit) {
+  const std::string d = tmpDir();
+  writeOneCarDrive(d, "1000 0 0 0 0 0 0 1\n", 5);
+  const std::vector<Eigen::Vector3f> pts = {{2.0f, 0.0f, 0.8f},    // the car at t = 1000.2, hit
+                                            {9.0f, 0.0f, 0.8f}};   // its path at t = 1000.9, unseen
+  EXPECT_EQ(eval::countGhostsAmong(d + "/gt_objects.json", d + "/gt_trajectory.tum", d + "/trajectory.tum", pts).ghost_points, 1u);
+  EXPECT_EQ(eval::countGhostsAmong(d + "/gt_objects.json", d + "/gt_trajectory.tum", d + "/trajectory.tum", pts, 0.3, 0, false)
+                .ghost_points,
+            2u);
   std::filesystem::remove_all(d);
 }
 

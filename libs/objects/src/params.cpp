@@ -52,6 +52,8 @@ void ClusterParams::fields(ParamTable& t) {
   t.num("removal_margin_m", removal_margin_m);
   t.num("map_delay_s", map_delay_s);
   t.num("retro_extrapolate_s", retro_extrapolate_s);
+  t.num("removal_floor_m", removal_floor_m);
+  t.num("forward_extrapolate_s", forward_extrapolate_s);
   t.num("ground_max_bridge_m", ground_max_bridge_m);
 }
 
@@ -69,10 +71,10 @@ void ClusterParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, c
     throw std::runtime_error("[" + s + "] " + e.what());
   }
   if (azimuth_bins < 16 || azimuth_window < 1 || ring_window < 0 || cluster_distance_m <= 0 || min_points < 1 ||
-      dbscan_min_points < 1 || lshape_step_rad <= 0 || lshape_step_rad > M_PI / 4 || map_delay_s < 0 || retro_extrapolate_s < 0 || ground_max_bridge_m < 0 || odometry_erase_back_s < 0) {
+      dbscan_min_points < 1 || lshape_step_rad <= 0 || lshape_step_rad > M_PI / 4 || map_delay_s < 0 || retro_extrapolate_s < 0 || forward_extrapolate_s < 0 || ground_max_bridge_m < 0 || odometry_erase_back_s < 0) {
     throw std::runtime_error("[" + s + "] azimuth_bins >= 16, azimuth_window >= 1, ring_window >= 0, "
                              "cluster_distance_m > 0, min_points >= 1, dbscan_min_points >= 1, "
-                             "0 < lshape_step_deg <= 45, map_delay_s, retro_extrapolate_s, ground_max_bridge_m and odometry_erase_back_s >= 0 are required");
+                             "0 < lshape_step_deg <= 45, map_delay_s, retro_extrapolate_s, forward_extrapolate_s, ground_max_bridge_m and odometry_erase_back_s >= 0 are required");
   }
   ground.loadFromConfigFile(c, ground_section);
   // 0: the reach of the sweeps the maps are built from, so no car the map keeps goes unsegmented

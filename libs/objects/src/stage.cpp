@@ -27,6 +27,12 @@ std::string fmt(const char* f, ...) {
   return buf;
 }
 
+/// \p b's floor lowered to \p floor_m above the ground under \p t's last detection (never raised;
+/// \p floor_m < 0: as it is). insideBox subtracts \p margin_m again.
+void lowerFloor(BoxRecord& b, const Track& t, double floor_m, double margin_m) {
+  if (floor_m >= 0) b.z_min = std::min(b.z_min, t.ground_z + floor_m + margin_m);
+}
+
 }  // namespace
 
 ObjectsFrame ObjectsStage::snapshot() const {
@@ -41,6 +47,7 @@ ObjectsFrame ObjectsStage::snapshot() const {
     b.length = std::max(t.length, tp.car_length_m) + 2 * t.speed() * kHalfSweep_s;
     b.width = std::max(t.width, tp.car_width_m);
     b.z_min = t.z_min, b.z_max = t.z_max;
+    lowerFloor(b, t, p_.removal_floor_m, p_.removal_margin_m);
     f.moving_boxes.push_back(b);
   }
   return f;
@@ -57,8 +64,16 @@ ObjectsFrame ObjectsStage::process(const Scan& scan, const Eigen::Isometry3d& T_
   // a moving object is seen when the beam sweeps over it, up to half a turn from the reference time
   for (Object& o : objs) o.dt_s = scan.has_point_times ? scan.stamp_s + o.t_mean - t_s : 0.0;
   t0 = Clock::now();
+  std::vector<Track> before;
+  if (p_.forward_extrapolate_s > 0) {
+    for (const Track& t : tracker_.tracks()) {
+      if (t.moving && t.state == TrackState::Confirmed) before.push_back(t);
+    }
+  }
   tracker_.update(t_s, T_map_lidar, objs);
   ObjectsFrame f = snapshot();
+  forwardBoxes(f, before, t_last_update_, t_s, T_map_lidar.translation().head<2>());
+  t_last_update_ = t_s;
   f.object_track.assign(objs.size(), -1);
   f.object_moving.assign(objs.size(), 0);
   for (const Track& t : tracker_.tracks()) {
@@ -68,6 +83,7 @@ ObjectsFrame ObjectsStage::process(const Scan& scan, const Eigen::Isometry3d& T_
   }
   for (const Track& t : tracker_.tracks()) {
     if (!t.moving || t.moving_since != t_s) continue;
+    const size_t first = f.retro.size();
     f.retro.insert(f.retro.end(), t.history->begin(), t.history->end());
     // the car drove where its velocity leads back: car-sized boxes along that path since its birth (the
     // parts of the car its detections missed) and for p_.retro_extrapolate_s before (seen too far or
@@ -84,6 +100,7 @@ ObjectsFrame ObjectsStage::process(const Scan& scan, const Eigen::Isometry3d& T_
       b.z_min = t.z_min, b.z_max = t.z_max;
       f.retro.push_back(b);
     }
+    for (size_t k = first; k < f.retro.size(); ++k) lowerFloor(f.retro[k], t, p_.removal_floor_m, p_.removal_margin_m);
   }
   f.ms_track = msSince(t0);
   f.objects = std::move(objs);
@@ -94,7 +111,38 @@ ObjectsFrame ObjectsStage::process(const Scan& scan, const Eigen::Isometry3d& T_
 
 ObjectsFrame ObjectsStage::coast(double t_s) {
   tracker_.coast(t_s, "pose");
+  ended_moving_.clear();  // a pose gap ends every track: none of them left the sensor's reach
   return snapshot();
+}
+
+void ObjectsStage::forwardBoxes(ObjectsFrame& f, const std::vector<Track>& before, double t_before, double t_s,
+                                const Eigen::Vector2d& lidar_xy) {
+  if (p_.forward_extrapolate_s <= 0) return;
+  for (const Track& b : before) {
+    bool alive = false;
+    for (const Track& t : tracker_.tracks()) alive = alive || t.id == b.id;
+    if (!alive) ended_moving_.push_back({b, t_before});
+  }
+  const TrackerParams& tp = tracker_.params();
+  std::vector<EndedMoving> keep;
+  for (const EndedMoving& e : ended_moving_) {
+    const double dt = t_s - e.t;
+    const Track& t = e.track;
+    const Eigen::Vector2d centre = t.x.head<2>() + t.x.tail<2>() * dt;
+    // beyond the sweeps' reach it leaves no point
+    if (dt > p_.forward_extrapolate_s || (centre - lidar_xy).norm() > p_.max_range_m + t.length) continue;
+    keep.push_back(e);
+    BoxRecord b;
+    b.t = t_s;
+    b.centre = centre;
+    b.yaw = t.heading;
+    b.length = std::max(t.length, tp.car_length_m) + 2 * t.speed() * kHalfSweep_s;
+    b.width = std::max(t.width, tp.car_width_m);
+    b.z_min = t.z_min, b.z_max = t.z_max;
+    lowerFloor(b, t, p_.removal_floor_m, p_.removal_margin_m);
+    f.moving_boxes.push_back(b);
+  }
+  ended_moving_ = std::move(keep);
 }
 
 size_t removeMovingPoints(std::vector<Eigen::Vector3d>& pts_lidar, const ObjectsFrame& f, double margin_m,

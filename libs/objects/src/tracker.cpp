@@ -317,7 +317,7 @@ void take(Track& tr, const Detection& d, const Completed& c, const Eigen::Vector
   tr.width = std::max(tr.width, c.across);
   growToCarBehindFace(tr, d, s, p_);
   ++tr.hits, tr.misses = 0, tr.t_last = t, tr.last_detection = j;
-  tr.z_min = d.z_min, tr.z_max = d.z_max;
+  tr.z_min = d.z_min, tr.z_max = d.z_max, tr.ground_z = d.z_max - d.top;
   remember(tr, d, t);
   tr.top_height = std::max(tr.top_height, d.top);
   if (tr.hits >= p_.confirm_hits) tr.state = TrackState::Confirmed;
@@ -345,7 +345,7 @@ Track born(int id, const Detection& d, const Eigen::Vector2d& s, double t, int j
   growToCarBehindFace(tr, d, s, p_);
   if (p_.motion_model == MotionModel::Ctrv) ctrvView(tr);
   if (p_.motion_model == MotionModel::Imm) imm::init(tr, p_);
-  tr.z_min = d.z_min, tr.z_max = d.z_max, tr.top_height = d.top;
+  tr.z_min = d.z_min, tr.z_max = d.z_max, tr.top_height = d.top, tr.ground_z = d.z_max - d.top;
   tr.hits = 1, tr.t_birth = tr.t_last = t, tr.birth_xy = tr.x.head<2>(), tr.last_detection = j;
   remember(tr, d, t);
   if (tr.hits >= p_.confirm_hits) tr.state = TrackState::Confirmed;

@@ -207,9 +207,38 @@ TEST(ObjectsStage, ACarLabelledMovingHandsOutItsEarlierBoxes) {
   EXPECT_EQ(retro_frames, 1u);
 }
 
-// A car that drives behind nothing and vanishes (empty sweeps): its track stays in the frame's outputs
-// for output_max_misses sweeps, then only in the tracker (coasting, associating) until max_misses, and
-// its removal box stays while it coasts.
+// A car driving past 38 m away is hit by the -1 deg ring alone, 1.2 m above the road; the removal
+// boxes it hands out (its earlier detections, the path before its birth) and its own box reach down to
+// removal_floor_m above the road under it, where the same car farther away (the same ring, down to
+// 0.15 m above the road at 100 m) left its points; the road stays. With a negative floor they end at
+// the detections' lowest point less the margin, above those far points.
+TEST(ObjectsStage, RemovalBoxesReachDownToTheRoadUnderTheCar) {
+  for (const double floor_m : {0.2, -1.0}) {
+    ClusterParams cp;
+    cp.min_points = 4;
+    cp.removal_floor_m = floor_m;
+    ObjectsStage stage(cp, TrackerParams{});
+    size_t low_in = 0, road_in = 0, boxes = 0;
+    for (int k = 0; k < 40; ++k) {
+      const double t = 0.1 * k, xc = -12.0 + 10.0 * t;
+      const ObjectsFrame f = stage.process(test::castSweep({{xc, 38.0, 0.0, 4.5, 1.8, 1.5}}), Eigen::Isometry3d::Identity(), t);
+      std::vector<BoxRecord> all = f.retro;
+      if (k == 39) all.insert(all.end(), f.moving_boxes.begin(), f.moving_boxes.end());
+      for (const BoxRecord& b : all) {
+        const double x = -12.0 + 10.0 * b.t;  // the car at the box's time: its near face at y = 37.1
+        ++boxes;
+        low_in += insideBox(b, Eigen::Vector3d(x, 37.1, -1.9 + 0.4), cp.removal_margin_m);
+        road_in += insideBox(b, Eigen::Vector3d(x, 37.1, -1.9), cp.removal_margin_m);
+      }
+    }
+    SCOPED_TRACE(floor_m);
+    ASSERT_GT(boxes, 40u);  // the path before birth alone: retro_extrapolate_s / 0.1 s
+    EXPECT_EQ(road_in, 0u);
+    if (floor_m >= 0) EXPECT_GE(low_in, boxes / 2);  // the rest: the heading's error 3-4 s back
+    else EXPECT_EQ(low_in, 0u);
+  }
+}
+
 TEST(ObjectsStage, ACoastingTrackLeavesTheOutputsBeforeItEnds) {
   ClusterParams cp;
   cp.min_points = 4;
@@ -229,6 +258,40 @@ TEST(ObjectsStage, ACoastingTrackLeavesTheOutputsBeforeItEnds) {
     ASSERT_TRUE(holds(stage.tracker().tracks())) << "coasting, miss " << miss;
     EXPECT_EQ(holds(f.tracks), miss <= tp.output_max_misses) << "miss " << miss;
     EXPECT_EQ(f.moving_boxes.size(), 1u) << "miss " << miss;
+  }
+}
+
+// The same car, its points gone (fallen below min_points as it drives away): with
+// forward_extrapolate_s its box outlives the track, carried along its velocity (on the car's true
+// path within 1 m) for that long and while within the objects' reach of the lidar; 0: none.
+TEST(ObjectsStage, AnEndedMovingTrackKeepsABoxAlongItsVelocity) {
+  for (const double fwd : {1.5, 0.0}) {
+    ClusterParams cp;
+    cp.min_points = 4;
+    cp.forward_extrapolate_s = fwd;
+    TrackerParams tp;
+    ObjectsStage stage(cp, tp);
+    const double v = 10.0;
+    int k = 0;
+    for (; k < 25; ++k) stage.process(test::castSweep({{-12.0 + v * 0.1 * k, 6.0, 0.0, 4.5, 1.8, 1.5}}), Eigen::Isometry3d::Identity(), 0.1 * k);
+    int boxed_after_end = 0;
+    double last_boxed_t = -1;
+    for (int n = 0; n < 40; ++n, ++k) {
+      const double t = 0.1 * k;
+      const ObjectsFrame f = stage.process(test::castSweep({}), Eigen::Isometry3d::Identity(), t);
+      if (!stage.tracker().tracks().empty() || f.moving_boxes.empty()) continue;
+      ++boxed_after_end, last_boxed_t = t;
+      ASSERT_EQ(f.moving_boxes.size(), 1u);
+      EXPECT_NEAR(f.moving_boxes[0].centre.x(), -12.0 + v * t, 1.0) << "t " << t;
+      EXPECT_NEAR(f.moving_boxes[0].centre.y(), 6.0, 0.5);
+    }
+    SCOPED_TRACE(fwd);
+    if (fwd > 0) {
+      EXPECT_GT(boxed_after_end, 5);
+      EXPECT_LE(last_boxed_t, 2.4 + tp.max_misses * 0.1 + fwd + 1e-6);  // ended at the last coasting sweep
+    } else {
+      EXPECT_EQ(boxed_after_end, 0);
+    }
   }
 }
 

@@ -53,8 +53,19 @@ class ObjectsStage {
 
  private:
   ObjectsFrame snapshot() const;
+  /// Boxes of the moving tracks that ended within ClusterParams::forward_extrapolate_s, carried along
+  /// their velocity to \p t_s while within max_range_m of the lidar at \p lidar_xy, into \p f's
+  /// moving_boxes; remembers the tracks of \p before (at \p t_before) that ended.
+  void forwardBoxes(ObjectsFrame& f, const std::vector<Track>& before, double t_before, double t_s,
+                    const Eigen::Vector2d& lidar_xy);
   ClusterParams p_;
   Tracker tracker_;
+  struct EndedMoving {
+    Track track;
+    double t = 0;  ///< the time of its state (the last update it lived through) [s]
+  };
+  std::vector<EndedMoving> ended_moving_;
+  double t_last_update_ = 0;
 };
 
 /// Removes from \p pts_lidar (the sweep's points in the same lidar frame as \p f's objects, placed in

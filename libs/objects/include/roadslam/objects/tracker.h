@@ -50,6 +50,7 @@ struct Track {
   double heading = 0;                 ///< [rad], from the velocity once moving, else the box's
   double z_min = 0, z_max = 0;        ///< last detection's heights, map frame [m]
   double top_height = 0;              ///< highest point above the local ground of any detection [m]
+  double ground_z = 0;                ///< the local ground under its last detection (top minus height above it), map frame [m]
   int hits = 0, misses = 0;           ///< detections associated; consecutive sweeps without one
   double t_birth = 0, t_last = 0;     ///< first and last detection [s]
   Eigen::Vector2d birth_xy = Eigen::Vector2d::Zero();
