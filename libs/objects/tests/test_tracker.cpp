@@ -217,7 +217,9 @@ TEST(ObjectsStage, RemovalBoxesReachDownToTheRoadUnderTheCar) {
     ClusterParams cp;
     cp.min_points = 4;
     cp.removal_floor_m = floor_m;
-    ObjectsStage stage(cp, TrackerParams{});
+    TrackerParams tp;  // the floor is the subject: CV, whose straight path back is this straight drive's
+    tp.motion_model = MotionModel::ConstantVelocity;  // (the IMM's 4 s back bends with its turn-rate noise)
+    ObjectsStage stage(cp, tp);
     size_t low_in = 0, road_in = 0, boxes = 0;
     for (int k = 0; k < 40; ++k) {
       const double t = 0.1 * k, xc = -12.0 + 10.0 * t;
