@@ -43,8 +43,9 @@ struct Track {
   Eigen::Matrix<double, 5, 5> S = Eigen::Matrix<double, 5, 5>::Identity();
   /// MotionModel::Imm: each model's state [x, y, vx, vy, omega] and covariance (0: constant velocity,
   /// 1: coordinated turn) [m, m, m/s, m/s, rad/s], and the model probabilities [-]; x, P: their combination
-  std::array<Eigen::Matrix<double, 5, 1>, 2> imm_x{};
-  std::array<Eigen::Matrix<double, 5, 5>, 2> imm_P{};
+  /// (Eigen's fixed matrices are left uninitialised by `{}`: zero and identity, as s and S)
+  std::array<Eigen::Matrix<double, 5, 1>, 2> imm_x{Eigen::Matrix<double, 5, 1>::Zero(), Eigen::Matrix<double, 5, 1>::Zero()};
+  std::array<Eigen::Matrix<double, 5, 5>, 2> imm_P{Eigen::Matrix<double, 5, 5>::Identity(), Eigen::Matrix<double, 5, 5>::Identity()};
   Eigen::Vector2d imm_mu = Eigen::Vector2d(1, 0);
   double length = 0, width = 0;       ///< largest extents seen along / across the heading [m]
   double heading = 0;                 ///< [rad], from the velocity once moving, else the box's
