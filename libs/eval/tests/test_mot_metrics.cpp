@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 
 #include <unistd.h>
 
@@ -25,33 +26,41 @@ std::string tmpDir() {
 
 }  // namespace
 
+/// The switch tests' drive in \p d: 41 frames at t = 1000 + 0.1 k s (k = 0..40), the lidar standing at
+/// the world origin (identity GT and odometry poses: the map frame is the world), one 4.5 x 1.8 x 1.5 m
+/// car with the GT samples \p track (gt_objects.json), and the tracks.csv rows \p rows writes for each frame.
+static void writeDrive(const std::string& d, const nlohmann::json& track,
+                       const std::function<void(std::ostream&, int, double)>& rows) {
+  const nlohmann::json gt = {{"frame", "world"},
+                             {"moving_cars", {{{"id", 0}, {"length_m", 4.5}, {"width_m", 1.8}, {"height_m", 1.5}, {"track", track}}}}};
+  std::ofstream(d + "/gt_objects.json") << gt.dump();
+  std::ofstream g(d + "/gt_trajectory.tum"), e(d + "/trajectory_odometry.tum"), tr(d + "/tracks.csv");
+  tr << "frame,stamp_s,track_id,x,y,vx,vy,speed_mps,heading_rad,length_m,width_m,z_min,z_max,moving,hits,misses,age_s\n";
+  for (int k = 0; k <= 40; ++k) {
+    const double t = 1000.0 + 0.1 * k;
+    char line[256];
+    std::snprintf(line, sizeof(line), "%.6f 0 0 0 0 0 0 1\n", t);
+    g << line;
+    e << line;
+    rows(tr, k, t);
+  }
+}
+
 TEST(MotMetrics, CountsMatchesSwitchesAndFalsePositivesOfKnownTracks) {
   const std::string d = tmpDir();
   const double t0 = 1000.0;
-  {
-    nlohmann::json track = nlohmann::json::array();
-    for (int k = 0; k <= 40; ++k) track.push_back({t0 + 0.1 * k, -20.0 + 1.0 * k, 5.0, 0.0, 0.0});
-    const nlohmann::json gt = {{"frame", "world"},
-                               {"moving_cars", {{{"id", 0}, {"length_m", 4.5}, {"width_m", 1.8}, {"height_m", 1.5}, {"track", track}}}}};
-    std::ofstream(d + "/gt_objects.json") << gt.dump();
-    std::ofstream g(d + "/gt_trajectory.tum"), e(d + "/trajectory_odometry.tum"), tr(d + "/tracks.csv");
-    tr << "frame,stamp_s,track_id,x,y,vx,vy,speed_mps,heading_rad,length_m,width_m,z_min,z_max,moving,hits,misses,age_s\n";
-    for (int k = 0; k <= 40; ++k) {
-      const double t = t0 + 0.1 * k;
-      char line[256];
-      std::snprintf(line, sizeof(line), "%.6f 0 0 0 0 0 0 1\n", t);
-      g << line;
-      e << line;
-      // the map frame here is the world: the lidar stands at the origin in both
-      std::snprintf(line, sizeof(line), "%d,%.6f,%d,%.3f,5.1,10.5,0,10.5,0,4.5,1.8,-1,0.5,1,%d,0,%.2f\n", k, t, k < 20 ? 1 : 2,
-                    -20.0 + 1.0 * k, k + 3, k < 20 ? 0.1 * k : 0.1 * (k - 20));
-      tr << line;
-      std::snprintf(line, sizeof(line), "%d,%.6f,7,10,-10,5,0,5,0,4.5,1.8,-1,0.5,1,20,0,3\n", k, t);
-      tr << line;
-      std::snprintf(line, sizeof(line), "%d,%.6f,8,-10,-10,0,0,0,0,4.5,1.8,-1,0.5,0,20,0,3\n", k, t);
-      tr << line;
-    }
-  }
+  nlohmann::json track = nlohmann::json::array();
+  for (int k = 0; k <= 40; ++k) track.push_back({t0 + 0.1 * k, -20.0 + 1.0 * k, 5.0, 0.0, 0.0});
+  writeDrive(d, track, [](std::ostream& tr, int k, double t) {
+    char line[256];
+    std::snprintf(line, sizeof(line), "%d,%.6f,%d,%.3f,5.1,10.5,0,10.5,0,4.5,1.8,-1,0.5,1,%d,0,%.2f\n", k, t, k < 20 ? 1 : 2,
+                  -20.0 + 1.0 * k, k + 3, k < 20 ? 0.1 * k : 0.1 * (k - 20));
+    tr << line;
+    std::snprintf(line, sizeof(line), "%d,%.6f,7,10,-10,5,0,5,0,4.5,1.8,-1,0.5,1,20,0,3\n", k, t);
+    tr << line;
+    std::snprintf(line, sizeof(line), "%d,%.6f,8,-10,-10,0,0,0,0,4.5,1.8,-1,0.5,0,20,0,3\n", k, t);
+    tr << line;
+  });
   const auto m = eval::evaluateMotFiles(d + "/gt_objects.json", d + "/gt_trajectory.tum", d);
   EXPECT_EQ(m.frames, 41u);
   EXPECT_EQ(m.gt, 41u);  // the car stays within 40 m: x from -20 to 20, y = 5
@@ -155,23 +164,13 @@ static eval::MotMetrics switchAcrossFrames(const std::string& d, int between_ret
     const double x = -20.0 + 1.0 * k;
     track.push_back({t0 + 0.1 * k, x, 5.0, 0.0, 0.0, (k >= 20 && k < 25) ? between_returns : 50, std::hypot(x, 5.0)});
   }
-  const nlohmann::json gt = {{"frame", "world"},
-                             {"moving_cars", {{{"id", 0}, {"length_m", 4.5}, {"width_m", 1.8}, {"height_m", 1.5}, {"track", track}}}}};
-  std::ofstream(d + "/gt_objects.json") << gt.dump();
-  std::ofstream g(d + "/gt_trajectory.tum"), e(d + "/trajectory_odometry.tum"), tr(d + "/tracks.csv");
-  tr << "frame,stamp_s,track_id,x,y,vx,vy,speed_mps,heading_rad,length_m,width_m,z_min,z_max,moving,hits,misses,age_s\n";
-  for (int k = 0; k <= 40; ++k) {
-    const double t = t0 + 0.1 * k;
+  writeDrive(d, track, [](std::ostream& tr, int k, double t) {
+    if (k >= 20 && k < 25) return;
     char line[256];
-    std::snprintf(line, sizeof(line), "%.6f 0 0 0 0 0 0 1\n", t);
-    g << line;
-    e << line;
-    if (k >= 20 && k < 25) continue;
     std::snprintf(line, sizeof(line), "%d,%.6f,%d,%.3f,5.0,10,0,10,0,4.5,1.8,-1,0.5,1,%d,0,1\n", k, t, k < 20 ? 1 : 2, -20.0 + 1.0 * k,
                   k + 3);
     tr << line;
-  }
-  g.close(), e.close(), tr.close();
+  });
   eval::MotParams p;
   p.keep_events = true;
   return eval::evaluateMotFiles(d + "/gt_objects.json", d + "/gt_trajectory.tum", d, p);
