@@ -90,6 +90,16 @@ void init(Track& tr, const TrackerParams& p) {
   tr.imm_mu << 1 - p.imm.init_ct_probability, p.imm.init_ct_probability;
 }
 
+void restartTurn(Track& tr, const TrackerParams& p) {
+  for (int j : {kCv, kCt}) {
+    tr.imm_x[j](4) = 0;
+    tr.imm_P[j].row(4).setZero(), tr.imm_P[j].col(4).setZero();
+  }
+  tr.imm_P[kCt](4, 4) = p.imm.init_turn_rate_sigma_radps * p.imm.init_turn_rate_sigma_radps;
+  tr.imm_mu << 1 - p.imm.init_ct_probability, p.imm.init_ct_probability;
+  combine(tr);
+}
+
 void predict(Track& tr, double T, const TrackerParams& p) {
   const Eigen::Matrix2d Pi = transitions(T, p.imm);
   // mixing probabilities mu_{i|j} = p_ij mu_i / cbar_j, cbar_j = sum_i p_ij mu_i (interaction)
@@ -120,11 +130,10 @@ void predict(Track& tr, double T, const TrackerParams& p) {
   combine(tr);
 }
 
-void correct(Track& tr, const Eigen::Vector2d& z, double dt_meas, const TrackerParams& p) {
+void correct(Track& tr, const Eigen::Vector2d& z, double dt_meas, const TrackerParams& p, const Eigen::Matrix2d& R) {
   Eigen::Matrix<double, 2, 5> H = Eigen::Matrix<double, 2, 5>::Zero();
   H(0, 0) = H(1, 1) = 1;
   H(0, 2) = H(1, 3) = dt_meas;
-  const Eigen::Matrix2d R = Eigen::Matrix2d::Identity() * p.meas_sigma_m * p.meas_sigma_m;
   Eigen::Vector2d lik;
   for (int j : {kCv, kCt}) {
     const Eigen::Vector2d nu = z - H * tr.imm_x[j];

@@ -24,6 +24,10 @@ void init(Track& tr, const TrackerParams& p);
 void predict(Track& tr, double dt, const TrackerParams& p);
 /// Each model's Kalman update with the box centre \p z seen \p dt_meas after the state's time
 /// (h = position + dt_meas * velocity), the model probabilities from their likelihoods, the combination.
-void correct(Track& tr, const Eigen::Vector2d& z, double dt_meas, const TrackerParams& p);
+/// The turn rate of both models back to a new track's (0, ImmParams::init_turn_rate_sigma_radps, no
+/// correlation) and the model probabilities to ImmParams::init_ct_probability.
+void restartTurn(Track& tr, const TrackerParams& p);
+/// \p R: the centre's covariance [m^2].
+void correct(Track& tr, const Eigen::Vector2d& z, double dt_meas, const TrackerParams& p, const Eigen::Matrix2d& R);
 
 }  // namespace roadslam::objects::imm

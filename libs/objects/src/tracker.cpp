@@ -24,6 +24,7 @@ struct Detection {
   double top = 0;  // highest point above the local ground [m]
 };
 
+constexpr int kReidMinMisses = 2;  // sweeps a track must have lost its object to hand its id on (Tracker::reidentify)
 constexpr size_t kHistoryMax = 100;  // 10 s of detections at 10 Hz before a track is labelled moving
 
 void remember(Track& tr, const Detection& d, double t) {
@@ -236,12 +237,11 @@ void Tracker::coast(double t, const std::string& reason) {
 
 namespace {
 
-/// Kalman update of \p tr with the detection centre \p z seen \p dt after the state's time (either model).
-void correct(Track& tr, const Eigen::Vector2d& z, double dt, const TrackerParams& p_) {
+/// Kalman update of \p tr with the centre \p z (covariance \p R) seen \p dt after the state's time (any model).
+void correct(Track& tr, const Eigen::Vector2d& z, double dt, const TrackerParams& p_, const Eigen::Matrix2d& R) {
   // The detection is where the object was when the beam swept it, dt after the state's time:
   // h(x) = position + dt * velocity (CV: H = [I, dt I], linear; CTRV: its Jacobian).
-  if (p_.motion_model == MotionModel::Imm) return imm::correct(tr, z, dt, p_);
-  const Eigen::Matrix2d R = Eigen::Matrix2d::Identity() * p_.meas_sigma_m * p_.meas_sigma_m;
+  if (p_.motion_model == MotionModel::Imm) return imm::correct(tr, z, dt, p_, R);
   if (p_.motion_model == MotionModel::Ctrv) {
     const double v = tr.s(2), c = std::cos(tr.s(3)), sn = std::sin(tr.s(3));
     Eigen::Matrix<double, 2, 5> H = Eigen::Matrix<double, 2, 5>::Zero();
@@ -312,7 +312,7 @@ void label(Track& tr, double t, const TrackerParams& p) {
 
 /// \p tr takes the detection \p d (index \p j) completed as \p c, seen from \p s at \p t.
 void take(Track& tr, const Detection& d, const Completed& c, const Eigen::Vector2d& s, double t, int j, const TrackerParams& p_) {
-  correct(tr, c.centre, d.dt, p_);
+  correct(tr, c.centre, d.dt, p_, Eigen::Matrix2d::Identity() * p_.meas_sigma_m * p_.meas_sigma_m);
   tr.length = std::max(tr.length, c.along);
   tr.width = std::max(tr.width, c.across);
   growToCarBehindFace(tr, d, s, p_);
@@ -367,6 +367,7 @@ void Tracker::update(double t, const Eigen::Isometry3d& T_map_lidar, const std::
   const auto cost = associationCosts(tracks_, dets, s, p_, comp);
   const std::vector<int> match = hungarian(cost);
   std::vector<char> taken(dets.size(), false);
+  std::vector<int> confirmed_now;  // ids of the tracks this sweep confirmed
   for (size_t i = 0; i < tracks_.size(); ++i) {
     const int j = match[i];
     tracks_[i].last_detection = -1;
@@ -375,12 +376,53 @@ void Tracker::update(double t, const Eigen::Isometry3d& T_map_lidar, const std::
       continue;
     }
     taken[static_cast<size_t>(j)] = true;
+    const bool was_tentative = tracks_[i].state == TrackState::Tentative;
     take(tracks_[i], dets[static_cast<size_t>(j)], comp[i][static_cast<size_t>(j)], s, t, j, p_);
+    if (was_tentative && tracks_[i].state == TrackState::Confirmed) confirmed_now.push_back(tracks_[i].id);
   }
   prune(t, "missed");
   for (size_t j = 0; j < dets.size(); ++j) {
     if (!taken[j]) tracks_.push_back(born(next_id_++, dets[j], s, t, static_cast<int>(j), p_));
   }
+  for (int id : confirmed_now) reidentify(id);
+}
+
+void Tracker::reidentify(int young_id) {
+  if (p_.reid_gate_m <= 0) return;
+  auto young = std::find_if(tracks_.begin(), tracks_.end(), [&](const Track& tr) { return tr.id == young_id; });
+  if (young == tracks_.end()) return;
+  // A fast moving track that lost its object (missed this sweep and the last, still coasting) and is
+  // predicted within reid_gate_m of a track its object's detections just confirmed: the object left
+  // the gate (a turn the prediction lagged, a partial view completed on the wrong side) and came back
+  // as a new track. Track-to-track association of the lost track with the new one, as the
+  // re-identification step of ByteTrack / OC-SORT, by position only: the cars carry no appearance.
+  // Only tracks labelled moving (a static track continued by clutter's new tracks was labelled moving
+  // by the merges: hedges on the hard loop), faster than clutter's sliding boxes, and lost for two
+  // sweeps (after one, a duplicate track had taken the detection: the lost one takes it back next).
+  auto best = tracks_.end();
+  double best_d = p_.reid_gate_m;
+  for (auto it = tracks_.begin(); it != tracks_.end(); ++it) {
+    if (it == young || !it->moving || it->last_detection >= 0 || it->misses < kReidMinMisses) continue;
+    if (it->t_birth >= young->t_birth || it->speed() <= p_.reid_min_speed_mps) continue;
+    const double d = (it->x.head<2>() - young->x.head<2>()).norm();
+    if (d < best_d) best_d = d, best = it;
+  }
+  if (best == tracks_.end()) return;
+  // The lost track takes the new one's position estimate as a measurement (its covariance as R): the
+  // velocity of the longer history, corrected through its coasting covariance, beats that of 3 boxes
+  // (a car sliding past an occluder's gap shows the same points for 3 sweeps). The jump is no turn:
+  // the turn rate restarts. It keeps its label, extents and history (moving: no more records).
+  Track merged = *best;
+  correct(merged, young->x.head<2>(), 0, p_, young->P.topLeftCorner<2, 2>());
+  if (p_.motion_model == MotionModel::Imm) imm::restartTurn(merged, p_);
+  merged.misses = 0, merged.t_last = young->t_last;
+  merged.last_detection = young->last_detection;
+  merged.z_min = young->z_min, merged.z_max = young->z_max, merged.ground_z = young->ground_z;
+  merged.top_height = std::max(merged.top_height, young->top_height);
+  label(merged, young->t_last, p_);
+  *young = merged;
+  ++reidentified_;
+  tracks_.erase(best);
 }
 
 std::vector<EndedTrack> Tracker::takeEnded() {

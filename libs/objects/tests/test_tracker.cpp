@@ -374,3 +374,56 @@ TEST(Imm, TheCoordinatedTurnsJacobianIsItsTransitionsDerivative) {
   EXPECT_NEAR(o(2), 0, 1e-9);
   EXPECT_NEAR(o(3), 10, 1e-9);
 }
+
+// A car drives east at 10 m/s, 15 m ahead; after 3 s it is hidden for two sweeps and its boxes come
+// back 2.7 m to its left (a partial view completed on the wrong side, beyond the 2.5 m gate): a new
+// track takes them. Once confirmed, 2.7 m from where the lost track is predicted, it continues the
+// lost track (TrackerParams::reid_gate_m): one id for the one car, moving, with the lost track's
+// velocity. With reid_gate_m = 0 the car has two ids. \p ids: the confirmed ids in order of appearance.
+static std::vector<int> hiddenThenShifted(Tracker& tr, double speed_mps, double shift_m) {
+  std::vector<int> ids;
+  for (int k = 0; k <= 50; ++k) {
+    const double t = 0.1 * k;
+    std::vector<Object> seen;
+    if (k < 30 || k > 31) seen.push_back(car(15 + speed_mps * t, k < 30 ? 0.0 : shift_m));
+    tr.update(100 + t, Eigen::Isometry3d::Identity(), seen);
+    for (const Track& x : tr.tracks()) {
+      if (x.state == TrackState::Confirmed && x.misses <= tr.params().output_max_misses &&
+          std::find(ids.begin(), ids.end(), x.id) == ids.end()) {
+        ids.push_back(x.id);
+      }
+    }
+  }
+  return ids;
+}
+
+TEST(Tracker, ANewTrackWhereAFastMovingTrackWasLostContinuesIt) {
+  Tracker tr;
+  EXPECT_EQ(hiddenThenShifted(tr, 10, 2.7), (std::vector<int>{1}));
+  EXPECT_EQ(tr.reidentified(), 1);
+  ASSERT_EQ(tr.tracks().size(), 1u);
+  const Track& t = tr.tracks()[0];
+  EXPECT_TRUE(t.moving);
+  EXPECT_NEAR(t.x(1), 2.7, 0.3);      // where the boxes are
+  EXPECT_NEAR(t.x(2), 10.0, 0.5);     // the car's velocity
+  EXPECT_NEAR(t.t_birth, 100.0, 1e-9);  // the lost track's age
+  for (const EndedTrack& e : tr.takeEnded()) EXPECT_NE(e.track.id, 1) << "the continued track never ended";
+
+  TrackerParams off;
+  off.reid_gate_m = 0;
+  Tracker two(off);
+  EXPECT_EQ(hiddenThenShifted(two, 10, 2.7).size(), 2u);
+  EXPECT_EQ(two.reidentified(), 0);
+}
+
+// Only tracks labelled moving and faster than reid_min_speed_mps hand their id on (static clutter
+// merging and splitting slides at up to 4-5 m/s), and only within reid_gate_m.
+TEST(Tracker, SlowStaticOrFarLostTracksKeepTheirIdsToThemselves) {
+  Tracker slow;  // 5 m/s: labelled moving, below reid_min_speed_mps = 6
+  EXPECT_EQ(hiddenThenShifted(slow, 5, 2.7).size(), 2u);
+  Tracker parked;  // a parked car, hidden, and a new object beside it
+  EXPECT_EQ(hiddenThenShifted(parked, 0, 2.7).size(), 2u);
+  Tracker far;  // beyond the 3 m gate
+  EXPECT_EQ(hiddenThenShifted(far, 10, 3.3).size(), 2u);
+  EXPECT_EQ(slow.reidentified() + parked.reidentified() + far.reidentified(), 0);
+}

@@ -149,6 +149,7 @@ struct ObjectsOutput {
     return {{"objects", n_objects}, {"tracks_alive_at_end", confirmed_alive}, {"moving_points_removed_from_maps", moving_points_removed},
             {"earlier_points_removed_from_keyframes", retro_points_removed},
             {"moving_points_kept_out_of_odometry_map", odometry_points_excluded}, {"tracks_ended", end_reasons},
+            {"tracks_reidentified", stage.tracker().reidentified()},
             {"ms_segment_track_per_frame", stats(ms)}, {"ms_ground_per_frame", stats(ms_ground)}};
   }
 };

@@ -155,6 +155,13 @@ struct TrackerParams {
   double moving_max_width_m = 3.0;       ///< ... or wider than this [m]
   double moving_min_width_m = 1.0;       ///< ... or never seen wider than this (a wall's face slides, a car shows two faces) [m]
   double moving_max_height_m = 2.3;      ///< ... or ever seen higher above the ground (walls, hedges; cars and SUVs stay below, vans and trucks not) [m]
+  /// A track confirmed within this distance (x-y) of where a moving track that lost its object two
+  /// sweeps ago is predicted continues the lost track (its id, age, label; the object left the gate
+  /// and came back as a new track); 0: off [m]
+  double reid_gate_m = 3.0;
+  /// ... when the lost track is faster than this: static clutter passed at a corner, labelled moving
+  /// as its objects merge and split, slides at up to 4-5 m/s; cars in traffic drive faster [m/s]
+  double reid_min_speed_mps = 6.0;
   double max_dt_s = 1.0;                 ///< a gap longer than this between sweeps ends every track ("gap") [s]
   /// Car-size prior of the box centre: a moving track's detections are completed to at least this
   /// size away from the sensor (0 = off) ... [m]

@@ -86,17 +86,21 @@ class Tracker {
   /// Tracks ended since the last takeEnded(); every track confirmed or not.
   std::vector<EndedTrack> takeEnded();
   const TrackerParams& params() const { return p_; }
+  /// Lost tracks a new track continued (TrackerParams::reid_gate_m) so far.
+  int reidentified() const { return reidentified_; }
 
  private:
   void predict(double t);
   void predictCtrv(Track& tr, double dt) const;
   void endAll(double t, const std::string& reason);
   void prune(double t, const std::string& reason);
+  void reidentify(int young_id);
 
   TrackerParams p_;
   std::vector<Track> tracks_;
   std::vector<EndedTrack> ended_;
   int next_id_ = 1;
+  int reidentified_ = 0;
   double t_ = 0;
   bool started_ = false;
 };
