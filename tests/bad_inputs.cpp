@@ -221,7 +221,7 @@ const Row kTable[] = {
   {"map-bad-matcher",      "roadslam-map --config {W}/bad-matcher.ini --input {W}/truncated.pcap --out {O}", 1, "bad-matcher.ini:2: [odometry] matcher = 'kiss': expected voxel_map or registration"},
   {"map-bad-graph-optimizer", "roadslam-map --config {W}/bad-graph-optimizer.ini --input {W}/truncated.pcap --out {O}", 1, "optimizer = 'g2o': expected lm or mrpt_levmarq"},
   {"map-negative-voxel",   "roadslam-map --config {W}/negative-voxel.ini --input {W}/truncated.pcap --out {O}", 1, "must be positive"},
-  {"map-seen-through-zero-tolerance", "roadslam-map --config {W}/seen-through-zero-tolerance.ini --input {W}/truncated.pcap --out {O}", 1, "[seen_through]: need azimuth_res_deg, elevation_res_deg, ray_tolerance_m"},
+  {"map-seen-through-zero-tolerance", "roadslam-map --config {W}/seen-through-zero-tolerance.ini --input {W}/truncated.pcap --out {O}", 1, "seen-through-zero-tolerance.ini:2: [seen_through] ray_tolerance_m = 0: must be > 0"},
   {"map-objects-reach-inside-body", "roadslam-map --config {W}/objects-reach-inside-body.ini --input {W}/truncated.pcap --out {O}", 1, "[objects] max_range_m must exceed min_range_m"},
   {"map-bad-spin",         "roadslam-map --config {W}/bad-spin.ini --input {W}/truncated.pcap --out {O}", 1, "[kitti] spin = 'sideways'"},
   {"map-bad-motion-model", "roadslam-map --config {W}/bad-motion-model.ini --input {W}/truncated.pcap --out {O}", 1, "bad-motion-model.ini:4: [tracking] motion_model = 'kalman': expected cv, ctrv or imm"},

@@ -22,6 +22,13 @@ std::string keyLocation(const mrpt::config::CConfigFileBase& cfg, const std::str
   return configSource(cfg) + "[" + section + "] " + key;
 }
 
+void requireValue(bool ok, const mrpt::config::CConfigFileBase& cfg, const std::string& section, const std::string& key,
+                  const std::string& what) {
+  if (ok) return;
+  const std::string v = cfg.read_string(section, key, "", false);
+  throw std::runtime_error(keyLocation(cfg, section, key) + " = " + (v.empty() ? "(default)" : v) + ": " + what);
+}
+
 namespace {
 std::string raw(const mrpt::config::CConfigFileBase& cfg, const std::string& section,
                 const std::string& key) {

@@ -24,6 +24,11 @@ std::string configSource(const mrpt::config::CConfigFileBase& cfg);
 /// "file: [section] key" or "[section] key": the start of an error message about one value.
 std::string keyLocation(const mrpt::config::CConfigFileBase& cfg, const std::string& section, const std::string& key);
 
+/// Throws std::runtime_error "FILE:LINE: [section] key = value: \p what" unless \p ok: the range check
+/// of one loaded value, naming the key as the ini wrote it.
+void requireValue(bool ok, const mrpt::config::CConfigFileBase& cfg, const std::string& section, const std::string& key,
+                  const std::string& what);
+
 /// Reads a double; throws naming section/key (and the source) when the value is not a number.
 double readDouble(const mrpt::config::CConfigFileBase& cfg, const std::string& section,
                   const std::string& key, double default_value);
