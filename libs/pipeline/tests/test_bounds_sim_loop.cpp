@@ -180,7 +180,7 @@ TEST(SimLoop, WholeDrivesWithVisibleCurbsMeetTheTargets) {
 // to the tight bounds, and the hills drive (the same loop on slopes to 12 %, 30 % parked cars) with
 // the odometry's, which adds the odometry's drift, the loop's overlap and the slopes. The urban loop
 // with the odometry's poses (21 s) is the hills run's claim on a flat loop, and its first 10 s are
-// SimDrive.WholeDriveSeesTheCurbParkedCarsHide; the hills drive with GT poses (17 s) is held by the
+// held to the same bounds by SimDrive.WholeDriveSeesTheCurbParkedCarsHide; the hills drive with GT poses (17 s) is held by the
 // odometry's run here and, live, by WholeHillsDriveTakesTheCurbNotTheSidewalksFarEdge.
 TEST(SimLoop, WholeDriveModeMeetsTheTargetsBehindParkedCars) {
   struct Case {
