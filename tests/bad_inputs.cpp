@@ -86,6 +86,7 @@ void makeFiles() {
   write(w / "bad-spin.ini", "[kitti]\nspin = sideways\n");
   write(w / "bad-stamp-reference.ini", "[kitti]\nstamp_reference = centre\n");
   write(w / "bad-bool.ini", "[odometry]\ndeskew = maybe\n");
+  write(w / "bad-motion-model.ini", "; the tracker's filter\n[tracking]\n\nmotion_model = kalman\n");
   write(w / "bounds-typo.ini", fileText(kSrc + "/ini/bounds.ini") + "\n[boundary]\ncurb_min_jmup_m = 0.1\n");
   {
     std::string b = fileText(kSrc + "/ini/bounds.ini");
@@ -217,12 +218,13 @@ const Row kTable[] = {
   {"map-typo-section",     "roadslam-map --config {W}/typo-section.ini --input {W}/truncated.pcap --out {O}", 1, "unknown section [odometri] (nearest known: [odometry])"},
   {"map-typo-allowed",     "roadslam-map --config {W}/typo-key.ini --input {W}/truncated.pcap --out {O} --quiet --allow-unknown-keys", 0, "warning: "},
   {"map-not-a-number",     "roadslam-map --config {W}/not-a-number.ini --input {W}/truncated.pcap --out {O}", 1, "not-a-number.ini:2: [preprocess] voxel_size_m = 'abc' is not a number"},
-  {"map-bad-matcher",      "roadslam-map --config {W}/bad-matcher.ini --input {W}/truncated.pcap --out {O}", 1, "expected voxel_map or registration"},
+  {"map-bad-matcher",      "roadslam-map --config {W}/bad-matcher.ini --input {W}/truncated.pcap --out {O}", 1, "bad-matcher.ini:2: [odometry] matcher = 'kiss': expected voxel_map or registration"},
   {"map-bad-graph-optimizer", "roadslam-map --config {W}/bad-graph-optimizer.ini --input {W}/truncated.pcap --out {O}", 1, "optimizer = 'g2o': expected lm or mrpt_levmarq"},
   {"map-negative-voxel",   "roadslam-map --config {W}/negative-voxel.ini --input {W}/truncated.pcap --out {O}", 1, "must be positive"},
-  {"map-seen-through-zero-tolerance", "roadslam-map --config {W}/seen-through-zero-tolerance.ini --input {W}/truncated.pcap --out {O}", 1, "[seen_through]: need azimuth_res_deg, elevation_res_deg, ray_tolerance_m"},
+  {"map-seen-through-zero-tolerance", "roadslam-map --config {W}/seen-through-zero-tolerance.ini --input {W}/truncated.pcap --out {O}", 1, "seen-through-zero-tolerance.ini:2: [seen_through] ray_tolerance_m = 0: must be > 0"},
   {"map-objects-reach-inside-body", "roadslam-map --config {W}/objects-reach-inside-body.ini --input {W}/truncated.pcap --out {O}", 1, "[objects] max_range_m must exceed min_range_m"},
   {"map-bad-spin",         "roadslam-map --config {W}/bad-spin.ini --input {W}/truncated.pcap --out {O}", 1, "[kitti] spin = 'sideways'"},
+  {"map-bad-motion-model", "roadslam-map --config {W}/bad-motion-model.ini --input {W}/truncated.pcap --out {O}", 1, "bad-motion-model.ini:4: [tracking] motion_model = 'kalman': expected cv, ctrv or imm"},
   {"map-bad-stamp-ref",    "roadslam-map --config {W}/bad-stamp-reference.ini --input {W}/truncated.pcap --out {O}", 1, "expected start, middle or end"},
   {"map-bad-bool",         "roadslam-map --config {W}/bad-bool.ini --input {W}/truncated.pcap --out {O}", 1, "is not a boolean"},
   // roadslam-map: signals

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <arpa/inet.h>
+#include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/img/CImage.h>
 #include <netinet/in.h>
 #include <sys/socket.h>
@@ -225,12 +226,11 @@ TEST(RoadslamViewApp, RunSlamDrawsTheObjectsRoadslamMapWrites) {
   const std::string bin = fs::path(kBin).parent_path().string(), src = ROADSLAM_SOURCE_DIR;
   std::stringstream ini;
   ini << std::ifstream(src + "/ini/default.ini").rdbuf();
-  std::string text = ini.str();
-  const auto at = text.find("enabled = false", text.find("[objects]"));
-  ASSERT_NE(at, std::string::npos);
-  text.replace(at, 15, "enabled = true");
+  mrpt::config::CConfigFileMemory cfg(ini.str());  // set by section and key: comments stay as they are
+  ASSERT_EQ(cfg.read_string("objects", "enabled", ""), "false");
+  cfg.write("objects", "enabled", std::string("true"));
   const fs::path on = f.dir / "objects_on.ini", map = f.dir / "objects_map";
-  std::ofstream(on) << text;
+  std::ofstream(on) << cfg.getContent();
   ASSERT_EQ(std::system((bin + "/roadslam-map --config " + on.string() + " --input " + f.rawlog.string() + " --out " +
                          map.string() + " --quiet").c_str()), 0);
   // khaki (SceneColors::object_untracked, 200 200 120) by hue: lines are shaded at their edges

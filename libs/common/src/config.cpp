@@ -16,14 +16,20 @@ std::string configSource(const mrpt::config::CConfigFileBase& cfg) {
   return "";
 }
 
-namespace {
-/// "file:line: [section] key" (the key's line when the ini is a CheckedConfig that has it).
-std::string where(const mrpt::config::CConfigFileBase& cfg, const std::string& section,
-                  const std::string& key) {
+std::string keyLocation(const mrpt::config::CConfigFileBase& cfg, const std::string& section, const std::string& key) {
   if (auto f = dynamic_cast<const CheckedConfig*>(&cfg); f && f->lineOf(section, key) > 0)
     return f->path() + ":" + std::to_string(f->lineOf(section, key)) + ": [" + section + "] " + key;
   return configSource(cfg) + "[" + section + "] " + key;
 }
+
+void requireValue(bool ok, const mrpt::config::CConfigFileBase& cfg, const std::string& section, const std::string& key,
+                  const std::string& what) {
+  if (ok) return;
+  const std::string v = cfg.read_string(section, key, "", false);
+  throw std::runtime_error(keyLocation(cfg, section, key) + " = " + (v.empty() ? "(default)" : v) + ": " + what);
+}
+
+namespace {
 std::string raw(const mrpt::config::CConfigFileBase& cfg, const std::string& section,
                 const std::string& key) {
   return cfg.read_string(section, key, "", false);
@@ -43,7 +49,7 @@ double readDouble(const mrpt::config::CConfigFileBase& cfg, const std::string& s
   const double v = std::strtod(s.c_str(), &end);
   while (end && (*end == ' ' || *end == '\t')) ++end;
   if (end == s.c_str() || (end && *end != '\0') || errno == ERANGE) {
-    throw std::runtime_error(where(cfg, section, key) + " = '" + s + "' is not a number");
+    throw std::runtime_error(keyLocation(cfg, section, key) + " = '" + s + "' is not a number");
   }
   return v;
 }
@@ -57,7 +63,7 @@ int readInt(const mrpt::config::CConfigFileBase& cfg, const std::string& section
   const long v = std::strtol(s.c_str(), &end, 10);
   while (end && (*end == ' ' || *end == '\t')) ++end;
   if (end == s.c_str() || (end && *end != '\0') || errno == ERANGE) {
-    throw std::runtime_error(where(cfg, section, key) + " = '" + s + "' is not an integer");
+    throw std::runtime_error(keyLocation(cfg, section, key) + " = '" + s + "' is not an integer");
   }
   return static_cast<int>(v);
 }
@@ -69,7 +75,7 @@ bool readBool(const mrpt::config::CConfigFileBase& cfg, const std::string& secti
   std::transform(s.begin(), s.end(), s.begin(), ::tolower);
   if (s == "1" || s == "true" || s == "yes" || s == "on") return true;
   if (s == "0" || s == "false" || s == "no" || s == "off") return false;
-  throw std::runtime_error(where(cfg, section, key) + " = '" + s + "' is not a boolean");
+  throw std::runtime_error(keyLocation(cfg, section, key) + " = '" + s + "' is not a boolean");
 }
 
 std::string readString(const mrpt::config::CConfigFileBase& cfg, const std::string& section,

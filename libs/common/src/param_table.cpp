@@ -57,8 +57,8 @@ void ParamTable::text(const std::string& key, std::string& v) {
   if (mode_ == Mode::Save) out_->write(section_, key, v);
 }
 
-std::string ParamTable::where() const {
-  return (in_ ? configSource(*in_) : std::string()) + "[" + section_ + "] ";
+std::string ParamTable::keyLocation(const std::string& key) const {
+  return in_ ? roadslam::keyLocation(*in_, section_, key) : "[" + section_ + "] " + key;
 }
 
 std::string ParamTable::pickAlias(const std::string& key, const std::string& alias) const {

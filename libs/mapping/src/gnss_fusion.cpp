@@ -148,6 +148,7 @@ void GnssFusionParams::fields(ParamTable& t) {
   t.flag("online_yaw_rate_bias", online_yaw_rate_bias);
   t.flag("online_odometry_scale", online_odometry_scale);
   t.num("online_bias_min_path_m", online_bias_min_path_m);
+  t.text("live_source_label", live_source_label);
 }
 
 void GnssFusionParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& s) {

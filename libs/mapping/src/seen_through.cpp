@@ -8,6 +8,7 @@
 #include <unordered_map>
 
 #include "ini_keys.h"
+#include "roadslam/common/config.h"
 #include "roadslam/common/param_table.h"
 #include "roadslam/mapping/mapper.h"
 
@@ -161,12 +162,23 @@ void SeenThroughParams::fields(ParamTable& t) {
 void SeenThroughParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& s) {
   loadFields(*this, cfg, s);
   rejectUnknownKeys(cfg, s, fieldKeys<SeenThroughParams>());
-  if (azimuth_res_rad <= 0 || elevation_res_rad <= 0 || azimuth_window < 0 || margin_m < 0 || margin_ratio < 0 || ray_tolerance_m <= 0 ||
-      max_range_m <= 0 || ground_cell_m <= 0 || reference_spacing_m < 0 || min_through < 1 || through_hit_ratio < 0) {
-    throw std::runtime_error("[" + s + "]: need azimuth_res_deg, elevation_res_deg, ray_tolerance_m, max_range_m, ground_cell_m > 0, "
-                             "azimuth_window, margin_m, margin_ratio, reference_spacing_m, through_hit_ratio >= 0, "
-                             "min_through >= 1");
-  }
+  struct Check {
+    const char* key;
+    bool ok;
+    const char* bound;
+  };
+  const Check checks[] = {{"azimuth_res_deg", azimuth_res_rad > 0, "> 0"},
+                          {"elevation_res_deg", elevation_res_rad > 0, "> 0"},
+                          {"azimuth_window", azimuth_window >= 0, ">= 0"},
+                          {"margin_m", margin_m >= 0, ">= 0"},
+                          {"margin_ratio", margin_ratio >= 0, ">= 0"},
+                          {"ray_tolerance_m", ray_tolerance_m > 0, "> 0"},
+                          {"max_range_m", max_range_m > 0, "> 0"},
+                          {"ground_cell_m", ground_cell_m > 0, "> 0"},
+                          {"reference_spacing_m", reference_spacing_m >= 0, ">= 0"},
+                          {"min_through", min_through >= 1, ">= 1"},
+                          {"through_hit_ratio", through_hit_ratio >= 0, ">= 0"}};
+  for (const Check& c : checks) requireValue(c.ok, cfg, s, c.key, std::string("must be ") + c.bound);
 }
 
 void SeenThroughParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& s) const {

@@ -8,8 +8,21 @@
 
 namespace roadslam::pipeline {
 
+LiveGnss::LiveGnss(const mapping::GnssFusionParams& p) : online_(p), p_(p) {
+  counts_.source = p.live_source_label;
+  counts_.source_chosen = has_source_ = !p.live_source_label.empty();
+}
+
 void LiveGnss::post(const sources::TimedGpsFix& f) {
   std::lock_guard<std::mutex> lock(m_);
+  if (!has_source_ && f.fix.valid) {  // the first source with a fix
+    counts_.source = f.label;
+    has_source_ = true;
+  }
+  if (has_source_ && f.label != counts_.source) {
+    ++counts_.other_sources;
+    return;
+  }
   ++counts_.epochs;
   if (!f.fix.valid) {
     ++counts_.no_fix;
@@ -68,9 +81,14 @@ std::optional<gnss::Geodetic> LiveGnss::origin() const {
 std::string LiveGnss::statusLine() const {
   const LiveGnssCounts c = counts();
   char s[200];
-  std::snprintf(s, sizeof s, "GNSS: %zu fixes (%zu no fix), %zu solves (%zu failed), %zu rejected, %s", c.fixes, c.no_fix,
-                c.solves, c.failed, c.rejected, c.anchored ? "corrected" : "waiting for fixes");
-  return s;
+  std::string source;  // "GNSS" alone while no record has a fix, or for a feed whose records carry no label
+  if (c.source_chosen || !c.source.empty()) {
+    source = " from " + c.source + (c.source_chosen ? " (live_source_label" : " (first seen");
+    source += c.other_sources ? "; " + std::to_string(c.other_sources) + " records of other sources left out)" : ")";
+  }
+  std::snprintf(s, sizeof s, ": %zu fixes (%zu no fix), %zu solves (%zu failed), %zu rejected, %s", c.fixes, c.no_fix, c.solves,
+                c.failed, c.rejected, c.anchored ? "corrected" : "waiting for fixes");
+  return "GNSS" + source + s;
 }
 
 }  // namespace roadslam::pipeline

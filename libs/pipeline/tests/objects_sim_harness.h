@@ -5,6 +5,9 @@
 // "Objects"); the MOTA >= 0.90 and MOTP <= 0.20 m are reached on the three drives, its id-switch
 // target (<= 1 per 100 tracked s) counting the cars that stayed in view on the 30 s loop and the parallel
 // streets, not on the 90 s loop (2 in 38 tracked s; docs/benchmarks.md, "Objects").
+#include <mrpt/config/CConfigFileMemory.h>
+
+#include <algorithm>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -18,34 +21,36 @@
 
 namespace roadslam::pipeline::objects_test {
 
-/// Text replacements in the ini ("method = range_image" -> "method = dbscan"), each must apply.
-using IniEdits = std::vector<std::pair<std::string, std::string>>;
+/// One value of the ini: [section] key = value.
+struct IniEdit {
+  std::string section, key, value;
+};
+/// Values set in ini/default.ini ({"objects", "method", "dbscan"}); each key must be in its section.
+using IniEdits = std::vector<IniEdit>;
 
 /// ini/default.ini with [objects] enabled = true (and remove_moving_from_maps as \p remove, and
-/// \p edits), written into the test cache under \p tag.
+/// \p edits), written into the test cache under \p tag. The values are set by section and key
+/// (CConfigFileMemory, which keeps the comments), so a comment naming a key or a section is never edited.
 inline std::string objectsIni(bool remove = true, const IniEdits& edits = {}, const std::string& tag = "") {
-  std::ifstream in(std::string(ROADSLAM_SOURCE_DIR) + "/ini/default.ini");
+  const std::string source = std::string(ROADSLAM_SOURCE_DIR) + "/ini/default.ini";
+  std::ifstream in(source);
   std::stringstream ss;
   ss << in.rdbuf();
-  std::string s = ss.str();
-  const auto sec = s.find("[objects]");
-  const auto key = s.find("enabled = false", sec);
-  if (sec == std::string::npos || key == std::string::npos) throw std::runtime_error("default.ini has no [objects] enabled");
-  s.replace(key, 15, "enabled = true");
-  if (!remove) {
-    const auto r = s.find("remove_moving_from_maps = true", sec);
-    if (r == std::string::npos) throw std::runtime_error("default.ini has no [objects] remove_moving_from_maps = true");
-    s.replace(r, 30, "remove_moving_from_maps = false");
-  }
-  for (const auto& [from, to] : edits) {
-    const auto at = s.find(from);
-    if (at == std::string::npos) throw std::runtime_error("default.ini has no '" + from + "'");
-    s.replace(at, from.size(), to);
-  }
+  mrpt::config::CConfigFileMemory cfg(ss.str());
+  const auto set = [&](const IniEdit& e) {
+    std::vector<std::string> keys;
+    cfg.getAllKeys(e.section, keys);
+    if (std::find(keys.begin(), keys.end(), e.key) == keys.end())
+      throw std::runtime_error(source + " has no [" + e.section + "] " + e.key);
+    cfg.write(e.section, e.key, e.value);
+  };
+  set({"objects", "enabled", "true"});
+  if (!remove) set({"objects", "remove_moving_from_maps", "false"});
+  for (const IniEdit& e : edits) set(e);
   const std::string path =
       std::string(ROADSLAM_BINARY_DIR) + "/test-cache/objects-on" + (remove ? "" : "-keep") + tag + ".ini";
   std::filesystem::create_directories(std::string(ROADSLAM_BINARY_DIR) + "/test-cache");
-  writeFileAtomically(path, s);
+  writeFileAtomically(path, cfg.getContent());
   return path;
 }
 

@@ -174,22 +174,31 @@ TEST(SimLoop, WholeDrivesWithVisibleCurbsMeetTheTargets) {
 // stations), with the GT poses and with the odometry's (no loop closure: the loop's start and end
 // overlap as the odometry left them). Measured (session 6), GT / odometry poses: urban loop
 // 1.000 / 0.004 m / 0.022 m and 0.999 / 0.029 m / 0.129 m; hills 1.000 / 0.008 m / 0.022 m and
-// 1.000 / 0.033 m / 0.139 m.
+// 1.000 / 0.033 m / 0.139 m (session 12: 1.000 / 0.004 / 0.023, 0.999 / 0.022 / 0.139, 1.000 / 0.008 /
+// 0.022, 1.000 / 0.021 / 0.109).
+// Two runs of the four: the urban loop (35 % parked cars) with the GT poses, which holds the detector
+// to the tight bounds, and the hills drive (the same loop on slopes to 12 %, 30 % parked cars) with
+// the odometry's, which adds the odometry's drift, the loop's overlap and the slopes. The urban loop
+// with the odometry's poses (21 s) is the hills run's claim on a flat loop, and its first 10 s are
+// held to the same bounds by SimDrive.WholeDriveSeesTheCurbParkedCarsHide; the hills drive with GT poses (17 s) is held by the
+// odometry's run here and, live, by WholeHillsDriveTakesTheCurbNotTheSidewalksFarEdge.
 TEST(SimLoop, WholeDriveModeMeetsTheTargetsBehindParkedCars) {
-  for (const auto& [ini, tag] : {std::pair<std::string, std::string>{"urban-loop.ini", "urban_loop_full"},
-                                 {"hills.ini", "hills_full"}}) {
-    const auto drive = cachedDrive(tag, ini, 0.0, nullptr);
-    for (const bool gt : {true, false}) {
-      const std::string run = tag + (gt ? "_whole_gt" : "_whole_odometry");
-      const auto r = runBounds(drive, "bounds.ini", run, {true, gt});
-      const auto m = alongPath(drive, r);
-      EXPECT_GE(m.frames_scored, 1000) << run;
-      EXPECT_GE(m.detection_rate, 0.97) << run;
-      EXPECT_LE(m.lateral_error_mean_m, gt ? 0.02 : 0.05) << run;
-      EXPECT_LE(m.lateral_error_p95_m, gt ? 0.05 : 0.20) << run;
-      const auto [on_cars, near] = verticesOnMovingCars(drive, r.out_dir);
-      EXPECT_GT(near, 20) << run << ": no moving car came near: the check below tests nothing";
-      EXPECT_EQ(on_cars, 0) << run << ": boundary vertices on moving cars";
-    }
+  struct Case {
+    const char* ini;
+    const char* tag;
+    bool gt;
+  };
+  for (const Case& c : {Case{"urban-loop.ini", "urban_loop_full", true}, Case{"hills.ini", "hills_full", false}}) {
+    const auto drive = cachedDrive(c.tag, c.ini, 0.0, nullptr);
+    const std::string run = std::string(c.tag) + (c.gt ? "_whole_gt" : "_whole_odometry");
+    const auto r = runBounds(drive, "bounds.ini", run, {true, c.gt});
+    const auto m = alongPath(drive, r);
+    EXPECT_GE(m.frames_scored, 1000) << run;
+    EXPECT_GE(m.detection_rate, 0.97) << run;
+    EXPECT_LE(m.lateral_error_mean_m, c.gt ? 0.02 : 0.05) << run;
+    EXPECT_LE(m.lateral_error_p95_m, c.gt ? 0.05 : 0.20) << run;
+    const auto [on_cars, near] = verticesOnMovingCars(drive, r.out_dir);
+    EXPECT_GT(near, 20) << run << ": no moving car came near: the check below tests nothing";
+    EXPECT_EQ(on_cars, 0) << run << ": boundary vertices on moving cars";
   }
 }

@@ -3,7 +3,10 @@
 // scored against the synthetic truth (the oracle), the fixes after a frame never used for it.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <iostream>
+#include <string>
 
 #include "roadslam/gnss/geo.h"
 #include "roadslam/pipeline/live_gnss.h"
@@ -90,4 +93,87 @@ TEST(LiveGnss, CorrectsTheLiveOdometryInEnu) {
   EXPECT_GT(odo, 10.0) << "the drift the fixes have to correct";
   EXPECT_NE(live.statusLine().find("54 fixes (6 no fix)"), std::string::npos) << live.statusLine();
   std::cout << live.statusLine() << "; 2D ATE after 10 s " << ate << " m, fixes alone " << fix << " m, odometry alone " << odo << " m\n";
+}
+
+namespace {
+// Two GPS sources on one feed: GNSS (the truth + 1 m noise, 1 Hz) and CAN_GPS, whose fixes sit 20 m east of
+// the truth (another antenna, another datum); a CAN_GPS record without a fix comes first.
+struct TwoSources {
+  double rms_truth = 0, rms_shifted = 0;  ///< corrected frames after 10 s against the truth, and the truth + 20 m east [m]
+  pipeline::LiveGnssCounts c;
+  std::string status;
+};
+TwoSources runTwoSources(const std::string& label) {
+  const Drive d = drive();
+  const gnss::EnuFrame world({48.1, 11.5, 500});
+  const Eigen::Vector3d shift(20, 0, 0);
+  mapping::GnssFusionParams p;
+  p.edge_sigma_t_per_m = 0.01;
+  p.online_yaw_rate_bias = true;
+  p.online_odometry_scale = true;
+  p.live_source_label = label;
+  pipeline::LiveGnss live(p);
+  uint64_t s = 777;  // fixed
+  auto n01 = [&s] {
+    s = s * 6364136223846793005ULL + 1442695040888963407ULL;
+    const double u1 = ((s >> 11) + 1.0) / 9007199254740993.0;
+    s = s * 6364136223846793005ULL + 1442695040888963407ULL;
+    return std::sqrt(-2 * std::log(u1)) * std::cos(2 * M_PI * (s >> 11) / 9007199254740992.0);
+  };
+  auto post = [&](std::size_t i, const char* source, const Eigen::Vector3d& offset, bool valid) {
+    sources::TimedGpsFix f;
+    f.stamp_s = d.t[i];
+    const auto g = world.toGeodetic(d.truth[i].translation() + offset + Eigen::Vector3d(n01(), n01(), 0));
+    f.fix.valid = valid;
+    f.fix.latitude_deg = g.lat_deg, f.fix.longitude_deg = g.lon_deg, f.h_m = g.h_m;
+    f.hdop = 1.0 / p.uere_m;
+    f.quality = valid ? 1 : 0;
+    f.label = source;
+    live.post(f);
+  };
+  TwoSources r;
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < d.t.size(); ++i) {
+    if (i == 0) post(i, "CAN_GPS", shift, false);
+    if (i % 10 == 3) post(i, "GNSS", Eigen::Vector3d::Zero(), true);
+    if (i % 10 == 8) post(i, "CAN_GPS", shift, true);
+    const auto T = live.correct(d.t[i], d.odom[i]);
+    if (!T || d.t[i] < 1010) continue;
+    const Eigen::Vector3d p_world = world.toEnu(gnss::EnuFrame(*live.origin()).toGeodetic(T->translation()));
+    r.rms_truth += (p_world - d.truth[i].translation()).head<2>().squaredNorm();
+    r.rms_shifted += (p_world - d.truth[i].translation() - shift).head<2>().squaredNorm();
+    ++n;
+  }
+  r.rms_truth = std::sqrt(r.rms_truth / std::max<std::size_t>(n, 1));
+  r.rms_shifted = std::sqrt(r.rms_shifted / std::max<std::size_t>(n, 1));
+  r.c = live.counts();
+  r.status = live.statusLine();
+  std::cout << (label.empty() ? "first seen" : label) << ": " << r.status << "; RMS to the truth " << r.rms_truth
+            << " m, to the truth + 20 m east " << r.rms_shifted << " m\n";
+  return r;
+}
+}  // namespace
+
+// One source is fused, never the mix (a mix would sit about 10 m from both): without a label the first
+// source with a fix (GNSS: CAN_GPS's first record had none), with [gnss_fusion] live_source_label the one named.
+TEST(LiveGnss, FusesOneSourceTheFirstWithAFixOrTheOneNamed) {
+  const TwoSources first = runTwoSources("");
+  EXPECT_EQ(first.c.source, "GNSS");
+  EXPECT_FALSE(first.c.source_chosen);
+  EXPECT_EQ(first.c.epochs, 61u) << "GNSS's 60 and CAN_GPS's no-fix record before any source had a fix";
+  EXPECT_EQ(first.c.fixes, 60u);
+  EXPECT_EQ(first.c.other_sources, 60u);
+  EXPECT_LT(first.rms_truth, 1.0);
+  EXPECT_GT(first.rms_shifted, 15.0);
+  EXPECT_NE(first.status.find("GNSS from GNSS (first seen; 60 records of other sources left out): 60 fixes"), std::string::npos)
+      << first.status;
+  const TwoSources named = runTwoSources("CAN_GPS");
+  EXPECT_EQ(named.c.source, "CAN_GPS");
+  EXPECT_TRUE(named.c.source_chosen);
+  EXPECT_EQ(named.c.epochs, 61u);
+  EXPECT_EQ(named.c.no_fix, 1u);
+  EXPECT_EQ(named.c.other_sources, 60u);
+  EXPECT_LT(named.rms_shifted, 1.0);
+  EXPECT_GT(named.rms_truth, 15.0);
+  EXPECT_NE(named.status.find("GNSS from CAN_GPS (live_source_label; 60 records"), std::string::npos) << named.status;
 }

@@ -25,7 +25,7 @@ TEST(ObjectsSim, UrbanLoop25sTracksTheMovingCars) {
 // MOTP 0.179 m; range image + IMM: 0.953, 0.161 m).
 TEST(ObjectsSim, DbscanAndCtrvTrackTheMovingCarsToo) {
   const ObjectsRun r = runObjects("urban-loop", 25, "urban-loop-25s", false, true,
-                                  {{"method = range_image", "method = dbscan"}, {"motion_model = imm", "motion_model = ctrv"}},
+                                  {{"objects", "method", "dbscan"}, {"tracking", "motion_model", "ctrv"}},
                                   "-dbscan-ctrv");
   EXPECT_EQ(r.summary["objects"]["tracks_ended"].value("diverged", 0), 0);
   EXPECT_GE(r.m.mota, 0.85);
@@ -39,7 +39,7 @@ TEST(ObjectsSim, DbscanAndCtrvTrackTheMovingCarsToo) {
 // has the 60 s, whole-loop and parallel-streets figures).
 TEST(ObjectsSim, RemovalFromTheOdometrysMapKeepsItsRte) {
   const ObjectsRun r = runObjects("urban-loop", 25, "urban-loop-25s", false, true,
-                                  {{"remove_moving_from_odometry = false", "remove_moving_from_odometry = true"}}, "-odo");
+                                  {{"objects", "remove_moving_from_odometry", "true"}}, "-odo");
   const size_t kept_out = r.summary["objects"]["moving_points_kept_out_of_odometry_map"].get<size_t>();
   eval::EvalRequest er;
   er.gt_path = std::string(ROADSLAM_BINARY_DIR) + "/test-cache/urban-loop-25s/gt_trajectory.tum";  // simulated by runObjects

@@ -2,12 +2,11 @@
 
 #include <cmath>
 
+#include "roadslam/velodyne/packet.h"
+
 namespace roadslam::sources {
 namespace {
 constexpr int64_t kHour_us = 3600LL * 1000000LL;
-constexpr std::size_t kTimestampOffset = 1200;   // VLP-16 manual 9.3.1: u32 after 12 blocks
-constexpr std::size_t kReturnModeOffset = 1204;
-constexpr std::size_t kProductOffset = 1205;
 
 uint32_t readLe32(const uint8_t* p) {
   return uint32_t(p[0]) | (uint32_t(p[1]) << 8) | (uint32_t(p[2]) << 16) | (uint32_t(p[3]) << 24);
@@ -22,10 +21,10 @@ double GapCounter::packetPeriod_s(velodyne::Model model, bool dual) {
 }
 
 uint64_t GapCounter::feed(const uint8_t* payload) {
-  const int64_t t_us = readLe32(payload + kTimestampOffset);
-  const bool dual = payload[kReturnModeOffset] == uint8_t(velodyne::ReturnMode::Dual);
+  const int64_t t_us = readLe32(payload + velodyne::kTimestampOffset);
+  const bool dual = payload[velodyne::kReturnModeOffset] == uint8_t(velodyne::ReturnMode::Dual);
   const auto model = model_ != velodyne::Model::Unknown ? model_
-                                                        : velodyne::Model(payload[kProductOffset]);
+                                                        : velodyne::Model(payload[velodyne::kProductIdOffset]);
   const double period_us =
       forced_period_s_ > 0 ? forced_period_s_ * 1e6 : packetPeriod_s(model, dual) * 1e6;
   uint64_t lost = 0;

@@ -70,7 +70,7 @@ const Calibration& Decoder::calibration(Model model) const {
 Model Decoder::modelOf(const uint8_t* data, std::size_t size) const noexcept {
   if (params_.model != Model::Unknown) return params_.model;
   if (size != kDataPacketSize) return Model::Unknown;
-  const uint8_t product = data[kTailOffset + 5];
+  const uint8_t product = data[kProductIdOffset];
   if (product == static_cast<uint8_t>(Model::VLP16)) return Model::VLP16;
   if (product == static_cast<uint8_t>(Model::HDL32)) return Model::HDL32;
   return Model::Unknown;

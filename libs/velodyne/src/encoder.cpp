@@ -66,9 +66,9 @@ DataPacketBytes encodeVlp16Packet(const std::array<FiringSequence, kVlp16Sequenc
                  last ? seq[s + 1].last : seq[s + 1].strongest);
     }
   }
-  putU32(pkt.data() + kTailOffset, timestamp_us);
-  pkt[kTailOffset + 4] = static_cast<uint8_t>(mode);
-  pkt[kTailOffset + 5] = static_cast<uint8_t>(product);
+  putU32(pkt.data() + kTimestampOffset, timestamp_us);
+  pkt[kReturnModeOffset] = static_cast<uint8_t>(mode);
+  pkt[kProductIdOffset] = static_cast<uint8_t>(product);
   return pkt;
 }
 

@@ -20,6 +20,15 @@ std::unique_ptr<CheckedConfig> loadIniFile(const std::string& path);
 /// error message about one of its keys.
 std::string configSource(const mrpt::config::CConfigFileBase& cfg);
 
+/// "FILE:LINE: [section] key" (the key's line when \p cfg is a CheckedConfig that has it), else
+/// "file: [section] key" or "[section] key": the start of an error message about one value.
+std::string keyLocation(const mrpt::config::CConfigFileBase& cfg, const std::string& section, const std::string& key);
+
+/// Throws std::runtime_error "FILE:LINE: [section] key = value: \p what" unless \p ok: the range check
+/// of one loaded value, naming the key as the ini wrote it.
+void requireValue(bool ok, const mrpt::config::CConfigFileBase& cfg, const std::string& section, const std::string& key,
+                  const std::string& what);
+
 /// Reads a double; throws naming section/key (and the source) when the value is not a number.
 double readDouble(const mrpt::config::CConfigFileBase& cfg, const std::string& section,
                   const std::string& key, double default_value);

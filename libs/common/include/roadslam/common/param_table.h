@@ -52,15 +52,20 @@ std::string nameOf(const NameTable<E>& table, E v) {
   throw std::logic_error("an enum value has no name in its table");
 }
 
+/// The names of \p table, in order.
+template <class E>
+std::vector<std::string> namesOf(const NameTable<E>& table) {
+  std::vector<std::string> names;
+  for (const auto& [value, n] : table) names.emplace_back(n);
+  return names;
+}
+
 /// The value named \p name; std::invalid_argument "<what> = '<name>': expected a, b or c" otherwise.
 template <class E>
 E valueOf(const NameTable<E>& table, const std::string& name, const std::string& what) {
-  std::vector<std::string> names;
-  for (const auto& [value, n] : table) {
+  for (const auto& [value, n] : table)
     if (name == n) return value;
-    names.emplace_back(n);
-  }
-  throw std::invalid_argument(what + " = '" + name + "': expected " + listOfNames(names));
+  throw std::invalid_argument(what + " = '" + name + "': expected " + listOfNames(namesOf(table)));
 }
 
 /// One section of an ini, seen by a Params' fields(): each call loads, saves or lists one key.
@@ -90,17 +95,18 @@ class ParamTable {
   void angle(const std::string& key, double& rad) { scaled(key, rad, unit::kDeg); }
   void flag(const std::string& key, bool& v);
   void text(const std::string& key, std::string& v);
-  /// An enum by name: an unknown name is an error naming the section, the key and the valid names.
+  /// An enum by name: an unknown name is an error "FILE:LINE: [section] key = 'name': expected a, b or c".
   template <class E>
   void choice(const std::string& key, E& v, const NameTable<E>& names) {
     std::string s = nameOf(names, v);
     text(key, s);
     if (!loading()) return;
-    try {
-      v = valueOf(names, s, key);
-    } catch (const std::invalid_argument& e) {
-      throw std::runtime_error(where() + e.what());
-    }
+    for (const auto& [value, n] : names)
+      if (s == n) {
+        v = value;
+        return;
+      }
+    throw std::runtime_error(keyLocation(key) + " = '" + s + "': expected " + listOfNames(namesOf(names)));
   }
   /// A number read from \p key, or from its older name \p alias (same unit) when only that is set
   /// (both is an error); saved under \p key.
@@ -118,8 +124,8 @@ class ParamTable {
              std::string section)
       : mode_(m), in_(in), out_(out), section_(std::move(section)) {}
   void integer(const std::string& key, int& v);
-  /// "file: [section] " for error messages.
-  std::string where() const;
+  /// "FILE:LINE: [section] key" for error messages (config.h keyLocation).
+  std::string keyLocation(const std::string& key) const;
   /// Which of key/alias a load reads; throws when both are set.
   std::string pickAlias(const std::string& key, const std::string& alias) const;
 

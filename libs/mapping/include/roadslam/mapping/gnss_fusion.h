@@ -82,6 +82,10 @@ struct GnssFusionParams {
   /// ... the bias and the scale only from windows whose path is at least this long: on less, the
   /// fixes' course and path length are noise [m].
   double online_bias_min_path_m = 100.0;
+  /// The live viewer's online correction (pipeline::LiveGnss) fuses the GPS records of this sensor
+  /// label only (CAN_GPS, roadslam-grab's receiver GNSS, ...); empty: the first source that gives a
+  /// valid fix. Never a mix of receivers. roadslam-map chooses with --gnss-label instead.
+  std::string live_source_label;
 
   Eigen::Vector3d lever() const { return {lever_x_m, lever_y_m, lever_z_m}; }
   void fields(ParamTable& t);

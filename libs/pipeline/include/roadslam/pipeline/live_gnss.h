@@ -5,6 +5,9 @@
 /// mapping::OnlineGnssFusion. The ENU frame is at the first valid fix (as gnss_outputs.h).
 /// Fixes are stamped with their receive time: the frames of a live feed carry the host's receive
 /// time, and the receiver's UTC is another clock (a replayed log's is the recording's day).
+/// One GPS source is fused, never a mix of receivers (their antennas, clocks and errors differ; as
+/// roadslam-map --gnss-label): the one named by GnssFusionParams::live_source_label, else the first
+/// whose record has a valid fix. The others' records are counted and left out.
 /// Thread-safe: fixes are posted from the feed's thread, frames corrected on the odometry's.
 
 #include <mutex>
@@ -23,18 +26,22 @@ struct LiveGnssCounts {
   std::size_t fixes = 0;               ///< valid fixes handed to the online mode [count]
   std::size_t solves = 0, failed = 0, rejected = 0;  ///< mapping::GnssOnlineStats [count]
   bool anchored = false;
+  std::string source;          ///< the label of the source fused (empty until one gives a fix)
+  bool source_chosen = false;  ///< named by live_source_label (else the first source with a fix)
+  std::size_t other_sources = 0;  ///< records of other sources, left out [count]
 };
 
 class LiveGnss {
  public:
-  explicit LiveGnss(const mapping::GnssFusionParams& p) : online_(p), p_(p) {}
-  /// A fix as it arrived (any thread).
+  explicit LiveGnss(const mapping::GnssFusionParams& p);
+  /// A fix as it arrived (any thread); one of another source than the one fused is only counted.
   void post(const sources::TimedGpsFix& f);
   /// The frame at \p t_s with the odometry's pose; its T_enu_lidar once the online mode anchored.
   /// The fixes posted with a stamp up to \p t_s are added first (causal).
   std::optional<Eigen::Isometry3d> correct(double t_s, const Eigen::Isometry3d& T_map_lidar);
   LiveGnssCounts counts() const;
-  /// "GNSS: N fixes (M no fix), S solves, R rejected, corrected | waiting for fixes" for a status line.
+  /// "GNSS from LABEL (live_source_label | first seen; K records of other sources left out): N fixes (M no fix), S solves (F failed),
+  /// R rejected, corrected | waiting for fixes" for a status line.
   std::string statusLine() const;
   /// The ENU origin (the first valid fix), when one arrived.
   std::optional<gnss::Geodetic> origin() const;
@@ -47,6 +54,7 @@ class LiveGnss {
   mapping::OnlineGnssFusion online_;
   mapping::GnssFusionParams p_;
   LiveGnssCounts counts_;
+  bool has_source_ = false;  ///< the source is set (chosen, or the first with a fix)
 };
 
 }  // namespace roadslam::pipeline

@@ -25,6 +25,9 @@ constexpr uint16_t kBlockFlag = 0xEEFF;
 constexpr std::size_t kBlockSize = 100;  ///< bytes per data block: flag, azimuth, 32 channels x 3
 /// u32 timestamp, u8 return mode, u8 product id after the 12 blocks (byte 1200)
 constexpr std::size_t kTailOffset = kBlocksPerPacket * kBlockSize;
+constexpr std::size_t kTimestampOffset = kTailOffset;       ///< u32 [us past the top of the hour]
+constexpr std::size_t kReturnModeOffset = kTailOffset + 4;  ///< u8 ReturnMode
+constexpr std::size_t kProductIdOffset = kTailOffset + 5;   ///< u8 Model (product id)
 constexpr double kDistanceUnit_m = 0.002;  ///< a channel's distance in 2 mm units (manual 9.3.1.3)
 constexpr double kAzimuthUnit_deg = 0.01;  ///< a block's azimuth in 0.01 deg units
 constexpr uint16_t kDefaultDataPort = 2368;
