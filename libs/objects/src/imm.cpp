@@ -100,6 +100,24 @@ void restartTurn(Track& tr, const TrackerParams& p) {
   combine(tr);
 }
 
+void correctHeading(Track& tr, double z, double sigma, const TrackerParams& p) {
+  // h(x) = atan2(vy, vx): an EKF update of each model with H = [0, 0, -vy, vx, 0] / |v|^2; the model
+  // probabilities stay the position's (the heading tells no turn from no turn within one sweep)
+  for (int j : {kCv, kCt}) {
+    Vec5& x = tr.imm_x[j];
+    const double v2 = x(2) * x(2) + x(3) * x(3);
+    if (v2 < 1e-6) continue;
+    Eigen::Matrix<double, 1, 5> H = Eigen::Matrix<double, 1, 5>::Zero();
+    H(0, 2) = -x(3) / v2, H(0, 3) = x(2) / v2;
+    const double S = (H * tr.imm_P[j] * H.transpose())(0, 0) + sigma * sigma;
+    const Vec5 K = tr.imm_P[j] * H.transpose() / S;
+    x += K * std::remainder(z - std::atan2(x(3), x(2)), 2 * M_PI);
+    tr.imm_P[j] = (Mat5::Identity() - K * H) * tr.imm_P[j];
+    if (j == kCt) boundTurnRate(x, tr.imm_P[j], p.imm.max_turn_rate_radps);
+  }
+  combine(tr);
+}
+
 void predict(Track& tr, double T, const TrackerParams& p) {
   const Eigen::Matrix2d Pi = transitions(T, p.imm);
   // mixing probabilities mu_{i|j} = p_ij mu_i / cbar_j, cbar_j = sum_i p_ij mu_i (interaction)

@@ -24,6 +24,8 @@ void init(Track& tr, const TrackerParams& p);
 void predict(Track& tr, double dt, const TrackerParams& p);
 /// Each model's Kalman update with the box centre \p z seen \p dt_meas after the state's time
 /// (h = position + dt_meas * velocity), the model probabilities from their likelihoods, the combination.
+/// Each model's EKF update with the heading \p z of the velocity (a box's axis) [rad], sigma \p sigma [rad].
+void correctHeading(Track& tr, double z, double sigma, const TrackerParams& p);
 /// The turn rate of both models back to a new track's (0, ImmParams::init_turn_rate_sigma_radps, no
 /// correlation) and the model probabilities to ImmParams::init_ct_probability.
 void restartTurn(Track& tr, const TrackerParams& p);

@@ -112,6 +112,7 @@ void TrackerParams::fields(ParamTable& t) {
   t.num("size_weight", size_weight);
   t.num("accel_sigma_mps2", accel_sigma_mps2);
   t.num("meas_sigma_m", meas_sigma_m);
+  t.angle("heading_sigma_deg", heading_sigma_rad);
   t.num("init_speed_sigma_mps", init_speed_sigma_mps);
   t.num("confirm_hits", confirm_hits);
   t.num("max_misses", max_misses);
@@ -143,12 +144,12 @@ void TrackerParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, c
     throw std::runtime_error("[" + s + "] " + e.what());
   }
   if (gate_m <= 0 || accel_sigma_mps2 <= 0 || meas_sigma_m <= 0 || init_speed_sigma_mps <= 0 || confirm_hits < 1 ||
-      max_misses < 0 || reid_gate_m < 0 || reid_min_speed_mps < 0 || output_max_misses < 0 || tentative_max_misses < 0 || max_dt_s <= 0 || ctrv.accel_sigma_mps2 <= 0 || ctrv.yaw_accel_sigma_radps2 <= 0 ||
+      max_misses < 0 || heading_sigma_rad < 0 || reid_gate_m < 0 || reid_min_speed_mps < 0 || output_max_misses < 0 || tentative_max_misses < 0 || max_dt_s <= 0 || ctrv.accel_sigma_mps2 <= 0 || ctrv.yaw_accel_sigma_radps2 <= 0 ||
       ctrv.init_yaw_rate_sigma_radps <= 0 || imm.cv_accel_sigma_mps2 <= 0 || imm.ct_accel_sigma_mps2 <= 0 ||
       imm.ct_turn_accel_sigma_radps2 <= 0 || imm.init_turn_rate_sigma_radps <= 0 || imm.max_turn_rate_radps <= 0 || imm.cv_sojourn_s <= 0 ||
       imm.ct_sojourn_s <= 0 || !(imm.init_ct_probability > 0 && imm.init_ct_probability < 1)) {
     throw std::runtime_error("[" + s + "] gate_m, accel_sigma_mps2, meas_sigma_m, init_speed_sigma_mps, max_dt_s, "
-                             "ctrv_* and imm_* > 0, 0 < imm_init_ct_probability < 1, confirm_hits >= 1, max_misses, output_max_misses, tentative_max_misses and reid_* >= 0 are required");
+                             "ctrv_* and imm_* > 0, 0 < imm_init_ct_probability < 1, confirm_hits >= 1, max_misses, output_max_misses, tentative_max_misses, heading_sigma_deg and reid_* >= 0 are required");
   }
 }
 
