@@ -102,7 +102,7 @@ void restartTurn(Track& tr, const TrackerParams& p) {
 
 void correctHeading(Track& tr, double z, double sigma, const TrackerParams& p) {
   // h(x) = atan2(vy, vx): an EKF update of each model with H = [0, 0, -vy, vx, 0] / |v|^2; the model
-  // probabilities stay the position's (the heading tells no turn from no turn within one sweep)
+  // probabilities stay those of the position's update (one heading cannot tell a turn from a straight)
   for (int j : {kCv, kCt}) {
     Vec5& x = tr.imm_x[j];
     const double v2 = x(2) * x(2) + x(3) * x(3);

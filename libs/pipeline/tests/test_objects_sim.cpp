@@ -35,7 +35,8 @@ TEST(ObjectsSim, DbscanAndCtrvTrackTheMovingCarsToo) {
 
 // [objects] remove_moving_from_odometry: the moving tracks' points stay out of the odometry's local map
 // from the next sweep on; the odometry's RTE against the GT stays that of the run without it (measured
-// on this drive: 3289 points kept out, RTE 0.0796 %, without: 0.0800 %; docs/architecture.md "Objects"
+// on this drive with the IMM: 4060 points kept out, RTE 0.0795 %; cv: 3289, 0.0796 %; without the removal:
+// 0.0800 %, the odometry's own; docs/architecture.md "Objects"
 // has the 60 s, whole-loop and parallel-streets figures).
 TEST(ObjectsSim, RemovalFromTheOdometrysMapKeepsItsRte) {
   const ObjectsRun r = runObjects("urban-loop", 25, "urban-loop-25s", false, true,
