@@ -82,6 +82,7 @@ void makeFiles() {
   write(w / "bad-graph-optimizer.ini", "[pose_graph]\noptimizer = g2o\n");
   write(w / "negative-voxel.ini", "[odometry]\nmap_voxel_m = -1\n");
   write(w / "seen-through-zero-tolerance.ini", "[seen_through]\nray_tolerance_m = 0\n");
+  write(w / "tracking-negative-reid.ini", "[objects]\nenabled = true\n[tracking]\nreid_gate_m = -1\n");
   write(w / "objects-reach-inside-body.ini", "[objects]\nmax_range_m = 1\n");
   write(w / "bad-spin.ini", "[kitti]\nspin = sideways\n");
   write(w / "bad-stamp-reference.ini", "[kitti]\nstamp_reference = centre\n");
@@ -221,6 +222,7 @@ const Row kTable[] = {
   {"map-bad-matcher",      "roadslam-map --config {W}/bad-matcher.ini --input {W}/truncated.pcap --out {O}", 1, "bad-matcher.ini:2: [odometry] matcher = 'kiss': expected voxel_map or registration"},
   {"map-bad-graph-optimizer", "roadslam-map --config {W}/bad-graph-optimizer.ini --input {W}/truncated.pcap --out {O}", 1, "optimizer = 'g2o': expected lm or mrpt_levmarq"},
   {"map-negative-voxel",   "roadslam-map --config {W}/negative-voxel.ini --input {W}/truncated.pcap --out {O}", 1, "must be positive"},
+  {"map-tracking-negative-reid", "roadslam-map --config {W}/tracking-negative-reid.ini --input {W}/truncated.pcap --out {O}", 1, "tracking-negative-reid.ini:4: [tracking] reid_gate_m = -1: must be >= 0"},
   {"map-seen-through-zero-tolerance", "roadslam-map --config {W}/seen-through-zero-tolerance.ini --input {W}/truncated.pcap --out {O}", 1, "seen-through-zero-tolerance.ini:2: [seen_through] ray_tolerance_m = 0: must be > 0"},
   {"map-objects-reach-inside-body", "roadslam-map --config {W}/objects-reach-inside-body.ini --input {W}/truncated.pcap --out {O}", 1, "[objects] max_range_m must exceed min_range_m"},
   {"map-bad-spin",         "roadslam-map --config {W}/bad-spin.ini --input {W}/truncated.pcap --out {O}", 1, "[kitti] spin = 'sideways'"},

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "roadslam/common/config.h"
 #include "roadslam/common/param_table.h"
 
 namespace roadslam::objects {
@@ -143,14 +144,36 @@ void TrackerParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, c
   } catch (const std::invalid_argument& e) {
     throw std::runtime_error("[" + s + "] " + e.what());
   }
-  if (gate_m <= 0 || accel_sigma_mps2 <= 0 || meas_sigma_m <= 0 || init_speed_sigma_mps <= 0 || confirm_hits < 1 ||
-      max_misses < 0 || heading_sigma_rad < 0 || reid_gate_m < 0 || reid_min_speed_mps < 0 || output_max_misses < 0 || tentative_max_misses < 0 || max_dt_s <= 0 || ctrv.accel_sigma_mps2 <= 0 || ctrv.yaw_accel_sigma_radps2 <= 0 ||
-      ctrv.init_yaw_rate_sigma_radps <= 0 || imm.cv_accel_sigma_mps2 <= 0 || imm.ct_accel_sigma_mps2 <= 0 ||
-      imm.ct_turn_accel_sigma_radps2 <= 0 || imm.init_turn_rate_sigma_radps <= 0 || imm.max_turn_rate_radps <= 0 || imm.cv_sojourn_s <= 0 ||
-      imm.ct_sojourn_s <= 0 || !(imm.init_ct_probability > 0 && imm.init_ct_probability < 1)) {
-    throw std::runtime_error("[" + s + "] gate_m, accel_sigma_mps2, meas_sigma_m, init_speed_sigma_mps, max_dt_s, "
-                             "ctrv_* and imm_* > 0, 0 < imm_init_ct_probability < 1, confirm_hits >= 1, max_misses, output_max_misses, tentative_max_misses, heading_sigma_deg and reid_* >= 0 are required");
-  }
+  struct Check {
+    const char* key;
+    bool ok;
+    const char* bound;
+  };
+  const Check checks[] = {{"gate_m", gate_m > 0, "> 0"},
+                          {"accel_sigma_mps2", accel_sigma_mps2 > 0, "> 0"},
+                          {"meas_sigma_m", meas_sigma_m > 0, "> 0"},
+                          {"heading_sigma_deg", heading_sigma_rad >= 0, ">= 0"},
+                          {"init_speed_sigma_mps", init_speed_sigma_mps > 0, "> 0"},
+                          {"confirm_hits", confirm_hits >= 1, ">= 1"},
+                          {"max_misses", max_misses >= 0, ">= 0"},
+                          {"output_max_misses", output_max_misses >= 0, ">= 0"},
+                          {"tentative_max_misses", tentative_max_misses >= 0, ">= 0"},
+                          {"reid_gate_m", reid_gate_m >= 0, ">= 0"},
+                          {"reid_min_speed_mps", reid_min_speed_mps >= 0, ">= 0"},
+                          {"max_dt_s", max_dt_s > 0, "> 0"},
+                          {"ctrv_accel_sigma_mps2", ctrv.accel_sigma_mps2 > 0, "> 0"},
+                          {"ctrv_yaw_accel_sigma_degps2", ctrv.yaw_accel_sigma_radps2 > 0, "> 0"},
+                          {"ctrv_init_yaw_rate_sigma_degps", ctrv.init_yaw_rate_sigma_radps > 0, "> 0"},
+                          {"imm_cv_accel_sigma_mps2", imm.cv_accel_sigma_mps2 > 0, "> 0"},
+                          {"imm_ct_accel_sigma_mps2", imm.ct_accel_sigma_mps2 > 0, "> 0"},
+                          {"imm_ct_turn_accel_sigma_degps2", imm.ct_turn_accel_sigma_radps2 > 0, "> 0"},
+                          {"imm_init_turn_rate_sigma_degps", imm.init_turn_rate_sigma_radps > 0, "> 0"},
+                          {"imm_max_turn_rate_degps", imm.max_turn_rate_radps > 0, "> 0"},
+                          {"imm_cv_sojourn_s", imm.cv_sojourn_s > 0, "> 0"},
+                          {"imm_ct_sojourn_s", imm.ct_sojourn_s > 0, "> 0"},
+                          {"imm_init_ct_probability", imm.init_ct_probability > 0 && imm.init_ct_probability < 1,
+                           "in (0, 1)"}};
+  for (const Check& k : checks) requireValue(k.ok, c, s, k.key, std::string("must be ") + k.bound);
 }
 
 void TrackerParams::saveToConfigFile(mrpt::config::CConfigFileBase& c, const std::string& s) const {
