@@ -29,6 +29,11 @@ void requireValue(bool ok, const mrpt::config::CConfigFileBase& cfg, const std::
   throw std::runtime_error(keyLocation(cfg, section, key) + " = " + (v.empty() ? "(default)" : v) + ": " + what);
 }
 
+void requireValues(const mrpt::config::CConfigFileBase& cfg, const std::string& section,
+                   std::initializer_list<ValueCheck> checks) {
+  for (const ValueCheck& c : checks) requireValue(c.ok, cfg, section, c.key, std::string("must be ") + c.bound);
+}
+
 namespace {
 std::string raw(const mrpt::config::CConfigFileBase& cfg, const std::string& section,
                 const std::string& key) {

@@ -107,30 +107,18 @@ TEST(MotMetrics, AMissingTracksFileIsAnErrorNamingIt) {
 // care (no match, no false positive), the five frames without it are misses; the events list them.
 TEST(MotMetrics, HiddenAndFarCarsAreDontCare) {
   const std::string d = tmpDir();
-  const double t0 = 1000.0;
-  {
-    nlohmann::json track = nlohmann::json::array();
-    for (int k = 0; k <= 40; ++k) {
-      const double x = -20.0 + 1.1 * k;
-      track.push_back({t0 + 0.1 * k, x, 5.0, 0.0, 0.0, k < 10 ? 3 : 50, std::hypot(x, 5.0)});
-    }
-    const nlohmann::json gt = {{"frame", "world"},
-                               {"moving_cars", {{{"id", 0}, {"length_m", 4.5}, {"width_m", 1.8}, {"height_m", 1.5}, {"track", track}}}}};
-    std::ofstream(d + "/gt_objects.json") << gt.dump();
-    std::ofstream g(d + "/gt_trajectory.tum"), e(d + "/trajectory_odometry.tum"), tr(d + "/tracks.csv");
-    tr << "frame,stamp_s,track_id,x,y,vx,vy,speed_mps,heading_rad,length_m,width_m,z_min,z_max,moving,hits,misses,age_s\n";
-    for (int k = 0; k <= 40; ++k) {
-      const double t = t0 + 0.1 * k;
-      char line[256];
-      std::snprintf(line, sizeof(line), "%.6f 0 0 0 0 0 0 1\n", t);
-      g << line;
-      e << line;
-      if (k >= 20 && k < 25) continue;  // five frames without a track: five misses
-      std::snprintf(line, sizeof(line), "%d,%.6f,1,%.3f,5.0,11,0,11,0,4.5,1.8,-1,0.5,1,%d,0,%.2f\n", k, t, -20.0 + 1.1 * k,
-                    k + 3, 0.1 * k);
-      tr << line;
-    }
+  nlohmann::json track = nlohmann::json::array();
+  for (int k = 0; k <= 40; ++k) {
+    const double x = -20.0 + 1.1 * k;
+    track.push_back({1000.0 + 0.1 * k, x, 5.0, 0.0, 0.0, k < 10 ? 3 : 50, std::hypot(x, 5.0)});
   }
+  writeDrive(d, track, [](std::ostream& tr, int k, double t) {
+    if (k >= 20 && k < 25) return;  // five frames without a track: five misses
+    char line[256];
+    std::snprintf(line, sizeof(line), "%d,%.6f,1,%.3f,5.0,11,0,11,0,4.5,1.8,-1,0.5,1,%d,0,%.2f\n", k, t, -20.0 + 1.1 * k,
+                  k + 3, 0.1 * k);
+    tr << line;
+  });
   eval::MotParams p;
   p.keep_events = true;
   const auto m = eval::evaluateMotFiles(d + "/gt_objects.json", d + "/gt_trajectory.tum", d, p);

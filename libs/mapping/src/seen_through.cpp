@@ -162,12 +162,7 @@ void SeenThroughParams::fields(ParamTable& t) {
 void SeenThroughParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& s) {
   loadFields(*this, cfg, s);
   rejectUnknownKeys(cfg, s, fieldKeys<SeenThroughParams>());
-  struct Check {
-    const char* key;
-    bool ok;
-    const char* bound;
-  };
-  const Check checks[] = {{"azimuth_res_deg", azimuth_res_rad > 0, "> 0"},
+  requireValues(cfg, s, {{"azimuth_res_deg", azimuth_res_rad > 0, "> 0"},
                           {"elevation_res_deg", elevation_res_rad > 0, "> 0"},
                           {"azimuth_window", azimuth_window >= 0, ">= 0"},
                           {"margin_m", margin_m >= 0, ">= 0"},
@@ -177,8 +172,7 @@ void SeenThroughParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& 
                           {"ground_cell_m", ground_cell_m > 0, "> 0"},
                           {"reference_spacing_m", reference_spacing_m >= 0, ">= 0"},
                           {"min_through", min_through >= 1, ">= 1"},
-                          {"through_hit_ratio", through_hit_ratio >= 0, ">= 0"}};
-  for (const Check& c : checks) requireValue(c.ok, cfg, s, c.key, std::string("must be ") + c.bound);
+                          {"through_hit_ratio", through_hit_ratio >= 0, ">= 0"}});
 }
 
 void SeenThroughParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg, const std::string& s) const {

@@ -144,12 +144,7 @@ void TrackerParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, c
   } catch (const std::invalid_argument& e) {
     throw std::runtime_error("[" + s + "] " + e.what());
   }
-  struct Check {
-    const char* key;
-    bool ok;
-    const char* bound;
-  };
-  const Check checks[] = {{"gate_m", gate_m > 0, "> 0"},
+  requireValues(c, s, {{"gate_m", gate_m > 0, "> 0"},
                           {"accel_sigma_mps2", accel_sigma_mps2 > 0, "> 0"},
                           {"meas_sigma_m", meas_sigma_m > 0, "> 0"},
                           {"heading_sigma_deg", heading_sigma_rad >= 0, ">= 0"},
@@ -172,8 +167,7 @@ void TrackerParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, c
                           {"imm_cv_sojourn_s", imm.cv_sojourn_s > 0, "> 0"},
                           {"imm_ct_sojourn_s", imm.ct_sojourn_s > 0, "> 0"},
                           {"imm_init_ct_probability", imm.init_ct_probability > 0 && imm.init_ct_probability < 1,
-                           "in (0, 1)"}};
-  for (const Check& k : checks) requireValue(k.ok, c, s, k.key, std::string("must be ") + k.bound);
+                           "in (0, 1)"}});
 }
 
 void TrackerParams::saveToConfigFile(mrpt::config::CConfigFileBase& c, const std::string& s) const {

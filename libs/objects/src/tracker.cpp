@@ -415,7 +415,7 @@ void Tracker::reidentify(int young_id) {
   // as a new track. Track-to-track association of the lost track with the new one, as the
   // re-identification step of ByteTrack / OC-SORT, by position only: the cars carry no appearance.
   // Only tracks labelled moving (a static track continued by clutter's new tracks was labelled moving
-  // by the merges: hedges on the hard loop), faster than clutter's sliding boxes, and lost for two
+  // by the merges: hedges on the hard loop), faster than clutter's sliding boxes were when they lost them, and lost for two
   // sweeps (after one, a duplicate track had taken the detection: the lost one takes it back next).
   auto best = tracks_.end();
   double best_d = p_.reid_gate_m;

@@ -8,6 +8,7 @@
 #include "roadslam/common/checked_config.h"
 
 #include <memory>
+#include <initializer_list>
 #include <string>
 
 namespace roadslam {
@@ -28,6 +29,15 @@ std::string keyLocation(const mrpt::config::CConfigFileBase& cfg, const std::str
 /// of one loaded value, naming the key as the ini wrote it.
 void requireValue(bool ok, const mrpt::config::CConfigFileBase& cfg, const std::string& section, const std::string& key,
                   const std::string& what);
+/// One key's range check: the key, whether its value is in range, the bound ("> 0", "in (0, 1)").
+struct ValueCheck {
+  const char* key;
+  bool ok;
+  const char* bound;
+};
+/// requireValue(ok, cfg, section, key, "must be " + bound) for each check, in order.
+void requireValues(const mrpt::config::CConfigFileBase& cfg, const std::string& section,
+                   std::initializer_list<ValueCheck> checks);
 
 /// Reads a double; throws naming section/key (and the source) when the value is not a number.
 double readDouble(const mrpt::config::CConfigFileBase& cfg, const std::string& section,
