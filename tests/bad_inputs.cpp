@@ -87,6 +87,7 @@ void makeFiles() {
   write(w / "bad-spin.ini", "[kitti]\nspin = sideways\n");
   write(w / "bad-stamp-reference.ini", "[kitti]\nstamp_reference = centre\n");
   write(w / "bad-bool.ini", "[odometry]\ndeskew = maybe\n");
+  write(w / "name-and-alias.ini", "[preprocess]\nego_radius_m = 2.5\n; the thesis's name\nrad = 3\n");
   write(w / "bad-motion-model.ini", "; the tracker's filter\n[tracking]\n\nmotion_model = kalman\n");
   write(w / "bounds-typo.ini", fileText(kSrc + "/ini/bounds.ini") + "\n[boundary]\ncurb_min_jmup_m = 0.1\n");
   {
@@ -227,6 +228,7 @@ const Row kTable[] = {
   {"map-objects-reach-inside-body", "roadslam-map --config {W}/objects-reach-inside-body.ini --input {W}/truncated.pcap --out {O}", 1, "[objects] max_range_m must exceed min_range_m"},
   {"map-bad-spin",         "roadslam-map --config {W}/bad-spin.ini --input {W}/truncated.pcap --out {O}", 1, "[kitti] spin = 'sideways'"},
   {"map-bad-motion-model", "roadslam-map --config {W}/bad-motion-model.ini --input {W}/truncated.pcap --out {O}", 1, "bad-motion-model.ini:4: [tracking] motion_model = 'kalman': expected cv, ctrv or imm"},
+  {"map-name-and-alias",   "roadslam-map --config {W}/name-and-alias.ini --input {W}/truncated.pcap --out {O}", 1, "name-and-alias.ini:4: [preprocess] rad = 3: alias of 'ego_radius_m', which line 2 sets too: set only one"},
   {"map-bad-stamp-ref",    "roadslam-map --config {W}/bad-stamp-reference.ini --input {W}/truncated.pcap --out {O}", 1, "expected start, middle or end"},
   {"map-bad-bool",         "roadslam-map --config {W}/bad-bool.ini --input {W}/truncated.pcap --out {O}", 1, "is not a boolean"},
   // roadslam-map: signals

@@ -64,7 +64,12 @@ std::string ParamTable::keyLocation(const std::string& key) const {
 std::string ParamTable::pickAlias(const std::string& key, const std::string& alias) const {
   const bool k = !in_->read_string(section_, key, "", false).empty();
   const bool a = !in_->read_string(section_, alias, "", false).empty();
-  if (k && a) throw std::runtime_error("[" + section_ + "] sets both '" + key + "' and its alias '" + alias + "'");
+  if (k && a) {
+    const auto* f = dynamic_cast<const CheckedConfig*>(in_);
+    const int line = f ? f->lineOf(section_, key) : 0;
+    const std::string where = line > 0 ? "line " + std::to_string(line) : "the section";
+    requireValue(false, *in_, section_, alias, "alias of '" + key + "', which " + where + " sets too: set only one");
+  }
   return a ? alias : key;
 }
 

@@ -3,10 +3,15 @@
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
 
+#include <unistd.h>
+
 #include <cstdint>
+#include <filesystem>
+#include <fstream>
 #include <stdexcept>
 #include <string>
 
+#include "roadslam/common/config.h"
 #include "roadslam/common/param_table.h"
 
 using namespace roadslam;
@@ -126,8 +131,23 @@ TEST(ParamTable, AliasIsReadAndBothIsAnError) {
   loadFields(d, mrpt::config::CConfigFileMemory(std::string("[demo]\noldN = 4\n")), "demo");
   EXPECT_EQ(d.old_name_m, 4);
   EXPECT_NE(saved(d).find("new_name_m = 4.000000"), std::string::npos);
-  EXPECT_NE(errorOf("[demo]\noldN = 4\nnew_name_m = 5\n").find("sets both 'new_name_m' and its alias 'oldN'"),
-            std::string::npos);
+  const std::string e = errorOf("[demo]\noldN = 4\nnew_name_m = 5\n");
+  EXPECT_NE(e.find("[demo] oldN = 4: alias of 'new_name_m', which the section sets too: set only one"),
+            std::string::npos) << e;
+}
+
+TEST(ParamTable, BothNameAndAliasNamesTheFileAndBothLines) {
+  const auto path = std::filesystem::temp_directory_path() / ("roadslam-alias-" + std::to_string(::getpid()) + ".ini");
+  std::ofstream(path) << "; demo\n[demo]\nnew_name_m = 5\n\noldN = 4\n";
+  std::string e;
+  try {
+    Demo d;
+    loadFields(d, *loadIniFile(path.string()), "demo");
+  } catch (const std::exception& x) {
+    e = x.what();
+  }
+  std::filesystem::remove(path);
+  EXPECT_EQ(e, path.string() + ":5: [demo] oldN = 4: alias of 'new_name_m', which line 3 sets too: set only one");
 }
 
 TEST(ParamTable, A64BitCountIsSavedExactly) {

@@ -15,11 +15,14 @@ LiveGnss::LiveGnss(const mapping::GnssFusionParams& p) : online_(p), p_(p) {
 
 void LiveGnss::post(const sources::TimedGpsFix& f) {
   std::lock_guard<std::mutex> lock(m_);
-  if (!has_source_ && f.fix.valid) {  // the first source with a fix
-    counts_.source = f.label;
-    has_source_ = true;
+  if (!has_source_ && !f.fix.valid) {  // no source has a fix yet: kept per source until one has
+    ++no_fix_before_source_[f.label];
+    ++counts_.epochs;
+    ++counts_.no_fix;
+    return;
   }
-  if (has_source_ && f.label != counts_.source) {
+  if (!has_source_) chooseSource(f.label);  // the first source with a fix
+  if (f.label != counts_.source) {
     ++counts_.other_sources;
     return;
   }
@@ -29,6 +32,16 @@ void LiveGnss::post(const sources::TimedGpsFix& f) {
     return;
   }
   pending_.push_back(f);
+}
+
+// The no-fix records posted before the choice go to their own source: the one chosen, or the others.
+void LiveGnss::chooseSource(const std::string& label) {
+  counts_.source = label;
+  has_source_ = true;
+  counts_.epochs = counts_.no_fix = 0;
+  for (const auto& [l, n] : no_fix_before_source_) (l == label ? counts_.no_fix : counts_.other_sources) += n;
+  counts_.epochs = counts_.no_fix;
+  no_fix_before_source_.clear();
 }
 
 std::optional<Eigen::Isometry3d> LiveGnss::correct(double t_s, const Eigen::Isometry3d& T_map_lidar) {

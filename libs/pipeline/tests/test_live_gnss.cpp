@@ -160,12 +160,14 @@ TEST(LiveGnss, FusesOneSourceTheFirstWithAFixOrTheOneNamed) {
   const TwoSources first = runTwoSources("");
   EXPECT_EQ(first.c.source, "GNSS");
   EXPECT_FALSE(first.c.source_chosen);
-  EXPECT_EQ(first.c.epochs, 61u) << "GNSS's 60 and CAN_GPS's no-fix record before any source had a fix";
+  EXPECT_EQ(first.c.epochs, 60u) << "GNSS's 60; CAN_GPS's no-fix record before any source had a fix is CAN_GPS's";
+  EXPECT_EQ(first.c.no_fix, 0u);
   EXPECT_EQ(first.c.fixes, 60u);
-  EXPECT_EQ(first.c.other_sources, 60u);
+  EXPECT_EQ(first.c.other_sources, 61u);
   EXPECT_LT(first.rms_truth, 1.0);
   EXPECT_GT(first.rms_shifted, 15.0);
-  EXPECT_NE(first.status.find("GNSS from GNSS (first seen; 60 records of other sources left out): 60 fixes"), std::string::npos)
+  EXPECT_NE(first.status.find("GNSS from GNSS (first seen; 61 records of other sources left out): 60 fixes (0 no fix)"),
+            std::string::npos)
       << first.status;
   const TwoSources named = runTwoSources("CAN_GPS");
   EXPECT_EQ(named.c.source, "CAN_GPS");
@@ -176,4 +178,30 @@ TEST(LiveGnss, FusesOneSourceTheFirstWithAFixOrTheOneNamed) {
   EXPECT_LT(named.rms_shifted, 1.0);
   EXPECT_GT(named.rms_truth, 15.0);
   EXPECT_NE(named.status.find("GNSS from CAN_GPS (live_source_label; 60 records"), std::string::npos) << named.status;
+}
+
+// The no-fix records that arrive before any source has a fix are counted under their own source once
+// one is chosen: here 2 of GNSS (its own no fix) and 3 of CAN_GPS (left out), not 5 under GNSS.
+TEST(LiveGnss, NoFixRecordsBeforeTheChoiceCountUnderTheirOwnSource) {
+  pipeline::LiveGnss live(mapping::GnssFusionParams{});
+  auto post = [&live](const char* label, bool valid) {
+    sources::TimedGpsFix f;
+    f.label = label;
+    f.fix.valid = valid;
+    f.fix.latitude_deg = 48.1, f.fix.longitude_deg = 11.5, f.h_m = 500;
+    f.hdop = 1;
+    live.post(f);
+  };
+  for (const char* l : {"CAN_GPS", "GNSS", "CAN_GPS", "GNSS", "CAN_GPS"}) post(l, false);
+  pipeline::LiveGnssCounts c = live.counts();
+  EXPECT_TRUE(c.source.empty());
+  EXPECT_EQ(c.epochs, 5u) << "no source yet: every record, none with a fix";
+  EXPECT_EQ(c.no_fix, 5u);
+  post("GNSS", true);
+  post("CAN_GPS", true);
+  c = live.counts();
+  EXPECT_EQ(c.source, "GNSS");
+  EXPECT_EQ(c.epochs, 3u);
+  EXPECT_EQ(c.no_fix, 2u);
+  EXPECT_EQ(c.other_sources, 4u);
 }

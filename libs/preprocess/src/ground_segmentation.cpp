@@ -1,4 +1,5 @@
 #include "roadslam/preprocess/ground_segmentation.h"
+#include "roadslam/preprocess/ransac_ground.h"
 
 #include "param_utils.h"
 #include "roadslam/common/param_table.h"
@@ -299,13 +300,7 @@ GroundLabels segmentGroundWithHeights(const std::vector<ScanPoint>& pts, const G
 }
 
 size_t removeGroundLinefit(std::vector<ScanPoint>& pts, const GroundSegParams& p) {
-  const auto labels = segmentGround(pts, p);
-  size_t w = 0;
-  for (size_t i = 0; i < pts.size(); ++i)
-    if (!labels[i]) pts[w++] = pts[i];
-  const size_t removed = pts.size() - w;
-  pts.resize(w);
-  return removed;
+  return removeLabelled(pts, segmentGround(pts, p));
 }
 
 void GroundSegParams::fields(ParamTable& t) {

@@ -47,6 +47,21 @@ TEST(GroundSegmentation, StreetWithCrestCurbsWallsAndBox) {
   EXPECT_GT(st.segments, 0u);
 }
 
+// The filter removes exactly the points the labelling calls ground, and keeps the rest in order.
+TEST(GroundSegmentation, RemovalKeepsTheUnlabelledPointsInOrder) {
+  const auto sweep = makeStreetSweep(StreetScene{});
+  const auto labels = segmentGround(sweep.scan.points, vlp16Params());
+  std::vector<ScanPoint> kept;
+  for (size_t i = 0; i < labels.size(); ++i)
+    if (!labels[i]) kept.push_back(sweep.scan.points[i]);
+  auto pts = sweep.scan.points;
+  EXPECT_EQ(removeGroundLinefit(pts, vlp16Params()), sweep.scan.points.size() - kept.size());
+  ASSERT_EQ(pts.size(), kept.size());
+  ASSERT_GT(kept.size(), 1000u);
+  for (size_t i = 0; i < pts.size(); ++i)
+    ASSERT_TRUE(pts[i].x == kept[i].x && pts[i].y == kept[i].y && pts[i].z == kept[i].z) << i;
+}
+
 TEST(GroundSegmentation, HoldsOnSlopeWhereASinglePlaneFails) {
   StreetScene scene;
   scene.slope_near = 0.10;  // 5.7 deg climbing ...

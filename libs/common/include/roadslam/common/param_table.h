@@ -126,7 +126,8 @@ class ParamTable {
   void integer(const std::string& key, int& v);
   /// "FILE:LINE: [section] key" for error messages (config.h keyLocation).
   std::string keyLocation(const std::string& key) const;
-  /// Which of key/alias a load reads; throws when both are set.
+  /// Which of key/alias a load reads; both set is an error
+  /// "FILE:LINE: [section] alias = v: alias of 'key', which line N sets too: set only one".
   std::string pickAlias(const std::string& key, const std::string& alias) const;
 
   Mode mode_;

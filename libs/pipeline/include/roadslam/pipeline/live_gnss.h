@@ -10,6 +10,7 @@
 /// whose record has a valid fix. The others' records are counted and left out.
 /// Thread-safe: fixes are posted from the feed's thread, frames corrected on the odometry's.
 
+#include <map>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -22,13 +23,15 @@
 namespace roadslam::pipeline {
 
 struct LiveGnssCounts {
-  std::size_t epochs = 0, no_fix = 0;  ///< records posted, and those without a valid fix [count]
+  /// Records of the source fused, and those without a valid fix [count]; until a source has a fix,
+  /// every record posted (none has a fix).
+  std::size_t epochs = 0, no_fix = 0;
   std::size_t fixes = 0;               ///< valid fixes handed to the online mode [count]
   std::size_t solves = 0, failed = 0, rejected = 0;  ///< mapping::GnssOnlineStats [count]
   bool anchored = false;
   std::string source;          ///< the label of the source fused (empty until one gives a fix)
   bool source_chosen = false;  ///< named by live_source_label (else the first source with a fix)
-  std::size_t other_sources = 0;  ///< records of other sources, left out [count]
+  std::size_t other_sources = 0;  ///< records of other sources, left out (also their no-fix ones before the choice) [count]
 };
 
 class LiveGnss {
@@ -55,6 +58,8 @@ class LiveGnss {
   mapping::GnssFusionParams p_;
   LiveGnssCounts counts_;
   bool has_source_ = false;  ///< the source is set (chosen, or the first with a fix)
+  std::map<std::string, std::size_t> no_fix_before_source_;  ///< per label, until a source is set [count]
+  void chooseSource(const std::string& label);
 };
 
 }  // namespace roadslam::pipeline
