@@ -5,8 +5,10 @@ that carries no object labels (KITTI raw's tracklets are not in ../shared/data).
 For each pair of sweeps (f, f+K) the car's points (within --radius-m of the track's centre in
 tracks.csv, between its box's heights) are put in the map frame with the run's trajectory.tum and
 aligned by 2D point-to-point ICP (nearest neighbours, closed-form rigid fit: Arun et al. 1987). The
-transform moves the car's centroid along the chord of its path: atan2 of that displacement is the
-heading at the pair's mid-time, independent of the boxes and centres the tracker fits. Pairs with fewer
+transform moves the track's centre along the chord of the car's path: atan2 of that displacement is the
+heading at the pair's mid-time, from the car's points and not from the boxes the tracker fits (the
+centre enters only through the rotation: a centre d metres off moves the heading by about the pair's
+rotation times d over the chord). Pairs with fewer
 than --min-pairs ICP correspondences (a car half hidden, other objects in the radius) are left out.
 
 usage: car_motion_oracle.py --bins KITTI/velodyne --track ID RUN [RUN ...]
@@ -126,7 +128,10 @@ def main():
         if not res or res[3] < a.min_pairs:
             continue
         th, tx, ty, n = res
-        cx, cy = sum(p[0] for p in src) / len(src), sum(p[1] for p in src) / len(src)
+        # the chord of the track's centre under the points' rigid motion: in a turn, points off the car's
+        # centre move off its heading by the rotation times their offset (the visible points' centroid, a
+        # metre off, gave 0.016 rad in a 0.15 rad/s turn)
+        cx, cy = float(rows[f]['x']), float(rows[f]['y'])
         c, s = math.cos(th), math.sin(th)
         mx, my = c * cx - s * cy + tx - cx, s * cx + c * cy + ty - cy
         oracle = math.atan2(my, mx)
