@@ -48,11 +48,8 @@ def car_points(bins, frame, pose, row, radius):
     R, T = pose
     cx, cy = float(row['x']), float(row['y'])
     z_lo, z_hi = float(row['z_min']) - 0.05, float(row['z_max']) + 0.3  # the box's heights: no road
-    path = '%s/%06d.bin' % (bins, frame)
-    try:
-        data = open(path, 'rb').read()
-    except OSError as e:
-        sys.exit('%s: %s' % (path, e.strerror))
+    with open('%s/%06d.bin' % (bins, frame), 'rb') as f:
+        data = f.read()
     out = []
     for x, y, z, _ in struct.iter_unpack('ffff', data):
         X = R[0][0] * x + R[0][1] * y + R[0][2] * z + T[0]
@@ -94,13 +91,25 @@ def icp2d(src, dst, cell=0.5, iterations=40):
         bx, by = sum(q[0] for _, q in pairs) / n, sum(q[1] for _, q in pairs) / n
         sxx = sum((p[0] - ax) * (q[0] - bx) + (p[1] - ay) * (q[1] - by) for p, q in pairs)
         sxy = sum((p[0] - ax) * (q[1] - by) - (p[1] - ay) * (q[0] - bx) for p, q in pairs)
+        prev = (th, tx, ty)
         th = math.atan2(sxy, sxx)
         c, s = math.cos(th), math.sin(th)
         tx, ty = bx - (c * ax - s * ay), by - (s * ax + c * ay)
+        if abs(th - prev[0]) < 1e-7 and abs(tx - prev[1]) < 1e-6 and abs(ty - prev[2]) < 1e-6:
+            break  # the correspondences no longer change
     return th, tx, ty, len(pairs)
 
 
 def main():
+    try:
+        run()
+    except OSError as e:
+        sys.exit('car_motion_oracle: %s: %s' % (e.filename, e.strerror))
+    except (KeyError, ValueError) as e:
+        sys.exit('car_motion_oracle: a malformed trajectory.tum or tracks.csv: %s' % e)
+
+
+def run():
     ap = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
     ap.add_argument('--bins', required=True, help='folder of KITTI NNNNNN.bin sweeps')
     ap.add_argument('--track', required=True, help='track_id in tracks.csv')

@@ -16,7 +16,7 @@ import tempfile
 
 script = sys.argv[1]
 random.seed(1)
-R_turn, v, dt, n = 40.0, 6.0, 0.1, 20  # a 40 m radius left turn at 6 m/s, 2 s
+R_turn, v, dt, n = 40.0, 6.0, 0.1, 12  # a 40 m radius left turn at 6 m/s, 2 s
 omega = v / R_turn
 
 
@@ -35,13 +35,13 @@ def sensor_pose(k):
 def car_points():
     """Body-frame points of a 4.5 x 1.8 m car's rear face and right side, 0.3-1.4 m up (2 cm noise)."""
     pts = []
-    for i in range(60):
-        y = -0.9 + 1.8 * i / 59
-        for z in (0.3, 0.6, 0.9, 1.2, 1.4):
+    for i in range(30):
+        y = -0.9 + 1.8 * i / 29
+        for z in (0.3, 0.8, 1.4):
             pts.append((-2.25, y, z))
-    for i in range(150):
-        x = -2.25 + 4.5 * i / 149
-        for z in (0.3, 0.6, 0.9, 1.2, 1.4):
+    for i in range(75):
+        x = -2.25 + 4.5 * i / 74
+        for z in (0.3, 0.8, 1.4):
             pts.append((x, -0.9, z))
     return pts
 
@@ -68,13 +68,13 @@ for k in range(n):
     sx, sy, sa = sensor_pose(k)
     with open('%s/%06d.bin' % (bins, k), 'wb') as f:
         world = [(cx + math.cos(a) * x - math.sin(a) * y, cy + math.sin(a) * x + math.cos(a) * y, z) for x, y, z in body]
-        world += [(cx + random.uniform(-3, 3), cy + random.uniform(-3, 3), 0.0) for _ in range(200)]  # road
+        world += [(cx + random.uniform(-3, 3), cy + random.uniform(-3, 3), 0.0) for _ in range(100)]  # road
         for X, Y, Z in world:
             dx, dy = X - sx, Y - sy
             x, y = math.cos(sa) * dx + math.sin(sa) * dy, -math.sin(sa) * dx + math.cos(sa) * dy
             f.write(struct.pack('ffff', x + random.gauss(0, 0.02), y + random.gauss(0, 0.02), Z, 0.0))
 
-out = subprocess.run(['/usr/bin/python3', script, '--bins', bins, '--track', '7', '--min-pairs', '200', run_true, run_off],
+out = subprocess.run(['/usr/bin/python3', script, '--bins', bins, '--track', '7', '--min-pairs', '100', run_true, run_off],
                      capture_output=True, text=True)
 print(out.stdout, out.stderr)
 if out.returncode != 0:

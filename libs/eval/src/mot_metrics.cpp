@@ -16,6 +16,8 @@ namespace roadslam::eval {
 namespace {
 
 constexpr long long kStampTolerance_us = 5;
+constexpr int kWrapIdStep = 100000;      // GT id of a wrapped car's n-th re-entry: id + n * kWrapIdStep
+constexpr double kWrapMinJump_m = 5.0;  // a step this much longer than the speed allows is a wrap
 
 struct GtCar {
   int id = 0;
@@ -39,8 +41,20 @@ std::vector<GtCar> readGtCars(const std::string& path) {
   for (const auto& c : j["moving_cars"]) {
     GtCar g;
     g.id = c["id"].get<int>();
+    // The simulator's open roads wrap (sim World::carPose): a car that leaves at one end re-enters at
+    // the other under its id, hundreds of metres away one sample later. That is another car to a
+    // tracker, and CLEAR MOT would count the id it cannot carry as a switch: the track is split where
+    // a step is longer than the car's speed allows, the pieces numbered id + kWrapIdStep * n.
+    const double speed = std::abs(c.value("speed_mps", 1e9));
+    int piece = 0;
     for (const auto& s : c["track"]) {
-      g.t.push_back(s[0].get<double>()), g.x.push_back(s[1].get<double>()), g.y.push_back(s[2].get<double>());
+      const double t = s[0].get<double>(), x = s[1].get<double>(), y = s[2].get<double>();
+      if (!g.t.empty() && std::hypot(x - g.x.back(), y - g.y.back()) > 2 * speed * (t - g.t.back()) + kWrapMinJump_m) {
+        if (g.t.size() >= 2) out.push_back(g);
+        g = GtCar{};
+        g.id = c["id"].get<int>() + kWrapIdStep * ++piece;
+      }
+      g.t.push_back(t), g.x.push_back(x), g.y.push_back(y);
       g.returns.push_back(s.size() > 5 ? s[5].get<int>() : -1);
     }
     if (g.t.size() >= 2) out.push_back(std::move(g));

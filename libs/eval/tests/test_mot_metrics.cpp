@@ -28,11 +28,13 @@ std::string tmpDir() {
 
 /// The switch tests' drive in \p d: 41 frames at t = 1000 + 0.1 k s (k = 0..40), the lidar standing at
 /// the world origin (identity GT and odometry poses: the map frame is the world), one 4.5 x 1.8 x 1.5 m
-/// car with the GT samples \p track (gt_objects.json), and the tracks.csv rows \p rows writes for each frame.
+/// car with the GT samples \p track (gt_objects.json; its speed_mps when \p speed_mps >= 0), and the
+/// tracks.csv rows \p rows writes for each frame.
 static void writeDrive(const std::string& d, const nlohmann::json& track,
-                       const std::function<void(std::ostream&, int, double)>& rows) {
-  const nlohmann::json gt = {{"frame", "world"},
-                             {"moving_cars", {{{"id", 0}, {"length_m", 4.5}, {"width_m", 1.8}, {"height_m", 1.5}, {"track", track}}}}};
+                       const std::function<void(std::ostream&, int, double)>& rows, double speed_mps = -1) {
+  nlohmann::json car = {{"id", 0}, {"length_m", 4.5}, {"width_m", 1.8}, {"height_m", 1.5}, {"track", track}};
+  if (speed_mps >= 0) car["speed_mps"] = speed_mps;
+  const nlohmann::json gt = {{"frame", "world"}, {"moving_cars", {car}}};
   std::ofstream(d + "/gt_objects.json") << gt.dump();
   std::ofstream g(d + "/gt_trajectory.tum"), e(d + "/trajectory_odometry.tum"), tr(d + "/tracks.csv");
   tr << "frame,stamp_s,track_id,x,y,vx,vy,speed_mps,heading_rad,length_m,width_m,z_min,z_max,moving,hits,misses,age_s\n";
@@ -182,6 +184,34 @@ TEST(MotMetrics, ASwitchAfterTheCarLeftTheViewIsCountedApart) {
     }
   }
   EXPECT_NE(eval::eventsCsv(away).find(",0.60,1\n"), std::string::npos) << eval::eventsCsv(away);  // gap_s, left_view
+  std::filesystem::remove_all(d);
+}
+
+// The simulator's open roads wrap: a car leaving at one end re-enters at the other under its GT id
+// (sim World::carPose). Here it jumps 19 m back in one 0.1 s sample at 10 m/s and the tracks, seeing a
+// new car, give it a new id: no switch, two cars. Without the file's speed_mps nothing bounds a step,
+// and the same files give CLEAR MOT's switch (the test fails if the split is dropped).
+TEST(MotMetrics, ACarThatWrapsAroundTheRoadsEndsIsANewCar) {
+  const std::string d = tmpDir();
+  nlohmann::json track = nlohmann::json::array();
+  auto x = [](int k) { return k < 20 ? -20.0 + k : -20.0 + (k - 20); };
+  for (int k = 0; k <= 40; ++k) track.push_back({1000.0 + 0.1 * k, x(k), 5.0, 0.0, 0.0, 50, 20.0});
+  auto rows = [&](std::ostream& tr, int k, double t) {
+    char line[256];
+    std::snprintf(line, sizeof(line), "%d,%.6f,%d,%.3f,5.1,10,0,10,0,4.5,1.8,-1,0.5,1,%d,0,%.2f\n", k, t, k < 20 ? 1 : 2, x(k),
+                  k + 3, 0.1 * (k % 20));
+    tr << line;
+  };
+  writeDrive(d, track, rows, 10.0);
+  eval::MotParams p;
+  const auto wrapped = eval::evaluateMotFiles(d + "/gt_objects.json", d + "/gt_trajectory.tum", d, p);
+  EXPECT_EQ(wrapped.id_switches, 0u);
+  EXPECT_EQ(wrapped.gt_cars_seen, 2u);
+  EXPECT_EQ(wrapped.matches, 41u);
+  writeDrive(d, track, rows);
+  const auto unbounded = eval::evaluateMotFiles(d + "/gt_objects.json", d + "/gt_trajectory.tum", d, p);
+  EXPECT_EQ(unbounded.id_switches, 1u);
+  EXPECT_EQ(unbounded.gt_cars_seen, 1u);
   std::filesystem::remove_all(d);
 }
 
