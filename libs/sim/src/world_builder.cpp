@@ -147,6 +147,7 @@ World buildWorld(const WorldParams& p, uint64_t seed, Road& route) {
     Rng traffic{mix64(static_cast<uint64_t>(p.traffic_seed) ^ 0x7AFF1C5EEDull)};
     addMovingCars(p, traffic, world);
   }
+  world.planTraffic(p.moving_car_lateral_accel_mps2, p.moving_car_accel_mps2);
 
   double xmin = 1e300, ymin = 1e300, xmax = -1e300, ymax = -1e300;
   for (const Road& r : world.roads)

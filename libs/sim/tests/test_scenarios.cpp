@@ -196,3 +196,41 @@ TEST(Scenarios, TrafficSeedAndStartOffsetMakeASecondDriveOfTheSameStreets) {
     EXPECT_NE(std::string(e.what()).find("start_offset_m"), std::string::npos) << e.what();
   }
 }
+
+// Planned traffic (World::planTraffic): on the urban loop's 10 m corners every car keeps its lateral
+// acceleration v * yaw rate within the limit (central differences of carPose over 1 s, every 0.05 s for
+// 80 s; 15 % for the fillets' yaw steps) and reaches its own speed on the straights; unplanned, the
+// same cars take the corners at full speed, far beyond it.
+TEST(Scenarios, PlannedTrafficSlowsForCornersWithinTheLateralLimit) {
+  auto p = ScenarioParams::fromFile(iniPath("urban-loop.ini"));
+  auto lateralAndSpeed = [](const World& w, const MovingCar& c, double& max_lat, double& max_v) {
+    max_lat = max_v = 0;
+    const double dt = 0.5;  // the yaw steps at the fillets' 0.5 m vertices: a 1 s window spans about ten
+    for (double t = dt; t < 80; t += 0.05) {
+      const CarPose a = w.carPose(c, t - dt), b = w.carPose(c, t), d = w.carPose(c, t + dt);
+      const double v = std::hypot(d.x - a.x, d.y - a.y) / (2 * dt);
+      const double yaw_rate = std::remainder(d.yaw - a.yaw, 2 * M_PI) / (2 * dt);
+      if (std::hypot(d.x - b.x, d.y - b.y) > 20) continue;  // an open road's wrap
+      max_lat = std::max(max_lat, std::abs(v * yaw_rate));
+      max_v = std::max(max_v, v);
+    }
+  };
+  p.world.moving_car_lateral_accel_mps2 = 2.5;
+  const Simulator planned(p);
+  ASSERT_FALSE(planned.world().cars.empty());
+  for (const MovingCar& c : planned.world().cars) {
+    double lat = 0, v = 0;
+    lateralAndSpeed(planned.world(), c, lat, v);
+    EXPECT_LE(lat, 2.5 * 1.15);
+    EXPECT_NEAR(v, std::abs(c.speed_mps), 0.02 * std::abs(c.speed_mps));
+  }
+  p.world.moving_car_lateral_accel_mps2 = 0;
+  const Simulator unplanned(p);
+  double worst = 0;
+  for (const MovingCar& c : unplanned.world().cars) {
+    double lat = 0, v = 0;
+    lateralAndSpeed(unplanned.world(), c, lat, v);
+    worst = std::max(worst, lat);
+  }
+  EXPECT_GT(worst, 8.0);
+}

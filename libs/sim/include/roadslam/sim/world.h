@@ -64,6 +64,10 @@ struct MovingCar {
   double lateral_m = 1.75;  ///< offset to the right of the travel direction (right-hand traffic) [m]
   double length_m = 4.5, width_m = 1.8, height_m = 1.5;  ///< [m]
   Material material = Material::CarPaint;
+  /// Its lap planned by World::planTraffic: the time [s] at which it passes each of lap_s.size()
+  /// evenly spaced arc lengths of its lap (lap_t[0] = 0, the last = the lap's period). Empty: it
+  /// drives at speed_mps everywhere, corners included.
+  std::vector<double> lap_t;
 };
 
 /// Pose of a moving car at time t: centre (x, y), ground z and heading [m, rad].
@@ -104,6 +108,10 @@ class World {
 
   /// Car pose at time \p t_s [s] (cars wrap around at the end of a road).
   CarPose carPose(const MovingCar& car, double t_s) const;
+  /// Plans every car's lap: its speed is |speed_mps| on the straights and at most sqrt(a_lat / |k|) on
+  /// its own path's curvature k, reached and left at \p accel_mps2 (braking and accelerating alike, so
+  /// the plan holds both ways along a road). \p lateral_accel_mps2 <= 0: constant speeds.
+  void planTraffic(double lateral_accel_mps2, double accel_mps2);
   /// The car as a prism at time \p t_s.
   Prism carPrism(const MovingCar& car, double t_s) const;
 

@@ -45,6 +45,11 @@ struct WorldParams {
   /// -1: drawn from the world seed after the roadside objects (the original worlds, unchanged)
   int traffic_seed = -1;
   double moving_car_speed_kmh = 40;  ///< their mean speed (stored in m/s) [km/h in the ini]
+  /// They slow for curves to v^2 |k| <= this (2.5: the vehicle's own [trajectory] lateral_accel_mps2
+  /// default); 0: every car keeps its speed through corners, up to 1.5 g on the loop's corners. 0 stays
+  /// the default until the objects' figures are re-measured on planned traffic (docs/benchmarks.md) [m/s^2]
+  double moving_car_lateral_accel_mps2 = 0;
+  double moving_car_accel_mps2 = 2.0;  ///< ... braking into and accelerating out of them [m/s^2]
   double hill_amplitude_m = 0;      ///< ground height amplitude [m]
   double hill_wavelength_m = 400;   ///< [m]
   double tunnel_start_m = 0;        ///< arc length on the first road where a tunnel starts [m]
