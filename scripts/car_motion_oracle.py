@@ -123,9 +123,12 @@ def run():
     rows = load_track(a.runs[0], a.track)
     if not rows:
         sys.exit('%s/tracks.csv: no track %s' % (a.runs[0], a.track))
-    headings = [{f: float(r['heading_rad']) for f, r in load_track(run, a.track).items()} for run in a.runs]
+    tracks = [load_track(run, a.track) for run in a.runs]
+    headings = [{f: float(r['heading_rad']) for f, r in t.items()} for t in tracks]
+    speeds = [{f: float(r['speed_mps']) for f, r in t.items()} for t in tracks]
     print('f0  f1  oracle_rad  speed_mps  pairs  ' + '  '.join('heading[%d]' % k for k in range(len(a.runs))))
     errors = [[] for _ in a.runs]
+    speed_errors = [[] for _ in a.runs]
     for f in sorted(rows):
         g = f + a.step
         if g not in rows or g >= len(poses):
@@ -150,12 +153,14 @@ def run():
             if all(m in h for m in mid):
                 m = math.atan2(sum(math.sin(h[i]) for i in mid), sum(math.cos(h[i]) for i in mid))
                 errors[k].append(abs(math.remainder(m - oracle, 2 * math.pi)))
+                speed_errors[k].append(abs(sum(speeds[k][i] for i in mid) / len(mid) - math.hypot(mx, my) / (a.step * a.dt_s)))
                 line += '  %+.4f' % m
         print(line)
-    print('\nrun  pairs  heading error median / mean / max [rad]')
-    for run, e in zip(a.runs, errors):
+    print('\nrun  pairs  heading error median / mean / max [rad]  speed error median / mean / max [m/s]')
+    for run, e, v in zip(a.runs, errors, speed_errors):
         if e:
-            print('%s  %d  %.3f / %.3f / %.3f' % (run, len(e), statistics.median(e), statistics.mean(e), max(e)))
+            print('%s  %d  %.3f / %.3f / %.3f  %.2f / %.2f / %.2f' % (run, len(e), statistics.median(e), statistics.mean(e), max(e),
+                                                             statistics.median(v), statistics.mean(v), max(v)))
         else:
             print('%s  0  (no pair)' % run)
 

@@ -93,5 +93,7 @@ summary = {l.split()[0]: l.split() for l in out.stdout.splitlines() if l.startsw
 med_true = float(summary[run_true][2])
 med_off = float(summary[run_off][2])
 print('median error: true heading %.4f, 0.1 rad off %.4f' % (med_true, med_off))
-if worst > 0.012 or med_true > 0.012 or abs(med_off - 0.1) > 0.012:
+speed_med_true = float(summary[run_true][7])  # the speed error's median (the chord's speed against speed_mps)
+print('median speed error: %.3f m/s' % speed_med_true)
+if worst > 0.012 or med_true > 0.012 or abs(med_off - 0.1) > 0.012 or speed_med_true > 0.15:
     sys.exit('FAILED')
