@@ -11,9 +11,10 @@ centre enters only through the rotation: a centre d metres off moves the heading
 rotation times d over the chord). Pairs with fewer
 than --min-pairs ICP correspondences (a car half hidden, other objects in the radius) are left out.
 
-usage: car_motion_oracle.py --bins KITTI/velodyne --track ID RUN [RUN ...]
+usage: car_motion_oracle.py --bins KITTI/velodyne --track ID RUN [RUN[:ID] ...]
 Every RUN is a roadslam-map output folder of the same sweeps; the first one's trajectory and track
-select the points, and each one's heading_rad is scored against the oracle (median / mean / max error).
+select the points, and each one's heading_rad and speed_mps are scored against the oracle (median /
+mean / max error). RUN:ID names the same car's track in a run that numbered it otherwise.
 Only KITTI .bin sweeps (x, y, z, reflectance float32) are read.
 """
 import argparse
@@ -119,11 +120,15 @@ def run():
     ap.add_argument('--dt-s', type=float, default=0.1, help='time between sweeps [s]')
     ap.add_argument('runs', nargs='+')
     a = ap.parse_args()
+    # RUN:ID names the car's track in a run whose ids differ (the first run's id is --track)
+    runs = [(r.rsplit(':', 1)[0], r.rsplit(':', 1)[1]) if ':' in r else (r, a.track) for r in a.runs]
+    a.runs = [r for r, _ in runs]
     poses = load_poses(a.runs[0])
-    rows = load_track(a.runs[0], a.track)
-    if not rows:
-        sys.exit('%s/tracks.csv: no track %s' % (a.runs[0], a.track))
-    tracks = [load_track(run, a.track) for run in a.runs]
+    tracks = [load_track(run, track) for run, track in runs]
+    for (run, track), t in zip(runs, tracks):
+        if not t:
+            sys.exit('%s/tracks.csv: no track %s' % (run, track))
+    rows = tracks[0]
     headings = [{f: float(r['heading_rad']) for f, r in t.items()} for t in tracks]
     speeds = [{f: float(r['speed_mps']) for f, r in t.items()} for t in tracks]
     print('f0  f1  oracle_rad  speed_mps  pairs  ' + '  '.join('heading[%d]' % k for k in range(len(a.runs))))
