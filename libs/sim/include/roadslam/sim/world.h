@@ -68,6 +68,23 @@ struct MovingCar {
   /// evenly spaced arc lengths of its lap (lap_t[0] = 0, the last = the lap's period). Empty: it
   /// drives at speed_mps everywhere, corners included.
   std::vector<double> lap_t;
+  /// The planned speed along its own path at each of those arc lengths but the last [m/s]
+  /// (World::planTraffic; the lap is periodic).
+  std::vector<double> lap_v;
+  /// Its drive among the others (World::followTraffic): how far its lap coordinate has run along its
+  /// travel direction since t = 0 at every World::kFollowStep_s [m, unwrapped]. Empty: lap_t alone.
+  std::vector<double> follow_u;
+};
+
+/// Car-following of planned traffic (World::followTraffic): the Intelligent Driver Model (IDM; Treiber,
+/// Hennecke & Helbing, Phys. Rev. E 62, 1805, 2000) with the planned, curve-limited speed as the
+/// desired speed.
+struct FollowParams {
+  double span_s = 0;          ///< integrated over [0, span_s]; <= 0: no following [s]
+  double headway_s = 1.5;     ///< T, safe time headway [s]
+  double min_gap_m = 2.0;     ///< s0, bumper-to-bumper gap standing [m]
+  double accel_mps2 = 2.0;    ///< a, maximum acceleration [m/s^2]
+  double decel_mps2 = 2.0;    ///< b, comfortable deceleration [m/s^2]
 };
 
 /// Pose of a moving car at time t: centre (x, y), ground z and heading [m, rad].
@@ -112,6 +129,13 @@ class World {
   /// its own path's curvature k, reached and left at \p accel_mps2 (braking and accelerating alike, so
   /// the plan holds both ways along a road). \p lateral_accel_mps2 <= 0: constant speeds.
   void planTraffic(double lateral_accel_mps2, double accel_mps2);
+  /// Drives the planned cars (those with a lap_t) jointly so that none drives into the car ahead in its
+  /// lane (same road, direction and lateral_m): fills every planned car's follow_u. A car closer at
+  /// t = 0 to one of the cars placed before it (lower index) than the IDM's desired gap is moved back,
+  /// behind that car, to that gap (its s0_m changes). Throws naming [world] moving_cars when a lane
+  /// cannot hold its cars.
+  void followTraffic(const FollowParams& f);
+  static constexpr double kFollowStep_s = 0.01;  ///< integration step of followTraffic [s]
   /// The car as a prism at time \p t_s.
   Prism carPrism(const MovingCar& car, double t_s) const;
 
