@@ -1,5 +1,5 @@
-// Car-following of the planned traffic (World::followTraffic): the Intelligent Driver Model integrated
-// for all the cars of a lane jointly, at a fixed step, over the drive's span.
+// Car-following of the planned traffic (World::followTraffic): the Intelligent Driver Model
+// integrated for all the cars of a lane jointly, at a fixed step, over the drive's span.
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -14,13 +14,14 @@ namespace roadslam::sim {
 
 namespace {
 
-/// A lane's path in travel order: the lap samples u_j = j lap / n of World::planTraffic, taken along
-/// the travel direction, with the path length (the cars' own, offset from the centreline) to each.
+/// A lane's path in travel order: the lap samples u_j = j lap / n of World::planTraffic, taken
+/// along the travel direction, with the path length (the cars' own, offset from the centreline) to
+/// each.
 struct LanePath {
-  int dir = 1;             ///< +1 along the centreline, -1 against it
-  double lap = 0;          ///< lap coordinate range [m]
-  std::size_t n = 0;       ///< samples per lap
-  std::vector<double> q;   ///< path length at travel sample i = 0..n (q[n]: the whole lap) [m]
+  int dir = 1;            ///< +1 along the centreline, -1 against it
+  double lap = 0;         ///< lap coordinate range [m]
+  std::size_t n = 0;      ///< samples per lap
+  std::vector<double> q;  ///< path length at travel sample i = 0..n (q[n]: the whole lap) [m]
 
   double length() const { return q.back(); }
   double wrap(double x) const {
@@ -30,8 +31,9 @@ struct LanePath {
   /// Fractional travel sample at path length \p x [m].
   double index(double x) const {
     x = wrap(x);
-    const auto k = static_cast<std::size_t>(std::clamp<std::ptrdiff_t>(
-        std::upper_bound(q.begin(), q.end(), x) - q.begin() - 1, 0, static_cast<std::ptrdiff_t>(n) - 1));
+    const auto k = static_cast<std::size_t>(
+        std::clamp<std::ptrdiff_t>(std::upper_bound(q.begin(), q.end(), x) - q.begin() - 1, 0,
+                                   static_cast<std::ptrdiff_t>(n) - 1));
     const double d = q[k + 1] - q[k];
     return static_cast<double>(k) + (d > 0 ? (x - q[k]) / d : 0.0);
   }
@@ -65,7 +67,8 @@ LanePath lanePath(const Road& r, const MovingCar& c) {
     y0 = y;
   }
   p.q.resize(p.n + 1);
-  for (std::size_t i = 0; i <= p.n; ++i) p.q[i] = p.dir > 0 ? sigma[i] : sigma[p.n] - sigma[p.n - i];
+  for (std::size_t i = 0; i <= p.n; ++i)
+    p.q[i] = p.dir > 0 ? sigma[i] : sigma[p.n] - sigma[p.n - i];
   return p;
 }
 
@@ -76,7 +79,8 @@ struct Driver {
   std::vector<double> vp;  ///< planned speed at each travel sample [m/s]
 };
 
-/// Planned speed of \p d at path length \p x: the ceiling that keeps v^2 |k| within the limit [m/s].
+/// Planned speed of \p d at path length \p x: the ceiling that keeps v^2 |k| within the limit
+/// [m/s].
 double plannedSpeed(const LanePath& p, const Driver& d, double x) {
   const double f = p.index(x);
   const auto k = static_cast<std::size_t>(f);
@@ -88,7 +92,8 @@ double desiredGap(const FollowParams& f, double v) { return f.min_gap_m + v * f.
 
 /// Moves every car of \p lane (index order) that starts closer to a car placed before it than the
 /// desired gap (either way) back, behind that car, to the desired gap.
-void separateStarts(const LanePath& p, const FollowParams& f, std::vector<Driver>& lane, const Road& r) {
+void separateStarts(const LanePath& p, const FollowParams& f, std::vector<Driver>& lane,
+                    const Road& r) {
   for (std::size_t j = 1; j < lane.size(); ++j) {
     Driver& d = lane[j];
     double moved = 0;
@@ -96,8 +101,10 @@ void separateStarts(const LanePath& p, const FollowParams& f, std::vector<Driver
       clash = false;
       for (std::size_t i = 0; i < j && !clash; ++i) {
         const double half = 0.5 * (lane[i].car->length_m + d.car->length_m);
-        const double ahead = p.wrap(lane[i].x - d.x) - half, behind = p.wrap(d.x - lane[i].x) - half;
-        if (ahead >= desiredGap(f, d.v) - 1e-6 && behind >= desiredGap(f, lane[i].v) - 1e-6) continue;
+        const double ahead = p.wrap(lane[i].x - d.x) - half,
+                     behind = p.wrap(d.x - lane[i].x) - half;
+        if (ahead >= desiredGap(f, d.v) - 1e-6 && behind >= desiredGap(f, lane[i].v) - 1e-6)
+          continue;
         const double x = p.wrap(lane[i].x - half - desiredGap(f, d.v));
         moved += p.wrap(d.x - x);
         d.x = x;
@@ -105,39 +112,45 @@ void separateStarts(const LanePath& p, const FollowParams& f, std::vector<Driver
         clash = true;
       }
       if (moved > p.length())
-        throw std::runtime_error("[world] moving_cars: the lane of road '" + r.name + "' cannot hold " +
-                                 std::to_string(lane.size()) + " cars " + std::to_string(f.min_gap_m) +
-                                 " m + headway apart");
+        throw std::runtime_error("[world] moving_cars: the lane of road '" + r.name +
+                                 "' cannot hold " + std::to_string(lane.size()) + " cars " +
+                                 std::to_string(f.min_gap_m) + " m + headway apart");
     }
   }
 }
 
 /// IDM acceleration (Treiber et al. 2000, eq. 1-2; s* bounded below by s0 as in Treiber & Kesting,
-/// Traffic Flow Dynamics, 2013, sec. 11.3.4) of a car at speed \p v, desired speed \p v0, bumper gap
-/// \p s to a leader at \p v_lead; \p s = +inf: no leader [m/s^2].
+/// Traffic Flow Dynamics, 2013, sec. 11.3.4) of a car at speed \p v, desired speed \p v0, bumper
+/// gap \p s to a leader at \p v_lead; \p s = +inf: no leader [m/s^2].
 double idmAcceleration(const FollowParams& f, double v, double v0, double s, double v_lead) {
   const double free = 1.0 - std::pow(v / v0, 4);  // delta = 4
   if (!std::isfinite(s)) return f.accel_mps2 * free;
   const double s_star =
-      f.min_gap_m + std::max(0.0, v * f.headway_s + v * (v - v_lead) / (2 * std::sqrt(f.accel_mps2 * f.decel_mps2)));
+      f.min_gap_m +
+      std::max(0.0,
+               v * f.headway_s + v * (v - v_lead) / (2 * std::sqrt(f.accel_mps2 * f.decel_mps2)));
   return f.accel_mps2 * (free - (s_star / s) * (s_star / s));
 }
 
-/// One step of every driver of \p lane (parallel update from the old states), ballistic: x += v dt +
-/// a dt^2 / 2 unless the car stops within the step (Treiber & Kesting 2013, sec. 11.2.2); the planned
-/// speed at the new position is a hard ceiling (the IDM's free term brakes for a corner too late).
+/// One step of every driver of \p lane (parallel update from the old states), ballistic: x += v dt
+/// + a dt^2 / 2 unless the car stops within the step (Treiber & Kesting 2013, sec. 11.2.2); the
+/// planned speed at the new position is a hard ceiling (the IDM's free term brakes for a corner too
+/// late).
 void stepLane(const LanePath& p, const FollowParams& f, std::vector<Driver>& lane) {
   const double dt = World::kFollowStep_s;
   std::vector<std::size_t> order(lane.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return p.wrap(lane[a].x) < p.wrap(lane[b].x); });
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return p.wrap(lane[a].x) < p.wrap(lane[b].x); });
   std::vector<double> x(lane.size()), v(lane.size());
   for (std::size_t r = 0; r < order.size(); ++r) {
     const Driver& d = lane[order[r]];
     const Driver& lead = lane[order[(r + 1) % order.size()]];
-    const double s = order.size() < 2 ? INFINITY
-                                      : p.wrap(lead.x - d.x) - 0.5 * (lead.car->length_m + d.car->length_m);
-    const double a = s <= 1e-3 ? -INFINITY : idmAcceleration(f, d.v, plannedSpeed(p, d, d.x), s, lead.v);
+    const double s = order.size() < 2
+                         ? INFINITY
+                         : p.wrap(lead.x - d.x) - 0.5 * (lead.car->length_m + d.car->length_m);
+    const double a =
+        s <= 1e-3 ? -INFINITY : idmAcceleration(f, d.v, plannedSpeed(p, d, d.x), s, lead.v);
     double vn = d.v + a * dt, dx = 0.5 * (d.v + vn) * dt;
     if (vn < 0) {
       dx = std::isfinite(a) ? -0.5 * d.v * d.v / a : 0.0;
@@ -156,7 +169,8 @@ void followLane(const Road& r, const FollowParams& f, std::vector<MovingCar*> ca
   const LanePath p = lanePath(r, *cars.front());
   std::vector<Driver> lane;
   for (MovingCar* c : cars) {
-    if (c->lap_v.size() != p.n) throw std::logic_error("followTraffic: lane cars with different lap samples");
+    if (c->lap_v.size() != p.n)
+      throw std::logic_error("followTraffic: lane cars with different lap samples");
     Driver d;
     d.car = c;
     d.vp.resize(p.n);
@@ -181,7 +195,8 @@ void followLane(const Road& r, const FollowParams& f, std::vector<MovingCar*> ca
   }
   for (std::size_t k = 0; k < steps; ++k) {
     stepLane(p, f, lane);
-    for (std::size_t i = 0; i < lane.size(); ++i) lane[i].car->follow_u.push_back(p.travelU(lane[i].x) - u0[i]);
+    for (std::size_t i = 0; i < lane.size(); ++i)
+      lane[i].car->follow_u.push_back(p.travelU(lane[i].x) - u0[i]);
   }
 }
 
@@ -190,13 +205,14 @@ void followLane(const Road& r, const FollowParams& f, std::vector<MovingCar*> ca
 void World::followTraffic(const FollowParams& f) {
   for (MovingCar& c : cars) c.follow_u.clear();
   if (f.span_s <= 0) return;
-  // lanes: same road, same travel direction, same offset (MovingCar::lateral_m is drawn from the lane
-  // widths, so equal lanes give equal doubles); index order within a lane
+  // lanes: same road, same travel direction, same offset (MovingCar::lateral_m is drawn from the
+  // lane widths, so equal lanes give equal doubles); index order within a lane
   std::map<std::tuple<int, int, double>, std::vector<MovingCar*>> lanes;
   for (MovingCar& c : cars)
     if (c.lap_t.size() >= 2 && c.lap_v.size() + 1 == c.lap_t.size())
       lanes[{c.road, c.speed_mps < 0 ? -1 : 1, c.lateral_m}].push_back(&c);
-  for (auto& [key, lane] : lanes) followLane(roads[static_cast<std::size_t>(std::get<0>(key))], f, lane);
+  for (auto& [key, lane] : lanes)
+    followLane(roads[static_cast<std::size_t>(std::get<0>(key))], f, lane);
 }
 
 }  // namespace roadslam::sim

@@ -5,9 +5,9 @@
 
 namespace roadslam::sim {
 
-/// The arc length of a car's lap that its lap coordinate u runs over: open roads are driven 15 m clear
-/// of their ends (junctions in the grid layouts where the vehicle turns) and wrap: the car leaves at
-/// one end and re-enters at the other, so it never turns around into the vehicle's lane.
+/// The arc length of a car's lap that its lap coordinate u runs over: open roads are driven 15 m
+/// clear of their ends (junctions in the grid layouts where the vehicle turns) and wrap: the car
+/// leaves at one end and re-enters at the other, so it never turns around into the vehicle's lane.
 double lapMargin(const Road& r, double len);
 
 /// Length of the lap coordinate's range of \p car's road [m].

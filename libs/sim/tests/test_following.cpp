@@ -60,12 +60,13 @@ double speedAt(const World& w, const MovingCar& c, double t) {
 
 }  // namespace
 
-// Same-lane cars (same road, direction and lane) of planned traffic never come closer than the IDM's
-// minimum gap s0 (centre distance - half lengths, GT samples every 0.1 s) on the 120 s urban loop and
-// the 90 s hard loop (5 cars in one lane each), where the same planned laps without following drive
-// through one another.
+// Same-lane cars (same road, direction and lane) of planned traffic never come closer than the
+// IDM's minimum gap s0 (centre distance - half lengths, GT samples every 0.1 s) on the 120 s urban
+// loop and the 90 s hard loop (5 cars in one lane each), where the same planned laps without
+// following drive through one another.
 TEST(Following, SameLaneCarsNeverComeCloserThanTheMinimumGap) {
-  for (const auto& [ini, duration] : {std::pair<std::string, double>{"urban-loop.ini", 120.0}, {"urban-loop-hard.ini", 90.0}}) {
+  for (const auto& [ini, duration] :
+       {std::pair<std::string, double>{"urban-loop.ini", 120.0}, {"urban-loop-hard.ini", 90.0}}) {
     SCOPED_TRACE(ini);
     ScenarioParams p = ScenarioParams::fromFile(iniPath(ini));
     p.duration_s = duration;
@@ -83,9 +84,10 @@ TEST(Following, SameLaneCarsNeverComeCloserThanTheMinimumGap) {
 }
 
 // A follower behind a slower leader on a straight settles at the IDM's equilibrium gap
-// s_e(v) = (s0 + v T) / sqrt(1 - (v / v0)^4) (Treiber et al. 2000, delta = 4) at the leader's speed:
-// v = 5 m/s, v0 = 10 m/s, s0 = 2 m, T = 1.5 s: 9.811 m. It starts 50 m behind, across the open road's
-// wrap (the leader has just re-entered at the start), and brakes for it before the wrap.
+// s_e(v) = (s0 + v T) / sqrt(1 - (v / v0)^4) (Treiber et al. 2000, delta = 4) at the leader's
+// speed: v = 5 m/s, v0 = 10 m/s, s0 = 2 m, T = 1.5 s: 9.811 m. It starts 50 m behind, across the
+// open road's wrap (the leader has just re-entered at the start), and brakes for it before the
+// wrap.
 TEST(Following, FollowerSettlesAtTheIdmEquilibriumGap) {
   World w = straightRoad(1000);
   const double lap = 1000 - 2 * 15;  // open roads are driven 15 m clear of their ends
@@ -94,15 +96,16 @@ TEST(Following, FollowerSettlesAtTheIdmEquilibriumGap) {
   FollowParams f;
   f.span_s = 120;
   w.followTraffic(f);
-  EXPECT_LT(speedAt(w, w.cars[1], 2.0), 9.9);  // still before the wrap: it sees the leader beyond it
+  EXPECT_LT(speedAt(w, w.cars[1], 2.0),
+            9.9);  // still before the wrap: it sees the leader beyond it
   const double s_e = (2.0 + 5.0 * 1.5) / std::sqrt(1.0 - std::pow(5.0 / 10.0, 4));
   for (double t = 90; t <= 120; t += 5) {
     const CarPose a = w.carPose(w.cars[0], t), b = w.carPose(w.cars[1], t);
     EXPECT_NEAR(a.x - b.x - 4.5, s_e, 0.02) << "t " << t;
     EXPECT_NEAR(speedAt(w, w.cars[1], t), 5.0, 0.01) << "t " << t;
   }
-  // the leader keeps its own planned speed (its leader, across the wrap, is the follower 930 m ahead:
-  // (s* / s)^2 ~ 1e-4)
+  // the leader keeps its own planned speed (its leader, across the wrap, is the follower 930 m
+  // ahead: (s* / s)^2 ~ 1e-4)
   EXPECT_NEAR(speedAt(w, w.cars[0], 60), 5.0, 1e-3);
 }
 
@@ -120,7 +123,8 @@ TEST(Following, OverlappingStartsMoveTheLaterCarBack) {
   EXPECT_NEAR(w.carPose(w.cars[1], 0).x, 15 + w.cars[1].s0_m, 1e-6);
 
   World full = straightRoad(1000);
-  for (int i = 0; i < 60; ++i) full.cars.push_back(carAt(10.0 * i, 10.0));  // 46 fit 21.5 m apart in 970 m
+  for (int i = 0; i < 60; ++i)
+    full.cars.push_back(carAt(10.0 * i, 10.0));  // 46 fit 21.5 m apart in 970 m
   full.planTraffic(2.5, 2.0);
   try {
     full.followTraffic(f);

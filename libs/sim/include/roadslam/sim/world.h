@@ -56,7 +56,8 @@ struct Road {
   std::vector<std::vector<Vec2>> left_curbs, right_curbs;
 };
 
-/// A car driving along a road at constant speed (a moving occluder).
+/// A car driving along a road (a moving occluder): at constant speed, or on a planned lap
+/// (World::planTraffic) followed behind the car ahead (World::followTraffic).
 struct MovingCar {
   int road = 0;            ///< index into World::roads
   double s0_m = 0;         ///< arc length along the centreline at t = 0 [m]
@@ -123,7 +124,8 @@ class World {
   /// Ground::height + surfaceOffset: the surface the ray caster sees and the car drives on [m].
   double surfaceHeight(double x, double y) const { return ground.height(x, y) + surfaceOffset(x, y); }
 
-  /// Car pose at time \p t_s [s] (cars wrap around at the end of a road).
+  /// Car pose at time \p t_s [s] (cars wrap around at the end of a road): from follow_u when it is
+  /// filled, else from lap_t, else at speed_mps.
   CarPose carPose(const MovingCar& car, double t_s) const;
   /// Plans every car's lap: its speed is |speed_mps| on the straights and at most sqrt(a_lat / |k|) on
   /// its own path's curvature k, reached and left at \p accel_mps2 (braking and accelerating alike, so
