@@ -2,6 +2,7 @@
 
 #include <mrpt/config/CConfigFileBase.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <ctime>
@@ -14,6 +15,10 @@
 namespace roadslam::sim {
 
 namespace {
+/// Followed traffic is integrated this far past the drive: the outputs sample up to its end (and a
+/// test's central differences a little beyond) [s].
+constexpr double kTrafficMargin_s = 10.0;
+
 void rejectUnknown(const mrpt::config::CConfigFileBase& cfg, const std::string& section,
                    const std::vector<std::string>& known) {
   const auto bad = unknownKeys(cfg, section, known);
@@ -80,6 +85,8 @@ Simulator::Simulator(const ScenarioParams& params) : p_(params) {
   world_ = buildWorld(p_.world, p_.seed, route_);
   if (p_.trajectory.start_offset_m > 0) route_ = routeStartingAt(route_, p_.trajectory.start_offset_m);
   trajectory_ = std::make_unique<Trajectory>(route_, world_.ground, p_.trajectory, &world_);
+  // planned cars follow one another over the whole drive and a margin (carPose beyond it: last speed)
+  world_.followTraffic(p_.world.followParams(std::max(p_.duration_s, trajectory_->duration_s()) + kTrafficMargin_s));
   lidar_ = std::make_unique<LidarSimulator>(world_, *trajectory_, p_.lidar, p_.seed);
 }
 

@@ -197,7 +197,7 @@ TEST(Scenarios, TrafficSeedAndStartOffsetMakeASecondDriveOfTheSameStreets) {
   }
 }
 
-// Planned traffic (World::planTraffic): on the urban loop's 10 m corners every car keeps its lateral
+// Planned traffic (World::planTraffic, followed: World::followTraffic): on the urban loop's 10 m corners every car keeps its lateral
 // acceleration v * yaw rate within the limit (central differences of carPose over 1 s, every 0.05 s for
 // 80 s; 15 % for the fillets' yaw steps) and reaches its own speed on the straights; unplanned, the
 // same cars take the corners at full speed, far beyond it.
@@ -219,6 +219,7 @@ TEST(Scenarios, PlannedTrafficSlowsForCornersWithinTheLateralLimit) {
   const Simulator planned(p);
   ASSERT_FALSE(planned.world().cars.empty());
   for (const MovingCar& c : planned.world().cars) {
+    EXPECT_FALSE(c.follow_u.empty());  // and following one another (World::followTraffic)
     double lat = 0, v = 0;
     lateralAndSpeed(planned.world(), c, lat, v);
     EXPECT_LE(lat, 2.5 * 1.15);

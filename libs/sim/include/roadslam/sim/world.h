@@ -56,7 +56,8 @@ struct Road {
   std::vector<std::vector<Vec2>> left_curbs, right_curbs;
 };
 
-/// A car driving along a road at constant speed (a moving occluder).
+/// A car driving along a road (a moving occluder): at constant speed, or on a planned lap
+/// (World::planTraffic) followed behind the car ahead (World::followTraffic).
 struct MovingCar {
   int road = 0;            ///< index into World::roads
   double s0_m = 0;         ///< arc length along the centreline at t = 0 [m]
@@ -68,6 +69,23 @@ struct MovingCar {
   /// evenly spaced arc lengths of its lap (lap_t[0] = 0, the last = the lap's period). Empty: it
   /// drives at speed_mps everywhere, corners included.
   std::vector<double> lap_t;
+  /// The planned speed along its own path at each of those arc lengths but the last [m/s]
+  /// (World::planTraffic; the lap is periodic).
+  std::vector<double> lap_v;
+  /// Its drive among the others (World::followTraffic): how far its lap coordinate has run along its
+  /// travel direction since t = 0 at every World::kFollowStep_s [m, unwrapped]. Empty: lap_t alone.
+  std::vector<double> follow_u;
+};
+
+/// Car-following of planned traffic (World::followTraffic): the Intelligent Driver Model (IDM; Treiber,
+/// Hennecke & Helbing, Phys. Rev. E 62, 1805, 2000) with the planned, curve-limited speed as the
+/// desired speed.
+struct FollowParams {
+  double span_s = 0;          ///< integrated over [0, span_s]; <= 0: no following [s]
+  double headway_s = 1.5;     ///< T, safe time headway [s]
+  double min_gap_m = 2.0;     ///< s0, bumper-to-bumper gap standing [m]
+  double accel_mps2 = 2.0;    ///< a, maximum acceleration [m/s^2]
+  double decel_mps2 = 2.0;    ///< b, comfortable deceleration [m/s^2]
 };
 
 /// Pose of a moving car at time t: centre (x, y), ground z and heading [m, rad].
@@ -106,12 +124,20 @@ class World {
   /// Ground::height + surfaceOffset: the surface the ray caster sees and the car drives on [m].
   double surfaceHeight(double x, double y) const { return ground.height(x, y) + surfaceOffset(x, y); }
 
-  /// Car pose at time \p t_s [s] (cars wrap around at the end of a road).
+  /// Car pose at time \p t_s [s] (cars wrap around at the end of a road): from follow_u when it is
+  /// filled, else from lap_t, else at speed_mps.
   CarPose carPose(const MovingCar& car, double t_s) const;
   /// Plans every car's lap: its speed is |speed_mps| on the straights and at most sqrt(a_lat / |k|) on
   /// its own path's curvature k, reached and left at \p accel_mps2 (braking and accelerating alike, so
   /// the plan holds both ways along a road). \p lateral_accel_mps2 <= 0: constant speeds.
   void planTraffic(double lateral_accel_mps2, double accel_mps2);
+  /// Drives the planned cars (those with a lap_t) jointly so that none drives into the car ahead in its
+  /// lane (same road, direction and lateral_m): fills every planned car's follow_u. A car closer at
+  /// t = 0 to one of the cars placed before it (lower index) than the IDM's desired gap is moved back,
+  /// behind that car, to that gap (its s0_m changes). Throws naming [world] moving_cars when a lane
+  /// cannot hold its cars.
+  void followTraffic(const FollowParams& f);
+  static constexpr double kFollowStep_s = 0.01;  ///< integration step of followTraffic [s]
   /// The car as a prism at time \p t_s.
   Prism carPrism(const MovingCar& car, double t_s) const;
 

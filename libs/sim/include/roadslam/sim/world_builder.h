@@ -50,6 +50,12 @@ struct WorldParams {
   /// the default until the objects' figures are re-measured on planned traffic (docs/benchmarks.md) [m/s^2]
   double moving_car_lateral_accel_mps2 = 0;
   double moving_car_accel_mps2 = 2.0;  ///< ... braking into and accelerating out of them [m/s^2]
+  /// With moving_car_lateral_accel_mps2 > 0 the planned cars also follow one another (World::followTraffic,
+  /// the IDM; its maximum acceleration and comfortable deceleration are moving_car_accel_mps2):
+  double moving_car_headway_s = 1.5;  ///< ... time headway T [s]
+  double moving_car_min_gap_m = 2.0;  ///< ... bumper-to-bumper gap s0 when standing [m]
+  /// The IDM parameters of planned traffic, integrated over [0, span_s] [s].
+  FollowParams followParams(double span_s) const;
   double hill_amplitude_m = 0;      ///< ground height amplitude [m]
   double hill_wavelength_m = 400;   ///< [m]
   double tunnel_start_m = 0;        ///< arc length on the first road where a tunnel starts [m]
