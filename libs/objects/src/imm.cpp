@@ -137,11 +137,12 @@ void predict(Track& tr, double T, const TrackerParams& p) {
   F_cv(0, 2) = F_cv(1, 3) = T;
   F_cv(4, 4) = 0;
   tr.imm_x[kCv] = F_cv * x0[kCv];
-  tr.imm_P[kCv] = F_cv * P0[kCv] * F_cv.transpose() + noise(T, p.imm.cv_accel_sigma_mps2, 0);
+  const bool car = tr.moving && p.imm.moving_accel_sigma_mps2 > 0;  // ImmParams::moving_accel_sigma_mps2
+  tr.imm_P[kCv] = F_cv * P0[kCv] * F_cv.transpose() + noise(T, car ? p.imm.moving_accel_sigma_mps2 : p.imm.cv_accel_sigma_mps2, 0);
   Mat5 F_ct;
   tr.imm_x[kCt] = ctMove(x0[kCt], T, &F_ct);
   const double qw = p.imm.ct_turn_accel_sigma_radps2 * p.imm.ct_turn_accel_sigma_radps2 * T;
-  tr.imm_P[kCt] = F_ct * P0[kCt] * F_ct.transpose() + noise(T, p.imm.ct_accel_sigma_mps2, qw);
+  tr.imm_P[kCt] = F_ct * P0[kCt] * F_ct.transpose() + noise(T, car ? p.imm.moving_accel_sigma_mps2 : p.imm.ct_accel_sigma_mps2, qw);
   boundTurnRate(tr.imm_x[kCt], tr.imm_P[kCt], p.imm.max_turn_rate_radps);
   // with no detection the model probabilities are the predicted ones, cbar (a miss keeps them)
   tr.imm_mu = cbar;

@@ -96,6 +96,7 @@ void CtrvParams::fields(ParamTable& t) {
 void ImmParams::fields(ParamTable& t) {
   t.num("imm_cv_accel_sigma_mps2", cv_accel_sigma_mps2);
   t.num("imm_ct_accel_sigma_mps2", ct_accel_sigma_mps2);
+  t.num("imm_moving_accel_sigma_mps2", moving_accel_sigma_mps2);
   t.angle("imm_ct_turn_accel_sigma_degps2", ct_turn_accel_sigma_radps2);
   t.angle("imm_init_turn_rate_sigma_degps", init_turn_rate_sigma_radps);
   t.angle("imm_max_turn_rate_degps", max_turn_rate_radps);
@@ -161,6 +162,7 @@ void TrackerParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, c
                           {"ctrv_init_yaw_rate_sigma_degps", ctrv.init_yaw_rate_sigma_radps > 0, "> 0"},
                           {"imm_cv_accel_sigma_mps2", imm.cv_accel_sigma_mps2 > 0, "> 0"},
                           {"imm_ct_accel_sigma_mps2", imm.ct_accel_sigma_mps2 > 0, "> 0"},
+                          {"imm_moving_accel_sigma_mps2", imm.moving_accel_sigma_mps2 >= 0, ">= 0 (0: the models' own)"},
                           {"imm_ct_turn_accel_sigma_degps2", imm.ct_turn_accel_sigma_radps2 > 0, "> 0"},
                           {"imm_init_turn_rate_sigma_degps", imm.init_turn_rate_sigma_radps > 0, "> 0"},
                           {"imm_max_turn_rate_degps", imm.max_turn_rate_radps > 0, "> 0"},
