@@ -486,6 +486,7 @@ static double speedLagAccelerating(const TrackerParams& p) {
 
 TEST(Tracker, AMovingTracksAccelerationNoiseShortensItsSpeedLag) {
   TrackerParams quiet;
+  quiet.imm.moving_accel_sigma_mps2 = 0;
   TrackerParams car = quiet;
   car.imm.moving_accel_sigma_mps2 = 2.5;
   const double lag_quiet = speedLagAccelerating(quiet), lag_car = speedLagAccelerating(car);

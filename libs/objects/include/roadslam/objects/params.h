@@ -115,7 +115,7 @@ struct ImmParams {
   /// Both models' white-acceleration noise for a track labelled moving: a proven car brakes and
   /// accelerates at 2-3 m/s^2, while clutter's unproven tracks keep the quieter models (they drift into
   /// the moving label otherwise). 0: the models' own [m/s^2]
-  double moving_accel_sigma_mps2 = 0;
+  double moving_accel_sigma_mps2 = 2.5;
   double ct_turn_accel_sigma_radps2 = 360.0 * 3.14159265358979323846 / 180.0;  ///< CT model: turn-rate noise (a simulated corner: 60 deg/s within 0.3 s); ini `imm_ct_turn_accel_sigma_degps2` [rad/s^2]
   double init_turn_rate_sigma_radps = 20.0 * 3.14159265358979323846 / 180.0;  ///< CT turn rate uncertainty of a new track; ini `imm_init_turn_rate_sigma_degps` [rad/s]
   /// CT model: the turn rate is clamped to this and its standard deviation capped at it (a static
