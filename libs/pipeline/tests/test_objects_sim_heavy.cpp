@@ -52,7 +52,7 @@ TEST(ObjectsSimHeavy, UrbanLoop30sImmKeepsTheTurningCarsId) {
   EXPECT_GE(r.m.mota, 0.94);       // measured 0.965 (0.953 without re-identification)
   EXPECT_LE(r.m.motp_m, 0.19);     // measured 0.163 m (0.166 with the quiet models on moving tracks, 0.161 without re-identification, 0.169 at the 50 m reach)
   EXPECT_LE(r.m.false_positives, 1u);  // measured 0
-  EXPECT_LE(r.m.speed_error_mean_mps, 0.45);  // measured 0.30 m/s (0.32 with the quiet models on moving tracks) (0.30 without re-identification; cv: 0.22; the cars in the turn are now scored)
+  EXPECT_LE(r.m.speed_error_mean_mps, 0.45);  // measured 0.30 m/s (0.32 with the quiet models on moving tracks, 0.30 without re-identification; cv: 0.22; the cars in the turn are now scored)
   EXPECT_FALSE(hasNaN(r.out_dir + "/tracks.csv"));
 }
 
