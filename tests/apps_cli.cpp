@@ -162,6 +162,21 @@ TEST(AppsCli, MapQuietTextJsonTimesAndTheNominalRateWarning) {
   EXPECT_EQ(bad.out, "");
 }
 
+TEST(AppsCli, SimQuietPrintsNothing) {
+  const fs::path root = fs::path(::testing::TempDir()) / ("apps_cli_sim_" + std::to_string(::getpid()));
+  fs::remove_all(root);
+  const std::string dir = root.string();
+  const std::string args = "--scenario " + std::string(ROADSLAM_SOURCE_DIR) + "/ini/sim/urban-loop.ini --duration 0.3 --out ";
+  const AppRun text = run("roadslam-sim", args + dir + "/text");
+  ASSERT_EQ(text.code, 0) << text.err;
+  EXPECT_NE(text.out.find("sweeps"), std::string::npos) << text.out;
+  const AppRun quiet = run("roadslam-sim", args + dir + "/quiet --quiet");
+  ASSERT_EQ(quiet.code, 0) << quiet.err;
+  EXPECT_EQ(quiet.out, "") << "--quiet printed on stdout";
+  EXPECT_TRUE(fs::exists(dir + "/quiet/velodyne.pcap"));
+  fs::remove_all(root);
+}
+
 TEST(AppsCli, BoundsQuietTextAndJson) {
   if (!built("roadslam-bounds")) GTEST_SKIP() << "roadslam-bounds not built";
   const std::string yard = kittiYard("bounds", 3);

@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   std::string scenario, out, udp, top_view;
   unsigned long long seed = 0;
   double duration = 0, speed = 1.0;
+  bool quiet = false;
   app.add_option("--scenario", scenario, "scenario ini (ini/sim/*.ini)")->required()->check(CLI::ExistingFile);
   app.add_option("--out", out, "output folder")->required();
   auto* seed_opt = app.add_option("--seed", seed, "override [scenario] seed (>= 0)")->check(CLI::Range(0, 2147483647));
@@ -25,6 +26,7 @@ int main(int argc, char** argv) {
   app.add_option("--udp", udp, "also stream the data packets to HOST:PORT (IPv4)");
   app.add_option("--speed", speed, "UDP pace as a multiple of real time (> 0)")->check(CLI::PositiveNumber);
   app.add_option("--top-view", top_view, "draw a top view of the world to this PNG");
+  app.add_flag("--quiet", quiet, "nothing on stdout (no summary); errors on stderr");
   CLI11_PARSE(app, argc, argv);
   try {
     auto params = roadslam::sim::ScenarioParams::fromFile(scenario);
@@ -44,6 +46,7 @@ int main(int argc, char** argv) {
     roadslam::sim::Simulator sim(params);
     const auto rep = roadslam::sim::runToDirectory(sim, opt);
     const auto& s = rep.stats;
+    if (quiet) return 0;
     if (params.lidar.hdl64())
       std::printf("%s seed %llu: %.1f s, hdl64, %llu sweeps in %s/velodyne, %llu points, %.1f m, %.1fx real time\n",
                   params.name.c_str(), static_cast<unsigned long long>(params.seed), s.duration_s,
