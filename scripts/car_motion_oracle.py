@@ -152,7 +152,8 @@ def run():
         c, s = math.cos(th), math.sin(th)
         mx, my = c * cx - s * cy + tx - cx, s * cx + c * cy + ty - cy
         oracle = math.atan2(my, mx)
-        mid = [f + (a.step - 1) // 2, f + a.step // 2 + (a.step % 2)]  # the sweeps around the chord's mid-time
+        # the sweep at the chord's mid-time (even steps) or the two around it (odd steps)
+        mid = [f + a.step // 2] if a.step % 2 == 0 else [f + a.step // 2, f + a.step // 2 + 1]
         line = '%d %d %+.4f %.2f %d' % (f, g, oracle, math.hypot(mx, my) / (a.step * a.dt_s), n)
         for k, h in enumerate(headings):
             if all(m in h for m in mid):

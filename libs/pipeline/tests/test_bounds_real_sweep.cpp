@@ -1,4 +1,4 @@
-// Real VLP-16 captures from /work/shared/data/velodyne (static, indoors): labelling on regions that
+// Real VLP-16 captures from ../shared/data/velodyne (static, indoors): labelling on regions that
 // are certain from the geometry and the pictures, and the whole app job (odometry poses) producing
 // its files. Skipped when a capture is absent.
 //

@@ -1,6 +1,6 @@
 // Planned traffic with and without car-following (World::followTraffic), sampled as gt_objects.json
-// is (World::carPose every 0.1 s over the drive): same-direction pairs within 4.5 m (the count of
-// /work/exp/overlap2.py), the closest same-lane bumper gap, the largest lateral acceleration
+// is (World::carPose every 0.1 s over the drive): same-direction pairs within 4.5 m (centres within
+// 4.5 m, headings within 0.5 rad), the closest same-lane bumper gap, the largest lateral acceleration
 // (v * yaw rate over 1 s windows) and braking (0.5 s windows). Prints a markdown table.
 // Run: build/bench/sim_traffic_table [INI:DURATION_S ...] (default: the shipped urban loops)
 #include <cmath>
