@@ -132,13 +132,20 @@ def run():
     headings = [{f: float(r['heading_rad']) for f, r in t.items()} for t in tracks]
     speeds = [{f: float(r['speed_mps']) for f, r in t.items()} for t in tracks]
     print('f0  f1  oracle_rad  speed_mps  pairs  ' + '  '.join('heading[%d]' % k for k in range(len(a.runs))))
+    cache = {}
+
+    def points(frame):  # each sweep is the end of one pair and the start of the next: read it once
+        if frame not in cache:
+            cache[frame] = car_points(a.bins, frame, poses[frame], rows[frame], a.radius_m)
+        return cache[frame]
+
     errors = [[] for _ in a.runs]
     speed_errors = [[] for _ in a.runs]
     for f in sorted(rows):
         g = f + a.step
         if g not in rows or g >= len(poses):
             continue
-        src, dst = car_points(a.bins, f, poses[f], rows[f], a.radius_m), car_points(a.bins, g, poses[g], rows[g], a.radius_m)
+        src, dst = points(f), points(g)
         if len(src) < a.min_pairs or len(dst) < a.min_pairs:
             continue
         res = icp2d(src, dst)

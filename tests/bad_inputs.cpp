@@ -177,6 +177,11 @@ void makeFiles() {
   write(w / "later.tum", "100.0 0 0 0 0 0 0 1\n101.0 1 0 0 0 0 0 1\n");
   // simulator and grabber inis
   write(w / "sim-typo.ini", fileText(kSrc + "/ini/sim/urban-loop.ini") + "\n[lidar]\nrange_nosie_m = 0.1\n");
+  {
+    std::string t = fileText(kSrc + "/ini/sim/urban-loop.ini");
+    t.replace(t.find("[world]\n"), 8, "[world]\nmoving_car_headway_s = -1\n");
+    write(w / "sim-bad-headway.ini", t);
+  }
   write(w / "sim-bad-value.ini", "[scenario]\nduration_s = -5\n");
   write(w / "sim-open-route-offset.ini", fileText(kSrc + "/ini/sim/highway.ini") + "\n[trajectory]\nstart_offset_m = 50\n");
   write(w / "grab-typo.ini", fileText(kSrc + "/ini/grab.ini") + "\n[grab]\nsegmnet_mb = 5\n");
@@ -293,6 +298,7 @@ const Row kTable[] = {
   // roadslam-sim
   {"sim-typo-key",         "roadslam-sim --scenario {W}/sim-typo.ini --out {O}", 1, "range_nosie_m"},
   {"sim-bad-value",        "roadslam-sim --scenario {W}/sim-bad-value.ini --out {O}", 1, "duration_s"},
+  {"sim-bad-headway",      "roadslam-sim --scenario {W}/sim-bad-headway.ini --out {O}", 1, "sim-bad-headway.ini:14: [world] moving_car_headway_s = -1: must be > 0"},
   {"sim-open-route-offset", "roadslam-sim --scenario {W}/sim-open-route-offset.ini --out {O}", 1, "start_offset_m needs a closed route"},
   {"sim-missing",          "roadslam-sim --scenario {W}/nope.ini --out {O}", 105, "File does not exist"},
   // roadslam-grab

@@ -18,7 +18,7 @@ void carAt(const Road& r, const MovingCar& car, double s, double& x, double& y, 
   Vec2 p;
   double h;
   pointAtArcLength(r, s, p, h);
-  hd = car.speed_mps < 0 ? h + 3.141592653589793 : h;
+  hd = car.speed_mps < 0 ? h + M_PI : h;
   x = p.x + car.lateral_m * std::sin(hd);  // to the right of the travel direction
   y = p.y - car.lateral_m * std::cos(hd);
 }
@@ -95,12 +95,14 @@ void World::planTraffic(double lateral_accel_mps2, double accel_mps2) {
       theta[j] = std::atan2(y[j + 1] - y[j], x[j + 1] - x[j]);
     }
     // speed limit at each sample: v^2 |k| <= a_lat, k the heading change over the two adjacent steps
-    // (the lap is periodic: a closed road's start, an open road's wrap)
+    // (the lap is periodic: a closed road's start joins its end; an open road's wrap is a jump, no corner)
     std::vector<double> v(n);
     const double cruise = std::abs(car.speed_mps);
     for (std::size_t j = 0; j < n; ++j) {
       const std::size_t i = (j + n - 1) % n;
-      const double k = std::remainder(theta[j] - theta[i], 2 * 3.141592653589793) / std::max(1e-6, 0.5 * (seg[i] + seg[j]));
+      const double k = (j == 0 && !r.closed)
+                           ? 0.0
+                           : std::remainder(theta[j] - theta[i], 2 * M_PI) / std::max(1e-6, 0.5 * (seg[i] + seg[j]));
       v[j] = std::min(cruise, std::sqrt(lateral_accel_mps2 / std::max(1e-9, std::abs(k))));
     }
     // v^2 changes by at most 2 a ds per step, both ways round the periodic lap (two turns reach every sample)

@@ -44,10 +44,11 @@ void WorldParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg,
                              "[0, 0.1], road_roughness_wavelength_m > 0");
   if (hedge_prob < 0 || hedge_prob > 1 || hedge_height_m <= 0 || canopy_lobes < 0 || canopy_lobes > 8)
     throw std::runtime_error("[" + s + "] hedge_prob must be in [0, 1], hedge_height_m > 0, canopy_lobes 0..8");
-  if (moving_car_lateral_accel_mps2 < 0 || moving_car_accel_mps2 <= 0)
-    throw std::runtime_error("[" + s + "] moving_car_lateral_accel_mps2 must be >= 0 (0: constant speeds), moving_car_accel_mps2 > 0");
-  if (moving_car_headway_s <= 0 || moving_car_min_gap_m < 0)
-    throw std::runtime_error("[" + s + "] moving_car_headway_s must be > 0, moving_car_min_gap_m >= 0");
+  requireValues(cfg, s,
+                {{"moving_car_lateral_accel_mps2", moving_car_lateral_accel_mps2 >= 0, ">= 0 (0: constant speeds)"},
+                 {"moving_car_accel_mps2", moving_car_accel_mps2 > 0, "> 0"},
+                 {"moving_car_headway_s", moving_car_headway_s > 0, "> 0"},
+                 {"moving_car_min_gap_m", moving_car_min_gap_m >= 0, ">= 0"}});
   if (building_min_height_m > building_max_height_m)
     throw std::runtime_error("[" + s + "] building_min_height_m > building_max_height_m");
 }

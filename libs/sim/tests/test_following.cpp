@@ -133,3 +133,23 @@ TEST(Following, OverlappingStartsMoveTheLaterCarBack) {
     EXPECT_NE(std::string(e.what()).find("moving_cars"), std::string::npos) << e.what();
   }
 }
+
+// An open road wraps by a jump, not a corner: on a road that runs east and ends running north (a
+// 90 deg bend far from both ends), the planned lap starts at cruise speed. Joining the end's heading
+// to the start's as if the lap were closed put a 90 deg corner at the wrap: the car started at
+// 0.89 m/s (measured with that join put back).
+TEST(Following, AnOpenRoadsWrapIsNoCorner) {
+  World w;
+  Road r;
+  r.name = "bend";
+  for (double x = 0; x <= 300 + 1e-9; x += 0.5) r.centerline.push_back({x, 0});
+  for (double y = 0.5; y <= 300 + 1e-9; y += 0.5) r.centerline.push_back({300, y});
+  finalizeRoad(r);
+  w.roads.push_back(r);
+  w.cars.push_back(carAt(0, 12));
+  w.planTraffic(2.5, 2.0);
+  ASSERT_GE(w.cars[0].lap_v.size(), 2u);
+  EXPECT_NEAR(w.cars[0].lap_v.front(), 12.0, 1e-9);
+  const auto slowest = *std::min_element(w.cars[0].lap_v.begin(), w.cars[0].lap_v.end());
+  EXPECT_LT(slowest, 3.0);  // the bend itself (a 0.5 m corner: k ~ 3 1/m) is still planned
+}
