@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <unistd.h>
 #include <nlohmann/json.hpp>
 
@@ -222,15 +223,27 @@ RunReport runToDirectory(Simulator& sim, const OutputOptions& opt) {
 
 std::string simulateOnce(const ScenarioParams& p, const std::string& dir) {
   namespace fs = std::filesystem;
-  if (fs::exists(dir + "/.complete")) return dir;
+  // the marker holds the scenario the folder was simulated from: a changed scenario ini (or a
+  // default) under the same name simulates again instead of reusing the old drive
+  mrpt::config::CConfigFileMemory used;
+  p.saveToConfigFile(used);
+  const std::string scenario = used.getContent();
+  const auto readMarker = [&] {
+    std::ifstream f(dir + "/.complete", std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+  };
+  if (fs::exists(dir + "/.complete")) {
+    if (readMarker() == scenario) return dir;
+    std::fprintf(stderr, "simulateOnce: %s was simulated from another scenario: simulating it again\n", dir.c_str());
+  }
   const std::string tmp = dir + ".tmp" + std::to_string(::getpid());
   Simulator s(p);
   OutputOptions o;
   o.dir = tmp;
   runToDirectory(s, o);
-  writeFileAtomically(tmp + "/.complete", "");
+  writeFileAtomically(tmp + "/.complete", scenario);
   std::error_code ec;
-  if (!fs::exists(dir + "/.complete")) fs::remove_all(dir, ec);  // an older, unfinished folder
+  if (readMarker() != scenario) fs::remove_all(dir, ec);  // unfinished, or of another scenario
   fs::rename(tmp, dir, ec);
   if (ec) fs::remove_all(tmp, ec);  // another process finished first
   return dir;

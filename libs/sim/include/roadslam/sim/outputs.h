@@ -53,7 +53,8 @@ RunReport runToDirectory(Simulator& sim, const OutputOptions& opt);
 /// Simulates \p p into \p dir (runToDirectory, no UDP) unless a finished run is there; returns \p dir.
 /// For tests that share one drive per build tree: the run is written beside (dir.tmp<pid>), marked
 /// finished (dir/.complete) and renamed into place, so test processes running in parallel and a run
-/// interrupted part way never leave a half-written folder in use.
+/// interrupted part way never leave a half-written folder in use. The marker holds \p p as saved
+/// (ScenarioParams::saveToConfigFile): a folder simulated from other parameters is simulated again.
 std::string simulateOnce(const ScenarioParams& p, const std::string& dir);
 
 /// Top view: world primitives, roads, curbs (green), route (red), start (circle) to a PNG.
