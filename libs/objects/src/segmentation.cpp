@@ -1,5 +1,6 @@
 #include "roadslam/objects/segmentation.h"
 
+#include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -150,7 +151,64 @@ int dbscanComponents(const std::vector<ScanPoint>& pts, const std::vector<uint32
   return n;
 }
 
+/// The road around the sensor as a plane z = a x + b y + c: least squares over the ground points
+/// within kPlaneRange_m, refit once without those farther than kPlaneResidual_m from the first fit.
+/// The points no ground line reaches (a far car's sector, whose road the car itself shadows) take
+/// their height from it instead of from a level road at -sensor_height_m: a car rolls out of a turn
+/// by 3-7 deg/g and pitches by 1-2 deg/g (Gillespie 1992, ch. 7-8), 1.25 deg in a 2.5 m/s^2 turn,
+/// which is 0.55 m at 25 m to the side. A level plane where the ground is too sparse or the fit
+/// tilts more than kPlaneMaxTilt.
+struct GroundPlane {
+  double a = 0, b = 0, c = 0;
+  double at(double x, double y) const { return a * x + b * y + c; }
+};
+
+constexpr double kPlaneRange_m = 25.0;
+constexpr double kPlaneResidual_m = 0.15;
+constexpr double kPlaneMaxTilt = 0.1;  // |grad z|: 5.7 deg
+constexpr size_t kPlaneMinPoints = 50;
+
+GroundPlane fitGroundPlane(const std::vector<ScanPoint>& pts, const std::vector<uint8_t>& ground, double sensor_height_m) {
+  const GroundPlane level{0, 0, -sensor_height_m};
+  std::vector<uint32_t> idx;
+  for (size_t i = 0; i < std::min(pts.size(), ground.size()); ++i) {
+    const ScanPoint& q = pts[i];
+    if (ground[i] && std::isfinite(q.z) && double(q.x) * q.x + double(q.y) * q.y < kPlaneRange_m * kPlaneRange_m)
+      idx.push_back(static_cast<uint32_t>(i));
+  }
+  GroundPlane g = level;
+  for (int pass = 0; pass < 2; ++pass) {
+    Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
+    size_t n = 0;
+    for (uint32_t i : idx) {
+      const ScanPoint& q = pts[i];
+      if (pass > 0 && std::abs(q.z - g.at(q.x, q.y)) > kPlaneResidual_m) continue;
+      const Eigen::Vector3d r(q.x, q.y, 1.0);
+      A += r * r.transpose(), rhs += r * double(q.z), ++n;
+    }
+    if (n < kPlaneMinPoints) return level;
+    const Eigen::Vector3d x = A.ldlt().solve(rhs);
+    if (!x.allFinite() || std::hypot(x(0), x(1)) > kPlaneMaxTilt) return level;
+    g = {x(0), x(1), x(2)};
+  }
+  return g;
+}
+
 }  // namespace
+
+size_t fillUnknownHeights(const std::vector<ScanPoint>& pts, const std::vector<uint8_t>& ground, double sensor_height_m,
+                          std::vector<float>& heights) {
+  const GroundPlane plane = fitGroundPlane(pts, ground, sensor_height_m);
+  size_t n = 0;
+  for (size_t i = 0; i < std::min(pts.size(), heights.size()); ++i) {
+    if (std::isfinite(heights[i])) continue;
+    const ScanPoint& q = pts[i];
+    heights[i] = static_cast<float>(q.z - plane.at(q.x, q.y));  // NaN stays NaN for a NaN point
+    ++n;
+  }
+  return n;
+}
 
 Box2 fitLShape(const std::vector<Eigen::Vector2d>& xy, double step_rad) {
   Box2 b;
@@ -260,7 +318,8 @@ std::vector<Object> segmentObjects(const std::vector<ScanPoint>& pts, bool has_r
 }
 
 std::vector<Object> segmentSweep(const Scan& scan, const ClusterParams& p, SegmentationStats* stats) {
-  const auto g = preprocess::segmentGroundWithHeights(scan.points, p.groundParams());
+  auto g = preprocess::segmentGroundWithHeights(scan.points, p.groundParams());
+  fillUnknownHeights(scan.points, g.ground, p.ground.sensor_height_m, g.height_above_ground_m);
   return segmentObjects(scan.points, scan.has_rings, g.ground, g.height_above_ground_m, p, stats);
 }
 

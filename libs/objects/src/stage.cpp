@@ -55,7 +55,8 @@ ObjectsFrame ObjectsStage::snapshot() const {
 
 ObjectsFrame ObjectsStage::process(const Scan& scan, const Eigen::Isometry3d& T_map_lidar, double t_s) {
   auto t0 = Clock::now();
-  const auto g = preprocess::segmentGroundWithHeights(scan.points, p_.groundParams());
+  auto g = preprocess::segmentGroundWithHeights(scan.points, p_.groundParams());
+  fillUnknownHeights(scan.points, g.ground, p_.ground.sensor_height_m, g.height_above_ground_m);
   const double ms_ground = msSince(t0);
   t0 = Clock::now();
   SegmentationStats st;

@@ -2,6 +2,7 @@
 // fit on exact rectangle outlines with a known yaw.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <random>
@@ -115,6 +116,65 @@ TEST(Segmentation, EmptyAndOnePointSweepsGiveNoObjects) {
   ASSERT_EQ(objs.size(), 1u);
   EXPECT_TRUE(std::isfinite(objs[0].box.cx) && std::isfinite(objs[0].box.yaw));
   EXPECT_NEAR(objs[0].box.length, 0, 1e-9);
+}
+
+// A car rolls out of a turn (Gillespie 1992: 3-7 deg/g; 1.5 deg at 3 m/s^2 with the hard loop's
+// 0.5 deg per m/s^2): the road 34 m to its left is 0.89 m lower in the lidar frame. A far car shadows
+// its own road, so that no ground line reaches its points (the 90 s hard loop's sweep 783: a car 28 m
+// away, every point of it NaN); here their heights are made unknown so. From the rolled ground plane
+// they are the true ones (the ray-cast's, before the roll); a level road puts them 0.8 m too low and
+// the car below min_top_height_m.
+TEST(GroundHeights, PointsNoGroundLineReachesTakeTheirHeightFromTheRolledRoad) {
+  std::vector<test::SynthBox> boxes = test::streetScene();
+  boxes.push_back({0, 34, 0, 4.5, 1.8, 1.45});
+  Scan scan = test::castSweep(boxes);
+  std::vector<double> truth;
+  const double roll = -1.5 * M_PI / 180, c = std::cos(roll), si = std::sin(roll);
+  for (ScanPoint& q : scan.points) {
+    truth.push_back(q.z + 1.9);
+    const double y = q.y, z = q.z;
+    q.y = static_cast<float>(c * y - si * z), q.z = static_cast<float>(si * y + c * z);
+  }
+  const ClusterParams p;
+  preprocess::GroundLabels g = preprocess::segmentGroundWithHeights(scan.points, p.groundParams());
+  std::vector<char> on_car(scan.points.size(), 0);
+  size_t n_car = 0;
+  for (size_t i = 0; i < scan.points.size(); ++i) {
+    const ScanPoint& q = scan.points[i];
+    on_car[i] = !g.ground[i] && std::abs(q.x) < 2.3 && std::abs(q.y - 34) < 1.25;
+    if (on_car[i]) g.height_above_ground_m[i] = NAN, ++n_car;
+  }
+  ASSERT_GE(n_car, 20u);
+  const std::vector<float> unfilled = g.height_above_ground_m;
+  EXPECT_GE(fillUnknownHeights(scan.points, g.ground, p.ground.sensor_height_m, g.height_above_ground_m), n_car);
+  double worst_filled = 0, worst_level = 0;
+  for (size_t i = 0; i < scan.points.size(); ++i) {
+    if (!on_car[i]) continue;
+    worst_filled = std::max(worst_filled, std::abs(g.height_above_ground_m[i] - truth[i]));
+    worst_level = std::max(worst_level, std::abs(scan.points[i].z + p.ground.sensor_height_m - truth[i]));
+  }
+  EXPECT_LT(worst_filled, 0.05);
+  EXPECT_GT(worst_level, 0.8);
+  const auto near = [](const std::vector<Object>& objs) {
+    return std::count_if(objs.begin(), objs.end(), [](const Object& o) {
+      return std::hypot(o.centroid.x(), o.centroid.y() - 34) < 2.0;
+    });
+  };
+  EXPECT_EQ(near(segmentObjects(scan.points, true, g.ground, g.height_above_ground_m, p)), 1);
+  EXPECT_EQ(near(segmentObjects(scan.points, true, g.ground, unfilled, p)), 0);
+}
+
+// Too few ground points for a plane (a sweep of walls): the level road at -sensor_height_m.
+TEST(GroundHeights, WithoutGroundPointsTheRoadIsLevel) {
+  std::vector<ScanPoint> pts;
+  for (int k = 0; k < 40; ++k) pts.push_back({10.0f, 0.1f * k, -1.0f, 0, 0, 8, 0});
+  std::vector<uint8_t> ground(pts.size(), 1);
+  std::vector<float> h(pts.size(), NAN);
+  EXPECT_EQ(fillUnknownHeights(pts, ground, 1.9, h), pts.size());  // 40 < the 50 a plane needs
+  for (float v : h) EXPECT_NEAR(v, 0.9, 1e-6);
+  std::vector<float> known(pts.size(), 0.3f);
+  EXPECT_EQ(fillUnknownHeights(pts, ground, 1.9, known), 0u);
+  EXPECT_FLOAT_EQ(known[0], 0.3f);
 }
 
 TEST(LShape, RecoversTheYawOfARectanglesTwoVisibleSides) {
