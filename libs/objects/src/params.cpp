@@ -56,6 +56,8 @@ void ClusterParams::fields(ParamTable& t) {
   t.num("removal_floor_m", removal_floor_m);
   t.num("forward_extrapolate_s", forward_extrapolate_s);
   t.num("ground_max_bridge_m", ground_max_bridge_m);
+  t.num("free_space_lag_s", free_space_lag_s);
+  t.num("free_space_margin_m", free_space_margin_m);
 }
 
 preprocess::GroundSegParams ClusterParams::groundParams() const {
@@ -123,6 +125,7 @@ void TrackerParams::fields(ParamTable& t) {
   t.num("moving_speed_mps", moving_speed_mps);
   t.num("moving_min_travel_m", moving_min_travel_m);
   t.num("moving_min_hits", moving_min_hits);
+  t.num("moving_min_free_fraction", moving_min_free_fraction);
   t.num("max_extent_growth_m", max_extent_growth_m);
   t.num("moving_max_length_m", moving_max_length_m);
   t.num("moving_max_width_m", moving_max_width_m);

@@ -13,6 +13,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 constexpr double kHalfSweep_s = 0.05;
+constexpr size_t kFreeSamples = 64;  // points of an object checked against the earlier sweep
 constexpr double kRetroStep_s = 0.1;   // extrapolated boxes every sweep at 10 Hz (the keyframes match within half)  // half a turn at 10 Hz: how far from the sweep's time a point may be
 
 double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
@@ -64,6 +65,10 @@ ObjectsFrame ObjectsStage::process(const Scan& scan, const Eigen::Isometry3d& T_
   const double ms_segment = msSince(t0);
   // a moving object is seen when the beam sweeps over it, up to half a turn from the reference time
   for (Object& o : objs) o.dt_s = scan.has_point_times ? scan.stamp_s + o.t_mean - t_s : 0.0;
+  if (p_.free_space_lag_s > 0) {
+    checkFreeSpace(objs, scan, T_map_lidar, t_s);
+    free_.add(scan, T_map_lidar, t_s);
+  }
   t0 = Clock::now();
   std::vector<Track> before;
   if (p_.forward_extrapolate_s > 0) {
@@ -108,6 +113,21 @@ ObjectsFrame ObjectsStage::process(const Scan& scan, const Eigen::Isometry3d& T_
   f.stats = st;
   f.ms_ground = ms_ground, f.ms_segment = ms_segment;
   return f;
+}
+
+void ObjectsStage::checkFreeSpace(std::vector<Object>& objs, const Scan& scan, const Eigen::Isometry3d& T_map_lidar,
+                                  double t_s) const {
+  std::vector<Eigen::Vector3d> pts;
+  for (Object& o : objs) {
+    pts.clear();
+    const size_t stride = std::max<size_t>(1, o.indices.size() / kFreeSamples);
+    for (size_t k = 0; k < o.indices.size(); k += stride) {
+      const ScanPoint& q = scan.points[o.indices[k]];
+      pts.push_back(T_map_lidar * Eigen::Vector3d(q.x, q.y, q.z));
+    }
+    const FreeEvidence e = free_.check(pts, t_s, p_.free_space_lag_s, p_.free_space_margin_m);
+    o.free_through = e.through, o.free_hit = e.hit;
+  }
 }
 
 ObjectsFrame ObjectsStage::coast(double t_s) {

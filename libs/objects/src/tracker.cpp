@@ -22,11 +22,14 @@ struct Detection {
   double z_min = 0, z_max = 0;
   double dt = 0;  // its points' time minus the sweep's reference time [s]
   double top = 0;  // highest point above the local ground [m]
+  int free_through = 0, free_hit = 0;  // Object's
 };
 
 constexpr double kHeadingGate_rad = 30.0 * M_PI / 180.0;  // a box axis this close to the velocity is its heading
 constexpr int kReidMinMisses = 2;  // sweeps a track must have lost its object to hand its id on (Tracker::reidentify)
 constexpr size_t kHistoryMax = 100;  // 10 s of detections at 10 Hz before a track is labelled moving
+constexpr double kFreeDecay = 0.8;    // weight of a detection's free-space evidence per detection back
+constexpr double kFreeMinEvidence = 10;  // points with evidence below which the moving label ignores it
 
 void remember(Track& tr, const Detection& d, double t) {
   if (tr.moving_since >= 0 || tr.history->size() >= kHistoryMax) return;
@@ -47,6 +50,7 @@ Detection toMap(const Object& o, const Eigen::Isometry3d& T_map_lidar) {
   d.yaw = std::atan2(um.y(), um.x());
   d.length = b.length, d.width = b.width;
   d.top = o.top_height_m;
+  d.free_through = o.free_through, d.free_hit = o.free_hit;
   d.dt = std::isfinite(o.dt_s) && std::abs(o.dt_s) < 0.5 ? o.dt_s : 0.0;
   const double z0 = T_map_lidar.translation().z();
   d.z_min = o.z_min + z0, d.z_max = o.z_max + z0;
@@ -299,7 +303,12 @@ void label(Track& tr, double t, const TrackerParams& p) {
   const double lo = std::min(tr.length, tr.width), hi = std::max(tr.length, tr.width);
   const bool car_sized = hi <= p.moving_max_length_m && lo <= p.moving_max_width_m && lo >= p.moving_min_width_m &&
                          tr.top_height <= p.moving_max_height_m;
-  if (v > p.moving_speed_mps && travel > p.moving_min_travel_m && tr.hits >= p.moving_min_hits && car_sized) {
+  // static by its points: they lie where the rays of a second before ended (free_space.h)
+  const double evidence = tr.free_through + tr.free_hit;
+  const bool seen_static = p.moving_min_free_fraction > 0 && evidence >= kFreeMinEvidence &&
+                           tr.free_through < p.moving_min_free_fraction * evidence;
+  if (v > p.moving_speed_mps && travel > p.moving_min_travel_m && tr.hits >= p.moving_min_hits && car_sized &&
+      (tr.moving || !seen_static)) {
     if (tr.moving_since < 0) tr.moving_since = t;
     tr.moving = true;
   }
@@ -335,6 +344,8 @@ void take(Track& tr, const Detection& d, const Completed& c, const Eigen::Vector
   tr.width = std::max(tr.width, c.across);
   growToCarBehindFace(tr, d, s, p_);
   ++tr.hits, tr.misses = 0, tr.t_last = t, tr.last_detection = j;
+  tr.free_through = kFreeDecay * tr.free_through + d.free_through;
+  tr.free_hit = kFreeDecay * tr.free_hit + d.free_hit;
   tr.z_min = d.z_min, tr.z_max = d.z_max, tr.ground_z = d.z_max - d.top;
   remember(tr, d, t);
   tr.top_height = std::max(tr.top_height, d.top);
@@ -365,6 +376,7 @@ Track born(int id, const Detection& d, const Eigen::Vector2d& s, double t, int j
   if (p_.motion_model == MotionModel::Imm) imm::init(tr, p_);
   tr.z_min = d.z_min, tr.z_max = d.z_max, tr.top_height = d.top, tr.ground_z = d.z_max - d.top;
   tr.hits = 1, tr.t_birth = tr.t_last = t, tr.birth_xy = tr.x.head<2>(), tr.last_detection = j;
+  tr.free_through = d.free_through, tr.free_hit = d.free_hit;
   remember(tr, d, t);
   if (tr.hits >= p_.confirm_hits) tr.state = TrackState::Confirmed;
   return tr;

@@ -86,6 +86,11 @@ struct ClusterParams {
   /// (VLP-16 at 1.9 m: the -1 deg ring beyond the -3 deg ring's 36 m), is otherwise taken for a rise of
   /// the road and labelled ground. 0: the [preprocess] value [m]
   double ground_max_bridge_m = 8.0;
+  /// Each object's points are checked against the sweep this long before (free_space.h): did its rays
+  /// pass through where they are now (free before: a moving car) or end there (static)? The tracker's
+  /// moving label reads it (TrackerParams::moving_min_free_fraction); 0: off [s]
+  double free_space_lag_s = 1.0;
+  double free_space_margin_m = 0.5;      ///< ... a ray passed through a point when it reached this much beyond it [m]
   /// The ground parameters the objects use: \ref ground with ground_max_bridge_m.
   preprocess::GroundSegParams groundParams() const;
 
@@ -160,6 +165,11 @@ struct TrackerParams {
   double moving_speed_mps = 4.0;         ///< a confirmed track faster than this (14 km/h; slower cars stay static) ... [m/s]
   double moving_min_travel_m = 3.0;      ///< ... that has moved this far from its birth ... [m]
   int moving_min_hits = 10;              ///< ... and was detected this many times is labelled moving [-]
+  /// ... unless its points were found where the earlier sweep's rays ended (static clutter whose box
+  /// slides as the car turns): of its recent points with evidence (ClusterParams::free_space_lag_s;
+  /// at least 10, weighted 0.8 per detection back), at least this share must lie where those rays
+  /// passed through; 0: off [-]
+  double moving_min_free_fraction = 0.5;
   double max_extent_growth_m = 6.0;      ///< a partly seen detection is completed to at most this length (cars) [m]
   double moving_max_length_m = 7.0;      ///< tracks ever seen longer than this (walls seen in parts) are never moving [m]
   double moving_max_width_m = 3.0;       ///< ... or wider than this [m]

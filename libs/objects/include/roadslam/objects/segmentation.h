@@ -31,6 +31,9 @@ struct Object {
   double t_mean = 0;            ///< mean firing time of the points, relative to Scan::stamp_s [s]
   double dt_s = 0;              ///< ObjectsStage: t_mean on the tracks' clock minus the sweep's reference time [s]
   std::vector<uint32_t> indices;  ///< the points' indices in the sweep
+  /// ObjectsStage with ClusterParams::free_space_lag_s > 0: of (at most 64 of) its points, how many an
+  /// earlier sweep's rays passed through, and how many they ended on (FreeSpaceHistory::check) [-]
+  int free_through = 0, free_hit = 0;
 };
 
 struct SegmentationStats {

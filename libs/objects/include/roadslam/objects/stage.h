@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "roadslam/common/scan.h"
+#include "roadslam/objects/free_space.h"
 #include "roadslam/objects/segmentation.h"
 #include "roadslam/objects/tracker.h"
 
@@ -40,7 +41,8 @@ struct ObjectsFrame {
 
 class ObjectsStage {
  public:
-  ObjectsStage(const ClusterParams& cluster, const TrackerParams& tracking) : p_(cluster), tracker_(tracking) {}
+  ObjectsStage(const ClusterParams& cluster, const TrackerParams& tracking)
+      : p_(cluster), tracker_(tracking), free_(cluster.azimuth_bins, 1.5 * cluster.free_space_lag_s) {}
 
   /// \p scan deskewed into \p T_map_lidar, the lidar pose at time \p t_s.
   ObjectsFrame process(const Scan& scan, const Eigen::Isometry3d& T_map_lidar, double t_s);
@@ -58,8 +60,11 @@ class ObjectsStage {
   /// moving_boxes; remembers the tracks of \p before (at \p t_before) that ended.
   void forwardBoxes(ObjectsFrame& f, const std::vector<Track>& before, double t_before, double t_s,
                     const Eigen::Vector2d& lidar_xy);
+  /// Object::free_through / free_hit of \p objs (points of \p scan, placed by \p T_map_lidar at \p t_s).
+  void checkFreeSpace(std::vector<Object>& objs, const Scan& scan, const Eigen::Isometry3d& T_map_lidar, double t_s) const;
   ClusterParams p_;
   Tracker tracker_;
+  FreeSpaceHistory free_;
   struct EndedMoving {
     Track track;
     double t = 0;  ///< the time of its state (the last update it lived through) [s]

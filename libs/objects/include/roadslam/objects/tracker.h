@@ -58,6 +58,8 @@ struct Track {
   bool moving = false;
   int last_detection = -1;            ///< index of the detection it took in the last update, -1 none
   double moving_since = -1;           ///< time it was first labelled moving [s], -1 never
+  /// Its detections' free-space evidence (Object::free_through, free_hit), each detection back weighted 0.8 [-]
+  double free_through = 0, free_hit = 0;
   /// The detections it took until it was labelled moving (at most 100), so that the maps can drop
   /// its points from the sweeps before the label (ObjectsFrame::retro); shared: copies of a track
   /// (the stage's snapshots) do not copy it.
