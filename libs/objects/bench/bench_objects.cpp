@@ -3,6 +3,7 @@
 // the boundary module) is timed apart.
 #include <benchmark/benchmark.h>
 
+#include "roadslam/objects/free_space.h"
 #include "roadslam/objects/tracker.h"
 #include "roadslam/preprocess/ground_segmentation.h"
 #include "../tests/synthetic_boxes.h"
@@ -39,8 +40,37 @@ void BM_ClusterAndTrack(benchmark::State& st) {
   st.SetLabel(toString(p.method) + " + " + toString(tp.motion_model));
 }
 
+/// The moving label's free-space evidence per sweep (ObjectsStage with free_space_lag_s > 0): the
+/// sweep's range image kept, and every object's points (at most 64) checked against the one of 1 s before.
+void BM_FreeSpace(benchmark::State& st) {
+  const auto& s = sweep();
+  const auto objs = segmentObjects(s.scan.points, true, s.g.ground, s.g.height_above_ground_m, ClusterParams{});
+  std::vector<std::vector<Eigen::Vector3d>> pts(objs.size());
+  for (size_t k = 0; k < objs.size(); ++k) {
+    const size_t stride = std::max<size_t>(1, objs[k].indices.size() / 64);
+    for (size_t i = 0; i < objs[k].indices.size(); i += stride) {
+      const ScanPoint& q = s.scan.points[objs[k].indices[i]];
+      pts[k].emplace_back(q.x, q.y, q.z);
+    }
+  }
+  FreeSpaceHistory h;
+  double t = 0;
+  int evidence = 0;
+  for (auto _ : st) {
+    for (const auto& p : pts) {
+      const FreeEvidence e = h.check(p, t, 1.0, 0.5);
+      evidence += e.through + e.hit;
+    }
+    h.add(s.scan, Eigen::Isometry3d::Identity(), t);
+    t += 0.1;
+  }
+  benchmark::DoNotOptimize(evidence);
+  st.counters["objects"] = static_cast<double>(objs.size());
+}
+
 }  // namespace
 
+BENCHMARK(BM_FreeSpace)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_GroundLabels)->Unit(benchmark::kMillisecond);
 // method: 0 range image, 1 Euclidean, 2 DBSCAN; motion model: 0 CV, 1 CTRV, 2 IMM
 BENCHMARK(BM_ClusterAndTrack)->Args({0, 0})->Args({1, 0})->Args({2, 0})->Args({0, 1})->Args({0, 2})->Unit(benchmark::kMillisecond);
