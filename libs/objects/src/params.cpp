@@ -79,6 +79,8 @@ void ClusterParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, c
                              "cluster_distance_m > 0, min_points >= 1, dbscan_min_points >= 1, "
                              "0 < lshape_step_deg <= 45, map_delay_s, retro_extrapolate_s, forward_extrapolate_s, ground_max_bridge_m and odometry_erase_back_s >= 0 are required");
   }
+  requireValues(c, s, {{"free_space_lag_s", free_space_lag_s >= 0, ">= 0 (0: off)"},
+                       {"free_space_margin_m", free_space_margin_m > 0, "> 0"}});
   ground.loadFromConfigFile(c, ground_section);
   // 0: the reach of the sweeps the maps are built from, so no car the map keeps goes unsegmented
   if (max_range_m <= 0) max_range_m = c.read_double(ground_section, "max_range_m", kMapReachDefault_m);
@@ -159,6 +161,8 @@ void TrackerParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, c
                           {"tentative_max_misses", tentative_max_misses >= 0, ">= 0"},
                           {"reid_gate_m", reid_gate_m >= 0, ">= 0"},
                           {"reid_min_speed_mps", reid_min_speed_mps >= 0, ">= 0"},
+                          {"moving_min_free_fraction", moving_min_free_fraction >= 0 && moving_min_free_fraction <= 1,
+                           "in [0, 1] (0: off)"},
                           {"max_dt_s", max_dt_s > 0, "> 0"},
                           {"ctrv_accel_sigma_mps2", ctrv.accel_sigma_mps2 > 0, "> 0"},
                           {"ctrv_yaw_accel_sigma_degps2", ctrv.yaw_accel_sigma_radps2 > 0, "> 0"},
