@@ -85,6 +85,7 @@ void makeFiles() {
   write(w / "tracking-negative-reid.ini", "[objects]\nenabled = true\n[tracking]\nreid_gate_m = -1\n");
   write(w / "objects-reach-inside-body.ini", "[objects]\nmax_range_m = 1\n");
   write(w / "objects-negative-free-lag.ini", "[objects]\nenabled = true\nfree_space_lag_s = -1\n");
+  write(w / "objects-free-lag-too-long.ini", "[objects]\nenabled = true\nfree_space_lag_s = 60\n");
   write(w / "tracking-free-fraction-above-one.ini", "[objects]\nenabled = true\n[tracking]\nmoving_min_free_fraction = 1.5\n");
   write(w / "bad-spin.ini", "[kitti]\nspin = sideways\n");
   write(w / "bad-stamp-reference.ini", "[kitti]\nstamp_reference = centre\n");
@@ -233,6 +234,7 @@ const Row kTable[] = {
   {"map-tracking-negative-reid", "roadslam-map --config {W}/tracking-negative-reid.ini --input {W}/truncated.pcap --out {O}", 1, "tracking-negative-reid.ini:4: [tracking] reid_gate_m = -1: must be >= 0"},
   {"map-seen-through-zero-tolerance", "roadslam-map --config {W}/seen-through-zero-tolerance.ini --input {W}/truncated.pcap --out {O}", 1, "seen-through-zero-tolerance.ini:2: [seen_through] ray_tolerance_m = 0: must be > 0"},
   {"map-objects-negative-free-lag", "roadslam-map --config {W}/objects-negative-free-lag.ini --input {W}/truncated.pcap --out {O}", 1, "objects-negative-free-lag.ini:3: [objects] free_space_lag_s = -1: must be >= 0 (0: off)"},
+  {"map-objects-free-lag-too-long", "roadslam-map --config {W}/objects-free-lag-too-long.ini --input {W}/truncated.pcap --out {O}", 1, "objects-free-lag-too-long.ini:3: [objects] free_space_lag_s = 60: must be <= 5"},
   {"map-tracking-free-fraction", "roadslam-map --config {W}/tracking-free-fraction-above-one.ini --input {W}/truncated.pcap --out {O}", 1, "tracking-free-fraction-above-one.ini:4: [tracking] moving_min_free_fraction = 1.5: must be in [0, 1] (0: off)"},
   {"map-objects-reach-inside-body", "roadslam-map --config {W}/objects-reach-inside-body.ini --input {W}/truncated.pcap --out {O}", 1, "[objects] max_range_m must exceed min_range_m"},
   {"map-bad-spin",         "roadslam-map --config {W}/bad-spin.ini --input {W}/truncated.pcap --out {O}", 1, "[kitti] spin = 'sideways'"},

@@ -45,14 +45,8 @@ void BM_ClusterAndTrack(benchmark::State& st) {
 void BM_FreeSpace(benchmark::State& st) {
   const auto& s = sweep();
   const auto objs = segmentObjects(s.scan.points, true, s.g.ground, s.g.height_above_ground_m, ClusterParams{});
-  std::vector<std::vector<Eigen::Vector3d>> pts(objs.size());
-  for (size_t k = 0; k < objs.size(); ++k) {
-    const size_t stride = std::max<size_t>(1, objs[k].indices.size() / 64);
-    for (size_t i = 0; i < objs[k].indices.size(); i += stride) {
-      const ScanPoint& q = s.scan.points[objs[k].indices[i]];
-      pts[k].emplace_back(q.x, q.y, q.z);
-    }
-  }
+  std::vector<std::vector<Eigen::Vector3d>> pts;
+  for (const Object& o : objs) pts.push_back(samplePointsInMap(s.scan, o.indices, Eigen::Isometry3d::Identity()));
   FreeSpaceHistory h;
   double t = 0;
   int evidence = 0;

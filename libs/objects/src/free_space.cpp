@@ -1,5 +1,7 @@
 #include "roadslam/objects/free_space.h"
 
+#include "range_image.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -12,30 +14,6 @@ namespace {
 constexpr double kElevationBin_rad = 0.4 * M_PI / 180;
 constexpr double kLowestElevation_rad = -30.0 * M_PI / 180;
 constexpr int kElevationBins = 150;  // -30 to +30 deg
-
-int column(double x, double y, int bins) {
-  const double az = std::atan2(y, x) + M_PI;  // [0, 2 pi]
-  return std::min(bins - 1, static_cast<int>(az / (2 * M_PI) * bins));
-}
-
-/// The ring whose beam elevation is nearest \p el, -1 when \p el lies farther than half the spacing
-/// to the next beam (between two beams: no ray went there).
-int ringOf(const std::vector<double>& elevation, double el) {
-  int best = -1;
-  double best_d = std::numeric_limits<double>::max();
-  for (size_t r = 0; r < elevation.size(); ++r) {
-    if (!std::isfinite(elevation[r])) continue;
-    const double d = std::abs(el - elevation[r]);
-    if (d < best_d) best_d = d, best = static_cast<int>(r);
-  }
-  if (best < 0) return -1;
-  double spacing = std::numeric_limits<double>::max();
-  for (size_t r = 0; r < elevation.size(); ++r) {
-    if (static_cast<int>(r) != best && std::isfinite(elevation[r]))
-      spacing = std::min(spacing, std::abs(elevation[r] - elevation[static_cast<size_t>(best)]));
-  }
-  return best_d <= 0.5 * spacing ? best : -1;
-}
 
 }  // namespace
 
@@ -61,12 +39,27 @@ void FreeSpaceHistory::add(const Scan& scan, const Eigen::Isometry3d& T_map_lida
     const int ring = scan.has_rings ? q.ring : static_cast<int>(std::floor((el - kLowestElevation_rad) / kElevationBin_rad));
     if (ring < 0 || ring >= rings) continue;
     el_sum[static_cast<size_t>(ring)] += el, ++el_n[static_cast<size_t>(ring)];
-    float& cell = s.range[static_cast<size_t>(ring) * bins_ + column(q.x, q.y, bins_)];
+    float& cell = s.range[static_cast<size_t>(ring) * bins_ + detail::azimuthColumn(double(q.x), double(q.y), bins_)];
     if (cell == 0.f || r < cell) cell = static_cast<float>(r);
   }
-  s.ring_elevation.resize(static_cast<size_t>(rings));
-  for (size_t k = 0; k < el_sum.size(); ++k) s.ring_elevation[k] = el_n[k] ? el_sum[k] / el_n[k] : NAN;
+  // the beams by elevation, each owning the elevations within half its nearest neighbour's gap (a
+  // direction farther from every beam than that lies between two: no ray went there)
+  for (size_t k = 0; k < el_sum.size(); ++k) {
+    if (el_n[k]) s.beams.push_back({el_sum[k] / el_n[k], 0, 0, static_cast<int>(k)});
+  }
+  std::sort(s.beams.begin(), s.beams.end(), [](const Beam& a, const Beam& b) { return a.elevation < b.elevation; });
+  for (size_t k = 0; k < s.beams.size(); ++k) {
+    double gap = std::numeric_limits<double>::max();
+    if (k > 0) gap = std::min(gap, s.beams[k].elevation - s.beams[k - 1].elevation);
+    if (k + 1 < s.beams.size()) gap = std::min(gap, s.beams[k + 1].elevation - s.beams[k].elevation);
+    s.beams[k].lo = s.beams[k].elevation - 0.5 * gap, s.beams[k].hi = s.beams[k].elevation + 0.5 * gap;
+  }
   sweeps_.push_back(std::move(s));
+}
+
+int FreeSpaceHistory::Sweep::ringAt(double el) const {
+  const auto it = std::upper_bound(beams.begin(), beams.end(), el, [](double e, const Beam& b) { return e < b.hi; });
+  return it != beams.end() && el >= it->lo ? it->ring : -1;
 }
 
 FreeEvidence FreeSpaceHistory::check(const std::vector<Eigen::Vector3d>& pts_map, double t_s, double lag_s,
@@ -80,9 +73,9 @@ FreeEvidence FreeSpaceHistory::check(const std::vector<Eigen::Vector3d>& pts_map
   for (const Eigen::Vector3d& p_map : pts_map) {
     const Eigen::Vector3d p = best->T_lidar_map * p_map;
     const double xy = std::hypot(p.x(), p.y()), r = p.norm();
-    const int ring = ringOf(best->ring_elevation, std::atan2(p.z(), xy));
+    const int ring = best->ringAt(std::atan2(p.z(), xy));
     if (ring < 0) continue;
-    const float seen = best->range[static_cast<size_t>(ring) * bins_ + column(p.x(), p.y(), bins_)];
+    const float seen = best->range[static_cast<size_t>(ring) * bins_ + detail::azimuthColumn(p.x(), p.y(), bins_)];
     if (seen == 0.f) continue;  // no return: the ray's end is unknown
     if (seen > r + margin_m) {
       ++e.through;
@@ -91,6 +84,17 @@ FreeEvidence FreeSpaceHistory::check(const std::vector<Eigen::Vector3d>& pts_map
     }  // nearer: something hid the place then
   }
   return e;
+}
+
+std::vector<Eigen::Vector3d> samplePointsInMap(const Scan& scan, const std::vector<uint32_t>& indices,
+                                               const Eigen::Isometry3d& T_map_lidar, size_t max_points) {
+  std::vector<Eigen::Vector3d> out;
+  const size_t stride = std::max<size_t>(1, indices.size() / std::max<size_t>(1, max_points));
+  for (size_t k = 0; k < indices.size(); k += stride) {
+    const ScanPoint& q = scan.points[indices[k]];
+    out.push_back(T_map_lidar * Eigen::Vector3d(q.x, q.y, q.z));
+  }
+  return out;
 }
 
 }  // namespace roadslam::objects

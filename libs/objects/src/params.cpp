@@ -79,7 +79,9 @@ void ClusterParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& c, c
                              "cluster_distance_m > 0, min_points >= 1, dbscan_min_points >= 1, "
                              "0 < lshape_step_deg <= 45, map_delay_s, retro_extrapolate_s, forward_extrapolate_s, ground_max_bridge_m and odometry_erase_back_s >= 0 are required");
   }
+  // the stage keeps 1.5 lags of range images (16 x azimuth_bins floats each, 150 x for KITTI's)
   requireValues(c, s, {{"free_space_lag_s", free_space_lag_s >= 0, ">= 0 (0: off)"},
+                       {"free_space_lag_s", free_space_lag_s <= 5, "<= 5"},
                        {"free_space_margin_m", free_space_margin_m > 0, "> 0"}});
   ground.loadFromConfigFile(c, ground_section);
   // 0: the reach of the sweeps the maps are built from, so no car the map keeps goes unsegmented

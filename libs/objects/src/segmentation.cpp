@@ -1,6 +1,9 @@
 #include "roadslam/objects/segmentation.h"
 
 #include <Eigen/Cholesky>
+
+#include "range_image.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -57,8 +60,7 @@ int rangeImageComponents(const std::vector<ScanPoint>& pts, const std::vector<ui
   std::vector<int> head(static_cast<size_t>(rings) * bins, -1);  // first point of each cell
   std::vector<int> next(pts.size(), -1), cell_of(pts.size(), -1);
   for (uint32_t i : cand) {
-    const double az = std::atan2(pts[i].y, pts[i].x) + M_PI;  // [0, 2 pi]
-    const int a = std::min(bins - 1, static_cast<int>(az / (2 * M_PI) * bins));
+    const int a = detail::azimuthColumn(pts[i].x, pts[i].y, bins);
     const int c = pts[i].ring * bins + a;
     cell_of[i] = c;
     next[i] = head[static_cast<size_t>(c)];
@@ -151,13 +153,13 @@ int dbscanComponents(const std::vector<ScanPoint>& pts, const std::vector<uint32
   return n;
 }
 
-/// The road around the sensor as a plane z = a x + b y + c: least squares over the ground points
-/// within kPlaneRange_m, refit once without those farther than kPlaneResidual_m from the first fit.
-/// The points no ground line reaches (a far car's sector, whose road the car itself shadows) take
-/// their height from it instead of from a level road at -sensor_height_m: a car rolls out of a turn
-/// by 3-7 deg/g and pitches by 1-2 deg/g (Gillespie 1992, ch. 7-8), 1.25 deg in a 2.5 m/s^2 turn,
-/// which is 0.55 m at 25 m to the side. A level plane where the ground is too sparse or the fit
-/// tilts more than kPlaneMaxTilt.
+/// The road around the sensor as a plane z = a x + b y + c, for the points no ground line reaches (a
+/// far car's sector, whose road the car itself shadows): their height above it instead of above a
+/// level road at -sensor_height_m. A car rolls out of a turn by 3-7 deg/g and pitches by 1-2 deg/g
+/// (Gillespie 1992, ch. 7-8), 1.25 deg in a 2.5 m/s^2 turn, which is 0.55 m at 25 m to the side. Least
+/// squares over the ground points within kPlaneRange_m (already labelled: no RANSAC hypothesis search,
+/// preprocess::fitGroundPlaneRansac's job on unlabelled points), refit once without those farther than
+/// kPlaneResidual_m; level where they are too few or the fit tilts more than kPlaneMaxTilt.
 struct GroundPlane {
   double a = 0, b = 0, c = 0;
   double at(double x, double y) const { return a * x + b * y + c; }
@@ -208,6 +210,12 @@ size_t fillUnknownHeights(const std::vector<ScanPoint>& pts, const std::vector<u
     ++n;
   }
   return n;
+}
+
+preprocess::GroundLabels objectGroundLabels(const std::vector<ScanPoint>& pts, const ClusterParams& p) {
+  preprocess::GroundLabels g = preprocess::segmentGroundWithHeights(pts, p.groundParams());
+  fillUnknownHeights(pts, g.ground, p.ground.sensor_height_m, g.height_above_ground_m);
+  return g;
 }
 
 Box2 fitLShape(const std::vector<Eigen::Vector2d>& xy, double step_rad) {
@@ -318,8 +326,7 @@ std::vector<Object> segmentObjects(const std::vector<ScanPoint>& pts, bool has_r
 }
 
 std::vector<Object> segmentSweep(const Scan& scan, const ClusterParams& p, SegmentationStats* stats) {
-  auto g = preprocess::segmentGroundWithHeights(scan.points, p.groundParams());
-  fillUnknownHeights(scan.points, g.ground, p.ground.sensor_height_m, g.height_above_ground_m);
+  const auto g = objectGroundLabels(scan.points, p);
   return segmentObjects(scan.points, scan.has_rings, g.ground, g.height_above_ground_m, p, stats);
 }
 

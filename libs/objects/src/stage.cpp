@@ -6,7 +6,6 @@
 #include <cstdarg>
 #include <cstdio>
 
-#include "roadslam/preprocess/ground_segmentation.h"
 
 namespace roadslam::objects {
 namespace {
@@ -56,8 +55,7 @@ ObjectsFrame ObjectsStage::snapshot() const {
 
 ObjectsFrame ObjectsStage::process(const Scan& scan, const Eigen::Isometry3d& T_map_lidar, double t_s) {
   auto t0 = Clock::now();
-  auto g = preprocess::segmentGroundWithHeights(scan.points, p_.groundParams());
-  fillUnknownHeights(scan.points, g.ground, p_.ground.sensor_height_m, g.height_above_ground_m);
+  const auto g = objectGroundLabels(scan.points, p_);
   const double ms_ground = msSince(t0);
   t0 = Clock::now();
   SegmentationStats st;
@@ -65,11 +63,11 @@ ObjectsFrame ObjectsStage::process(const Scan& scan, const Eigen::Isometry3d& T_
   const double ms_segment = msSince(t0);
   // a moving object is seen when the beam sweeps over it, up to half a turn from the reference time
   for (Object& o : objs) o.dt_s = scan.has_point_times ? scan.stamp_s + o.t_mean - t_s : 0.0;
+  t0 = Clock::now();  // the free-space evidence is the moving label's: its time is the tracking's
   if (p_.free_space_lag_s > 0) {
     checkFreeSpace(objs, scan, T_map_lidar, t_s);
     free_.add(scan, T_map_lidar, t_s);
   }
-  t0 = Clock::now();
   std::vector<Track> before;
   if (p_.forward_extrapolate_s > 0) {
     for (const Track& t : tracker_.tracks()) {
@@ -117,15 +115,9 @@ ObjectsFrame ObjectsStage::process(const Scan& scan, const Eigen::Isometry3d& T_
 
 void ObjectsStage::checkFreeSpace(std::vector<Object>& objs, const Scan& scan, const Eigen::Isometry3d& T_map_lidar,
                                   double t_s) const {
-  std::vector<Eigen::Vector3d> pts;
   for (Object& o : objs) {
-    pts.clear();
-    const size_t stride = std::max<size_t>(1, o.indices.size() / kFreeSamples);
-    for (size_t k = 0; k < o.indices.size(); k += stride) {
-      const ScanPoint& q = scan.points[o.indices[k]];
-      pts.push_back(T_map_lidar * Eigen::Vector3d(q.x, q.y, q.z));
-    }
-    const FreeEvidence e = free_.check(pts, t_s, p_.free_space_lag_s, p_.free_space_margin_m);
+    const FreeEvidence e = free_.check(samplePointsInMap(scan, o.indices, T_map_lidar, kFreeSamples), t_s,
+                                       p_.free_space_lag_s, p_.free_space_margin_m);
     o.free_through = e.through, o.free_hit = e.hit;
   }
 }

@@ -164,10 +164,11 @@ TEST(GroundHeights, PointsNoGroundLineReachesTakeTheirHeightFromTheRolledRoad) {
   EXPECT_EQ(near(segmentObjects(scan.points, true, g.ground, unfilled, p)), 0);
 }
 
-// Too few ground points for a plane (a sweep of walls): the level road at -sensor_height_m.
+// Too few ground points for a plane (a sweep of walls): the level road at -sensor_height_m. The 40
+// points span a plane 0.9 m above the level road (z = -1): were they enough, every height would be 0.
 TEST(GroundHeights, WithoutGroundPointsTheRoadIsLevel) {
   std::vector<ScanPoint> pts;
-  for (int k = 0; k < 40; ++k) pts.push_back({10.0f, 0.1f * k, -1.0f, 0, 0, 8, 0});
+  for (int k = 0; k < 40; ++k) pts.push_back({5.0f + 1.5f * (k % 8), -3.0f + 1.5f * (k / 8), -1.0f, 0, 0, 8, 0});
   std::vector<uint8_t> ground(pts.size(), 1);
   std::vector<float> h(pts.size(), NAN);
   EXPECT_EQ(fillUnknownHeights(pts, ground, 1.9, h), pts.size());  // 40 < the 50 a plane needs

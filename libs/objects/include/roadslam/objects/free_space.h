@@ -10,6 +10,7 @@
 /// velocity, but its points sit where the earlier rays ended.
 
 #include <Eigen/Geometry>
+#include <cstdint>
 #include <deque>
 #include <vector>
 
@@ -34,18 +35,29 @@ class FreeSpaceHistory {
   /// The points \p pts_map (map frame) against the kept sweep nearest \p t_s - \p lag_s (none within
   /// half the lag of that time: no evidence), with \p margin_m on the range.
   FreeEvidence check(const std::vector<Eigen::Vector3d>& pts_map, double t_s, double lag_s, double margin_m) const;
-  void clear() { sweeps_.clear(); }
 
  private:
+  struct Beam {
+    double elevation = 0;  ///< mean elevation of the ring's points [rad]
+    double lo = 0, hi = 0;  ///< the elevations it owns: within half the gap to its nearest neighbour [rad]
+    int ring = 0;
+  };
   struct Sweep {
     double t = 0;
     Eigen::Isometry3d T_lidar_map = Eigen::Isometry3d::Identity();
-    std::vector<double> ring_elevation;  ///< mean elevation of each ring's points [rad] (NaN: none)
-    std::vector<float> range;            ///< nearest return per (ring, column) [m], 0: none
+    std::vector<Beam> beams;  ///< the rings with points, by elevation
+    std::vector<float> range;  ///< nearest return per (ring, column) [m], 0: none
+    /// The ring whose beam owns elevation \p el, -1 between or beyond them.
+    int ringAt(double el) const;
   };
   int bins_;
   double keep_s_;
   std::deque<Sweep> sweeps_;
 };
+
+/// At most \p max_points of the points \p indices of \p scan (evenly strided), placed in the map by
+/// \p T_map_lidar: the points of an object FreeSpaceHistory::check is given.
+std::vector<Eigen::Vector3d> samplePointsInMap(const Scan& scan, const std::vector<uint32_t>& indices,
+                                               const Eigen::Isometry3d& T_map_lidar, size_t max_points = 64);
 
 }  // namespace roadslam::objects

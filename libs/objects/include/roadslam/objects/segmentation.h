@@ -48,10 +48,15 @@ Box2 fitLShape(const std::vector<Eigen::Vector2d>& xy, double step_rad);
 
 /// The heights of the points no ground line reaches (NaN in \p heights, from
 /// preprocess::segmentGroundWithHeights): above a plane fit to the \p ground points within 25 m of the
-/// sensor, which follows the car's roll and pitch on its suspension; a level road at -\p sensor_height_m
-/// where they are too few or the fit tilts more than 5.7 deg. Returns the count filled.
+/// sensor (least squares, refit once without residuals over 0.15 m), which follows the car's roll and
+/// pitch on its suspension; a level road at -\p sensor_height_m where they are fewer than 50 or the fit
+/// tilts more than 5.7 deg. Returns the count filled.
 size_t fillUnknownHeights(const std::vector<ScanPoint>& pts, const std::vector<uint8_t>& ground, double sensor_height_m,
                           std::vector<float>& heights);
+
+/// The objects' ground labels of \p pts: preprocess::segmentGroundWithHeights with
+/// ClusterParams::groundParams(), then fillUnknownHeights.
+preprocess::GroundLabels objectGroundLabels(const std::vector<ScanPoint>& pts, const ClusterParams& p);
 
 /// Objects among \p pts (lidar frame, sensor at the origin). \p height_above_ground_m (NaN where
 /// unknown: z + sensor height is used) and \p ground (1 = ground) come from

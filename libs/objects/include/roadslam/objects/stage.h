@@ -36,7 +36,7 @@ struct ObjectsFrame {
   /// in half a sweep (their points are where the beam found them); their points leave the maps too.
   std::vector<BoxRecord> moving_boxes;
   SegmentationStats stats;
-  double ms_ground = 0, ms_segment = 0, ms_track = 0;  ///< wall time [ms]
+  double ms_ground = 0, ms_segment = 0, ms_track = 0;  ///< wall time [ms] (ms_track with the free-space evidence)
 };
 
 class ObjectsStage {
