@@ -16,6 +16,7 @@
 #include "roadslam/odometry/odometry.h"
 #include "roadslam/pipeline/gnss_outputs.h"
 #include "roadslam/pipeline/pipeline.h"
+#include "roadslam/pipeline/stage_factory.h"
 
 namespace fs = std::filesystem;
 
@@ -37,11 +38,24 @@ void addGeoLines(const boundary::BoundaryFrame& f, std::vector<GeoPolyline>& out
 
 bool enough(const BoundsRequest& req, size_t sweeps) { return stopRequested() || (req.max_frames && sweeps >= req.max_frames); }
 
-/// The pose stage the request asks for: its trajectory, or the odometry (which keeps the sweeps:
-/// the detector needs them whole).
-std::unique_ptr<PoseStage> poseStage(const BoundsRequest& req, const odometry::Params& op) {
-  if (!req.trajectory_path.empty()) return std::make_unique<TrajectoryPoses>(req.trajectory_path);
-  return std::make_unique<OdometryPoses>(op, true);
+/// The stages of one pass over the drive: poses (a trajectory, \p recorded, else the odometry, which
+/// keeps the sweeps: the detector needs them whole) and the boundaries.
+StageList boundsStages(const BoundsRequest& req, const odometry::Params& op, std::shared_ptr<boundary::BoundaryDetector> det,
+                       BoundaryUse use, std::optional<std::vector<SweepPose>> recorded = {}, const std::string& origin = "") {
+  ChainParams chain;
+  chain.odometry = op;
+  StageRequest r;
+  r.objects = false;
+  r.boundaries = std::move(det);
+  r.boundary_use = use;
+  if (recorded) {
+    r.recorded_poses = std::move(recorded);
+    r.recorded_input = req.input_path;
+    r.recorded_origin = origin;
+  } else {
+    r.trajectory_path = req.trajectory_path;
+  }
+  return buildStages(chain, std::move(r));
 }
 
 struct Drive {
@@ -49,14 +63,10 @@ struct Drive {
   double ms_mean = 0;            ///< detector time per sweep (labelling, curb map) [ms]
 };
 
-/// Whole-drive mode, first pass over \p source: every sweep's pose from \p poses (the odometry runs
-/// here only) and its curb points into \p det's curb map.
-Drive accumulateDrive(const BoundsRequest& req, std::unique_ptr<sources::ScanSource> source,
-                      std::unique_ptr<PoseStage> poses, boundary::BoundaryDetector& det) {
-  Stages stages;
-  stages.poses = std::move(poses);
-  stages.boundaries = &det;
-  stages.boundary_use = BoundaryUse::Accumulate;
+/// Whole-drive mode, first pass over \p source: every sweep's pose from \p stages' pose stage (the
+/// odometry runs here only) and its curb points into \p det's curb map (the boundary stage accumulates).
+Drive accumulateDrive(const BoundsRequest& req, std::unique_ptr<sources::ScanSource> source, StageList stages,
+                      boundary::BoundaryDetector& det) {
   Pipeline pipe(std::move(source), std::move(stages));
   ProgressBar bar("roadslam-bounds: whole drive, pass 1", pipe.source().sizeHint());
   Drive d;
@@ -65,7 +75,7 @@ Drive accumulateDrive(const BoundsRequest& req, std::unique_ptr<sources::ScanSou
     auto f = pipe.next();
     if (!f) break;
     d.poses.push_back(std::move(f->pose));
-    if (d.poses.back().ok) d.ms_mean += f->ms.boundaries, ++n;
+    if (d.poses.back().ok) d.ms_mean += f->ms.of("boundaries"), ++n;
     if (req.progress) bar.update(d.poses.size());
   }
   det.finishAccumulation();
@@ -110,7 +120,8 @@ nlohmann::json runBoundsJob(const BoundsRequest& req) {
   const auto unknown_keys = cfg->checkEntries(req.allow_unknown_keys);
   auto source = openNonEmptySource(req.input_path, *cfg, req.times_path);
   // a trajectory or georeference that cannot be read fails here, before any output
-  std::unique_ptr<PoseStage> poses = poseStage(req, op);
+  auto det = std::make_shared<boundary::BoundaryDetector>(params);
+  StageList stages = boundsStages(req, op, det, req.whole_drive ? BoundaryUse::Accumulate : BoundaryUse::Detect);
   std::optional<Georef> georef;
   if (!req.georef_path.empty()) georef = readGeoref(req.georef_path);
   std::vector<GeoPolyline> geo_lines;
@@ -120,17 +131,13 @@ nlohmann::json runBoundsJob(const BoundsRequest& req) {
   mrpt::config::CConfigFileMemory used;
   params.saveToConfigFile(used);
   writeFileAtomically(req.out_dir + "/config_used.ini", used.getContent());
-  boundary::BoundaryDetector det(params);
   Drive drive;  // whole-drive mode: pass 1's poses, replayed in pass 2
   if (req.whole_drive) {
-    const std::string origin = poses->describe();
-    drive = accumulateDrive(req, std::move(source), std::move(poses), det);
-    poses = std::make_unique<RecordedPoses>(drive.poses, req.input_path, origin);
+    const std::string origin = static_cast<const PoseStage&>(*stages.front()).describe();
+    drive = accumulateDrive(req, std::move(source), std::move(stages), *det);
+    stages = boundsStages(req, op, det, BoundaryUse::Detect, drive.poses, origin);
     source = sources::openScanSource(req.input_path, *cfg, req.times_path);
   }
-  Stages stages;
-  stages.poses = std::move(poses);
-  stages.boundaries = &det;
   Pipeline pipe(std::move(source), std::move(stages));
   AtomicFile jsonl(req.out_dir + "/boundaries.jsonl");
   Totals tot;
@@ -147,7 +154,7 @@ nlohmann::json runBoundsJob(const BoundsRequest& req) {
     tot.add(*pf->boundary);
     jsonl.stream() << toJson(*pf->boundary).dump() << "\n";
     if (georef) addGeoLines(*pf->boundary, geo_lines);
-    if (req.png_every > 0 && pf->boundary->index % static_cast<size_t>(req.png_every) == 0) drawFrame(req.out_dir, *pf, det, last_png);
+    if (req.png_every > 0 && pf->boundary->index % static_cast<size_t>(req.png_every) == 0) drawFrame(req.out_dir, *pf, *det, last_png);
     if (req.progress) bar.update(tot.frames);
   }
   jsonl.commit();
@@ -162,7 +169,7 @@ nlohmann::json runBoundsJob(const BoundsRequest& req) {
                       {"status", tot.status}, {"not_found_reasons", tot.reasons},
                       {"poses", req.trajectory_path.empty() ? "odometry" : req.trajectory_path},
                       {"geo_boundaries", geo_lines.size()},
-                      {"mode", req.whole_drive ? "whole_drive" : "live"}, {"curb_map_cells", det.curbMap().size()}};
+                      {"mode", req.whole_drive ? "whole_drive" : "live"}, {"curb_map_cells", det->curbMap().size()}};
   if (req.whole_drive) s["ms_per_frame_first_pass_mean"] = drive.ms_mean;
   s["warnings"] = unknown_keys;
   if (!stream.errorMessage().empty()) s["warnings"].push_back("input damaged: " + stream.errorMessage());

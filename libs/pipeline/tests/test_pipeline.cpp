@@ -1,7 +1,8 @@
 // The orchestrator's own contract: sweeps through the stages in order, a first sweep read ahead and
 // handed out again, poses from a trajectory (exact where it is linear), deskewing into the reference
 // pose (a static wall seen from a moving sensor lands in one place), a two-pass replay that notices a
-// changed recording, and the stage wiring errors.
+// changed recording, the stage wiring errors, and the factory's stage lists (a stage of one's own
+// plugs in beside them).
 #include <gtest/gtest.h>
 #include <mrpt/config/CConfigFileMemory.h>
 
@@ -13,6 +14,10 @@
 #include "roadslam/datasets/trajectory_io.h"
 #include "roadslam/mapping/mapper.h"
 #include "roadslam/pipeline/pipeline.h"
+#include "roadslam/pipeline/stage_factory.h"
+#include "roadslam/pipeline/stages/dynamic_removal.h"
+#include "roadslam/pipeline/stages/maps.h"
+#include "roadslam/pipeline/stages/objects.h"
 
 using namespace roadslam;
 namespace fs = std::filesystem;
@@ -79,12 +84,10 @@ std::deque<Scan> wallSweeps(int n, double t0 = 0.0) {
 }  // namespace
 
 TEST(Pipeline, TrajectoryPosesAreExactOnALinearDriveAndDeskewPutsTheWallInOnePlace) {
-  const std::string tum = writeLinearTrajectory(1.0);
-  pipeline::Stages st;
-  st.poses = std::make_unique<pipeline::TrajectoryPoses>(tum);
-  boundary::BoundaryDetector det{boundary::Params{}};
-  st.boundaries = &det;
-  pipeline::Pipeline pipe(std::make_unique<MemorySource>(wallSweeps(5)), std::move(st));
+  pipeline::StageRequest r;
+  r.trajectory_path = writeLinearTrajectory(1.0);
+  r.boundaries = std::make_shared<boundary::BoundaryDetector>(boundary::Params{});
+  pipeline::Pipeline pipe(std::make_unique<MemorySource>(wallSweeps(5)), pipeline::buildStages({}, std::move(r)));
   size_t n = 0;
   while (auto f = pipe.next()) {
     EXPECT_EQ(f->index, n++);
@@ -99,20 +102,19 @@ TEST(Pipeline, TrajectoryPosesAreExactOnALinearDriveAndDeskewPutsTheWallInOnePla
     for (const auto& p : f->scan->points) worst = std::max(worst, std::abs(p.x - x_expected));
     EXPECT_LT(worst, kSpeed * kPeriod / 200 + 1e-4) << "one 0.5 ms deskew bucket of motion at most";
     ASSERT_TRUE(f->boundary);
-    EXPECT_GE(f->ms.boundaries, 0.0);
+    EXPECT_EQ(f->ms.by_stage.count("boundaries"), 1u);
+    EXPECT_GE(f->ms.of("boundaries"), 0.0);
   }
   EXPECT_EQ(n, 5u);
   EXPECT_EQ(pipe.frames(), 5u);
-  EXPECT_GE(pipe.totals().boundaries, 0.0);
+  EXPECT_GE(pipe.totals().of("boundaries"), 0.0);
 }
 
 TEST(Pipeline, ASweepOutsideTheTrajectoryHasNoPoseAndReachesNoStage) {
-  const std::string tum = writeLinearTrajectory(0.3);
-  pipeline::Stages st;
-  st.poses = std::make_unique<pipeline::TrajectoryPoses>(tum);
-  boundary::BoundaryDetector det{boundary::Params{}};
-  st.boundaries = &det;
-  pipeline::Pipeline pipe(std::make_unique<MemorySource>(wallSweeps(1, 5.0)), std::move(st));
+  pipeline::StageRequest r;
+  r.trajectory_path = writeLinearTrajectory(0.3);
+  r.boundaries = std::make_shared<boundary::BoundaryDetector>(boundary::Params{});
+  pipeline::Pipeline pipe(std::make_unique<MemorySource>(wallSweeps(1, 5.0)), pipeline::buildStages({}, std::move(r)));
   const auto f = pipe.next();
   ASSERT_TRUE(f);
   EXPECT_FALSE(f->pose.ok);
@@ -137,13 +139,16 @@ TEST(Pipeline, RecordedPosesReplayInOrderAndNoticeAChangedRecording) {
 }
 
 TEST(Pipeline, StageWiringErrors) {
-  EXPECT_THROW(pipeline::Pipeline(std::make_unique<MemorySource>(wallSweeps(1)), pipeline::Stages{}), std::invalid_argument);
+  EXPECT_THROW(pipeline::Pipeline(std::make_unique<MemorySource>(wallSweeps(1)), pipeline::StageList{}), std::invalid_argument);
+  pipeline::StageList no_pose_first;
+  no_pose_first.push_back(std::make_unique<pipeline::MapsStage>(mapping::MapperParams{}, nullptr, pipeline::MapsStageParams{}));
+  EXPECT_THROW(pipeline::Pipeline(std::make_unique<MemorySource>(wallSweeps(1)), std::move(no_pose_first)),
+               std::invalid_argument);
   // The maps stage needs the odometry's results and points; a trajectory has neither.
-  pipeline::Stages st;
-  st.poses = std::make_unique<pipeline::TrajectoryPoses>(writeLinearTrajectory(1.0));
-  mapping::Mapper mapper{mapping::MapperParams{}};
-  st.mapper = &mapper;
-  pipeline::Pipeline pipe(std::make_unique<MemorySource>(wallSweeps(1)), std::move(st));
+  pipeline::StageRequest r;
+  r.trajectory_path = writeLinearTrajectory(1.0);
+  r.maps = true;
+  pipeline::Pipeline pipe(std::make_unique<MemorySource>(wallSweeps(1)), pipeline::buildStages({}, std::move(r)));
   EXPECT_THROW(pipe.next(), std::logic_error);
 }
 
@@ -185,13 +190,14 @@ TEST(Pipeline, AnInputWithNoSweepIsAnErrorNamingIt) {
 }
 
 TEST(Pipeline, TheObjectsStageTracksTheWallAndCoastsWithoutAPose) {
-  const std::string tum = writeLinearTrajectory(0.3);  // poses for the first 3 sweeps only
-  pipeline::Stages st;
-  st.poses = std::make_unique<pipeline::TrajectoryPoses>(tum);
-  objects::TrackerParams tp;
-  objects::ObjectsStage stage{objects::ClusterParams{}, tp};
-  st.objects = &stage;
-  pipeline::Pipeline pipe(std::make_unique<MemorySource>(wallSweeps(4 + tp.max_misses + 1)), std::move(st));
+  pipeline::StageRequest r;
+  r.trajectory_path = writeLinearTrajectory(0.3);  // poses for the first 3 sweeps only
+  pipeline::ChainParams chain;
+  chain.objects.enabled = true;
+  const objects::TrackerParams tp = chain.tracking;
+  pipeline::Pipeline pipe(std::make_unique<MemorySource>(wallSweeps(4 + tp.max_misses + 1)),
+                          pipeline::buildStages(chain, std::move(r)));
+  objects::ObjectsStage& stage = pipe.find<pipeline::ObjectTrackingStage>()->objects();
   size_t posed = 0;
   while (auto f = pipe.next()) {
     ASSERT_TRUE(f->objects) << "every sweep has an objects frame, posed or not";
@@ -208,7 +214,7 @@ TEST(Pipeline, TheObjectsStageTracksTheWallAndCoastsWithoutAPose) {
     for (const auto& t : f->objects->tracks) EXPECT_TRUE(t.x.allFinite());
   }
   EXPECT_GE(posed, 3u);  // the sweep at the trajectory's end may still get one
-  EXPECT_GE(pipe.totals().objects, 0.0);
+  EXPECT_GE(pipe.totals().of("objects"), 0.0);
   EXPECT_TRUE(stage.tracker().tracks().empty());
   const auto ended = stage.tracker().takeEnded();
   ASSERT_EQ(ended.size(), 1u);
@@ -241,4 +247,102 @@ TEST(Pipeline, MovingTracksBecomeOdometryExclusions) {
   EXPECT_TRUE(b.contains({10.5 + 3.0, 2, -1}, 7.1));
   EXPECT_FALSE(b.contains({10.5 + 3.1, 2, -1}, 7.1));
   EXPECT_FALSE(b.contains({10.5 - 3.1, 2, -1}, 7.1));
+}
+
+namespace {
+
+/// The names of \p stages, in order.
+std::vector<std::string> names(const pipeline::StageList& stages) {
+  std::vector<std::string> out;
+  for (const auto& s : stages) out.push_back(s->name());
+  return out;
+}
+
+}  // namespace
+
+// The factory's lists: what a job asks for, in the order a frame visits the stages; the odometry
+// leaves the sweep in place only when a later stage reads it.
+TEST(StageFactory, TheJobsListsInTheirOrder) {
+  using V = std::vector<std::string>;
+  pipeline::ChainParams chain;
+  EXPECT_EQ(names(pipeline::buildStages(chain, {})), V({"poses"}));
+  {
+    pipeline::StageRequest r;
+    r.maps = true;
+    EXPECT_EQ(names(pipeline::buildStages(chain, std::move(r))), V({"poses", "maps"}));
+  }
+  chain.objects.enabled = true;
+  chain.objects.remove_moving_from_maps = true;
+  {
+    pipeline::StageRequest r;
+    r.maps = true;
+    r.boundaries = std::make_shared<boundary::BoundaryDetector>(boundary::Params{});
+    EXPECT_EQ(names(pipeline::buildStages(chain, std::move(r))),
+              V({"poses", "deskew", "objects", "dynamic_removal", "maps", "boundaries"}));
+  }
+  {
+    pipeline::StageRequest r;  // no maps: nothing to remove the moving points from
+    EXPECT_EQ(names(pipeline::buildStages(chain, std::move(r))), V({"poses", "deskew", "objects"}));
+  }
+  {
+    pipeline::StageRequest r;
+    r.objects = false;  // a job that runs no objects, whatever the ini says
+    r.maps = true;
+    EXPECT_EQ(names(pipeline::buildStages(chain, std::move(r))), V({"poses", "maps"}));
+  }
+  {
+    pipeline::StageRequest r;
+    r.live_gnss = std::make_shared<pipeline::LiveGnss>(mapping::GnssFusionParams{});
+    chain.objects.enabled = false;
+    EXPECT_EQ(names(pipeline::buildStages(chain, std::move(r))), V({"poses", "gnss"}));
+  }
+}
+
+namespace {
+
+/// A stage of a test's own: it sees every frame after the stages before it, with their results.
+class CountingStage : public pipeline::Stage {
+ public:
+  std::string name() const override { return "counting"; }
+  void process(pipeline::PipelineFrame& f) override {
+    ++frames;
+    posed += f.pose.ok;
+    with_boundary += f.boundary.has_value();
+  }
+  void finish() override { ++finished; }
+  int frames = 0, posed = 0, with_boundary = 0, finished = 0;
+};
+
+}  // namespace
+
+TEST(StageFactory, AStageOfOnesOwnPlugsInAfterTheFactorysStages) {
+  pipeline::StageRequest r;
+  r.trajectory_path = writeLinearTrajectory(0.3);  // poses for the first 3 sweeps only
+  r.boundaries = std::make_shared<boundary::BoundaryDetector>(boundary::Params{});
+  pipeline::StageList stages = pipeline::buildStages({}, std::move(r));
+  auto counting = std::make_unique<CountingStage>();
+  CountingStage& c = *counting;
+  stages.push_back(std::move(counting));
+  pipeline::Pipeline pipe(std::make_unique<MemorySource>(wallSweeps(6)), std::move(stages));
+  while (pipe.next()) {
+  }
+  EXPECT_EQ(c.frames, 6);
+  EXPECT_GE(c.posed, 3);
+  EXPECT_LE(c.posed, 4);  // the sweep at the trajectory's end may still get one
+  EXPECT_EQ(c.with_boundary, c.posed) << "the boundary stage ran before it on every posed sweep";
+  EXPECT_GE(c.finished, 1) << "the end of the source finishes every stage";
+  EXPECT_GE(pipe.totals().of("counting"), 0.0);
+  EXPECT_EQ(pipe.totals().by_stage.count("counting"), 1u);
+}
+
+// Timing by name: a stage that did not run is 0, sums add stage by stage.
+TEST(StageTimes, SumsByStageName) {
+  pipeline::StageTimes a, b;
+  a.source = 1, a.by_stage["poses"] = 2;
+  b.source = 3, b.by_stage["poses"] = 4, b.by_stage["maps"] = 5;
+  a += b;
+  EXPECT_DOUBLE_EQ(a.source, 4);
+  EXPECT_DOUBLE_EQ(a.of("poses"), 6);
+  EXPECT_DOUBLE_EQ(a.of("maps"), 5);
+  EXPECT_DOUBLE_EQ(a.of("boundaries"), 0);
 }

@@ -11,6 +11,7 @@
 #include "roadslam/objects/stage.h"
 #include "roadslam/pipeline/live_gnss.h"
 #include "roadslam/pipeline/pipeline.h"
+#include "roadslam/pipeline/stage_factory.h"
 #include "roadslam/sources/observation_packet_source.h"
 #include "roadslam/sources/sweep_source.h"
 #include "roadslam/velodyne/decoder_params.h"
@@ -18,40 +19,34 @@
 namespace roadslam::viewer {
 
 struct LiveSlam::Impl {
-  std::unique_ptr<objects::ObjectsStage> objects;  // with [objects] enabled; lent to the pipeline
   std::unique_ptr<pipeline::Pipeline> pipe;
   sources::ObservationPacketSource* live = nullptr;  // owned by the pipeline's source
-  std::unique_ptr<pipeline::LiveGnss> gnss;          // live: the online GNSS correction
+  std::shared_ptr<pipeline::LiveGnss> gnss;          // live: the online GNSS correction, a stage of the pipeline
 };
 
 namespace {
 // The config, with the keys of every component the odometry's source and stage read checked.
 struct Config {
   std::unique_ptr<CheckedConfig> cfg;
-  odometry::Params odometry;
+  pipeline::ChainParams chain;
   velodyne::DecoderParams decoder;
-  objects::ClusterParams objects;
-  objects::TrackerParams tracking;
   mapping::GnssFusionParams gnss;
   explicit Config(const std::string& path) : cfg(loadIniFile(path)) {
-    odometry.loadFromConfigFile(*cfg);
-    objects.loadFromConfigFile(*cfg, "objects", "preprocess");
-    tracking.loadFromConfigFile(*cfg, "tracking");
+    chain.odometry.loadFromConfigFile(*cfg);
+    chain.objects.loadFromConfigFile(*cfg, "objects", "preprocess");
+    chain.tracking.loadFromConfigFile(*cfg, "tracking");
     gnss.loadFromConfigFile(*cfg, "gnss_fusion");
     sources::loadSourceSections(*cfg);  // a recording's source reads them: their keys are checked too
     decoder.loadFromConfigFile(*cfg, "velodyne");
   }
 };
 
-/// The odometry, and with [objects] enabled the objects stage after it (as roadslam-map runs them).
-pipeline::Stages stagesFor(const Config& c, std::unique_ptr<objects::ObjectsStage>& objects_stage) {
-  pipeline::Stages stages;
-  if (c.objects.enabled) objects_stage = std::make_unique<objects::ObjectsStage>(c.objects, c.tracking);
-  stages.poses = std::make_unique<pipeline::OdometryPoses>(c.odometry, objects_stage != nullptr);
-  stages.objects = objects_stage.get();
-  stages.removal_margin_m = c.objects.removal_margin_m;
-  stages.remove_moving_from_odometry = c.objects.enabled && c.objects.remove_moving_from_odometry;
-  return stages;
+/// The odometry, with [objects] enabled the objects stage after it (as roadslam-map runs them), and
+/// live the online GNSS correction.
+pipeline::StageList stagesFor(const Config& c, std::shared_ptr<pipeline::LiveGnss> gnss = nullptr) {
+  pipeline::StageRequest r;
+  r.live_gnss = std::move(gnss);
+  return pipeline::buildStages(c.chain, std::move(r));
 }
 
 /// The sweep's boxes as the map folder's tracks.csv and objects.csv hold them (map frame).
@@ -80,7 +75,7 @@ LiveSlam::LiveSlam(const std::string& config_ini, const std::string& recording, 
   Config c(config_ini);
   auto source = pipeline::openNonEmptySource(recording, *c.cfg);
   c.cfg->checkEntries(false);
-  impl_->pipe = std::make_unique<pipeline::Pipeline>(std::move(source), stagesFor(c, impl_->objects));
+  impl_->pipe = std::make_unique<pipeline::Pipeline>(std::move(source), stagesFor(c));
   thread_ = std::thread([this] { run(*impl_); });
 }
 
@@ -91,9 +86,9 @@ LiveSlam::LiveSlam(const std::string& config_ini, const std::string& sensor_labe
   c.cfg->checkEntries(false);
   auto packets = std::make_unique<sources::ObservationPacketSource>(sensor_label, name);
   impl_->live = packets.get();
-  impl_->gnss = std::make_unique<pipeline::LiveGnss>(c.gnss);
+  impl_->gnss = std::make_shared<pipeline::LiveGnss>(c.gnss);
   auto sweeps = std::make_unique<sources::SweepSource>(std::move(packets), c.decoder);
-  impl_->pipe = std::make_unique<pipeline::Pipeline>(std::move(sweeps), stagesFor(c, impl_->objects));
+  impl_->pipe = std::make_unique<pipeline::Pipeline>(std::move(sweeps), stagesFor(c, impl_->gnss));
   thread_ = std::thread([this] { run(*impl_); });
 }
 
@@ -131,7 +126,7 @@ void LiveSlam::run(Impl& impl) {
       out.keyframe = r.keyframe;
       out.ms = r.ms_total;
       out.inliers = r.inliers;
-      if (impl.gnss && r.status != odometry::FrameStatus::Skipped) out.T_enu_lidar = impl.gnss->correct(r.stamp_s, r.T_world_lidar);
+      out.T_enu_lidar = f->T_enu_lidar;
       if (r.status != odometry::FrameStatus::Skipped) model_.postFrame(out);
       if (f->objects) model_.postObjects(boxesOf(*f));
       last_stamp_s_ = r.stamp_s;

@@ -16,6 +16,8 @@
 
 #include "roadslam/common/scan.h"
 #include "roadslam/odometry/odometry.h"
+#include "roadslam/pipeline/stage.h"
+#include "roadslam/pipeline/sweep_pose.h"
 
 namespace mrpt::config {
 class CConfigFileBase;
@@ -25,33 +27,15 @@ namespace roadslam::pipeline {
 
 class CanPriorStream;
 
-/// A sweep's pose: the lidar at the sweep's start and end (the deskew's ends) and at its reference
-/// time t_ref (the frame the sweep is deskewed into), or why there is none.
-struct SweepPose {
-  double stamp_s = 0;  ///< the sweep's stamp (its first point) [s]
-  bool ok = false;
-  std::string why;     ///< when not ok: why there is no pose
-  Eigen::Isometry3d start = Eigen::Isometry3d::Identity(), end = Eigen::Isometry3d::Identity(),
-                    ref = Eigen::Isometry3d::Identity();  ///< T_map_lidar
-  double t_ref = 0, dur = 0;  ///< [s]
-  bool deskew = false;        ///< start/end are known: the sweep can be deskewed between them
-  /// The odometry's result when the odometry made the pose (frames.csv, the pose graph).
-  std::optional<odometry::FrameResult> odometry;
-  /// With it, the odometry's deskewed, preprocessed points (lidar frame, valid until the next sweep).
-  const std::vector<Eigen::Vector3d>* points_lidar = nullptr;
-  /// Vehicle base motion since the previous sweep from the CAN log (pose-graph CAN edges), with the
-  /// lidar mounting on the base.
-  std::optional<Eigen::Isometry3d> T_baseprev_basecurr;
-  Eigen::Isometry3d T_base_lidar = Eigen::Isometry3d::Identity();
-};
-
 /// Moves the points of \p scan into the frame of \p pose.ref (odometry::deskewBetween) when the pose
 /// allows it; returns whether it did.
 bool deskewToReference(Scan& scan, const SweepPose& pose);
 
-class PoseStage {
+/// The first stage of every pipeline: the frame's pose from its sweep.
+class PoseStage : public Stage {
  public:
-  virtual ~PoseStage() = default;
+  std::string name() const override { return "poses"; }
+  void process(PipelineFrame& f) final { f.pose = pose(*f.scan); }
   /// The pose of \p scan. Never throws on data problems: a sweep without a pose comes back with
   /// ok = false and why. Stages that keep the scan afterwards must construct the stage so that it
   /// leaves the scan untouched (OdometryPoses' keep_scans).
