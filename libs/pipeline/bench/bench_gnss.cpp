@@ -1,4 +1,4 @@
-// The figures of issue 23 (GNSS fusion), printed as tables; not a timed test.
+// The GNSS fusion figures, printed as tables; not a timed test.
 //
 //   bench_gnss sim --scenario S.ini --sim SIM --run RUN --config C.ini
 //     SIM: a roadslam-sim output of S.ini (its gt_trajectory.tum); RUN: roadslam-map's output on

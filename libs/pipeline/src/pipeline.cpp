@@ -55,6 +55,7 @@ Pipeline::Pipeline(std::unique_ptr<sources::ScanSource> source, StageList stages
   poses_ = stages_.empty() ? nullptr : dynamic_cast<PoseStage*>(stages_.front().get());
   if (!poses_) throw std::invalid_argument("Pipeline: no pose stage first");
   for (const auto& s : stages_) keep_sweep_ = keep_sweep_ || s->readsSweep();
+  poses_->leaveSweep(keep_sweep_);
 }
 
 Pipeline::~Pipeline() = default;

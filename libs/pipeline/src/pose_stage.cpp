@@ -27,10 +27,10 @@ bool deskewToReference(Scan& scan, const SweepPose& pose) {
   return scan.has_point_times && pose.dur > 0;
 }
 
-OdometryPoses::OdometryPoses(const odometry::Params& params, std::unique_ptr<CanPriorStream> can, bool keep_scans)
-    : odo_(params), can_(std::move(can)), keep_scans_(keep_scans) {}
+OdometryPoses::OdometryPoses(const odometry::Params& params, std::unique_ptr<CanPriorStream> can)
+    : odo_(params), can_(std::move(can)) {}
 
-OdometryPoses::OdometryPoses(const odometry::Params& params, bool keep_scans) : OdometryPoses(params, nullptr, keep_scans) {}
+OdometryPoses::OdometryPoses(const odometry::Params& params) : OdometryPoses(params, nullptr) {}
 
 OdometryPoses::~OdometryPoses() = default;
 

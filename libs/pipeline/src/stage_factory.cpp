@@ -1,5 +1,7 @@
 #include "roadslam/pipeline/stage_factory.h"
 
+#include <algorithm>
+
 #include "roadslam/pipeline/can_prior.h"
 #include "roadslam/pipeline/stages/deskew.h"
 #include "roadslam/pipeline/stages/dynamic_removal.h"
@@ -11,12 +13,11 @@
 namespace roadslam::pipeline {
 namespace {
 
-/// \p keep_sweep: a later stage reads the sweep, so the odometry must leave its points in place.
-std::unique_ptr<PoseStage> poseStage(const ChainParams& p, StageRequest& req, bool keep_sweep) {
+std::unique_ptr<PoseStage> poseStage(const ChainParams& p, StageRequest& req) {
   if (!req.trajectory_path.empty()) return std::make_unique<TrajectoryPoses>(req.trajectory_path);
   if (req.recorded_poses)
     return std::make_unique<RecordedPoses>(std::move(*req.recorded_poses), req.recorded_input, req.recorded_origin);
-  return std::make_unique<OdometryPoses>(p.odometry, std::move(req.can), keep_sweep);
+  return std::make_unique<OdometryPoses>(p.odometry, std::move(req.can));
 }
 
 std::unique_ptr<MapsStage> mapsStage(const ChainParams& p, bool objects) {
@@ -29,32 +30,43 @@ std::unique_ptr<MapsStage> mapsStage(const ChainParams& p, bool objects) {
   return std::make_unique<MapsStage>(p.mapper, std::move(octo), mp);
 }
 
+/// The objects, and the dynamic removal of their moving points when the ini asks for it.
+void addObjects(const ChainParams& p, bool maps, PoseStage& poses, StageList& s) {
+  auto o = std::make_unique<ObjectTrackingStage>(p.objects, p.tracking);
+  const objects::TrackerParams tracking = o->objects().tracker().params();
+  s.push_back(std::move(o));
+  DynamicRemovalParams removal;
+  removal.from_maps = maps && p.objects.remove_moving_from_maps;
+  removal.from_odometry = p.objects.remove_moving_from_odometry;
+  removal.margin_m = p.objects.removal_margin_m;
+  removal.odometry_erase_back_s = p.objects.odometry_erase_back_s;
+  if (removal.from_maps || removal.from_odometry) s.push_back(std::make_unique<DynamicRemovalStage>(removal, tracking, poses));
+}
+
+/// The deskew stage after the poses, when a later stage reads the sweep.
+void addDeskew(StageList& s) {
+  if (std::any_of(s.begin(), s.end(), [](const auto& st) { return st->readsSweep(); }))
+    s.insert(s.begin() + 1, std::make_unique<DeskewStage>());
+}
+
 }  // namespace
+
+StageRequest::StageRequest() = default;
+StageRequest::~StageRequest() = default;
+StageRequest::StageRequest(StageRequest&&) noexcept = default;
+StageRequest& StageRequest::operator=(StageRequest&&) noexcept = default;
 
 StageList buildStages(const ChainParams& p, StageRequest req) {
   const bool objects = req.objects && p.objects.enabled;
   const bool maps = req.maps && !req.prior_map;  // a prior map is never grown
-  const bool reads_sweep = objects || req.boundaries;       // ObjectTrackingStage, BoundaryStage
-
   StageList s;
-  s.push_back(poseStage(p, req, reads_sweep));
-  PoseStage& poses = static_cast<PoseStage&>(*s.front());
-  if (reads_sweep) s.push_back(std::make_unique<DeskewStage>());
+  s.push_back(poseStage(p, req));
   if (req.prior_map) s.push_back(std::make_unique<LocalizationStage>(std::move(*req.prior_map), p.localizer));
-  if (objects) {
-    auto o = std::make_unique<ObjectTrackingStage>(p.objects, p.tracking);
-    const objects::TrackerParams tracking = o->objects().tracker().params();
-    s.push_back(std::move(o));
-    DynamicRemovalParams removal;
-    removal.from_maps = maps && p.objects.remove_moving_from_maps;
-    removal.from_odometry = p.objects.remove_moving_from_odometry;
-    removal.margin_m = p.objects.removal_margin_m;
-    removal.odometry_erase_back_s = p.objects.odometry_erase_back_s;
-    if (removal.from_maps || removal.from_odometry) s.push_back(std::make_unique<DynamicRemovalStage>(removal, tracking, poses));
-  }
+  if (objects) addObjects(p, maps, static_cast<PoseStage&>(*s.front()), s);
   if (maps) s.push_back(mapsStage(p, objects));
   if (req.boundaries) s.push_back(std::make_unique<BoundaryStage>(req.boundaries, req.boundary_use));
   if (req.live_gnss) s.push_back(std::make_unique<OnlineGnssStage>(req.live_gnss));
+  addDeskew(s);
   return s;
 }
 

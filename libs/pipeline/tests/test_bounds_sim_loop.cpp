@@ -57,13 +57,11 @@ void expectReached(const std::string& drive, const Run& r) {
   EXPECT_GE(r.m.left_detection_rate, 0.75);
   EXPECT_GE(r.m.right_detection_rate, 0.84);
   EXPECT_LE(r.m.lateral_error_mean_m, 0.09);
-  // Session 5: 0.127 m with the ground's parked-car rules (seeds 8 / 9: 0.108 / 0.113 m); without
-  // them 0.198 m (800 draws and the width rule) and, with 200 draws, 0.164 / 0.169 / 0.213 m for
-  // seeds 7 / 8 / 9. Bend frame before: 0.172 m (path's arc alone 0.223 m, vehicle frame 0.31 m).
+  // Measured 0.127 m with the ground's parked-car rules (seeds 8 / 9: 0.108 / 0.113 m); without
+  // them 0.198 m.
   EXPECT_LE(r.m.lateral_error_p95_m, 0.15);
-  // Read along the road ahead (stations on the GT path): corner entries count. Path's arc alone:
-  // 0.638, p95 0.695 m; with the bend ahead 0.693, 0.508 m; session 5 (width rule, ground rules)
-  // 0.714, 0.320 m.
+  // Read along the road ahead (stations on the GT path): corner entries count. Measured 0.714,
+  // p95 0.320 m.
   const auto mp = alongPath(drive, r);
   EXPECT_GE(mp.detection_rate, 0.70);
   EXPECT_LE(mp.lateral_error_p95_m, 0.40);
@@ -152,7 +150,7 @@ TEST(SimLoop, WholeHillsDriveTakesTheCurbNotTheSidewalksFarEdge) {
 // Where the curbs can be seen, the targets hold over whole drives: the shipped urban loop and hills
 // with their parking lanes empty (every other object as shipped, moving cars included), read along
 // the road ahead (path stations: on the axis stations the outer curb crosses the axis mid-corner
-// and reads as "left"). Measured (session 5): loop 0.965 / 0.044 m / p95 0.149 m, hills 0.982 /
+// and reads as "left"). Measured: loop 0.965 / 0.044 m / p95 0.149 m, hills 0.982 /
 // 0.048 m / 0.185 m; axis stations 0.860 / 0.112 m / 0.063 m and 0.864 / 0.121 m / 0.144 m.
 // The shipped drives' misses are the parked cars' (expectCeiling).
 TEST(SimLoop, WholeDrivesWithVisibleCurbsMeetTheTargets) {
@@ -183,10 +181,8 @@ TEST(SimLoop, WholeDrivesWithVisibleCurbsMeetTheTargets) {
 // of the whole drive along the drive's own path, so what the cars hide from the vehicle ahead was
 // seen through the gaps and from behind. The targets hold along the road ahead (path
 // stations), with the GT poses and with the odometry's (no loop closure: the loop's start and end
-// overlap as the odometry left them). Measured (session 6), GT / odometry poses: urban loop
-// 1.000 / 0.004 m / 0.022 m and 0.999 / 0.029 m / 0.129 m; hills 1.000 / 0.008 m / 0.022 m and
-// 1.000 / 0.033 m / 0.139 m (session 12: 1.000 / 0.004 / 0.023, 0.999 / 0.022 / 0.139, 1.000 / 0.008 /
-// 0.022, 1.000 / 0.021 / 0.109).
+// overlap as the odometry left them). Measured, GT / odometry poses: urban loop 1.000 / 0.004 m /
+// 0.023 m and 0.999 / 0.022 m / 0.139 m; hills 1.000 / 0.008 m / 0.022 m and 1.000 / 0.021 m / 0.109 m.
 // Two runs of the four: the urban loop (35 % parked cars) with the GT poses, which holds the detector
 // to the tight bounds, and the hills drive (the same loop on slopes to 12 %, 30 % parked cars) with
 // the odometry's, which adds the odometry's drift, the loop's overlap and the slopes. The urban loop

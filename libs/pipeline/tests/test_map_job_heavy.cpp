@@ -72,7 +72,7 @@ TEST(MapJobHeavy, ParallelStreetsNoFalseLoop) {
   }
 }
 
-// roadslam-map --prior-map (issue 22), wiring end to end: a map folder made by a first run over the small
+// roadslam-map --prior-map, wiring end to end: a map folder made by a first run over the small
 // loop, then the same recording localized in it (an unknown start: the first sweep is relocalized). The
 // accuracy on a second, different lap is MapperSim.SecondLapByPlaceRecognition's; here every sweep must get
 // a pose in the map and the trajectory must match the truth.

@@ -1,6 +1,6 @@
 // The objects stage end to end on a 25 s simulated urban loop (harness: objects_sim_harness.h). The
-// figures since session 14 are on the scenario's physical traffic (cars brake for corners and follow
-// one another); the constant-speed traffic's in brackets where they differ.
+// figures are on the scenario's physical traffic (cars brake for corners and follow one another); the
+// constant-speed traffic's in brackets where they differ.
 #include <gtest/gtest.h>
 
 #include "objects_sim_harness.h"

@@ -1,9 +1,9 @@
 // The objects stage on longer simulated drives (90 s urban loop with 5 moving cars, 60 s parallel
 // streets): figures printed against the targets (MOTA >= 0.90, MOTP <= 0.20 m, speed error
 // <= 0.5 m/s, <= 1 id switch per 100 tracked s), bounds at the measured figures minus a margin. The GT
-// counts the cars the sensor saw (>= 10 returns, eval::MotParams::min_returns) within 40 m. Since
-// session 14 on the scenarios' physical traffic (planned corners, car-following) and with the moving
-// label's free-space check (ClusterParams::free_space_lag_s); the figures before in brackets.
+// counts the cars the sensor saw (>= 10 returns, eval::MotParams::min_returns) within 40 m. On the
+// scenarios' physical traffic (planned corners, car-following) and with the moving label's
+// free-space check (ClusterParams::free_space_lag_s); the figures without both in brackets.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -70,8 +70,7 @@ static std::string fileText(const std::string& path) {
 
 // Moving-object removal: the same 30 s drive mapped with and without it; ghost points (map points on
 // the moving cars' swept paths while the lidar hit them, each placed by the run's pose of its time)
-// measured 1492 -> 142 with cv, 74 with the IMM (without removal_floor_m: 178, 110); since session 14, on
-// the physical traffic with the free-space check, 1660 -> 43 (97.4 %; within 50 m 1534 -> 30), static points
+// measured on the physical traffic with the free-space check 1660 -> 43 (97.4 %; within 50 m 1534 -> 30), static points
 // lost 0.02 %; on the paths swept within 50 m of the lidar 1370 -> 114, 46 (121, 53): the rest are cars
 // too sparse for an object.
 // Then the seen-through pass ([seen_through], libs/mapping/seen_through.h) after the tracks' removal:

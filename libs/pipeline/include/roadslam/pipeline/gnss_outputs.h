@@ -1,6 +1,6 @@
 #pragma once
 /// \file gnss_outputs.h
-/// GNSS at the end of a map job (issue 23): an NMEA log's fixes into a local ENU frame, their batch
+/// GNSS at the end of a map job: an NMEA log's fixes into a local ENU frame, their batch
 /// fusion into the job's trajectory (mapping/gnss_fusion.h) and the geo-referenced outputs.
 ///
 /// ENU frame: origin at the first valid fix (WGS84 lat, lon, ellipsoidal height). Files in DIR:

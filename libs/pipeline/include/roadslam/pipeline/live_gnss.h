@@ -1,6 +1,6 @@
 #pragma once
 /// \file live_gnss.h
-/// The online GNSS correction on a live feed (issue 23): CObservationGPS records as they arrive
+/// The online GNSS correction on a live feed: CObservationGPS records as they arrive
 /// (roadslam-grab's receiver epochs, a car's CAN_GPS) and the odometry's frames, in one
 /// mapping::OnlineGnssFusion. The ENU frame is at the first valid fix (as gnss_outputs.h).
 /// Fixes are stamped with their receive time: the frames of a live feed carry the host's receive

@@ -50,7 +50,7 @@ struct MapRequest {
   /// (checked_config.h); with this they are warnings in the summary instead.
   bool allow_unknown_keys = false;
   /// A map folder of an earlier run (map.json, keyframes.bin): localize each sweep in it instead of
-  /// mapping (issue 22). The odometry still deskews and bridges sweeps that are not localized; no keyframe
+  /// mapping. The odometry still deskews and bridges sweeps that are not localized; no keyframe
   /// graph, loop closure or maps are made; trajectory.tum holds the poses in the prior map's frame and
   /// localization.csv each sweep's status and confidence. Throws naming the file for an older or foreign folder.
   std::string prior_map_dir;

@@ -37,29 +37,31 @@ class PoseStage : public Stage {
   std::string name() const override { return "poses"; }
   void process(PipelineFrame& f) final { f.pose = pose(*f.scan); }
   /// The pose of \p scan. Never throws on data problems: a sweep without a pose comes back with
-  /// ok = false and why. Stages that keep the scan afterwards must construct the stage so that it
-  /// leaves the scan untouched (OdometryPoses' keep_scans).
+  /// ok = false and why. The scan is left untouched when leaveSweep(true) was called.
   virtual SweepPose pose(Scan& scan) = 0;
   /// "odometry", "odometry+can" or the trajectory's path: for the summaries.
   virtual std::string describe() const = 0;
   /// Regions (the map frame of the poses) whose points stay out of the map the stage registers
   /// against in the sweeps after this call; a stage with no map of its own ignores them.
   virtual void excludeFromMap(std::vector<odometry::MapExclusion> /*boxes*/) {}
+  /// Whether a later stage reads the sweep (the pipeline tells, from Stage::readsSweep): a stage
+  /// that would otherwise take the sweep's points must then leave them in place.
+  virtual void leaveSweep(bool /*leave*/) {}
 };
 
 /// Poses from the odometry, with the CAN log's motion prior when one is given. Between two converged
 /// frames the wheel odometry learns its bias and scale from the LiDAR (CanPriorStream).
 class OdometryPoses : public PoseStage {
  public:
-  /// \p keep_scans false: the sweep's points move into the odometry (nothing later needs them).
-  OdometryPoses(const odometry::Params& params, std::unique_ptr<CanPriorStream> can, bool keep_scans);
-  /// Without a CAN prior.
-  OdometryPoses(const odometry::Params& params, bool keep_scans);
+  /// Until leaveSweep(true), the sweep's points move into the odometry (nothing later needs them).
+  OdometryPoses(const odometry::Params& params, std::unique_ptr<CanPriorStream> can);
+  explicit OdometryPoses(const odometry::Params& params);  ///< without a CAN prior
   ~OdometryPoses() override;
   SweepPose pose(Scan& scan) override;
   std::string describe() const override;
   /// Into the odometry's local map (odometry::Odometry::setMapExclusions; map frame = its world frame).
   void excludeFromMap(std::vector<odometry::MapExclusion> boxes) override { odo_.setMapExclusions(std::move(boxes)); }
+  void leaveSweep(bool leave) override { keep_scans_ = leave; }
 
   const odometry::Odometry& odometry() const { return odo_; }
   /// The CAN prior when a log was given, else nullptr.

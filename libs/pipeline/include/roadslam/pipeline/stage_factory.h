@@ -38,6 +38,10 @@ struct ChainParams {
 
 /// What a job asks of the chain beyond its ini.
 struct StageRequest {
+  StageRequest();
+  ~StageRequest();  // out of line: CanPriorStream is complete only there
+  StageRequest(StageRequest&&) noexcept;
+  StageRequest& operator=(StageRequest&&) noexcept;
   /// Poses: a TUM trajectory (TrajectoryPoses), an earlier pass's (RecordedPoses, with the input and
   /// the first pass's pose source for its messages), else the odometry with the CAN prior when given.
   std::string trajectory_path;
