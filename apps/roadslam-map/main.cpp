@@ -29,6 +29,8 @@ int main(int argc, char** argv) {
   app.add_option("--prior-map", req.prior_map_dir,
                  "map folder of an earlier run: localize each sweep in it (no mapping); localization.csv per sweep")
       ->check(CLI::ExistingDirectory);
+  app.add_flag("--export-sweeps", req.export_sweeps,
+               "each posed sweep, deskewed (lidar frame at its reference time), as OUT/sweeps/NNNNNN.pcd");
   app.add_flag("--allow-unknown-keys", req.allow_unknown_keys, "ini keys no component reads are warnings, not errors");
   app.add_flag("--quiet", quiet, "nothing on stdout (no progress bar, no summary); errors and warnings on stderr");
   app.add_flag("--json", json, "print the summary as JSON (as in OUT/summary.json) instead of text");

@@ -21,6 +21,7 @@
 #include "roadslam/pipeline/stages/localization.h"
 #include "roadslam/pipeline/stages/maps.h"
 #include "roadslam/pipeline/stages/objects.h"
+#include "roadslam/pipeline/stages/sweep_export.h"
 #include "roadslam/sources/scan_source.h"
 
 namespace fs = std::filesystem;
@@ -207,6 +208,7 @@ MapOutcome runMapJob(const MapRequest& req) {
 
   const bool localize = stages.prior_map.has_value();
   stages.maps = req.maps;
+  if (req.export_sweeps) stages.sweep_export_dir = req.out_dir + "/sweeps";
   if (!req.can_log_path.empty()) stages.can = std::make_unique<CanPriorStream>(req.can_log_path, req.vehicle_ini_path, *cfg);
   Pipeline pipe(std::move(source), buildStages(params.chain, std::move(stages)));
   MapOutcome out;
@@ -246,6 +248,7 @@ MapOutcome runMapJob(const MapRequest& req) {
     const auto* loc = pipe.find<LocalizationStage>();
     out.summary["localization"] = sinks.localization.summary(req.prior_map_dir, loc->localizer().mapPoints());
   }
+  if (const auto* e = pipe.find<SweepExportStage>()) out.summary["sweeps_exported"] = e->written();
   if (maps) writeMapsStage(req, params, *maps, sinks, ms, out);
   gnss.take(pipe.source());
   writeGnss(req, params, stream, gnss, maps, out);

@@ -9,6 +9,7 @@
 #include "roadslam/pipeline/stages/maps.h"
 #include "roadslam/pipeline/stages/objects.h"
 #include "roadslam/pipeline/stages/online_gnss.h"
+#include "roadslam/pipeline/stages/sweep_export.h"
 
 namespace roadslam::pipeline {
 namespace {
@@ -66,6 +67,7 @@ StageList buildStages(const ChainParams& p, StageRequest req) {
   if (maps) s.push_back(mapsStage(p, objects));
   if (req.boundaries) s.push_back(std::make_unique<BoundaryStage>(req.boundaries, req.boundary_use));
   if (req.live_gnss) s.push_back(std::make_unique<OnlineGnssStage>(req.live_gnss));
+  if (!req.sweep_export_dir.empty()) s.push_back(std::make_unique<SweepExportStage>(req.sweep_export_dir));
   addDeskew(s);
   return s;
 }

@@ -54,6 +54,8 @@ struct MapRequest {
   /// graph, loop closure or maps are made; trajectory.tum holds the poses in the prior map's frame and
   /// localization.csv each sweep's status and confidence. Throws naming the file for an older or foreign folder.
   std::string prior_map_dir;
+  /// Each posed sweep, deskewed, as OUT/sweeps/NNNNNN.pcd (stages/sweep_export.h).
+  bool export_sweeps = false;
 };
 
 struct MapOutcome {

@@ -55,11 +55,12 @@ struct StageRequest {
   std::shared_ptr<boundary::BoundaryDetector> boundaries;  ///< the boundary stage, with its use
   BoundaryUse boundary_use = BoundaryUse::Detect;
   std::shared_ptr<LiveGnss> live_gnss;  ///< the online GNSS stage on a live feed
+  std::string sweep_export_dir;         ///< each posed, deskewed sweep as a PCD file into this folder
 };
 
 /// The stages in the order a frame visits them: poses, deskew (when a later stage reads the sweep),
-/// localization, objects, dynamic removal, maps, boundaries, online GNSS. Throws naming the file for
-/// a trajectory that cannot be read.
+/// localization, objects, dynamic removal, maps, boundaries, online GNSS, sweep export. Throws naming
+/// the file for a trajectory that cannot be read, or the folder the sweeps cannot be written to.
 StageList buildStages(const ChainParams& p, StageRequest req);
 
 }  // namespace roadslam::pipeline
