@@ -1,4 +1,4 @@
-// Global registration with no initial guess (issue 22): keyframe pairs up to 10 m apart on the KITTI raw
+// Global registration with no initial guess: keyframe pairs up to 10 m apart on the KITTI raw
 // drive 2011_09_26_0001 (OXTS GT), the first 16 sweeps of KITTI odometry 00 (GT), and simulated VLP-16
 // drives (urban loop, parallel streets: exact GT). Ours (FPFH + mutual matches + RANSAC + our ICP,
 // GlobalParams defaults) and, with -DROADSLAM_BENCH_PEERS=ON, Open3D's FPFH + FGR + ICP on the same

@@ -1,4 +1,4 @@
-// Object clustering side by side with PCL's EuclideanClusterExtraction (issue 21), same sweep, same
+// Object clustering side by side with PCL's EuclideanClusterExtraction, same sweep, same
 // candidate points: the ray-cast VLP-16 street of libs/objects' tests (8 cars and poles, ~12.7k
 // points), ground labelled once (not timed). Ours: the whole segmentObjects (candidate filter,
 // components, L-shape boxes) with each method, and with the tracker's update; PCL: a kd-tree on the

@@ -1,4 +1,4 @@
-// Peer comparison of issue #4: same 50 consecutive pairs of the KITTI raw drive 2011_09_26_0001, same
+// Registration against its peers: same 50 consecutive pairs of the KITTI raw drive 2011_09_26_0001, same
 // 0.5 m voxel clouds (~11k points), identity initial guess, one thread: ours (ICP point-to-plane, NDT),
 // MRPT CICP::Align3D, and with -DROADSLAM_BENCH_PEERS=ON PCL NDT, PCL GICP and Open3D point-to-plane.
 // Time = process CPU time of everything from the clouds to the pose (all threads counted; OpenMP is

@@ -1,4 +1,4 @@
-// Place recognition (issue 22) on simulated drives with look-alike places, driven twice (laps = 2: the
+// Place recognition on simulated drives with look-alike places, driven twice (laps = 2: the
 // second lap revisits every place of the first, with the traffic elsewhere): Scan Context candidates
 // (ring-key kd-tree, Kim & Kim 2018) for every keyframe, each verified by global registration (no guess)
 // and, with the odometry check on, by the mapping's test of the correction against a drifted odometry

@@ -1,4 +1,4 @@
-// The command-line conventions every roadslam-* program keeps (issue 17, "Nothing silent"), checked on
+// The command-line conventions every roadslam-* program keeps, checked on
 // the built programs run as child processes: --version (the commit is the source tree's HEAD),
 // --quiet prints nothing on stdout, readable summaries with --json for the machine form, full-precision
 // stamps through roadslam-map, --times for KITTI folders and the warning without one, and

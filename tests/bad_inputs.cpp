@@ -1,4 +1,4 @@
-// The bad-input table (issue #17): every app that reads files, inis or a command line is run on bad
+// The bad-input table: every app that reads files, inis or a command line is run on bad
 // ones as a user would, as a child process. Each row gives the exit code and a piece of the message
 // the user must see (documented in docs/apps/*.md); no row may crash (a signal), hang, or leave a
 // temporary or half-written file in its output folder. The same table runs against sanitizer builds

@@ -68,7 +68,7 @@ int main(int argc, char** argv) {
                       "with --ghosts: also count the ghosts of the paths swept within this range of the lidar [m]");
   bool o_ghost_unseen = false;
   objects->add_flag("--ghosts-unseen", o_ghost_unseen,
-                    "with --ghosts: the paths also sweep the GT samples where the car had no lidar return (the count before session 11's fix)");
+                    "with --ghosts: the paths also sweep the GT samples where the car had no lidar return (so road points under hidden cars' boxes count too)");
   CLI11_PARSE(app, argc, argv);
   try {
     if (*objects) {

@@ -22,7 +22,7 @@ const Scan& street() {
   return s;
 }
 
-/// The rules of ini/bounds-parking.ini against parked cars read as curbs (issue #8).
+/// The rules of ini/bounds-parking.ini against parked cars read as curbs.
 void parkingRules(boundary::Params& p) {
   p.curb_min_range_m = 5, p.curb_level_cells = 5, p.curb_veto_cells = 2;
 }
@@ -31,7 +31,7 @@ void run(benchmark::State& st, boundary::Method method, bool parallel = true, do
          bool bend = true, bool parking = false, int draws = 0) {
   boundary::Params p;
   p.method = method;
-  if (draws > 0) p.ransac_iterations = draws;  // before session 5: 200
+  if (draws > 0) p.ransac_iterations = draws;  // e.g. 200: a faster, less robust fit
   if (parking) parkingRules(p);
   if (!parallel) p.parallel_max_spread_m = 0;  // before: no side continued parallel to the other
   if (!bend) p.bend_max_curvature = 0;         // before: fits in the driven path's arc only, no bend searched

@@ -17,7 +17,7 @@ TEST(Params, ShippedInisLoad) {
   Params p;
   p.loadFromConfigFile(*thesis);
   EXPECT_EQ(p.method, roadslam::boundary::Method::Thesis);
-  // The rules against parked cars read as curbs (issue #8): off in bounds.ini, on in bounds-parking.ini.
+  // The rules against parked cars read as curbs: off in bounds.ini, on in bounds-parking.ini.
   Params off, on;
   off.loadFromConfigFile(*roadslam::loadIniFile(std::string(ROADSLAM_SOURCE_DIR) + "/ini/bounds.ini"));
   on.loadFromConfigFile(*roadslam::loadIniFile(std::string(ROADSLAM_SOURCE_DIR) + "/ini/bounds-parking.ini"));

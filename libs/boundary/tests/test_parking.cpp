@@ -1,4 +1,4 @@
-// Perpendicular parking bays (issue #8): the cars' ends facing the aisle are no curb. Oracle: the
+// Perpendicular parking bays: the cars' ends facing the aisle are no curb. Oracle: the
 // analytic sweep's own geometry (car boxes and curb lines), independent of the detector.
 #include <gtest/gtest.h>
 

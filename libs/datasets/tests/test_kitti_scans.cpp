@@ -44,7 +44,7 @@ TEST(KittiScans, BinRoundTripAndRecordLayout) {
   const Scan s = syntheticScan(37);
   writeKittiBin((dir / "000000.bin").string(), s);
   EXPECT_EQ(fs::file_size(dir / "000000.bin"), 37u * 16u);
-  // Independent of the reader: point 3's y is float #13 (4 floats per record) in the file.
+  // Independent of the reader: point 3's y is float index 13 (4 floats per record) in the file.
   std::ifstream in(dir / "000000.bin", std::ios::binary);
   char raw[16 * 4];
   in.read(raw, sizeof(raw));

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Where the ghost points of a roadslam-map run come from (issue 21's far trails).
+"""Where the ghost points of a roadslam-map run come from (the far trails of moving cars).
 
 map.ply is the first keyframe point of every voxel_m voxel, keyframes in order (mapping::buildPointMap),
 so rebuilding it from keyframes.bin gives each map point its keyframe (sweep) exactly. A map point is a

@@ -118,7 +118,7 @@ TEST(MapperSim, ParallelStreetsNoFalseLoop) {
   // every accepted loop must be a true revisit (its measurement agrees with the truth)
   EXPECT_LT(r.worst_loop_error_m, 0.3);
   EXPECT_LE(r.ate_corrected_m, r.ate_odometry_m + 0.05);
-  // Scan Context candidates on the same drive (issue 22): it offers the look-alike streets 40 m apart and
+  // Scan Context candidates on the same drive: it offers the look-alike streets 40 m apart and
   // global registration matches them (one 54 m off was accepted before the place_consistency test); no
   // false loop enters the graph, the true revisit at the end does.
   MapperParams sc;
@@ -129,7 +129,7 @@ TEST(MapperSim, ParallelStreetsNoFalseLoop) {
   EXPECT_LE(2 * rs.ate_corrected_m, rs.ate_odometry_m);
 }
 
-// Place recognition (issue 22): the small loop driven 1.4 times with a heading drift of 0.03 deg/m (the
+// Place recognition: the small loop driven 1.4 times with a heading drift of 0.03 deg/m (the
 // second lap starts ~11 m off in the graph): Scan Context candidates, verified by global registration,
 // close the loop and every accepted loop agrees with the truth, at the loops' full information (MRPT's
 // optimiser, POSE_GRAPH_MRPT=1, left the graph 4.5 m off these exact loops and the residual test rejected

@@ -218,7 +218,7 @@ Matrix6d anisotropicInformation(double scale, unsigned seed) {
 
 }  // namespace
 
-// Issue 22: every edge exact (the true relative pose), so the optimum is the truth itself whatever the
+// Every edge exact (the true relative pose), so the optimum is the truth itself whatever the
 // information; the initial estimate drifted in heading and pitch by an odometry bias (56 m off at the
 // loop). The optimiser must return the truth with the loop edge at the odometry's information and at a
 // scan registration's full information (1e6, 1e8, anisotropic), with edges in either direction.

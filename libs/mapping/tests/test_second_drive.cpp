@@ -1,4 +1,4 @@
-// Localization on a second drive of the same simulated streets (issue 22): drive 1 makes the map (a
+// Localization on a second drive of the same simulated streets: drive 1 makes the map (a
 // keyframe every 2 m at its true poses, written as a map folder and read back), drive 2 starts elsewhere
 // on the route (start_offset_m) among other traffic (traffic_seed) and is localized from an unknown
 // start. Oracle: the simulator's truth of both drives in one frame (drive 1's world).

@@ -1,5 +1,5 @@
 // Clustering + tracking per sweep on a ray-cast VLP-16 street (8 cars/poles, ~20k points): the
-// issue's budget is <= 5 ms per sweep on one core. Ground labelling (shared with the odometry and
+// budget is <= 5 ms per sweep on one core. Ground labelling (shared with the odometry and
 // the boundary module) is timed apart.
 #include <benchmark/benchmark.h>
 

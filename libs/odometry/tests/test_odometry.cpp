@@ -105,13 +105,13 @@ TEST(Odometry, KittiRawDriveAgainstOxtsGroundTruth) {
   const auto m = runOnFolder(folder, gt, kittiParams());
   std::cout << "KITTI raw 0001: ATE " << m.ate_rmse_m << " m, RTE " << m.rte_percent << " %, RRE "
             << m.rre_deg_per_100m << " deg/100m\n";
-  // deskewed with azimuth times, elevation corrected: measured 0.382 % / 0.087 m (the odometry issue's
+  // deskewed with azimuth times, elevation corrected: measured 0.382 % / 0.087 m (the
   // target 0.40 %); before either, 0.46 % and 0.052 m (the 5 m crop and 0.5 m voxels of kittiParams())
   EXPECT_LT(m.rte_percent, 0.40);
   EXPECT_LT(m.ate_rmse_m, 0.10);
 }
 
-// The shipped 64-beam config: every frame deskewed, the target of 0.40 %.
+// The shipped 64-beam config: every frame deskewed, the target of 0.40 %.
 TEST(Odometry, KittiRawDriveWithTheShipped64BeamConfig) {
   const auto drive = rawDrive0001();
   if (!drive) GTEST_SKIP() << "missing " << kData << "/kitti/raw-2011_09_26-0001/velodyne.tar.zst";

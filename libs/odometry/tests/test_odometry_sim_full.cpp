@@ -1,4 +1,4 @@
-// The odometry issue's targets on whole simulated drives (odometry only, ini/default.ini, no CAN):
+// The odometry's targets on whole simulated drives (odometry only, ini/default.ini, no CAN):
 // relative translation error at most 0.5 % on the urban loop, the highway and the hilly road. Heavy: each drive
 // is simulated and matched in full (1,000-1,300 sweeps).
 #include <gtest/gtest.h>

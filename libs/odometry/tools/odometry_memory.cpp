@@ -1,5 +1,5 @@
 // Memory of the odometry over a long simulated drive: the resident set and the local map, sampled
-// every N frames, must level off once the map radius is filled (the odometry issue: "memory bounded
+// every N frames, must level off once the map radius is filled (the target: "memory bounded
 // on an hour-long simulated drive"). The urban loop at 36 laps is about an hour (36 km).
 //   odometry_memory CONFIG.ini SCENARIO.ini LAPS [EVERY_FRAMES]
 // The harness itself keeps two poses per frame for the final error (~0.25 kB per frame, ~9 MB an hour).

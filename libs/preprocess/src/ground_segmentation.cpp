@@ -129,7 +129,7 @@ class SectorFitter {
     // from climbing the foot of a wall whose lowest return is a few bins further on.
     // parked_car_rules: over a gap where something stood (a prototype was rejected) the target may
     // be seen over it: from the road before a parked car, the next car's bonnet 7 m on is as gentle
-    // a climb as a crest between two sparse rings (issue #8). There it may rise no more than a line
+    // a climb as a crest between two sparse rings. There it may rise no more than a line
     // starting after a gap (max_start_height_m): a curb's sidewalk still, a bonnet not.
     const bool capped = occluded_ && p_.parked_car_rules;
     const double ref_z = segs_.empty() ? last_z_ : segs_.back().at(r);
@@ -149,7 +149,7 @@ class SectorFitter {
       // bonnet 0.8-1 m up passes, and a line through face and bonnet extrapolates to within
       // max_start_height_m of the road under the car), nor, optionally, behind a vertical
       // structure (a bonnet seen over the car's end). There the line must start at the road's
-      // height (issue #8).
+      // height.
       const bool level = (r < blind_r_ && p_.parked_car_rules) || (stood_ && p_.level_start_behind_structure);
       const double slack = level ? 0.0 : p_.max_slope * r;
       ok = std::abs(z + p_.sensor_height_m) <= p_.max_start_height_m + slack;

@@ -1,4 +1,4 @@
-// Parked cars' ends are no road (issue #8). Oracle: a VLP-16-like sweep cast analytically over a
+// Parked cars' ends are no road. Oracle: a VLP-16-like sweep cast analytically over a
 // flat parking aisle (synthetic_road.h: road at -1.9 m, 0.15 m curbs, car bodies 0.25-1.0 m above
 // the road as in libs/sim addParkedCar), so every point's surface and true height are known.
 #include "roadslam/preprocess/ground_segmentation.h"

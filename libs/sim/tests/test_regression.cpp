@@ -1,5 +1,5 @@
 // The harder sensor and world models are off by default: every shipped scenario that predates them
-// gives the same bytes as before they existed (hashes recorded from commit 2b17c05).
+// gives the same bytes as before they existed (hashes recorded before those models were added).
 #include <gtest/gtest.h>
 
 #include "sim_test_util.h"
@@ -23,7 +23,7 @@ std::pair<uint64_t, uint64_t> hashes(const std::string& ini) {
   ScenarioParams p = ScenarioParams::fromFile(iniPath(ini));
   p.duration_s = 0.3;
   p.trajectory.start_standing_s = 0.05;
-  // the constant-speed traffic the hashes were recorded with: since session 14 the scenarios plan their
+  // the constant-speed traffic the hashes were recorded with: the shipped scenarios plan their
   // cars' corners and following (moving_car_lateral_accel_mps2 = 2.5), which moves the urban loop's cars
   p.world.moving_car_lateral_accel_mps2 = 0;
   Simulator sim(p);

@@ -161,7 +161,7 @@ TEST(Scenarios, CarReturnsCountThePointsOnEachCar) {
   EXPECT_GE(agree, 0.99 * total);
 }
 
-// A second drive of the same streets (issue 22): traffic_seed redraws the moving cars alone (the static
+// A second drive of the same streets: traffic_seed redraws the moving cars alone (the static
 // world stays, prism for prism), start_offset_m starts (and ends) the drive that far along the closed
 // route, in the same direction, on the same route points.
 TEST(Scenarios, TrafficSeedAndStartOffsetMakeASecondDriveOfTheSameStreets) {

@@ -54,7 +54,7 @@ struct Params {
   /// (VLP-16, -15 deg at 1.9 m: road from 7.1 m, a 0.30 m curb's face from 6.0 m) a return is not on
   /// the road the vehicle stands on but on what stands on it (the ends of perpendicular-parked cars,
   /// parked cars' sills: the ground lines of their sectors start on the body, which reads as a low step).
-  /// Off by default, on in ini/bounds-parking.ini (docs/apps/roadslam-bounds.md, issue #8).
+  /// Off by default, on in ini/bounds-parking.ini (docs/apps/roadslam-bounds.md).
   double curb_min_range_m = 0.0;
   double tall_cell_m = 0.5;           ///< xy cell of the "something taller here" test [m]
   double tall_height_m = 0.40;        ///< a cell with a point between this ... [m]

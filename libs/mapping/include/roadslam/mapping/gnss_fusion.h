@@ -1,6 +1,6 @@
 #pragma once
 /// \file gnss_fusion.h
-/// GNSS positions fused into a trajectory as robust unary factors (issue 23), in batch: a pose graph
+/// GNSS positions fused into a trajectory as robust unary factors, in batch: a pose graph
 /// whose nodes are the trajectory's poses T_enu_node, whose binary factors are the trajectory's own
 /// relative motions (odometry, loop-corrected or dead-reckoned), and whose unary factors are the GNSS
 /// antenna positions in a local ENU frame. The map-to-ENU transform T_enu_map is estimated on the way.

@@ -1,6 +1,6 @@
 #pragma once
 /// \file gnss_fusion_online.h
-/// The online GNSS mode (issue 23): corrects the pose published while driving, using only what has
+/// The online GNSS mode: corrects the pose published while driving, using only what has
 /// arrived so far (causal: no later fix, no later frame). A sliding-window smoother over fuseGnss():
 /// the frames of the last GnssFusionParams::online_window_s and the fixes among them are re-solved
 /// every online_solve_period_s; the newest frame's fused pose gives the correction

@@ -1,6 +1,6 @@
 #pragma once
 /// \file localizer.h
-/// Localization in a prior map (issue 22): each sweep is registered against a map folder's keyframes
+/// Localization in a prior map: each sweep is registered against a map folder's keyframes
 /// (map_folder.h) without growing the map. Tracking: point-to-plane ICP of the sweep against the whole map
 /// (one kd-tree built once) from the constant-velocity prediction. Relocalization, from an unknown start or
 /// after a failure (a "kidnapped" vehicle): the sweep's Scan Context against the map's keyframes, each

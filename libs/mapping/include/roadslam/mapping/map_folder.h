@@ -1,6 +1,6 @@
 #pragma once
 /// \file map_folder.h
-/// A map folder as the unit a user keeps (issue 22): besides the maps (map_outputs.h), `map.json` says
+/// A map folder as the unit a user keeps: besides the maps (map_outputs.h), `map.json` says
 /// what the folder is and which version wrote it, and `keyframes.bin` holds every keyframe at its optimised
 /// pose with its points and its Scan Context descriptor, so a later run can recognise places in it and
 /// register against it.

@@ -74,7 +74,7 @@ struct ClusterParams {
   /// ground under its last detection, below the lowest point it was seen with: the -1 deg ring of a
   /// VLP-16 at 1.9 m hits a car 0.9 m above the road at 60 m and 0.15 m at 100 m, lower than any point
   /// the sweeps that track it from nearer find, so its far sweeps' points stayed under the box
-  /// (docs/benchmarks.md, "Ghosts, session 11, part 2"). A car's ground clearance: the road and curbs stay. Negative:
+  /// (libs/eval/tools/ghost_origins.py attributes such ghosts). A car's ground clearance: the road and curbs stay. Negative:
   /// the detections' lowest point only [m]
   double removal_floor_m = 0.2;
   /// A moving track that ends (its car fell below min_points, receding) keeps a box carried along its

@@ -40,7 +40,7 @@ struct GroundSegParams {
   double max_gap_m = 5.0;            ///< a segment also labels bins up to this far beyond its ends [m]; ini `seg_max_gap_m`
   double max_slope_change = 0.15;    ///< slope change a new line may make w.r.t. the previous one [-]; ini `seg_max_slope_change`
   double max_bridge_m = 30.0;        ///< longest range gap a new line may bridge from the last ground prototype [m]; ini `seg_max_bridge_m`
-  /// Parked cars' ends are no ground lines (issue #8): inside the lowest beam's blind circle a
+  /// Parked cars' ends are no ground lines: inside the lowest beam's blind circle a
   /// sector's first line starts within max_start_height_m of the road under the car (no
   /// max_slope * r allowance), and a bridge over a gap where a prototype was rejected rises at
   /// most max_start_height_m. Off by default (the odometry's RTE moves within 10 % either way); on

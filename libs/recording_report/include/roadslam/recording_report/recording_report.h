@@ -1,6 +1,6 @@
 #pragma once
 /// \file recording_report.h
-/// The recording report of a drive (`roadslam-report`, issue 20): per sensor the first/last stamp,
+/// The recording report of a drive (`roadslam-report`): per sensor the first/last stamp,
 /// count, mean rate, gaps and drops and the rate over time; the CAN log's frame rates per id, its
 /// decoded signals and the dead-reckoned path; optionally a `roadslam-map` folder's trajectory and
 /// pictures. Written as one self-contained report.html and the same figures as report.json.

@@ -1,6 +1,6 @@
 #pragma once
 /// \file gnss_output.h
-/// The simulated GNSS receiver (issue 23), section [gnss] of a scenario ini (off by default: with it
+/// The simulated GNSS receiver, section [gnss] of a scenario ini (off by default: with it
 /// off the simulator writes exactly what it wrote before). The world frame is a local East-North-Up
 /// frame whose origin is ([scenario] origin_lat_deg, origin_lon_deg, [gnss] origin_h_m) on WGS84.
 /// At rate_hz the receiver reports its antenna (lever arm in the vehicle frame) through

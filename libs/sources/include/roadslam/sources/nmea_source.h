@@ -1,7 +1,7 @@
 #pragma once
 /// \file nmea_source.h
 /// GNSS receivers that speak NMEA 0183, behind one interface with two live backends and a replay
-/// backend (issue 23): a serial port (termios, raw 8N1), a gpsd daemon (libgps, Debian `libgps-dev`:
+/// backend: a serial port (termios, raw 8N1), a gpsd daemon (libgps, Debian `libgps-dev`:
 /// gpsd passes the receiver's sentences through in NMEA watch mode), and an NMEA log
 /// (libs/gnss/nmea.h format) replayed with its recorded receive times. Each line comes with its host
 /// receive time (CLOCK_REALTIME when the line's end was read; through gpsd, when gpsd's copy was
