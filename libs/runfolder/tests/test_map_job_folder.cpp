@@ -14,14 +14,14 @@ using namespace roadslam;
 
 namespace {
 
-struct Run {
+struct JobRun {
   std::string drive, dir;
   pipeline::MapOutcome out;
 };
 
-const Run& run() {
-  static const Run r = [] {
-    Run x;
+const JobRun& jobRun() {
+  static const JobRun r = [] {
+    JobRun x;
     auto p = sim::ScenarioParams::fromFile(std::string(ROADSLAM_SOURCE_DIR) + "/ini/sim/urban-loop.ini");
     p.duration_s = 4;
     x.drive = sim::simulateOnce(p, std::string(ROADSLAM_BINARY_DIR) + "/test-cache/runfolder-urban-4s");
@@ -43,7 +43,7 @@ const Run& run() {
 }  // namespace
 
 TEST(MapJobFolder, ReadsBackWhatTheJobHeld) {
-  const Run& r = run();
+  const JobRun& r = jobRun();
   const auto folder = runfolder::openMapRun(r.dir);
   EXPECT_EQ(folder.manifest().program, "roadslam-map");
   EXPECT_EQ(folder.manifest().input, r.out.summary["input"].get<std::string>());
@@ -75,7 +75,7 @@ TEST(MapJobFolder, ReadsBackWhatTheJobHeld) {
 }
 
 TEST(MapJobFolder, TheTrajectoryFollowsTheSimulatorsTruth) {
-  const Run& r = run();
+  const JobRun& r = jobRun();
   const auto est = runfolder::openMapRun(r.dir).trajectory();
   const auto gt = runfolder::readTrajectory(r.drive + "/gt_trajectory.tum");
   // both start at the lidar's first pose: T_gt_est from the first estimated pose, then compare positions
@@ -93,7 +93,7 @@ TEST(MapJobFolder, TheTrajectoryFollowsTheSimulatorsTruth) {
 }
 
 TEST(MapJobFolder, TracksAndObjectsAsWritten) {
-  const Run& r = run();
+  const JobRun& r = jobRun();
   const auto folder = runfolder::openMapRun(r.dir);
   ASSERT_TRUE(folder.has(runfolder::kTracksCsv));
   const auto tracks = folder.tracks();

@@ -28,7 +28,6 @@
 #include <mrpt/serialization/CArchive.h>
 #include <mrpt/obs/CObservationOdometry.h>
 
-#include "roadslam/datasets/trajectory_io.h"
 #include "roadslam/runfolder/run_folder.h"
 #include "roadslam/viewer/scene.h"
 
@@ -372,20 +371,24 @@ void ViewerModel::loadBounds(const std::string& dir) {
 }
 
 // Ground truth is in its own world frame: it is drawn anchored to the estimated trajectory at the
-// first estimated frame it covers (T_map_gt = T_map_lidar(t) * T_gt_lidar(t)^-1), or as is without one.
+// first estimated frame it covers (T_map_gt = T_map_lidar(t) * T_gt_lidar(t)^-1, the ground truth
+// interpolated at the frame's time), or as is without one.
 void ViewerModel::loadGroundTruth(const std::string& path) {
-  const auto gt = datasets::readTum(path);
-  if (gt.poses.empty()) return;
-  checkOverlap("ground truth '" + path + "' times", gt.stamps_s.front(), gt.stamps_s.back());
+  const runfolder::StampedTrajectory gt = runfolder::readTrajectory(path);
+  if (gt.empty()) return;
+  checkOverlap("ground truth '" + path + "' times", gt.front(), gt.back());
+  constexpr double kMaxGtGap_s = 0.12;  // a frame between ground-truth poses farther apart is not covered
   Eigen::Isometry3d T_map_gt = Eigen::Isometry3d::Identity();
   for (const auto& f : frames_) {
-    const auto it = std::lower_bound(gt.stamps_s.begin(), gt.stamps_s.end(), f.stamp_s - 0.06);
-    if (it == gt.stamps_s.end() || std::abs(*it - f.stamp_s) > 0.06) continue;
-    T_map_gt = f.T_map_lidar * gt.poses[std::size_t(it - gt.stamps_s.begin())].inverse();
+    const auto T_gt_lidar = gt.at(f.stamp_s, kMaxGtGap_s);
+    if (!T_gt_lidar) continue;
+    T_map_gt = f.T_map_lidar * T_gt_lidar->inverse();
     break;
   }
-  gt_stamps_ = gt.stamps_s;
-  for (const auto& T : gt.poses) gt_positions_.push_back((T_map_gt * T).translation());
+  for (std::size_t i = 0; i < gt.size(); ++i) {
+    gt_stamps_.push_back(gt.stamp(i));
+    gt_positions_.push_back((T_map_gt * gt.pose(i)).translation());
+  }
 }
 
 }  // namespace roadslam::viewer
