@@ -2,7 +2,7 @@
 /// \file manifest.h
 /// run.json, the manifest of a run folder: which format and version the folder's files follow, which
 /// program wrote it and from which input (docs/run-folder.md). Written last by the writers, so a folder
-/// with a manifest is complete; checked first by the readers, so an older or foreign folder fails
+/// with a manifest has all its files; checked first by the readers, so an older or foreign folder fails
 /// naming the file instead of being misread.
 
 #include <string>
