@@ -99,6 +99,15 @@ void makeFiles() {
     write(w / "bounds-bad-cluster.ini", b);
   }
   write(w / "map-bad-tracks" / "trajectory.tum", "0.0 0 0 0 0 0 0 1\n");
+  write(w / "map-bad-tracks" / "frames.csv",
+        "index,stamp_s,status,point_times,deskewed,keyframe,x_m,y_m,z_m,points_in,points_registered,iterations,inliers,"
+        "fitness_m,threshold_m,weak_directions,motion_information,ms_preprocess,ms_register,ms_map,ms_total,reason\n"
+        "0,0.0,ok,none,0,0,0,0,0,0,0,0,0,0,0,0,nan,0,0,0,0,\n");
+  write(w / "map-bad-tracks" / "summary.json",
+        R"({"frames": 1, "keyframes": 0, "failed_frames": 0, "frames_by_status": {"ok": 1}, "ms_per_frame_mean": 0,
+            "ms_per_frame_p50": 0, "ms_per_frame_p95": 0, "ms_per_frame_max": 0, "complete": true, "warnings": []})");
+  write(w / "map-bad-tracks" / "run.json", R"({"format": "roadslam-run", "format_version": 1, "program": "roadslam-map"})");
+  write(w / "map-old" / "trajectory.tum", "0.0 0 0 0 0 0 0 1\n");  // a map folder from before run.json
   write(w / "map-bad-tracks" / "tracks.csv",
         "frame,stamp_s,track_id,x,y,vx,vy,speed_mps,heading_rad,length_m,width_m,z_min,z_max,moving,hits,misses,age_s\n"
         "0,0.0,7,abc,0,0,0,0,0,4.5,1.8,-1.9,-0.4,1,3,0,0.3\n");
@@ -320,6 +329,8 @@ const Row kTable[] = {
   {"view-live-typo-key",   "roadslam-view --grab {W}/grab-typo.ini --render {O}/x.png", 1, "segmnet_mb"},
   {"view-live-sequence",   "roadslam-view --udp 0 --render-sequence {O}/seq", 1, "--render-sequence and --video need a recording"},
   {"view-bad-tracks-csv",  "roadslam-view {W}/kitti-two --map {W}/map-bad-tracks --render {O}/x.png --at 0", 1, "tracks.csv:2: column 'x' is not a number: 'abc'"},
+  {"view-map-no-manifest", "roadslam-view {W}/kitti-two --map {W}/map-old --render {O}/x.png --at 0", 1, "map-old/run.json: missing"},
+  {"report-map-no-manifest", "roadslam-report {W}/truncated.pcap --map {W}/map-old --out {O}", 1, "re-create it with roadslam-map"},
 };
 // clang-format on
 

@@ -23,6 +23,7 @@
 #include <string>
 #include <thread>
 
+#include "roadslam/runfolder/run_folder.h"
 #include "roadslam/datasets/kitti_scans.h"
 #include "roadslam/sources/rawlog_index.h"
 #include "roadslam/sources/rawlog_session.h"
@@ -68,9 +69,14 @@ struct Fixture {
     roadslam::sources::convertToRawlog(std::string(ROADSLAM_SOURCE_DIR) + "/rawlogs/boxroom-vlp16.pcap",
                                        rawlog.string());
     const double t0 = roadslam::sources::RawlogIndex::open(rawlog.string())->firstStamp();
-    std::ofstream tum(map / "trajectory.tum");
-    tum.precision(17);
-    for (int k = 0; k <= 20; ++k) tum << t0 - 2.0 + 0.1 * k << " " << -10.0 + 0.5 * k << " 0 0 0 0 0 1\n";
+    roadslam::datasets::Trajectory poses;
+    for (int k = 0; k <= 20; ++k) {
+      Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+      T.translation().x() = -10.0 + 0.5 * k;
+      poses.stamps_s.push_back(t0 - 2.0 + 0.1 * k);
+      poses.poses.push_back(T);
+    }
+    roadslam::runfolder::writeMapRun(map.string(), roadslam::runfolder::mapRunOfTrajectory(poses, "boxroom"));
   }
 };
 const Fixture& fixture() {

@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "roadslam/datasets/trajectory_io.h"
+#include "roadslam/runfolder/objects_csv.h"
 
 namespace roadslam::eval {
 namespace {
@@ -112,22 +113,14 @@ Eigen::Isometry3d mapFromWorld(const datasets::Trajectory& gt, const datasets::T
 
 /// tracks.csv rows grouped by their time (rounded to the microsecond).
 std::map<long long, std::vector<Hyp>> readTracks(const std::string& path) {
-  std::ifstream f(path);
-  if (!f) throw std::runtime_error("cannot read '" + path + "' (roadslam-map with [objects] enabled = true writes it)");
-  std::string line;
-  std::getline(f, line);
+  if (!std::ifstream(path)) throw std::runtime_error("cannot read '" + path + "' (roadslam-map with [objects] enabled = true writes it)");
   std::map<long long, std::vector<Hyp>> out;
-  while (std::getline(f, line)) {
-    std::vector<double> v;
-    std::stringstream ss(line);
-    std::string cell;
-    while (std::getline(ss, cell, ',')) v.push_back(std::strtod(cell.c_str(), nullptr));
-    if (v.size() < 17) throw std::runtime_error("'" + path + "': a row with " + std::to_string(v.size()) + " fields, 17 expected");
+  for (const runfolder::TrackRow& r : runfolder::readTracksCsv(path)) {
     Hyp h;
-    h.id = static_cast<int>(v[2]);
-    h.p_map = {v[3], v[4]}, h.v_map = {v[5], v[6]};
-    h.moving = v[13] != 0, h.age_s = v[16];
-    out[std::llround(v[1] * 1e6)].push_back(h);
+    h.id = r.track_id;
+    h.p_map = {r.x, r.y}, h.v_map = {r.vx, r.vy};
+    h.moving = r.moving, h.age_s = r.age_s;
+    out[std::llround(r.stamp_s * 1e6)].push_back(h);
   }
   return out;
 }

@@ -11,6 +11,7 @@
 #include "roadslam/eval/evaluate.h"
 #include "roadslam/pipeline/bounds_job.h"
 #include "roadslam/pipeline/map_job.h"
+#include "roadslam/runfolder/run_folder.h"
 
 namespace fs = std::filesystem;
 
@@ -47,15 +48,14 @@ Request jobRequest(const std::string& dir, const nlohmann::json& job, const std:
 void runTrajectoryStage(const std::string& dir, const nlohmann::json& job, bool maps, nlohmann::json& m) {
   auto req = jobRequest<pipeline::MapRequest>(dir, job, "map");
   req.maps = maps;
-  const auto out = pipeline::runMapJob(req);
-  const auto& s = out.summary;
-  const auto& by = s["frames_by_status"];
-  m["frames"] = s["frames"];
-  m["failed_frames"] = by.value("not_converged", 0) + by.value("empty", 0);
-  m["degenerate_frames"] = by.value("degenerate", 0);
-  m["ms_per_frame_p50"] = s["ms_per_frame_p50"];
-  m["ms_per_frame_p95"] = s["ms_per_frame_p95"];
-  if (maps) m["loop_closures"] = s.value("loop_closures", 0);
+  pipeline::runMapJob(req);
+  const runfolder::MapSummary s = runfolder::openMapRun(req.out_dir).mapSummary();  // the folder as it was written
+  m["frames"] = s.frames;
+  m["failed_frames"] = s.byStatus("not_converged") + s.byStatus("empty");
+  m["degenerate_frames"] = s.byStatus("degenerate");
+  m["ms_per_frame_p50"] = s.ms_per_frame_p50;
+  m["ms_per_frame_p95"] = s.ms_per_frame_p95;
+  if (maps) m["loop_closures"] = s.loop_closures.value_or(0);
 }
 
 void runBoundsStage(const std::string& dir, const nlohmann::json& job, nlohmann::json& m) {
@@ -63,18 +63,19 @@ void runBoundsStage(const std::string& dir, const nlohmann::json& job, nlohmann:
   auto req = jobRequest<pipeline::BoundsRequest>(dir, job, "bounds");
   req.png_every = 0;
   const std::string poses = job["bounds_poses"];
-  const bool own = fs::exists(dir + "/map/trajectory.tum");
+  const std::string own_tum = dir + "/map/" + runfolder::kTrajectoryTum;
+  const bool own = fs::exists(own_tum);
   if (poses == "gt" || (poses == "auto" && !own)) req.trajectory_path = d["gt"];
-  if (poses == "auto" && own) req.trajectory_path = dir + "/map/trajectory.tum";
+  if (poses == "auto" && own) req.trajectory_path = own_tum;
   if (poses == "gt" && req.trajectory_path.empty()) throw std::runtime_error("bounds_poses = gt, but the dataset has no gt");
-  const auto s = pipeline::runBoundsJob(req);
-  m["both_found_rate"] = s["both_found_rate"];
-  m["bounds_ms_per_frame"] = s["ms_per_frame_mean"];
+  const runfolder::BoundsSummary s = runfolder::boundsSummaryFromJson(pipeline::runBoundsJob(req), req.out_dir + "/summary.json");
+  m["both_found_rate"] = s.both_found_rate;
+  m["bounds_ms_per_frame"] = s.ms_per_frame_mean;
 }
 
 void runEvalStage(const std::string& dir, const nlohmann::json& job, nlohmann::json& m) {
   const auto& d = job["dataset"];
-  const std::string est = dir + "/map/trajectory.tum";
+  const std::string est = dir + "/map/" + runfolder::kTrajectoryTum;
   if (!d["gt"].get<std::string>().empty() && fs::exists(est)) {
     eval::EvalRequest req;
     req.gt_path = d["gt"], req.gt_times_path = d["gt_times"], req.gt_calib_path = d["gt_calib"];
@@ -86,7 +87,7 @@ void runEvalStage(const std::string& dir, const nlohmann::json& job, nlohmann::j
     m["path_length_m"] = o.metrics.path_length_m;
     for (const auto& w : o.warnings) m["warnings"].push_back("eval: " + w);
   }
-  const std::string jsonl = dir + "/bounds/boundaries.jsonl";
+  const std::string jsonl = dir + "/bounds/" + runfolder::kBoundariesJsonl;
   if (!d["gt_boundaries"].get<std::string>().empty() && !d["gt"].get<std::string>().empty() && fs::exists(jsonl)) {
     const auto b = eval::evaluateBoundaryFiles(d["gt_boundaries"], d["gt"], jsonl);
     m["boundary_detection_rate"] = b.detection_rate;

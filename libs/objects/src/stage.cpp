@@ -1,10 +1,10 @@
 #include "roadslam/objects/stage.h"
 
+#include "roadslam/runfolder/objects_csv.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdarg>
-#include <cstdio>
 
 
 namespace roadslam::objects {
@@ -16,16 +16,6 @@ constexpr size_t kFreeSamples = 64;  // points of an object checked against the 
 constexpr double kRetroStep_s = 0.1;   // extrapolated boxes every sweep at 10 Hz (the keyframes match within half)  // half a turn at 10 Hz: how far from the sweep's time a point may be
 
 double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
-
-std::string fmt(const char* f, ...) __attribute__((format(printf, 1, 2)));
-std::string fmt(const char* f, ...) {
-  char buf[512];
-  va_list ap;
-  va_start(ap, f);
-  std::vsnprintf(buf, sizeof(buf), f, ap);
-  va_end(ap);
-  return buf;
-}
 
 /// \p b's floor lowered to \p floor_m above the ground under \p t's last detection (never raised;
 /// \p floor_m < 0: as it is). insideBox subtracts \p margin_m again.
@@ -192,7 +182,7 @@ bool insideBox(const BoxRecord& b, const Eigen::Vector3d& p_map, double margin_m
          p_map.z() >= b.z_min - margin_m && p_map.z() <= b.z_max + margin_m;
 }
 
-std::string objectsCsvHeader() { return "frame,stamp_s,object,cx,cy,yaw_rad,length_m,width_m,z_min,z_max,points,track_id\n"; }
+std::string objectsCsvHeader() { return runfolder::objectsCsvHeader(); }
 
 std::string objectsCsvRows(size_t frame, double stamp_s, const Eigen::Isometry3d& T_map_lidar, const ObjectsFrame& f) {
   std::string out;
@@ -200,34 +190,40 @@ std::string objectsCsvRows(size_t frame, double stamp_s, const Eigen::Isometry3d
   for (size_t k = 0; k < f.objects.size(); ++k) {
     const Object& o = f.objects[k];
     const Eigen::Vector3d c = T_map_lidar * Eigen::Vector3d(o.box.cx, o.box.cy, 0);
-    out += fmt("%zu,%.6f,%zu,%.3f,%.3f,%.4f,%.3f,%.3f,%.3f,%.3f,%zu,%d\n", frame, stamp_s, k, c.x(), c.y(),
-               std::atan2(std::sin(o.box.yaw + dyaw), std::cos(o.box.yaw + dyaw)), o.box.length, o.box.width,
-               o.z_min + z0, o.z_max + z0, o.points, k < f.object_track.size() ? f.object_track[k] : -1);
+    runfolder::ObjectRow r;
+    r.frame = frame, r.stamp_s = stamp_s, r.object = k, r.cx = c.x(), r.cy = c.y();
+    r.yaw_rad = std::atan2(std::sin(o.box.yaw + dyaw), std::cos(o.box.yaw + dyaw));
+    r.length_m = o.box.length, r.width_m = o.box.width, r.z_min = o.z_min + z0, r.z_max = o.z_max + z0;
+    r.points = o.points, r.track_id = k < f.object_track.size() ? f.object_track[k] : -1;
+    out += runfolder::objectsCsvRow(r);
   }
   return out;
 }
 
-std::string tracksCsvHeader() {
-  return "frame,stamp_s,track_id,x,y,vx,vy,speed_mps,heading_rad,length_m,width_m,z_min,z_max,moving,hits,misses,age_s\n";
-}
+std::string tracksCsvHeader() { return runfolder::tracksCsvHeader(); }
 
 std::string tracksCsvRows(size_t frame, double stamp_s, const ObjectsFrame& f) {
   std::string out;
   for (const Track& t : f.tracks) {
-    out += fmt("%zu,%.6f,%d,%.3f,%.3f,%.3f,%.3f,%.3f,%.4f,%.3f,%.3f,%.3f,%.3f,%d,%d,%d,%.2f\n", frame, stamp_s, t.id, t.x(0),
-               t.x(1), t.x(2), t.x(3), t.speed(), t.heading, t.length, t.width, t.z_min, t.z_max, t.moving ? 1 : 0,
-               t.hits, t.misses, stamp_s - t.t_birth);
+    runfolder::TrackRow r;
+    r.frame = frame, r.stamp_s = stamp_s, r.track_id = t.id, r.x = t.x(0), r.y = t.x(1), r.vx = t.x(2), r.vy = t.x(3);
+    r.speed_mps = t.speed(), r.heading_rad = t.heading, r.length_m = t.length, r.width_m = t.width;
+    r.z_min = t.z_min, r.z_max = t.z_max, r.moving = t.moving, r.hits = t.hits, r.misses = t.misses;
+    r.age_s = stamp_s - t.t_birth;
+    out += runfolder::tracksCsvRow(r);
   }
   return out;
 }
 
-std::string endedCsvHeader() { return "track_id,t_birth,t_end,hits,confirmed,moving,reason\n"; }
+std::string endedCsvHeader() { return runfolder::tracksEndedCsvHeader(); }
 
 std::string endedCsvRows(const std::vector<EndedTrack>& ended) {
   std::string out;
   for (const EndedTrack& e : ended) {
-    out += fmt("%d,%.6f,%.6f,%d,%d,%d,%s\n", e.track.id, e.track.t_birth, e.t_end, e.track.hits,
-               e.track.state == TrackState::Confirmed ? 1 : 0, e.track.moving ? 1 : 0, e.reason.c_str());
+    runfolder::EndedTrackRow r;
+    r.track_id = e.track.id, r.t_birth = e.track.t_birth, r.t_end = e.t_end, r.hits = e.track.hits;
+    r.confirmed = e.track.state == TrackState::Confirmed, r.moving = e.track.moving, r.reason = e.reason;
+    out += runfolder::tracksEndedCsvRow(r);
   }
   return out;
 }

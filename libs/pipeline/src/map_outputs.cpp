@@ -1,11 +1,8 @@
 #include <algorithm>
-#include <cstdio>
 #include <map>
-#include <sstream>
 
-#include "roadslam/common/atomic_file.h"
-#include "roadslam/datasets/trajectory_io.h"
 #include "roadslam/pipeline/map_job.h"
+#include "roadslam/runfolder/run_folder.h"
 
 namespace roadslam::pipeline {
 namespace {
@@ -21,23 +18,17 @@ bool hasPose(const odometry::FrameResult& f) {
   return f.status != odometry::FrameStatus::Skipped;
 }
 
-std::string framesCsv(const std::vector<odometry::FrameResult>& frames) {
-  std::ostringstream os;
-  os << "index,stamp_s,status,point_times,deskewed,keyframe,x_m,y_m,z_m,points_in,points_registered,iterations,inliers,"
-        "fitness_m,threshold_m,weak_directions,motion_information,ms_preprocess,ms_register,ms_map,ms_total,reason\n";
-  char buf[512];
-  for (const auto& f : frames) {
-    const auto t = f.T_world_lidar.translation();
-    std::snprintf(buf, sizeof buf, "%zu,%.6f,%s,%s,%d,%d,%.4f,%.4f,%.4f,%d,%d,%d,%d,%.4f,%.3f,%d,%.5f,%.3f,%.3f,%.3f,%.3f,",
-                  f.index, f.stamp_s, odometry::toString(f.status), f.point_times, f.deskewed ? 1 : 0,
-                  f.keyframe ? 1 : 0, t.x(), t.y(), t.z(),
-                  f.points_in, f.points_registered, f.iterations, f.inliers, f.fitness_m, f.threshold_m,
-                  f.weak_directions, f.motion_information, f.ms_preprocess, f.ms_register, f.ms_map, f.ms_total);
-    std::string reason = f.reason;
-    std::replace(reason.begin(), reason.end(), ',', ';');
-    os << buf << reason << "\n";
-  }
-  return os.str();
+runfolder::FrameRow frameRow(const odometry::FrameResult& f) {
+  runfolder::FrameRow r;
+  const auto t = f.T_world_lidar.translation();
+  r.index = f.index, r.stamp_s = f.stamp_s, r.status = odometry::toString(f.status), r.point_times = f.point_times;
+  r.deskewed = f.deskewed, r.keyframe = f.keyframe, r.x_m = t.x(), r.y_m = t.y(), r.z_m = t.z();
+  r.points_in = f.points_in, r.points_registered = f.points_registered, r.iterations = f.iterations, r.inliers = f.inliers;
+  r.fitness_m = f.fitness_m, r.threshold_m = f.threshold_m, r.weak_directions = f.weak_directions;
+  r.motion_information = f.motion_information;
+  r.ms_preprocess = f.ms_preprocess, r.ms_register = f.ms_register, r.ms_map = f.ms_map, r.ms_total = f.ms_total;
+  r.reason = f.reason;
+  return r;
 }
 
 /// How much of the drive the scans could not see the motion in (FrameStatus::Degenerate): the count,
@@ -127,21 +118,18 @@ nlohmann::json summarize(const std::vector<odometry::FrameResult>& frames) {
 void writeMapOutputs(const std::string& out_dir, const std::vector<odometry::FrameResult>& frames,
                      const std::vector<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>>& T_map_lidar,
                      const nlohmann::json& summary) {
-  datasets::Trajectory traj, odom;
+  runfolder::MapRunFiles out;
   for (size_t i = 0; i < frames.size(); ++i) {
     const auto& f = frames[i];
+    out.frames.push_back(frameRow(f));
     if (!hasPose(f)) continue;
-    traj.stamps_s.push_back(f.stamp_s);
-    traj.poses.push_back(T_map_lidar.empty() ? f.T_world_lidar : T_map_lidar.at(i));
-    odom.stamps_s.push_back(f.stamp_s);
-    odom.poses.push_back(f.T_world_lidar);
+    out.trajectory.stamps_s.push_back(f.stamp_s);
+    out.trajectory.poses.push_back(T_map_lidar.empty() ? f.T_world_lidar : T_map_lidar.at(i));
+    out.odometry.stamps_s.push_back(f.stamp_s);
+    out.odometry.poses.push_back(f.T_world_lidar);
   }
-  datasets::writeTum(out_dir + "/trajectory.tum", traj);
-  datasets::writeTum(out_dir + "/trajectory_odometry.tum", odom);
-  datasets::writeKittiPoses(out_dir + "/trajectory_kitti.txt", traj.poses);
-  datasets::writeTimes(out_dir + "/trajectory_times.txt", traj.stamps_s);
-  writeFileAtomically(out_dir + "/frames.csv", framesCsv(frames));
-  writeFileAtomically(out_dir + "/summary.json", summary.dump(2) + "\n");
+  out.summary = summary;
+  runfolder::writeMapRun(out_dir, out);
 }
 
 }  // namespace roadslam::pipeline

@@ -22,6 +22,7 @@
 #include <mrpt/obs/CObservationVelodyneScan.h>
 #include <mrpt/serialization/CArchive.h>
 
+#include "roadslam/runfolder/run_folder.h"
 #include "roadslam/pcap/pcap_writer.h"
 #include "roadslam/recording_report/recording_report.h"
 #include "roadslam/sim/outputs.h"
@@ -362,10 +363,19 @@ TEST(RecordingReport, DamagedInputsNameThePlace) {
 TEST(RecordingReport, MapFolderTrajectoryAndPicturesAreEmbedded) {
   const std::string dir = freshDir("map");
   fs::create_directories(dir + "/map");
-  std::ofstream(dir + "/map/trajectory.tum") << "0 0 0 0 0 0 0 1\n1 10 0 0 0 0 0 1\n2 10 10 0 0 0 0 1\n3 0 10 0 0 0 0 1\n";
+  roadslam::datasets::Trajectory square;  // 30 m in three legs of 10 m
+  for (const auto& [t, x, y] : std::vector<std::array<double, 3>>{{0, 0, 0}, {1, 10, 0}, {2, 10, 10}, {3, 0, 10}}) {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.translation() << x, y, 0;
+    square.stamps_s.push_back(t);
+    square.poses.push_back(T);
+  }
+  auto files = roadslam::runfolder::mapRunOfTrajectory(square, "test");
+  files.summary["keyframes"] = 2;
+  files.summary["other"] = 1;
   const std::string png("\x89PNG\r\n\x1a\n", 8);
   std::ofstream(dir + "/map/map_top.png", std::ios::binary) << png;
-  std::ofstream(dir + "/map/summary.json") << R"({"frames": 4, "keyframes": 2, "other": 1})";
+  roadslam::runfolder::writeMapRun(dir + "/map", files);
   auto in = simInputs(drive() + "/velodyne.pcap");
   in.map_dir = dir + "/map";
   const auto r = rr::buildReport(in);
@@ -377,6 +387,14 @@ TEST(RecordingReport, MapFolderTrajectoryAndPicturesAreEmbedded) {
   EXPECT_NE(rr::toHtml(r).find("data:image/png;base64,iVBORw0KGgo="), std::string::npos);
   in.map_dir = dir + "/nope";
   EXPECT_THROW(rr::buildReport(in), std::runtime_error);
+  fs::remove(dir + "/map/run.json");  // as written before run folders had a manifest
+  in.map_dir = dir + "/map";
+  try {
+    rr::buildReport(in);
+    FAIL() << "a map folder without run.json must be refused";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(dir + "/map/run.json: missing"), std::string::npos) << e.what();
+  }
 }
 
 TEST(RecordingReport, AppWritesHtmlAndJsonThatChromiumRenders) {

@@ -28,24 +28,12 @@
 #include <mrpt/serialization/CArchive.h>
 #include <mrpt/obs/CObservationOdometry.h>
 
-#include "roadslam/datasets/trajectory_io.h"
+#include "roadslam/runfolder/run_folder.h"
 #include "roadslam/viewer/scene.h"
 
 namespace roadslam::viewer {
 namespace fs = std::filesystem;
 
-namespace {
-std::vector<std::string> splitCsv(const std::string& line) {
-  std::vector<std::string> out;
-  std::stringstream ss(line);
-  std::string cell;
-  while (std::getline(ss, cell, ',')) out.push_back(cell);
-  return out;
-}
-Eigen::Vector3d point3(const nlohmann::json& p) {
-  return {p.at(0).get<double>(), p.at(1).get<double>(), p.size() > 2 ? p.at(2).get<double>() : 0.0};
-}
-}  // namespace
 
 std::vector<Eigen::Vector3f> readPlyPoints(const std::string& path, double voxel_m) {
   std::ifstream f(path, std::ios::binary);
@@ -292,52 +280,29 @@ void ViewerModel::loadCan(const std::string& log, const std::string& vehicle_ini
 }
 
 void ViewerModel::loadMapFolder(const std::string& dir) {
-  const std::string tum = dir + "/trajectory.tum";
-  if (!fs::exists(tum)) throw std::runtime_error("map folder '" + dir + "' has no trajectory.tum");
-  const auto traj = datasets::readTum(tum);
-  // frames.csv: index,stamp_s,status,point_times,deskewed,keyframe,... (one row per trajectory pose)
-  std::vector<std::vector<std::string>> rows;
-  std::map<std::string, std::size_t> col;  // frames.csv's columns by name
-  if (std::ifstream csv(dir + "/frames.csv"); csv) {
-    std::string line;
-    std::getline(csv, line);
-    const auto header = splitCsv(line);
-    for (std::size_t c = 0; c < header.size(); ++c) col[header[c]] = c;
-    while (std::getline(csv, line)) rows.push_back(splitCsv(line));
-  }
-  const auto number = [&col](const std::vector<std::string>& row, const char* name) {
-    const auto it = col.find(name);
-    if (it == col.end() || it->second >= row.size()) return std::nan("");
-    char* end = nullptr;
-    const double v = std::strtod(row[it->second].c_str(), &end);
-    return end == row[it->second].c_str() ? std::nan("") : v;
-  };
-  for (std::size_t i = 0; i < traj.poses.size(); ++i) {
+  const runfolder::RunFolder run = runfolder::openMapRun(dir);
+  const runfolder::StampedTrajectory traj = run.trajectory();
+  const std::vector<runfolder::FrameRow> rows = run.frames();
+  const std::vector<long> pose_row = runfolder::trajectoryRowOfFrames(rows, traj.size(), dir);
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    if (pose_row[i] < 0) continue;  // skipped: no pose to draw
+    const auto k = static_cast<std::size_t>(pose_row[i]);
     FrameResult f;
-    f.stamp_s = traj.stamps_s.at(i);
-    f.T_map_lidar = traj.poses[i];
-    if (i < rows.size() && rows[i].size() > 5) {
-      f.status = rows[i][2];
-      f.keyframe = rows[i][5] == "1";
-      f.ms = number(rows[i], "ms_total");
-      f.inliers = number(rows[i], "inliers");
-    }
+    f.stamp_s = traj.stamp(k);
+    f.T_map_lidar = traj.pose(k);
+    f.status = rows[i].status;
+    f.keyframe = rows[i].keyframe;
+    f.ms = rows[i].ms_total;
+    f.inliers = rows[i].inliers;
     appendFrame(f);
   }
-  if (!traj.stamps_s.empty()) checkOverlap("map folder '" + dir + "' times", traj.stamps_s.front(), traj.stamps_s.back());
+  if (!traj.empty()) checkOverlap("map folder '" + dir + "' times", traj.front(), traj.back());
   objects_ = readObjectsFolder(dir);  // a run with [objects] enabled
-  if (std::ifstream js(dir + "/summary.json"); js) {
-    try {
-      const auto j = nlohmann::json::parse(js);
-      if (j.contains("loops"))
-        for (const auto& l : j["loops"]["accepted"]) {
-          const auto q = l.at("query_frame").get<std::size_t>(), m = l.at("match_frame").get<std::size_t>();
-          if (q >= traj.poses.size() || m >= traj.poses.size()) continue;
-          loops_.push_back({traj.stamps_s[q], traj.poses[q].translation(), traj.poses[m].translation()});
-        }
-    } catch (const std::exception& e) {
-      throw std::runtime_error("cannot read '" + dir + "/summary.json': " + e.what());
-    }
+  for (const auto& l : run.mapSummary().loops_accepted) {
+    if (l.query_frame >= rows.size() || l.match_frame >= rows.size()) continue;
+    const long q = pose_row[l.query_frame], m = pose_row[l.match_frame];
+    if (q < 0 || m < 0) continue;
+    loops_.push_back({traj.stamp(std::size_t(q)), traj.pose(std::size_t(q)).translation(), traj.pose(std::size_t(m)).translation()});
   }
   if (in_.octomap) {
     const std::string bt = dir + "/map.bt";
@@ -392,48 +357,38 @@ void ViewerModel::loadGrid(const std::string& dir) {
 }
 
 void ViewerModel::loadBounds(const std::string& dir) {
-  const std::string path = dir + "/boundaries.jsonl";
-  std::ifstream f(path);
-  if (!f) throw std::runtime_error("bounds folder '" + dir + "' has no boundaries.jsonl");
-  std::string line;
-  for (int n = 1; std::getline(f, line); ++n) {
-    if (line.empty()) continue;
-    try {
-      const auto j = nlohmann::json::parse(line);
-      BoundaryFrame b;
-      b.stamp_s = j.at("stamp_s").get<double>();
-      for (const auto& p : j["left"]["polyline_map"]) b.left.push_back(point3(p));
-      for (const auto& p : j["right"]["polyline_map"]) b.right.push_back(point3(p));
-      const auto& T = j.at("T_map_lidar");
-      Eigen::Matrix4d M;
-      for (int r = 0; r < 4; ++r)
-        for (int c = 0; c < 4; ++c) M(r, c) = T.at(std::size_t(r * 4 + c)).get<double>();
-      const Eigen::Isometry3d T_map_lidar(M);
-      for (const auto& p : j["free_space"]) b.free_space.push_back(T_map_lidar * point3(p));
-      bounds_.push_back(std::move(b));
-    } catch (const std::exception& e) {
-      throw std::runtime_error(path + ":" + std::to_string(n) + ": " + e.what());
-    }
+  for (const auto& r : runfolder::openBoundsRun(dir).boundaries()) {
+    if (!r.has_pose) continue;  // a sweep without a pose has no boundaries
+    BoundaryFrame b;
+    b.stamp_s = r.stamp_s;
+    b.left = r.left.polyline_map;
+    b.right = r.right.polyline_map;
+    for (const auto& p : r.free_space) b.free_space.push_back(r.T_map_lidar * Eigen::Vector3d(p.x(), p.y(), 0.0));
+    bounds_.push_back(std::move(b));
   }
   std::sort(bounds_.begin(), bounds_.end(), [](const auto& a, const auto& b) { return a.stamp_s < b.stamp_s; });
   if (!bounds_.empty()) checkOverlap("bounds folder '" + dir + "' times", bounds_.front().stamp_s, bounds_.back().stamp_s);
 }
 
 // Ground truth is in its own world frame: it is drawn anchored to the estimated trajectory at the
-// first estimated frame it covers (T_map_gt = T_map_lidar(t) * T_gt_lidar(t)^-1), or as is without one.
+// first estimated frame it covers (T_map_gt = T_map_lidar(t) * T_gt_lidar(t)^-1, the ground truth
+// interpolated at the frame's time), or as is without one.
 void ViewerModel::loadGroundTruth(const std::string& path) {
-  const auto gt = datasets::readTum(path);
-  if (gt.poses.empty()) return;
-  checkOverlap("ground truth '" + path + "' times", gt.stamps_s.front(), gt.stamps_s.back());
+  const runfolder::StampedTrajectory gt = runfolder::readTrajectory(path);
+  if (gt.empty()) return;
+  checkOverlap("ground truth '" + path + "' times", gt.front(), gt.back());
+  constexpr double kMaxGtGap_s = 0.12;  // a frame between ground-truth poses farther apart is not covered
   Eigen::Isometry3d T_map_gt = Eigen::Isometry3d::Identity();
   for (const auto& f : frames_) {
-    const auto it = std::lower_bound(gt.stamps_s.begin(), gt.stamps_s.end(), f.stamp_s - 0.06);
-    if (it == gt.stamps_s.end() || std::abs(*it - f.stamp_s) > 0.06) continue;
-    T_map_gt = f.T_map_lidar * gt.poses[std::size_t(it - gt.stamps_s.begin())].inverse();
+    const auto T_gt_lidar = gt.at(f.stamp_s, kMaxGtGap_s);
+    if (!T_gt_lidar) continue;
+    T_map_gt = f.T_map_lidar * T_gt_lidar->inverse();
     break;
   }
-  gt_stamps_ = gt.stamps_s;
-  for (const auto& T : gt.poses) gt_positions_.push_back((T_map_gt * T).translation());
+  for (std::size_t i = 0; i < gt.size(); ++i) {
+    gt_stamps_.push_back(gt.stamp(i));
+    gt_positions_.push_back((T_map_gt * gt.pose(i)).translation());
+  }
 }
 
 }  // namespace roadslam::viewer

@@ -5,13 +5,10 @@
 #include <mrpt/opengl/CText.h>
 
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <map>
-#include <sstream>
-#include <stdexcept>
 
+#include "roadslam/runfolder/objects_csv.h"
 #include "roadslam/viewer/scene.h"
 
 namespace roadslam::viewer {
@@ -20,48 +17,6 @@ namespace {
 constexpr double kArrowMinSpeed_mps = 0.5;  // slower tracks get no arrow (a parked car's filter noise)
 constexpr double kArrowHead_m = 0.8;
 constexpr double kArrowHeadAngle_rad = 25.0 * M_PI / 180.0;
-
-/// A CSV file read by column name; number() throws naming the file and line.
-class Csv {
- public:
-  explicit Csv(const std::string& path) : path_(path), in_(path) {
-    std::string header;
-    if (!std::getline(in_, header)) throw std::runtime_error(path + ": empty, no header line");
-    std::size_t c = 0;
-    for (const auto& name : split(header)) col_[name] = c++;
-  }
-  bool next() {
-    std::string line;
-    if (!std::getline(in_, line)) return false;
-    ++line_;
-    row_ = split(line);
-    return true;
-  }
-  double number(const std::string& name) const {
-    const auto it = col_.find(name);
-    if (it == col_.end()) throw std::runtime_error(path_ + ": no column '" + name + "'");
-    const std::string cell = it->second < row_.size() ? row_[it->second] : "";
-    char* end = nullptr;
-    const double v = std::strtod(cell.c_str(), &end);
-    if (cell.empty() || *end != '\0' || !std::isfinite(v))
-      throw std::runtime_error(path_ + ":" + std::to_string(line_) + ": column '" + name + "' is not a number: '" + cell + "'");
-    return v;
-  }
-
- private:
-  static std::vector<std::string> split(const std::string& line) {
-    std::vector<std::string> out;
-    std::stringstream ss(line);
-    std::string cell;
-    while (std::getline(ss, cell, ',')) out.push_back(cell);
-    return out;
-  }
-  std::string path_;
-  std::ifstream in_;
-  std::map<std::string, std::size_t> col_;
-  std::vector<std::string> row_;
-  std::size_t line_ = 1;  // lines read, the header included
-};
 
 mrpt::img::TColor colourOf(const ObjectBox& b) {
   const unsigned char* c = b.track_id < 0 ? SceneColors::object_untracked
@@ -101,30 +56,28 @@ void addArrow(const ObjectBox& b, mrpt::opengl::CSetOfLines& l) {
 
 std::vector<ObjectBoxes> readObjectsFolder(const std::string& dir) {
   std::map<double, ObjectBoxes> by_stamp;
-  const std::string tracks = dir + "/tracks.csv", objects = dir + "/objects.csv";
+  const std::string tracks = dir + "/" + runfolder::kTracksCsv, objects = dir + "/" + runfolder::kObjectsCsv;
   if (!std::filesystem::exists(tracks)) return {};
-  for (Csv csv(tracks); csv.next();) {
+  for (const runfolder::TrackRow& r : runfolder::readTracksCsv(tracks)) {
     ObjectBox b;
-    b.track_id = static_cast<int>(csv.number("track_id"));
-    b.moving = csv.number("moving") != 0;
-    b.x = csv.number("x"), b.y = csv.number("y"), b.yaw_rad = csv.number("heading_rad");
-    b.length_m = csv.number("length_m"), b.width_m = csv.number("width_m");
-    b.z_min_m = csv.number("z_min"), b.z_max_m = csv.number("z_max");
-    b.vx_mps = csv.number("vx"), b.vy_mps = csv.number("vy");
-    const double t = csv.number("stamp_s");
-    by_stamp[t].stamp_s = t;
-    by_stamp[t].boxes.push_back(b);
+    b.track_id = r.track_id;
+    b.moving = r.moving;
+    b.x = r.x, b.y = r.y, b.yaw_rad = r.heading_rad;
+    b.length_m = r.length_m, b.width_m = r.width_m;
+    b.z_min_m = r.z_min, b.z_max_m = r.z_max;
+    b.vx_mps = r.vx, b.vy_mps = r.vy;
+    by_stamp[r.stamp_s].stamp_s = r.stamp_s;
+    by_stamp[r.stamp_s].boxes.push_back(b);
   }
   if (std::filesystem::exists(objects)) {
-    for (Csv csv(objects); csv.next();) {
-      if (csv.number("track_id") >= 0) continue;  // drawn as its track
+    for (const runfolder::ObjectRow& r : runfolder::readObjectsCsv(objects)) {
+      if (r.track_id >= 0) continue;  // drawn as its track
       ObjectBox b;
-      b.x = csv.number("cx"), b.y = csv.number("cy"), b.yaw_rad = csv.number("yaw_rad");
-      b.length_m = csv.number("length_m"), b.width_m = csv.number("width_m");
-      b.z_min_m = csv.number("z_min"), b.z_max_m = csv.number("z_max");
-      const double t = csv.number("stamp_s");
-      by_stamp[t].stamp_s = t;
-      by_stamp[t].boxes.push_back(b);
+      b.x = r.cx, b.y = r.cy, b.yaw_rad = r.yaw_rad;
+      b.length_m = r.length_m, b.width_m = r.width_m;
+      b.z_min_m = r.z_min, b.z_max_m = r.z_max;
+      by_stamp[r.stamp_s].stamp_s = r.stamp_s;
+      by_stamp[r.stamp_s].boxes.push_back(b);
     }
   }
   std::vector<ObjectBoxes> out;

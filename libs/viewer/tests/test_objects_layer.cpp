@@ -12,6 +12,7 @@
 #include <fstream>
 
 #include "roadslam/objects/stage.h"
+#include "roadslam/runfolder/run_folder.h"
 #include "roadslam/sources/recording.h"
 #include "boxroom.h"
 #include "roadslam/viewer/render.h"
@@ -38,8 +39,9 @@ roadslam::objects::Track track(int id, bool moving, double x, double y, double v
 /// 8 m farther one sweep later (at \p t + 0.1 s, not the sweep shown).
 void writeFolder(const fs::path& dir, double t) {
   fs::create_directories(dir);
-  std::ofstream tum(dir / "trajectory.tum");
-  for (int k = -5; k <= 5; ++k) tum << std::fixed << t + 0.1 * k << " 0 0 0 0 0 0 1\n";
+  roadslam::datasets::Trajectory poses;
+  for (int k = -5; k <= 5; ++k) poses.stamps_s.push_back(t + 0.1 * k), poses.poses.push_back(Eigen::Isometry3d::Identity());
+  roadslam::runfolder::writeMapRun(dir.string(), roadslam::runfolder::mapRunOfTrajectory(poses, "test"));
   roadslam::objects::ObjectsFrame f;
   f.tracks = {track(7, true, 12, 0, 8, 0), track(3, false, -10, 6, 0, 0)};
   roadslam::objects::Object o;

@@ -15,10 +15,25 @@
 #include <thread>
 
 #include "roadslam/mapping/maps.h"
+#include "roadslam/runfolder/run_folder.h"
 #include "roadslam/sources/recording.h"
 #include "boxroom.h"
 #include "roadslam/viewer/render.h"
 #include "roadslam/viewer/replay.h"
+
+namespace {
+/// The files of a map folder holding poses at \p stamps_s at positions \p xy (written with runfolder's writer, run.json too).
+roadslam::runfolder::MapRunFiles poseFolder(const std::vector<double>& stamps_s, const std::vector<Eigen::Vector2d>& xy) {
+  roadslam::datasets::Trajectory t;
+  for (size_t i = 0; i < stamps_s.size(); ++i) {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.translation() << xy[i].x(), xy[i].y(), 0;
+    t.stamps_s.push_back(stamps_s[i]);
+    t.poses.push_back(T);
+  }
+  return roadslam::runfolder::mapRunOfTrajectory(t, "test");
+}
+}  // namespace
 
 using namespace roadslam::viewer;
 namespace fs = std::filesystem;
@@ -152,7 +167,7 @@ TEST(ViewerReplay, ShortcutsStepPlayAndClamp) {
 TEST(ViewerModel, MapFolderTimesOutsideTheRecordingAreNamed) {
   const fs::path dir = tempDir() / "map_elsewhere";
   fs::create_directories(dir);
-  std::ofstream(dir / "trajectory.tum") << "100.0 0 0 0 0 0 0 1\n100.1 1 0 0 0 0 0 1\n";
+  roadslam::runfolder::writeMapRun(dir.string(), poseFolder({100.0, 100.1}, {{0, 0}, {1, 0}}));
   ViewerInputs in;
   in.recording = boxroomRawlog();
   in.map_dir = dir.string();
@@ -172,17 +187,16 @@ TEST(ViewerModel, MapFolderLoopsKeyframesAndDecimatedPointMap) {
   in.recording = boxroomRawlog();
   const double t0 = ViewerModel(in).startTime();
   {  // a square drive of 4 frames back to the start: frame 3 closes a loop onto frame 0
-    std::ofstream tum(dir / "trajectory.tum");
-    tum.precision(17);
-    tum << "# t x y z qx qy qz qw\n";
     const double xy[4][2] = {{0, 0}, {8, 0}, {8, 8}, {0.5, 0.5}};
-    for (int i = 0; i < 4; ++i) tum << t0 + 0.1 * i << " " << xy[i][0] << " " << xy[i][1] << " 0 0 0 0 1\n";
-    std::ofstream csv(dir / "frames.csv");
-    csv << "index,stamp_s,status,point_times,deskewed,keyframe,x_m\n";
-    for (int i = 0; i < 4; ++i) csv << i << "," << t0 + 0.1 * i << "," << (i == 2 ? "degenerate" : "ok") << ",sensor,1," << (i % 2 == 0) << ",0\n";
-    std::ofstream(dir / "summary.json")
-        << R"({"loops": {"accepted": [{"query_frame": 3, "match_frame": 0, "query_keyframe": 2, "match_keyframe": 0,
-              "fitness_m": 0.1, "overlap": 0.8, "correction_m": 0.2, "ms": 5, "reason": "accepted"}], "rejected": []}})";
+    std::vector<double> st;
+    std::vector<Eigen::Vector2d> p;
+    for (int i = 0; i < 4; ++i) st.push_back(t0 + 0.1 * i), p.emplace_back(xy[i][0], xy[i][1]);
+    auto files = poseFolder(st, p);
+    for (int i = 0; i < 4; ++i) files.frames[size_t(i)].status = i == 2 ? "degenerate" : "ok", files.frames[size_t(i)].keyframe = i % 2 == 0;
+    auto s = roadslam::runfolder::mapSummaryFromJson(files.summary, "test");
+    s.loops_accepted.push_back({3, 0, 2, 0, 0.1, 0.8, 0.2, "accepted"});
+    files.summary = roadslam::runfolder::mapSummaryJson(s);
+    roadslam::runfolder::writeMapRun(dir.string(), files);
     std::vector<Eigen::Vector3f> pts;
     for (int i = 0; i < 1000; ++i) pts.emplace_back(0.01f * float(i), 0.f, 0.f);  // 10 m of points 1 cm apart
     roadslam::mapping::writePly((dir / "map.ply").string(), pts);
@@ -266,7 +280,7 @@ TEST(ViewerModel, IndexedInTheBackgroundEndsAsTheWholeRecording) {
   }
   fs::remove(roadslam::sources::RawlogIndex::sidecarPath(rec.string()));
   fs::create_directories(dir);
-  std::ofstream(dir / "trajectory.tum") << "100.0 0 0 0 0 0 0 1\n100.1 1 0 0 0 0 0 1\n";
+  roadslam::runfolder::writeMapRun(dir.string(), poseFolder({100.0, 100.1}, {{0, 0}, {1, 0}}));
   ViewerInputs in;
   in.recording = rec.string();
   in.map_dir = dir.string();

@@ -82,7 +82,8 @@ size_t removeMovingPoints(std::vector<Eigen::Vector3d>& pts_lidar, const Objects
 /// Whether \p p_map (map frame) lies inside \p b grown by \p margin_m (x-y and z).
 bool insideBox(const BoxRecord& b, const Eigen::Vector3d& p_map, double margin_m);
 
-/// CSV headers and rows (formats in the file comment); \p T_map_lidar places the objects in the map.
+/// CSV headers and rows (formats in the file comment and docs/run-folder.md; written through
+/// roadslam/runfolder/objects_csv.h, which reads them back); \p T_map_lidar places the objects in the map.
 std::string objectsCsvHeader();
 std::string objectsCsvRows(size_t frame, double stamp_s, const Eigen::Isometry3d& T_map_lidar, const ObjectsFrame& f);
 std::string tracksCsvHeader();

@@ -70,7 +70,8 @@ struct MapOutcome {
 /// counted in the summary.
 MapOutcome runMapJob(const MapRequest& req);
 
-/// Writes the trajectory files, frames.csv and summary.json for \p frames into \p out_dir;
+/// Writes the trajectory files, frames.csv, summary.json and, last, run.json (runfolder::writeMapRun,
+/// formats in docs/run-folder.md) for \p frames into \p out_dir;
 /// trajectory.tum / trajectory_kitti.txt hold \p T_map_lidar (one per frame) when it is not empty,
 /// else the odometry poses.
 void writeMapOutputs(const std::string& out_dir, const std::vector<odometry::FrameResult>& frames,
