@@ -5,7 +5,6 @@
 #include "roadslam/pipeline/bounds_job.h"
 #include "roadslam/common/cli.h"
 #include "roadslam/common/stop_signal.h"
-#include "roadslam/runfolder/run_folder.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"Road boundaries (curbs), obstacles, free space and a cost grid per sweep"};
@@ -35,8 +34,6 @@ int main(int argc, char** argv) {
   roadslam::installStopSignalHandlers();
   try {
     const auto summary = roadslam::pipeline::runBoundsJob(req);
-    // run.json last: the folder is complete (docs/run-folder.md)
-    roadslam::runfolder::writeManifest(req.out_dir, roadslam::runfolder::manifestFor(roadslam::runfolder::kBoundsProgram, summary));
     if (!quiet) std::cout << (json ? summary.dump(2) + "\n" : roadslam::pipeline::boundsSummaryText(summary, req.out_dir));
     for (const auto& w : summary["warnings"]) std::cerr << "roadslam-bounds: warning: " << w.get<std::string>() << "\n";
     return 0;

@@ -25,7 +25,7 @@
 #include "roadslam/pipeline/gnss_outputs.h"
 #include "roadslam/sim/eigen.h"
 #include "roadslam/sim/simulator.h"
-#include "roadslam/vehicle/odometry.h"
+#include "roadslam/vehicle/can_odometry.h"
 #include "roadslam/vehicle/params.h"
 #include "roadslam/vehicle/vehicle_state.h"
 
@@ -317,7 +317,7 @@ int rav4Figures(int argc, char** argv) {
     // fixes alone: linearly interpolated at the reference times
     std::vector<double> ft;
     PoseVector fT;
-    std::vector<vehicle::GnssFix> course;  // for the dead reckoning's yaw-rate bias (vehicle/odometry.h)
+    std::vector<vehicle::GnssFix> course;  // for the dead reckoning's yaw-rate bias (vehicle/can_odometry.h)
     for (size_t k = 0; k < fixes.size(); ++k) {
       Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
       T.translation() = fixes[k].p_enu;

@@ -17,6 +17,9 @@
 #include "roadslam/pipeline/gnss_outputs.h"
 #include "roadslam/pipeline/pipeline.h"
 #include "roadslam/pipeline/stage_factory.h"
+#include "roadslam/runfolder/run_folder.h"
+#include "roadslam/runfolder/boundaries.h"
+#include "roadslam/runfolder/summary.h"
 
 namespace fs = std::filesystem;
 
@@ -148,7 +151,7 @@ nlohmann::json runBoundsJob(const BoundsRequest& req) {
     if (!pf) break;
     if (!pf->boundary) {
       ++tot.no_pose;
-      jsonl.stream() << nlohmann::json{{"stamp_s", pf->pose.stamp_s}, {"status", "no_pose"}, {"reason", pf->pose.why}}.dump() << "\n";
+      jsonl.stream() << runfolder::noPoseLine(pf->pose.stamp_s, pf->pose.why);
       continue;
     }
     tot.add(*pf->boundary);
@@ -175,7 +178,9 @@ nlohmann::json runBoundsJob(const BoundsRequest& req) {
   if (!stream.errorMessage().empty()) s["warnings"].push_back("input damaged: " + stream.errorMessage());
   s["complete"] = stream.errorMessage().empty() && !stopRequested();
   for (const auto& w : stream.warnings()) s["warnings"].push_back(w);
-  writeFileAtomically(req.out_dir + "/summary.json", s.dump(2) + "\n");
+  runfolder::writeSummaryJson(req.out_dir + "/summary.json", s);
+  // run.json last: the folder is complete (docs/run-folder.md)
+  runfolder::writeManifest(req.out_dir, runfolder::manifestFor(runfolder::kBoundsProgram, s));
   return s;
 }
 

@@ -68,11 +68,8 @@ void LocalizationOutput::add(const PipelineFrame& f) {
   relocalized += r.status == mapping::LocalizationStatus::Relocalized;
   lost += r.status == mapping::LocalizationStatus::Lost;
   sum_conf += r.confidence;
-  std::string why = r.reason;
-  for (char& c : why) c = c == ',' ? ';' : c;
-  csv += std::to_string(f.index) + "," + std::to_string(f.pose.stamp_s) + "," + mapping::toString(r.status) + "," +
-         std::to_string(r.confidence) + "," + std::to_string(r.keyframe) + "," + std::to_string(r.weak_directions) + "," +
-         why + "\n";
+  csv += runfolder::localizationCsvRow(
+      {f.index, f.pose.stamp_s, mapping::toString(r.status), r.confidence, r.keyframe, r.weak_directions, r.reason});
 }
 
 void LocalizationOutput::bridge(const std::vector<odometry::FrameResult>& frames) {

@@ -12,6 +12,7 @@
 #include "roadslam/mapping/map_outputs.h"
 #include "roadslam/objects/stage.h"
 #include "roadslam/pipeline/stage.h"
+#include "roadslam/runfolder/localization_csv.h"
 
 namespace roadslam::pipeline {
 
@@ -39,7 +40,7 @@ struct ObjectsOutput {
 struct LocalizationOutput {
   std::vector<int> localized;  ///< per frame: 1 when the localizer gave its pose
   std::vector<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>> T_map_lidar;
-  std::string csv = "frame,stamp_s,status,confidence,keyframe,weak_directions,reason\n";
+  std::string csv = runfolder::localizationCsvHeader();
   int tracked = 0, relocalized = 0, lost = 0;
   double sum_conf = 0;
 

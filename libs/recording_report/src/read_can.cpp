@@ -10,7 +10,7 @@
 #include "roadslam/can/candump.h"
 #include "roadslam/can/dbc.h"
 #include "roadslam/can/log_info.h"
-#include "roadslam/vehicle/odometry.h"
+#include "roadslam/vehicle/can_odometry.h"
 #include "roadslam/vehicle/vehicle_state.h"
 
 namespace fs = std::filesystem;

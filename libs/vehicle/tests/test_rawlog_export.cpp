@@ -1,7 +1,7 @@
 // Rawlog export: the observations read back with MRPT carry the decoded values, the odometry equals
 // the dead reckoning, and the candump sidecar holds the input frames unchanged.
 #include <roadslam/can/candump.h>
-#include <roadslam/vehicle/odometry.h>
+#include <roadslam/vehicle/can_odometry.h>
 #include <roadslam/vehicle/rawlog_export.h>
 
 #include <mrpt/io/CFileGZInputStream.h>

@@ -2,7 +2,7 @@
 // (gt_camera_pose_enu_20hz_DERIVED.csv) with the shipped ini, with and without the GNSS wheel-speed
 // scale; the Civic log (dropped frames) processed without error and its gaps reported.
 #include <roadslam/can/candump.h>
-#include <roadslam/vehicle/odometry.h>
+#include <roadslam/vehicle/can_odometry.h>
 
 #include <gtest/gtest.h>
 

@@ -119,7 +119,7 @@ void LiveSlam::run(Impl& impl) {
       if (!f && impl.pipe->source().finished()) break;
       if (!f) continue;  // live: no sweep ready yet
       const auto& r = *f->pose.odometry;
-      FrameResult out;
+      ViewerFrame out;
       out.stamp_s = r.stamp_s;
       out.T_map_lidar = r.T_world_lidar;
       out.status = odometry::toString(r.status);

@@ -101,7 +101,7 @@ int runLiveView(const ViewRequest& req, std::ostream& out, std::ostream& err) {
     const pipeline::LiveGnss* g = slam->gnss();
     if (g && g->counts().epochs > 0) {
       out << g->statusLine();
-      const FrameResult* last = nullptr;  // the newest corrected frame
+      const ViewerFrame* last = nullptr;  // the newest corrected frame
       for (const auto& f : model.frames())
         if (f.T_enu_lidar) last = &f;
       if (last && g->origin()) {

@@ -188,23 +188,23 @@ void ViewerModel::checkOverlap(const std::string& what, double t0, double t1) {
   }
 }
 
-void ViewerModel::appendFrame(const FrameResult& f) {
+void ViewerModel::appendFrame(const ViewerFrame& f) {
   if (frames_.empty() || frames_.back().stamp_s <= f.stamp_s) {
     frames_.push_back(f);
     return;
   }
   const auto at = std::upper_bound(frames_.begin(), frames_.end(), f.stamp_s,
-                                   [](double t, const FrameResult& r) { return t < r.stamp_s; });
+                                   [](double t, const ViewerFrame& r) { return t < r.stamp_s; });
   frames_.insert(at, f);
 }
 
-void ViewerModel::postFrame(const FrameResult& f) {
+void ViewerModel::postFrame(const ViewerFrame& f) {
   std::lock_guard<std::mutex> lock(posted_mutex_);
   posted_.push_back(f);
 }
 
 std::size_t ViewerModel::takePosted() {
-  std::vector<FrameResult> taken;
+  std::vector<ViewerFrame> taken;
   std::vector<ObjectBoxes> objects;
   {
     std::lock_guard<std::mutex> lock(posted_mutex_);
@@ -229,7 +229,7 @@ void ViewerModel::appendObjects(ObjectBoxes f) {
 
 std::size_t ViewerModel::framesUpTo(double t_s) const {
   return std::size_t(std::upper_bound(frames_.begin(), frames_.end(), t_s,
-                                      [](double t, const FrameResult& r) { return t < r.stamp_s; }) -
+                                      [](double t, const ViewerFrame& r) { return t < r.stamp_s; }) -
                      frames_.begin());
 }
 
@@ -249,11 +249,11 @@ const typename V::value_type* nearest(const V& v, double t_s, double tol_s, Stam
 }
 }  // namespace
 
-const FrameResult* ViewerModel::frameNear(double t_s, double tol_s) const {
-  return nearest(frames_, t_s, tol_s, [](const FrameResult& r) { return r.stamp_s; });
+const ViewerFrame* ViewerModel::frameNear(double t_s, double tol_s) const {
+  return nearest(frames_, t_s, tol_s, [](const ViewerFrame& r) { return r.stamp_s; });
 }
-const BoundaryFrame* ViewerModel::boundaryNear(double t_s, double tol_s) const {
-  return nearest(bounds_, t_s, tol_s, [](const BoundaryFrame& r) { return r.stamp_s; });
+const ViewerBoundary* ViewerModel::boundaryNear(double t_s, double tol_s) const {
+  return nearest(bounds_, t_s, tol_s, [](const ViewerBoundary& r) { return r.stamp_s; });
 }
 const ObjectBoxes* ViewerModel::objectsNear(double t_s, double tol_s) const {
   return nearest(objects_, t_s, tol_s, [](const ObjectBoxes& r) { return r.stamp_s; });
@@ -287,7 +287,7 @@ void ViewerModel::loadMapFolder(const std::string& dir) {
   for (std::size_t i = 0; i < rows.size(); ++i) {
     if (pose_row[i] < 0) continue;  // skipped: no pose to draw
     const auto k = static_cast<std::size_t>(pose_row[i]);
-    FrameResult f;
+    ViewerFrame f;
     f.stamp_s = traj.stamp(k);
     f.T_map_lidar = traj.pose(k);
     f.status = rows[i].status;
@@ -359,7 +359,7 @@ void ViewerModel::loadGrid(const std::string& dir) {
 void ViewerModel::loadBounds(const std::string& dir) {
   for (const auto& r : runfolder::openBoundsRun(dir).boundaries()) {
     if (!r.has_pose) continue;  // a sweep without a pose has no boundaries
-    BoundaryFrame b;
+    ViewerBoundary b;
     b.stamp_s = r.stamp_s;
     b.left = r.left.polyline_map;
     b.right = r.right.polyline_map;

@@ -43,7 +43,7 @@ mrpt::img::CImage framePlots(const ViewerModel& model, double t_s, int width, in
     }
     return vmax;
   };
-  const auto ofFrames = [&](double FrameResult::*field) {
+  const auto ofFrames = [&](double ViewerFrame::*field) {
     std::vector<std::pair<double, double>> tv;
     for (const auto& f : frames)
       if (std::isfinite(f.*field)) tv.emplace_back(f.stamp_s, f.*field);
@@ -55,8 +55,8 @@ mrpt::img::CImage framePlots(const ViewerModel& model, double t_s, int width, in
       if (std::isfinite(c.*field)) tv.emplace_back(c.t_s, c.*field);
     return tv;
   };
-  const double in_max = series(ofFrames(&FrameResult::inliers), false, PlotColors::inliers);
-  const double ms_max = series(ofFrames(&FrameResult::ms), false, PlotColors::ms);
+  const double in_max = series(ofFrames(&ViewerFrame::inliers), false, PlotColors::inliers);
+  const double ms_max = series(ofFrames(&ViewerFrame::ms), false, PlotColors::ms);
   const double v_max = series(ofCan(&CanSample::speed_mps), false, PlotColors::speed);
   // full scale at least a brisk turn: 0.3 rad/s (17 deg/s) of yaw rate, 0.3 rad of steering
   const double w_max = series(ofCan(&CanSample::yaw_rate_rad_s), true, PlotColors::yaw_rate, 0.3);

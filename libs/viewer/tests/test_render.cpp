@@ -88,7 +88,7 @@ TEST(ViewerRender, SameSceneGivesTheSamePictureWithTrajectoryAndSweep) {
   // to the box room (the sweeps are drawn at the last pose)
   const double t0 = model.startTime();
   for (int k = 0; k <= 20; ++k) {
-    FrameResult f;
+    ViewerFrame f;
     f.stamp_s = t0 - 2.0 + 0.1 * k;
     f.T_map_lidar.translation() = Eigen::Vector3d(-10.0 + 0.5 * k, 0, 0);
     f.keyframe = k % 5 == 0;
@@ -247,7 +247,7 @@ TEST(ViewerModel, FramesPostedFromAnotherThreadAreTakenInOrder) {
   const double t0 = model.startTime();
   std::thread producer([&] {
     for (int k = 9; k >= 0; --k) {  // out of order on purpose
-      FrameResult f;
+      ViewerFrame f;
       f.stamp_s = t0 + 0.05 * k;
       f.T_map_lidar.translation().x() = k;
       model.postFrame(f);

@@ -4,7 +4,7 @@
 /// the log, run, write the outputs and the configuration used next to them, and report.
 
 #include <roadslam/can/candump.h>
-#include <roadslam/vehicle/odometry.h>
+#include <roadslam/vehicle/can_odometry.h>
 #include <roadslam/vehicle/rawlog_export.h>
 
 #include <string>

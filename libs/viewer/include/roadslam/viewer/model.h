@@ -29,7 +29,7 @@
 namespace roadslam::viewer {
 
 /// One processed sweep: the pose and status the odometry/mapping gave it.
-struct FrameResult {
+struct ViewerFrame {
   double stamp_s = 0;                                  ///< sweep stamp (first firing) [s]
   Eigen::Isometry3d T_map_lidar = Eigen::Isometry3d::Identity();
   std::string status = "ok";                           ///< ok, standstill, degenerate, ...
@@ -47,7 +47,7 @@ struct LoopEdge {
 };
 
 /// The boundaries `roadslam-bounds` found on one sweep (map frame [m]).
-struct BoundaryFrame {
+struct ViewerBoundary {
   double stamp_s = 0;
   std::vector<Eigen::Vector3d> left, right;  ///< polylines of the left / right road boundary
   std::vector<Eigen::Vector3d> free_space;   ///< free-space polygon (from the vehicle frame at z = 0 of the lidar)
@@ -125,13 +125,13 @@ class ViewerModel {
 
   /// Appends a frame result (stamps must not go back in time; an older one is inserted in order).
   /// Not thread-safe: call it on the thread that draws (the window's loop), or use postFrame().
-  void appendFrame(const FrameResult& f);
+  void appendFrame(const ViewerFrame& f);
   /// Thread-safe: queues a frame result from another thread (e.g. an odometry running beside the
   /// replay); takePosted() moves the queue into frames() on the drawing thread.
-  void postFrame(const FrameResult& f);
+  void postFrame(const ViewerFrame& f);
   /// Appends the posted frames and objects; returns how many frames (the window calls it every tick).
   std::size_t takePosted();
-  const std::vector<FrameResult>& frames() const { return frames_; }
+  const std::vector<ViewerFrame>& frames() const { return frames_; }
   /// Appends the objects of a sweep (in time order; an older one is inserted in order); not
   /// thread-safe, as appendFrame(). postObjects() queues them from another thread for takePosted().
   void appendObjects(ObjectBoxes f);
@@ -142,7 +142,7 @@ class ViewerModel {
   /// Number of frames stamped at or before \p t_s (frames()[0 .. n) are "so far").
   std::size_t framesUpTo(double t_s) const;
   /// The frame within \p tolerance_s of \p t_s (the nearest), if any.
-  const FrameResult* frameNear(double t_s, double tolerance_s = 0.06) const;
+  const ViewerFrame* frameNear(double t_s, double tolerance_s = 0.06) const;
 
   const std::vector<LoopEdge>& loops() const { return loops_; }
   const std::vector<Eigen::Vector3f>& mapPoints() const { return map_points_; }  ///< decimated, map frame
@@ -152,8 +152,8 @@ class ViewerModel {
   const std::optional<GridLayer>& grid() const { return grid_; }
   const std::vector<double>& groundTruthStamps() const { return gt_stamps_; }
   const std::vector<Eigen::Vector3d>& groundTruth() const { return gt_positions_; }
-  const std::vector<BoundaryFrame>& boundaries() const { return bounds_; }
-  const BoundaryFrame* boundaryNear(double t_s, double tolerance_s = 0.06) const;
+  const std::vector<ViewerBoundary>& boundaries() const { return bounds_; }
+  const ViewerBoundary* boundaryNear(double t_s, double tolerance_s = 0.06) const;
   /// CAN signals every 50 ms (the latest values then), when a log was given or, live, from the
   /// car's odometry (speed, yaw rate) and IMU (yaw rate) observations.
   const std::vector<CanSample>& can() const { return can_; }
@@ -179,9 +179,9 @@ class ViewerModel {
   std::vector<Overlap> deferred_overlaps_;  // checked once the recording is wholly indexed
   sources::LiveObservations* live_ = nullptr;
   std::vector<std::string> warnings_;
-  std::vector<FrameResult> frames_;
+  std::vector<ViewerFrame> frames_;
   std::mutex posted_mutex_;
-  std::vector<FrameResult> posted_;
+  std::vector<ViewerFrame> posted_;
   std::vector<ObjectBoxes> posted_objects_;
   std::vector<ObjectBoxes> objects_;
   std::vector<LoopEdge> loops_;
@@ -190,7 +190,7 @@ class ViewerModel {
   std::optional<GridLayer> grid_;
   std::vector<double> gt_stamps_;
   std::vector<Eigen::Vector3d> gt_positions_;
-  std::vector<BoundaryFrame> bounds_;
+  std::vector<ViewerBoundary> bounds_;
   std::vector<CanSample> can_;
 };
 

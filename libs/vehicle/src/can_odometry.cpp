@@ -1,5 +1,5 @@
 #include <roadslam/common/atomic_file.h>
-#include <roadslam/vehicle/odometry.h>
+#include <roadslam/vehicle/can_odometry.h>
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 #pragma once
-/// \file odometry.h
+/// \file can_odometry.h
 /// Offline CAN odometry: frames -> VehicleState -> dead reckoning, and the calibrations against
 /// GNSS fixes (wheel-speed scale factor, yaw-rate bias against the GNSS course).
 
