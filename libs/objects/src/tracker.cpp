@@ -170,11 +170,6 @@ void Tracker::coast(double t, const std::string& reason) {
 
 namespace {
 
-/// Kalman update of \p tr with the centre \p z (covariance \p R) seen \p dt after the state's time.
-void correct(Track& tr, const Eigen::Vector2d& z, double dt, const Eigen::Matrix2d& R) {
-  tr.filter->correct(z, dt, R, tr.x, tr.P);
-}
-
 /// Gated association costs of \p tracks against \p dets (x-y distance of the completed detection centre
 /// to the track's prediction at the detection's time, plus the extent growth); \p comp: the completions.
 std::vector<std::vector<double>> associationCosts(const std::vector<Track>& tracks, const std::vector<Detection>& dets,
@@ -245,7 +240,7 @@ void takeHeading(Track& tr, const Detection& d, const TrackerParams& p_) {
 
 /// \p tr takes the detection \p d (index \p j) completed as \p c, seen from \p s at \p t.
 void take(Track& tr, const Detection& d, const Completed& c, const Eigen::Vector2d& s, double t, int j, const TrackerParams& p_) {
-  correct(tr, c.centre, d.dt, Eigen::Matrix2d::Identity() * p_.meas_sigma_m * p_.meas_sigma_m);
+  tr.filter->correct(c.centre, d.dt, Eigen::Matrix2d::Identity() * p_.meas_sigma_m * p_.meas_sigma_m, tr.x, tr.P);
   takeHeading(tr, d, p_);
   tr.length = std::max(tr.length, c.along);
   tr.width = std::max(tr.width, c.across);
@@ -349,7 +344,7 @@ void Tracker::reidentify(int young_id) {
   // (a car sliding past an occluder's gap shows the same points for 3 sweeps). The jump is no turn:
   // the turn rate restarts. It keeps its label, extents and history (moving: no more records).
   Track merged = *best;
-  correct(merged, young->x.head<2>(), 0, young->P.topLeftCorner<2, 2>());
+  merged.filter->correct(young->x.head<2>(), 0, young->P.topLeftCorner<2, 2>(), merged.x, merged.P);
   merged.filter->restartTurn(merged.x, merged.P);
   merged.misses = 0, merged.t_last = young->t_last;
   merged.last_detection = young->last_detection;
