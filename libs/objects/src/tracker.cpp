@@ -4,14 +4,15 @@
 #include <array>
 #include <cmath>
 
-#include "imm.h"
+#include "wrap_pi.h"
 
 namespace roadslam::objects {
 namespace {
 
+using detail::wrapPi;
+
 constexpr double kUnassignable = 1e9;  // cost of a gated-out pair in the assignment
 constexpr double kFaceMaxObliquity = 0.766;  // cos 40 deg: a car's front or rear seen roughly head-on
-constexpr double kInitHeadingSigma_rad = 0.35;  // CTRV: a new track heads along its box (v signed covers the ends)
 
 /// A detection in the map frame: its box's corners (x-y) and heading of its length axis.
 struct Detection {
@@ -84,8 +85,6 @@ Completed complete(const Detection& d, double h, double L, double W, const Eigen
   return c;
 }
 
-double wrapPi(double a) { return std::atan2(std::sin(a), std::cos(a)); }
-
 /// The car-size prior on a detection with no known heading: one face (a box car_face_min_m..
 /// car_face_max_m long, at most car_face_max_depth_m wide, facing the sensor within 40 deg) seen from
 /// car_prior_min_range_m or farther is a car's front or rear; the car reaches car_length_m away from
@@ -119,36 +118,6 @@ void growToCarBehindFace(Track& tr, const Detection& d, const Eigen::Vector2d& s
   }
 }
 
-using Vec5 = Eigen::Matrix<double, 5, 1>;
-using Mat5 = Eigen::Matrix<double, 5, 5>;
-
-/// CTRV motion over \p dt (Schubert et al. 2008, eq. 9; the straight-line limit when omega ~ 0).
-Vec5 ctrvMove(const Vec5& s, double dt) {
-  Vec5 o = s;
-  const double v = s(2), psi = s(3), w = s(4);
-  if (std::abs(w) > 1e-4) {
-    o(0) += v / w * (std::sin(psi + w * dt) - std::sin(psi));
-    o(1) += v / w * (std::cos(psi) - std::cos(psi + w * dt));
-  } else {
-    o(0) += v * std::cos(psi) * dt;
-    o(1) += v * std::sin(psi) * dt;
-  }
-  o(3) = wrapPi(psi + w * dt);
-  return o;
-}
-
-/// The CV view [x, y, vx, vy] of a CTRV state and its covariance (first-order).
-void ctrvView(Track& tr) {
-  const double v = tr.s(2), c = std::cos(tr.s(3)), sn = std::sin(tr.s(3));
-  tr.x << tr.s(0), tr.s(1), v * c, v * sn;
-  Eigen::Matrix<double, 4, 5> J = Eigen::Matrix<double, 4, 5>::Zero();
-  J(0, 0) = J(1, 1) = 1;
-  J(2, 2) = c, J(2, 3) = -v * sn;
-  J(3, 2) = sn, J(3, 3) = v * c;
-  tr.P = J * tr.S * J.transpose();
-}
-
-
 /// The detection completed for \p tr: with a heading from its velocity (moving) and car-sized, to at
 /// least the car size; otherwise to the extents the track has seen (capped), and a single face with
 /// no heading known to a car behind it (isCarFace).
@@ -166,50 +135,9 @@ Completed completeFor(const Track& tr, const Detection& d, const Eigen::Vector2d
 
 }  // namespace
 
-void Tracker::predictCtrv(Track& tr, double dt) const {
-  // F: numerical Jacobian of ctrvMove (central differences)
-  Mat5 F;
-  for (int k = 0; k < 5; ++k) {
-    Vec5 d = Vec5::Zero();
-    d(k) = 1e-6;
-    Vec5 diff = ctrvMove(tr.s + d, dt) - ctrvMove(tr.s - d, dt);
-    diff(3) = wrapPi(diff(3));
-    F.col(k) = diff / 2e-6;
-  }
-  // noise: longitudinal acceleration a and yaw acceleration alpha, G = d(state)/d(a, alpha)
-  Eigen::Matrix<double, 5, 2> G = Eigen::Matrix<double, 5, 2>::Zero();
-  G(0, 0) = 0.5 * dt * dt * std::cos(tr.s(3)), G(1, 0) = 0.5 * dt * dt * std::sin(tr.s(3)), G(2, 0) = dt;
-  G(3, 1) = 0.5 * dt * dt, G(4, 1) = dt;
-  const Eigen::Vector2d q(p_.ctrv.accel_sigma_mps2 * p_.ctrv.accel_sigma_mps2,
-                          p_.ctrv.yaw_accel_sigma_radps2 * p_.ctrv.yaw_accel_sigma_radps2);
-  tr.s = ctrvMove(tr.s, dt);
-  tr.S = F * tr.S * F.transpose() + G * q.asDiagonal() * G.transpose();
-  ctrvView(tr);
-}
-
 void Tracker::predict(double t) {
   const double dt = std::max(0.0, t - t_);
-  Eigen::Matrix4d F = Eigen::Matrix4d::Identity();
-  F(0, 2) = F(1, 3) = dt;
-  const double q = p_.accel_sigma_mps2 * p_.accel_sigma_mps2;
-  // discrete white-acceleration noise: G q G^T with G = [dt^2/2, dt]
-  Eigen::Matrix4d Q = Eigen::Matrix4d::Zero();
-  const double a = dt * dt * dt * dt / 4 * q, b = dt * dt * dt / 2 * q, c = dt * dt * q;
-  Q(0, 0) = Q(1, 1) = a;
-  Q(0, 2) = Q(2, 0) = Q(1, 3) = Q(3, 1) = b;
-  Q(2, 2) = Q(3, 3) = c;
-  for (Track& tr : tracks_) {
-    if (p_.motion_model == MotionModel::Ctrv) {
-      if (dt > 0) predictCtrv(tr, dt);
-      continue;
-    }
-    if (p_.motion_model == MotionModel::Imm) {
-      if (dt > 0) imm::predict(tr, dt, p_);
-      continue;
-    }
-    tr.x = F * tr.x;
-    tr.P = F * tr.P * F.transpose() + Q;
-  }
+  for (Track& tr : tracks_) tr.filter->predict(dt, tr.moving, tr.x, tr.P);
   t_ = t;
 }
 
@@ -225,7 +153,7 @@ void Tracker::prune(double t, const std::string& reason) {
     if (dead || !tr.x.allFinite()) {
       ended_.push_back({tr, tr.x.allFinite() ? reason : "diverged", t});
     } else {
-      keep.push_back(tr);
+      keep.push_back(std::move(tr));
     }
   }
   tracks_ = std::move(keep);
@@ -241,32 +169,6 @@ void Tracker::coast(double t, const std::string& reason) {
 }
 
 namespace {
-
-/// Kalman update of \p tr with the centre \p z (covariance \p R) seen \p dt after the state's time (any model).
-void correct(Track& tr, const Eigen::Vector2d& z, double dt, const TrackerParams& p_, const Eigen::Matrix2d& R) {
-  // The detection is where the object was when the beam swept it, dt after the state's time:
-  // h(x) = position + dt * velocity (CV: H = [I, dt I], linear; CTRV: its Jacobian).
-  if (p_.motion_model == MotionModel::Imm) return imm::correct(tr, z, dt, p_, R);
-  if (p_.motion_model == MotionModel::Ctrv) {
-    const double v = tr.s(2), c = std::cos(tr.s(3)), sn = std::sin(tr.s(3));
-    Eigen::Matrix<double, 2, 5> H = Eigen::Matrix<double, 2, 5>::Zero();
-    H(0, 0) = H(1, 1) = 1;
-    H(0, 2) = dt * c, H(0, 3) = -dt * v * sn;
-    H(1, 2) = dt * sn, H(1, 3) = dt * v * c;
-    const Eigen::Vector2d h(tr.s(0) + dt * v * c, tr.s(1) + dt * v * sn);
-    const Eigen::Matrix<double, 5, 2> K = tr.S * H.transpose() * (H * tr.S * H.transpose() + R).inverse();
-    tr.s += K * (z - h);
-    tr.s(3) = wrapPi(tr.s(3));
-    tr.S = (Mat5::Identity() - K * H) * tr.S;
-    ctrvView(tr);
-    return;
-  }
-  Eigen::Matrix<double, 2, 4> H;
-  H << 1, 0, dt, 0, 0, 1, 0, dt;
-  const Eigen::Matrix<double, 4, 2> K = tr.P * H.transpose() * (H * tr.P * H.transpose() + R).inverse();
-  tr.x += K * (z - H * tr.x);
-  tr.P = (Eigen::Matrix4d::Identity() - K * H) * tr.P;
-}
 
 /// Gated association costs of \p tracks against \p dets (x-y distance of the completed detection centre
 /// to the track's prediction at the detection's time, plus the extent growth); \p comp: the completions.
@@ -320,12 +222,12 @@ void label(Track& tr, double t, const TrackerParams& p) {
   tr.heading = h;
 }
 
-/// The box's axis nearest the moving track's velocity heading, as a heading measurement (IMM,
-/// TrackerParams::heading_sigma_rad): the L-shape's orientation turns with the car at once, while the
+/// The box's axis nearest the moving track's velocity heading, as a heading measurement
+/// (TrackerParams::heading_sigma_rad; the IMM takes it, MotionFilter::correctHeading): the L-shape's orientation turns with the car at once, while the
 /// velocity from the centres lags a turn by 10-25 deg (the 30 s loop's car turning right 39 m away).
 /// Axes farther than kHeadingGate_rad off are no measurement (a box of mixed faces).
 void takeHeading(Track& tr, const Detection& d, const TrackerParams& p_) {
-  if (p_.heading_sigma_rad <= 0 || p_.motion_model != MotionModel::Imm || !tr.moving) return;
+  if (p_.heading_sigma_rad <= 0 || !tr.moving) return;
   const double h = std::atan2(tr.x(3), tr.x(2));
   double best = 1e9;
   for (int k = 0; k < 4; ++k) {
@@ -333,12 +235,12 @@ void takeHeading(Track& tr, const Detection& d, const TrackerParams& p_) {
     if (std::abs(diff) < std::abs(best)) best = diff;
   }
   if (std::abs(best) > kHeadingGate_rad) return;
-  imm::correctHeading(tr, h + best, p_.heading_sigma_rad, p_);
+  tr.filter->correctHeading(h + best, p_.heading_sigma_rad, tr.x, tr.P);
 }
 
 /// \p tr takes the detection \p d (index \p j) completed as \p c, seen from \p s at \p t.
 void take(Track& tr, const Detection& d, const Completed& c, const Eigen::Vector2d& s, double t, int j, const TrackerParams& p_) {
-  correct(tr, c.centre, d.dt, p_, Eigen::Matrix2d::Identity() * p_.meas_sigma_m * p_.meas_sigma_m);
+  tr.filter->correct(c.centre, d.dt, Eigen::Matrix2d::Identity() * p_.meas_sigma_m * p_.meas_sigma_m, tr.x, tr.P);
   takeHeading(tr, d, p_);
   tr.length = std::max(tr.length, c.along);
   tr.width = std::max(tr.width, c.across);
@@ -353,27 +255,26 @@ void take(Track& tr, const Detection& d, const Completed& c, const Eigen::Vector
   label(tr, t, p_);
 }
 
-/// A tentative track \p id born on the detection \p d (index \p j) seen from \p s at \p t.
-Track born(int id, const Detection& d, const Eigen::Vector2d& s, double t, int j, const TrackerParams& p_) {
+/// A tentative track \p id born on the detection \p d (index \p j) seen from \p s at \p t, its filter
+/// a copy of \p filter started there.
+Track born(int id, const Detection& d, const Eigen::Vector2d& s, double t, int j, const TrackerParams& p_,
+           const MotionFilter& filter) {
   const double m2 = p_.meas_sigma_m * p_.meas_sigma_m, v2 = p_.init_speed_sigma_mps * p_.init_speed_sigma_mps;
   Track tr;
   tr.id = id;
   tr.x << d.centre, 0, 0;
   tr.P = Eigen::Vector4d(m2, m2, v2, v2).asDiagonal();
   tr.heading = d.yaw;
-  tr.s << d.centre, 0, d.yaw, 0;
-  tr.S = Vec5(m2, m2, v2, kInitHeadingSigma_rad * kInitHeadingSigma_rad,
-              p_.ctrv.init_yaw_rate_sigma_radps * p_.ctrv.init_yaw_rate_sigma_radps)
-             .asDiagonal();
   const Completed c = complete(d, tr.heading, 0, 0, s);
   tr.length = c.along, tr.width = c.across;
-  // a car's face: its centre is behind it, and it drives along the line of sight (CTRV's heading)
+  // a car's face: its centre is behind it, and it drives along the line of sight (the filter's heading)
   Eigen::Vector2d centre = d.centre, los;
-  if (isCarFace(d, s, p_, &centre, &los)) tr.s(3) = std::atan2(los.y(), los.x());
-  tr.x.head<2>() = tr.s.head<2>() = centre;
+  double heading = d.yaw;
+  if (isCarFace(d, s, p_, &centre, &los)) heading = std::atan2(los.y(), los.x());
+  tr.x.head<2>() = centre;
   growToCarBehindFace(tr, d, s, p_);
-  if (p_.motion_model == MotionModel::Ctrv) ctrvView(tr);
-  if (p_.motion_model == MotionModel::Imm) imm::init(tr, p_);
+  tr.filter = TrackFilter(filter.clone());
+  tr.filter->start(heading, tr.x, tr.P);
   tr.z_min = d.z_min, tr.z_max = d.z_max, tr.top_height = d.top, tr.ground_z = d.z_max - d.top;
   tr.hits = 1, tr.t_birth = tr.t_last = t, tr.birth_xy = tr.x.head<2>(), tr.last_detection = j;
   tr.free_through = d.free_through, tr.free_hit = d.free_hit;
@@ -412,7 +313,7 @@ void Tracker::update(double t, const Eigen::Isometry3d& T_map_lidar, const std::
   }
   prune(t, "missed");
   for (size_t j = 0; j < dets.size(); ++j) {
-    if (!taken[j]) tracks_.push_back(born(next_id_++, dets[j], s, t, static_cast<int>(j), p_));
+    if (!taken[j]) tracks_.push_back(born(next_id_++, dets[j], s, t, static_cast<int>(j), p_, *filter_));
   }
   for (int id : confirmed_now) reidentify(id);
 }
@@ -443,8 +344,8 @@ void Tracker::reidentify(int young_id) {
   // (a car sliding past an occluder's gap shows the same points for 3 sweeps). The jump is no turn:
   // the turn rate restarts. It keeps its label, extents and history (moving: no more records).
   Track merged = *best;
-  correct(merged, young->x.head<2>(), 0, p_, young->P.topLeftCorner<2, 2>());
-  if (p_.motion_model == MotionModel::Imm) imm::restartTurn(merged, p_);
+  merged.filter->correct(young->x.head<2>(), 0, young->P.topLeftCorner<2, 2>(), merged.x, merged.P);
+  merged.filter->restartTurn(merged.x, merged.P);
   merged.misses = 0, merged.t_last = young->t_last;
   merged.last_detection = young->last_detection;
   merged.z_min = young->z_min, merged.z_max = young->z_max, merged.ground_z = young->ground_z;

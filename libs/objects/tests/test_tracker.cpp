@@ -9,7 +9,7 @@
 
 #include "roadslam/objects/stage.h"
 #include "roadslam/objects/tracker.h"
-#include "../src/imm.h"
+#include "../src/imm_filter.h"
 #include "synthetic_boxes.h"
 
 using namespace roadslam::objects;
@@ -323,7 +323,8 @@ static CornerRun driveThroughACorner(Tracker& tr) {
     for (const Track& x : tr.tracks()) {
       if (x.state != TrackState::Confirmed) continue;
       if (r.ids.empty() || r.ids.back() != x.id) r.ids.push_back(x.id);
-      if (turning) r.max_ct = std::max(r.max_ct, x.imm_mu(1));
+      const auto* imm = dynamic_cast<const ImmFilter*>(x.filter.get());
+      if (turning && imm) r.max_ct = std::max(r.max_ct, imm->probabilities()(1));
     }
   }
   return r;
@@ -347,7 +348,7 @@ TEST(Tracker, TheImmFollowsACarThroughACornerWithOneId) {
   EXPECT_GT(driveThroughACorner(cv).ids.size(), 1u);  // the corner is one a constant velocity gate loses
 }
 
-// The coordinated turn's Jacobian (analytic, src/imm.cpp) against central differences of its transition,
+// The coordinated turn's Jacobian (analytic, src/imm_filter.cpp) against central differences of its transition,
 // turning and straight (omega = 0: the series limit), and the transition against the closed form: a
 // quarter circle at omega = pi/2 over 1 s from (0, 0) heading east at 10 m/s ends at (r, r), r = v / omega.
 TEST(Imm, TheCoordinatedTurnsJacobianIsItsTransitionsDerivative) {

@@ -47,9 +47,6 @@ void dropFarGround(std::vector<Eigen::Vector3d>& pts, std::vector<uint8_t>& grou
   ground.resize(k);
 }
 
-/// The tilt prior lives in the voxel-map matcher; the registration library's methods do not take it.
-bool usesGravityPrior(const Params& p) { return p.gravity_prior && p.matcher == Matcher::VoxelMap; }
-
 double angleOf(const Eigen::Isometry3d& T) {
   return Eigen::AngleAxisd(T.rotation()).angle();
 }
@@ -84,8 +81,7 @@ const char* toString(FrameStatus s) {
 Odometry::Odometry(Params params)
     : params_(std::move(params)),
       chain_(params_.preprocess),
-      map_(params_.map_voxel_m, params_.map_points_per_voxel, params_.map_radius_m),
-      gmap_(params_.map_voxel_m, params_.map_points_per_voxel, params_.map_radius_m, 7, params_.map_ring_lines_on_walls),
+      matcher_(makeScanMatcher(params_)),
       threshold_(params_.initial_threshold_m, params_.min_motion_m, params_.max_range_m) {}
 
 Odometry::~Odometry() = default;
@@ -136,7 +132,7 @@ void Odometry::judgeDegeneracy(const registration::RegistrationResult& r, const 
   // the full 6x6 spectrum look healthy (a tunnel): the motion's own information decides too.
   const Eigen::Vector3d motion = T_pred.translation() - track_.T_world_last.translation();
   const Eigen::Vector3d n = motion.normalized();
-  if (params_.matcher == Matcher::VoxelMap && track_.motion_known && motion.norm() >= params_.standstill_translation_m) {
+  if (matcher_->measuresSurface() && track_.motion_known && motion.norm() >= params_.standstill_translation_m) {
     res.motion_information = surface.along(n);
   }
   // Constant velocity is only as good as the motion it repeats: without a prior it replaces the
@@ -194,34 +190,16 @@ registration::RegistrationResult Odometry::match(const std::vector<Eigen::Vector
     // in on an open road.
     const double sigma =
         std::clamp(threshold_.threshold() / 3.0, params_.min_threshold_m, params_.max_threshold_m);
-    // The voxel-map matcher pairs a point with a voxel mean, up to a voxel away on a wall.
-    rp.max_correspondence_distance_m = params_.matcher == Matcher::VoxelMap ? std::max(3.0 * sigma, params_.map_voxel_m) : 3.0 * sigma;
+    rp.max_correspondence_distance_m = matcher_->correspondenceDistance(3.0 * sigma);
     rp.kernel_scale_m = sigma / 3.0;
   }
   res.threshold_m = rp.max_correspondence_distance_m;
-  if (params_.matcher == Matcher::VoxelMap) {
-    registration::VoxelAlignParams vp;
-    vp.max_iterations = rp.max_iterations;
-    vp.max_correspondence_distance_m = rp.max_correspondence_distance_m;
-    vp.kernel_scale_m = rp.kernel_scale_m;
-    vp.convergence_translation_m = rp.convergence_translation_m;
-    vp.convergence_rotation_rad = rp.convergence_rotation_rad;
-    vp.min_inliers = rp.min_inliers;
-    vp.max_correction_m = rp.max_correction_m;
-    vp.degeneracy_threshold = params_.degeneracy_threshold;
-    registration::GravityPrior g;
-    g.constraints = &frame_.vertical;
-    g.up_map = up_.world;
-    g.scale_m2 = params_.gravity_weight_m2;
-    g.kernel_rad = params_.gravity_kernel_rad;
-    return registration::align(gmap_, source, T_pred, vp, usesGravityPrior(params_) && up_.frames > 0 ? &g : nullptr,
-                               surface);
-  }
-  if (target_stale_ && !map_.empty()) {
-    target_ = std::make_unique<registration::Target>(map_.points(), rp);
-    target_stale_ = false;
-  }
-  return registration::align(*target_, source, T_pred, rp);
+  registration::GravityPrior g;
+  g.constraints = &frame_.vertical;
+  g.up_map = up_.world;
+  g.scale_m2 = params_.gravity_weight_m2;
+  g.kernel_rad = params_.gravity_kernel_rad;
+  return matcher_->align(source, T_pred, rp, usesGravityPrior() && up_.frames > 0 ? &g : nullptr, surface);
 }
 
 Eigen::Isometry3d Odometry::searchFirstMotion(const Scan& scan, const Eigen::Isometry3d& guess,
@@ -266,9 +244,7 @@ void Odometry::redeskewFirstFrame(const Eigen::Isometry3d& delta_sweep) {
   // is deskewed like every other sweep and the map built again from it.
   const double ref = first_scan_->has_point_times ? params_.deskew_reference : 0.0;
   frame_.points = deskew(*first_scan_, delta_sweep, params_.sweep_duration_s, ref);
-  gmap_ = registration::GaussianVoxelMap(params_.map_voxel_m, params_.map_points_per_voxel, params_.map_radius_m, 7,
-                                         params_.map_ring_lines_on_walls);
-  map_.clear();
+  matcher_->clear();
   updateMap(track_.T_world_last, track_.last_stamp_s);
   first_scan_.reset();
 }
@@ -285,8 +261,8 @@ size_t Odometry::setMapExclusions(std::vector<MapExclusion> boxes) {
   constexpr double kStep_s = 0.05;  // half a sweep: a car at 15 m/s moves 0.75 m, inside its margins
   size_t erased = 0;
   for (const MapExclusion& b : exclusions_) {
-    if (b.erase_back_s <= 0 || params_.matcher != Matcher::VoxelMap) continue;
-    erased += gmap_.eraseVoxels([&](const Eigen::Vector3d& mean) {
+    if (b.erase_back_s <= 0) continue;
+    erased += matcher_->eraseVoxels([&](const Eigen::Vector3d& mean) {
       for (double dt = 0; dt <= b.erase_back_s + 1e-9; dt += kStep_s) {
         if (b.contains(mean, b.stamp_s - dt)) return true;
       }
@@ -322,15 +298,7 @@ int Odometry::updateMap(const Eigen::Isometry3d& T_world_lidar, double stamp_s) 
     world.resize(k);
     if (!ground.empty()) ground.resize(k);
   }
-  if (params_.matcher == Matcher::VoxelMap) {
-    gmap_.insert(world, ground);
-    gmap_.removeFar(T_world_lidar.translation());
-  } else {
-    if (params_.registration_target == RegistrationTarget::LastScan) map_.clear();
-    map_.insert(world);
-    map_.removeFar(T_world_lidar.translation());
-    target_stale_ = true;
-  }
+  matcher_->addToMap(world, ground, T_world_lidar.translation());
   return excluded;
 }
 
@@ -361,7 +329,7 @@ void Odometry::deskewFrame(Scan& scan, const Prediction& pred, FrameResult& res)
   res.stamp_s = poseTimeOf(scan);
   frame_.points = deskew(scan, pred.delta_sweep, params_.sweep_duration_s, ref);
   if (params_.ground_aware_map) frame_.ground = preprocess::segmentGround(scan.points, params_.preprocess.ground_seg);
-  if (usesGravityPrior(params_)) {
+  if (usesGravityPrior()) {
     const Eigen::Vector3d up_guess = track_.have_pose ? Eigen::Vector3d(pred.T_world.linear().transpose() * up_.world)
                                                       : Eigen::Vector3d::UnitZ();
     frame_.vertical = findVerticalStructures(frame_.points, frame_.ground, up_guess, params_.vertical);
@@ -460,7 +428,7 @@ FrameResult Odometry::process(Scan scan, const std::optional<MotionPrior>& given
   }
   res.ms_register = msSince(t_reg);
 
-  if (usesGravityPrior(params_) && (res.status == FrameStatus::Ok || res.status == FrameStatus::First)) updateUp(res);
+  if (usesGravityPrior() && (res.status == FrameStatus::Ok || res.status == FrameStatus::First)) updateUp(res);
   const auto t_map = Clock::now();
   if (res.status == FrameStatus::Ok || res.status == FrameStatus::First || res.status == FrameStatus::Degenerate) {
     res.map_points_excluded = updateMap(res.T_world_lidar, res.stamp_s);

@@ -211,7 +211,7 @@ TEST(OdometryUnit, ExclusionBoxesEraseWhatTheCarLeftBeforeItsLabel) {
   auto onPath = [](const Eigen::Vector3d& m) { return std::abs(m.y() - 3) < 0.6 && m.z() > -1.7 && m.z() < -0.3 && m.x() > 2 && m.x() < 19; };
   auto count = [&](bool path) {
     int n = 0;
-    for (const auto& m : odo.voxelMap().means()) n += onPath(m) == path;
+    for (const auto& m : odo.matcher().mapPoints()) n += onPath(m) == path;
     return n;
   };
   const int car_before = count(true), rest_before = count(false);

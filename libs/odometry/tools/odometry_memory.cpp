@@ -39,7 +39,7 @@ int main(int argc, char** argv) {
     ms_sum += f.ms_total;
     if (++n % every) return;
     std::printf("%8zu %9.0f %9.1f %9.1f %11zu %10.2f\n", n, f.stamp_s - t0, procStatusMiB("VmRSS"),
-                procStatusMiB("VmHWM"), odo.voxelMap().numVoxels() + odo.localMap().numVoxels(), ms_sum / every);
+                procStatusMiB("VmHWM"), odo.matcher().mapSize(), ms_sum / every);
     std::fflush(stdout);
     ms_sum = 0;
   };

@@ -1,8 +1,8 @@
 #pragma once
 /// \file tracker.h
-/// Multi-object tracking in the map frame: a Kalman filter per track on the box centre, constant
-/// velocity (state x, y, vx, vy), CTRV (x, y, v, psi, omega; an extended KF) or an IMM of constant velocity
-/// and coordinated turn (x, y, vx, vy, omega; TrackerParams::motion_model), global nearest-neighbour association (Hungarian assignment on x-y
+/// Multi-object tracking in the map frame: a motion filter per track on the box centre
+/// (motion_filter.h: constant velocity, CTRV or an IMM of constant velocity and coordinated turn;
+/// TrackerParams::motion_model), global nearest-neighbour association (Hungarian assignment on x-y
 /// distances inside a gate), birth of a tentative track from an unmatched detection, confirmation
 /// after TrackerParams::confirm_hits hits, death after max_misses misses; stable ids; a static /
 /// moving label from the filtered speed and the distance travelled since birth.
@@ -12,11 +12,11 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
-#include <array>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "roadslam/objects/motion_filter.h"
 #include "roadslam/objects/params.h"
 #include "roadslam/objects/segmentation.h"
 
@@ -35,18 +35,10 @@ struct BoxRecord {
 struct Track {
   int id = 0;                         ///< stable, from 1
   TrackState state = TrackState::Tentative;
-  Eigen::Vector4d x = Eigen::Vector4d::Zero();  ///< [x, y, vx, vy], map frame [m, m/s] (CTRV: its view of s; IMM: the models combined)
+  /// [x, y, vx, vy], map frame [m, m/s], and its covariance: the filter's constant-velocity view
+  Eigen::Vector4d x = Eigen::Vector4d::Zero();
   Eigen::Matrix4d P = Eigen::Matrix4d::Identity();
-  /// MotionModel::Ctrv: the filter's own state [x, y, v, psi, omega] (v signed: a car may be seen
-  /// driving along either end of its box) and covariance [m, m, m/s, rad, rad/s]
-  Eigen::Matrix<double, 5, 1> s = Eigen::Matrix<double, 5, 1>::Zero();
-  Eigen::Matrix<double, 5, 5> S = Eigen::Matrix<double, 5, 5>::Identity();
-  /// MotionModel::Imm: each model's state [x, y, vx, vy, omega] and covariance (0: constant velocity,
-  /// 1: coordinated turn) [m, m, m/s, m/s, rad/s], and the model probabilities [-]; x, P: their combination
-  /// (Eigen's fixed matrices are left uninitialised by `{}`: zero and identity, as s and S)
-  std::array<Eigen::Matrix<double, 5, 1>, 2> imm_x{Eigen::Matrix<double, 5, 1>::Zero(), Eigen::Matrix<double, 5, 1>::Zero()};
-  std::array<Eigen::Matrix<double, 5, 5>, 2> imm_P{Eigen::Matrix<double, 5, 5>::Identity(), Eigen::Matrix<double, 5, 5>::Identity()};
-  Eigen::Vector2d imm_mu = Eigen::Vector2d(1, 0);
+  TrackFilter filter;                 ///< its motion filter (TrackerParams::motion_model), which writes x and P
   double length = 0, width = 0;       ///< largest extents seen along / across the heading [m]
   double heading = 0;                 ///< [rad], from the velocity once moving, else the box's
   double z_min = 0, z_max = 0;        ///< last detection's heights, map frame [m]
@@ -76,7 +68,7 @@ struct EndedTrack {
 
 class Tracker {
  public:
-  explicit Tracker(const TrackerParams& p = {}) : p_(p) {}
+  explicit Tracker(const TrackerParams& p = {}) : p_(p), filter_(makeMotionFilter(p)) {}
 
   /// One sweep: \p objects in the lidar frame of the sweep, whose pose is \p T_map_lidar at time \p t.
   /// Tracks predicted to \p t, associated, updated; births and deaths. An empty \p objects coasts them.
@@ -93,12 +85,12 @@ class Tracker {
 
  private:
   void predict(double t);
-  void predictCtrv(Track& tr, double dt) const;
   void endAll(double t, const std::string& reason);
   void prune(double t, const std::string& reason);
   void reidentify(int young_id);
 
   TrackerParams p_;
+  TrackFilter filter_;  ///< makeMotionFilter(p_): every new track starts from a copy
   std::vector<Track> tracks_;
   std::vector<EndedTrack> ended_;
   int next_id_ = 1;

@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "roadslam/common/scan.h"
-#include "roadslam/odometry/local_map.h"
+#include "roadslam/odometry/scan_matcher.h"
 #include "roadslam/odometry/vertical_structures.h"
 #include "roadslam/preprocess/chain.h"
 #include "roadslam/registration/adaptive_threshold.h"
@@ -33,7 +33,7 @@ class ParamTable;
 
 namespace roadslam::odometry {
 
-/// The scan matcher the odometry composes (ini [odometry] matcher; both behind registration's align()).
+/// The scan matcher the odometry composes (ini [odometry] matcher; scan_matcher.h, one class each).
 enum class Matcher {
   VoxelMap,     ///< `voxel_map`: the incremental Gaussian voxel map (registration/gaussian_voxel_map.h)
   Registration  ///< `registration`: the [registration] method (ICP/NDT) against a registration::Target
@@ -224,14 +224,16 @@ class Odometry {
   /// Boxes with erase_back_s > 0 also erase the voxels of the local map they swept over that time
   /// (voxel_map matcher; the other matchers' maps keep them); returns how many voxels went.
   size_t setMapExclusions(std::vector<MapExclusion> boxes);
-  const LocalMap& localMap() const { return map_; }
-  const registration::GaussianVoxelMap& voxelMap() const { return gmap_; }
+  /// The scan matcher (Params::matcher) and its local map.
+  const ScanMatcher& matcher() const { return *matcher_; }
   /// Deskewed, preprocessed points of the last frame (lidar frame) [m] (for keyframe maps).
   const std::vector<Eigen::Vector3d>& lastFramePoints() const { return frame_.points; }
   const preprocess::PreprocessTotals& preprocessTotals() const { return chain_.totals(); }
 
  private:
   Eigen::Isometry3d predict(const std::optional<MotionPrior>& prior) const;
+  /// The tilt prior from vertical structures: on (Params::gravity_prior) and taken by the matcher.
+  bool usesGravityPrior() const { return params_.gravity_prior && matcher_->takesGravityPrior(); }
   void applyPriorOnWeakDirections(const Eigen::Matrix<double, 6, Eigen::Dynamic>& weak, double lever_m,
                                   const Eigen::Isometry3d& T_pred, Eigen::Isometry3d& T_est, bool about_sensor) const;
   /// Marks \p res degenerate and puts the prediction into \p T_est along the directions the scans
@@ -253,11 +255,8 @@ class Odometry {
 
   Params params_;
   preprocess::PreprocessChain chain_;
-  LocalMap map_;
-  registration::GaussianVoxelMap gmap_;
+  std::unique_ptr<ScanMatcher> matcher_;
   registration::AdaptiveThreshold threshold_;
-  std::unique_ptr<registration::Target> target_;
-  bool target_stale_ = true;
   /// What the odometry knows of the vehicle's motion so far.
   struct Track {
     size_t frames = 0;           ///< frames processed, skipped ones included [-]
