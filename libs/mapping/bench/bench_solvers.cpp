@@ -5,10 +5,11 @@
 //     the tests' hilly ring (test_pose_graph.cpp: 400 keyframes, a ~1 km loop, heading and pitch
 //     drift, 56 m off at the loop) with exact edges (the optimum is the truth) at three loop
 //     informations, and with noisy edges (the truth within the noise): position error against the truth.
-//   bench_mapping_solvers graph --run MAP_DIR --gt SIM/gt_trajectory.tum [--mount-z 1.9 --mount-x 1.2]
+//   bench_mapping_solvers graph --run MAP_DIR --gt SIM/gt_trajectory.tum [--mount-x 0 --mount-z 1.9]
 //     a map job's keyframe graph (MAP_DIR/posegraph.graph: odometry, loop edges) started from its
 //     odometry alone (the chain of consecutive edges) and solved once by each solver; keyframe ATE
 //     (rigid fit) against the simulator's truth at the keyframes' stamps (MAP_DIR/frames.csv).
+//     The lidar in the truth's frame: (mount-x, 0, mount-z), the simulator's [lidar] mount (x 0, 1.9 m up).
 #include <mrpt/graphs/CNetworkOfPoses.h>
 
 #include <chrono>
@@ -167,7 +168,7 @@ int graph(int argc, char** argv) {
   const std::string run = arg(argc, argv, "--run");
   const auto gt = datasets::readTum(arg(argc, argv, "--gt"));
   Eigen::Isometry3d mount = Eigen::Isometry3d::Identity();
-  mount.translation() << std::stod(arg(argc, argv, "--mount-x", "1.2")), 0, std::stod(arg(argc, argv, "--mount-z", "1.9"));
+  mount.translation() << std::stod(arg(argc, argv, "--mount-x", "0")), 0, std::stod(arg(argc, argv, "--mount-z", "1.9"));
   mrpt::graphs::CNetworkOfPoses3DInf g;
   g.loadFromTextFile(run + "/posegraph.graph");
   std::vector<Edge> edges;

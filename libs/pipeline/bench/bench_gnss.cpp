@@ -388,8 +388,9 @@ int rav4Figures(int argc, char** argv) {
           oe.push_back(mapping::interpolatePose(ot, oT, rt[i]).translation());
           orf.push_back(ref[i]);
         }
-      std::snprintf(notes, sizeof(notes), "scored from its first solve (t = %.0f s), %zu solves, %zu failed%s",
+      std::snprintf(notes, sizeof(notes), "scored from its first solve (t = %.0f s), %zu solves, %zu failed, %.1f ms per solve%s",
                     ot.empty() ? 0.0 : ot.front() - rt.front(), ost.solves, ost.failed,
+                    ost.solves ? ost.ms_total / double(ost.solves) : 0.0,
                     with_bias ? (", yaw-rate bias " + std::to_string(-ost.yaw_rate_correction_radps * 180 / M_PI).substr(0, 6) +
                                  " deg/s, scale " + std::to_string(ost.scale).substr(0, 6) + " at the end, " +
                                  std::to_string(ost.bias_updates) + " updates").c_str() : "");
