@@ -13,6 +13,7 @@ PACKAGES=(
   nlohmann-json3-dev libcli11-dev libfmt-dev zstd libzstd-dev zlib1g-dev
   python3-can python3-canmatrix python3-numpy can-utils tcpdump
   chromium parallel slurm-wlm munge ffmpeg
+  libceres-dev          # libs/mapping: Ceres 2.1, [pose_graph] / [gnss_fusion] optimizer = ceres
   libgeographiclib-dev   # libs/gnss: WGS84, ECEF, ENU (LocalCartesian) and UTM
   libgps-dev gpsd        # libs/sources: gpsd client (roadslam-grab [gnss] source = gpsd); gpsd runs in its test
   libgl-dev xvfb xauth   # roadslam-view: OpenGL (window screenshots); its window test runs under xvfb-run

@@ -92,6 +92,7 @@ void makeFiles() {
   write(w / "bad-bool.ini", "[odometry]\ndeskew = maybe\n");
   write(w / "name-and-alias.ini", "[preprocess]\nego_radius_m = 2.5\n; the thesis's name\nrad = 3\n");
   write(w / "bad-motion-model.ini", "; the tracker's filter\n[tracking]\n\nmotion_model = kalman\n");
+  write(w / "bad-gnss-optimizer.ini", "[gnss_fusion]\noptimizer = g2o\n");
   write(w / "bounds-typo.ini", fileText(kSrc + "/ini/bounds.ini") + "\n[boundary]\ncurb_min_jmup_m = 0.1\n");
   {
     std::string b = fileText(kSrc + "/ini/bounds.ini");
@@ -238,7 +239,7 @@ const Row kTable[] = {
   {"map-typo-allowed",     "roadslam-map --config {W}/typo-key.ini --input {W}/truncated.pcap --out {O} --quiet --allow-unknown-keys", 0, "warning: "},
   {"map-not-a-number",     "roadslam-map --config {W}/not-a-number.ini --input {W}/truncated.pcap --out {O}", 1, "not-a-number.ini:2: [preprocess] voxel_size_m = 'abc' is not a number"},
   {"map-bad-matcher",      "roadslam-map --config {W}/bad-matcher.ini --input {W}/truncated.pcap --out {O}", 1, "bad-matcher.ini:2: [odometry] matcher = 'kiss': expected voxel_map or registration"},
-  {"map-bad-graph-optimizer", "roadslam-map --config {W}/bad-graph-optimizer.ini --input {W}/truncated.pcap --out {O}", 1, "optimizer = 'g2o': expected lm or mrpt_levmarq"},
+  {"map-bad-graph-optimizer", "roadslam-map --config {W}/bad-graph-optimizer.ini --input {W}/truncated.pcap --out {O}", 1, "optimizer = 'g2o': expected lm, mrpt_levmarq or ceres"},
   {"map-negative-voxel",   "roadslam-map --config {W}/negative-voxel.ini --input {W}/truncated.pcap --out {O}", 1, "must be positive"},
   {"map-tracking-negative-reid", "roadslam-map --config {W}/tracking-negative-reid.ini --input {W}/truncated.pcap --out {O}", 1, "tracking-negative-reid.ini:4: [tracking] reid_gate_m = -1: must be >= 0"},
   {"map-seen-through-zero-tolerance", "roadslam-map --config {W}/seen-through-zero-tolerance.ini --input {W}/truncated.pcap --out {O}", 1, "seen-through-zero-tolerance.ini:2: [seen_through] ray_tolerance_m = 0: must be > 0"},
@@ -248,6 +249,7 @@ const Row kTable[] = {
   {"map-objects-reach-inside-body", "roadslam-map --config {W}/objects-reach-inside-body.ini --input {W}/truncated.pcap --out {O}", 1, "[objects] max_range_m must exceed min_range_m"},
   {"map-bad-spin",         "roadslam-map --config {W}/bad-spin.ini --input {W}/truncated.pcap --out {O}", 1, "[kitti] spin = 'sideways'"},
   {"map-bad-motion-model", "roadslam-map --config {W}/bad-motion-model.ini --input {W}/truncated.pcap --out {O}", 1, "bad-motion-model.ini:4: [tracking] motion_model = 'kalman': expected cv, ctrv or imm"},
+  {"map-bad-gnss-optimizer", "roadslam-map --config {W}/bad-gnss-optimizer.ini --input {W}/truncated.pcap --out {O}", 1, "bad-gnss-optimizer.ini:2: [gnss_fusion] optimizer = 'g2o': expected gauss_newton or ceres"},
   {"map-name-and-alias",   "roadslam-map --config {W}/name-and-alias.ini --input {W}/truncated.pcap --out {O}", 1, "name-and-alias.ini:4: [preprocess] rad = 3: alias of 'ego_radius_m', which line 2 sets too: set only one"},
   {"map-bad-stamp-ref",    "roadslam-map --config {W}/bad-stamp-reference.ini --input {W}/truncated.pcap --out {O}", 1, "expected start, middle or end"},
   {"map-bad-bool",         "roadslam-map --config {W}/bad-bool.ini --input {W}/truncated.pcap --out {O}", 1, "is not a boolean"},

@@ -12,6 +12,7 @@
 #include "roadslam/common/checked_config.h"
 #include "roadslam/common/config.h"
 #include "roadslam/common/param_table.h"
+#include "gnss_fusion_solver.h"
 
 namespace roadslam::mapping {
 namespace {
@@ -22,6 +23,11 @@ using Mat36 = Eigen::Matrix<double, 3, 6>;
 const NameTable<RobustKernel>& kernelNames() {
   static const NameTable<RobustKernel> t{{RobustKernel::None, "none"}, {RobustKernel::Huber, "huber"},
                                          {RobustKernel::Cauchy, "cauchy"}};
+  return t;
+}
+
+const NameTable<GnssOptimizer>& optimizerNames() {
+  static const NameTable<GnssOptimizer> t{{GnssOptimizer::GaussNewton, "gauss_newton"}, {GnssOptimizer::Ceres, "ceres"}};
   return t;
 }
 
@@ -115,11 +121,7 @@ Eigen::Isometry3d averageTransform(const PoseVector& A, const PoseVector& B) {
   return T;
 }
 
-struct Matched {
-  size_t fix, node;
-  Eigen::Vector3d p;  ///< antenna in the node frame, carried from the fix's time [m]
-  Eigen::Matrix3d info;
-};
+using Matched = detail::MatchedFix;
 
 }  // namespace
 
@@ -138,6 +140,7 @@ void GnssFusionParams::fields(ParamTable& t) {
   t.num("max_time_offset_s", max_time_offset_s);
   t.angle("attitude_prior_sigma_deg", attitude_prior_sigma_rad);
   t.num("max_iterations", max_iterations);
+  t.choice("optimizer", optimizer, optimizerNames());
   t.num("uere_m", uere_m);
   t.num("fallback_sigma_m", fallback_sigma_m);
   t.flag("receiver_time", receiver_time);
@@ -208,6 +211,8 @@ class Problem {
   }
   const std::vector<Matched>& matched() const { return m_; }
   void setAttitudePrior(const Eigen::Matrix3d& R0) { R0_prior_ = R0; }
+  /// The factors as the other solvers take them (gnss_fusion_solver.h).
+  detail::GnssFactors factors() const { return {fixes_, m_, Z_, I_, R0_prior_}; }
 
   /// One Gauss-Newton step on \p T with the kernel's weights at \p T (IRLS); false when the normal
   /// equations are singular. \p max_step: the largest translation step [m].
@@ -306,7 +311,7 @@ class Problem {
   const GnssFusionParams& p_;
   const std::vector<GnssFactor>& fixes_;
   std::vector<Matched> m_;
-  std::vector<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>> Z_;
+  PoseVector Z_;
   std::vector<Matrix6d, Eigen::aligned_allocator<Matrix6d>> I_;
   Eigen::Matrix3d R0_prior_ = Eigen::Matrix3d::Identity();
 };
@@ -341,8 +346,13 @@ GnssFusionResult fuseGnss(const std::vector<double>& st, const PoseVector& T_map
   PoseVector T(N);
   for (size_t i = 0; i < N; ++i) T[i] = res.T_enu_map_initial * T_map[i];
   problem.setAttitudePrior(T[0].rotation());
-  // 3. Gauss-Newton with the kernel's weights recomputed every iteration (IRLS)
-  for (int it = 0; it < p.max_iterations; ++it) {
+  // 3. Gauss-Newton with the kernel's weights recomputed every iteration (IRLS), or the same factors on Ceres
+  if (p.optimizer == GnssOptimizer::Ceres) {
+    const detail::GnssSolve s = detail::solveGnssCeres(problem.factors(), p, T);
+    res.iterations = s.iterations;
+    res.converged = s.converged;
+  }
+  for (int it = 0; p.optimizer == GnssOptimizer::GaussNewton && it < p.max_iterations; ++it) {
     double max_step = 0;
     if (!problem.step(T, max_step)) {
       res.status = "the normal equations are singular";

@@ -60,7 +60,8 @@ Eigen::Matrix3d isotropicBlock(const Eigen::Matrix3d& B, double weak_ratio) {
 
 void PoseGraphParams::fields(ParamTable& t) {
   t.num("max_iterations", max_iterations);
-  static const NameTable<GraphOptimizer> optimizers{{GraphOptimizer::Lm, "lm"}, {GraphOptimizer::MrptLevmarq, "mrpt_levmarq"}};
+  static const NameTable<GraphOptimizer> optimizers{{GraphOptimizer::Lm, "lm"}, {GraphOptimizer::MrptLevmarq, "mrpt_levmarq"},
+                                                      {GraphOptimizer::Ceres, "ceres"}};
   t.choice("optimizer", optimizer, optimizers);
   t.flag("use_registration_information", use_registration_information);
   t.flag("isotropic_information", isotropic_information);
@@ -152,7 +153,9 @@ OptimizeStats PoseGraph::optimize() {
       edges.push_back(e);
     }
     PoseVector T = poses();
-    const auto r = detail::optimizePoses(T, edges, impl_->p.max_iterations);
+    const detail::PoseGraphSolver solve =
+        impl_->p.optimizer == GraphOptimizer::Ceres ? detail::optimizePosesCeres : detail::optimizePoses;
+    const auto r = solve(T, edges, impl_->p.max_iterations);
     setPoses(T);
     st.iterations = r.iterations;
     st.final_error = r.final_cost;

@@ -37,7 +37,11 @@ struct SolverResult {
 /// plog(T_meas^-1 * T_est) = [t; rotation vector] (the residual above).
 Eigen::Matrix<double, 6, 1> pseudoLog(const Eigen::Isometry3d& T);
 
-/// Minimises F over \p T_map_nodes (node 0 fixed) in place; at most \p max_iterations LM iterations.
+/// The pose-graph solvers: each minimises F over \p T_map_nodes (node 0 fixed) in place, at most
+/// \p max_iterations iterations. optimizePoses: the own LM above (pose_graph_solver.cpp);
+/// optimizePosesCeres: the same residuals on Ceres (pose_graph_ceres.cpp).
+using PoseGraphSolver = SolverResult (*)(PoseVector& T_map_nodes, const std::vector<SolverEdge>& edges, int max_iterations);
 SolverResult optimizePoses(PoseVector& T_map_nodes, const std::vector<SolverEdge>& edges, int max_iterations);
+SolverResult optimizePosesCeres(PoseVector& T_map_nodes, const std::vector<SolverEdge>& edges, int max_iterations);
 
 }  // namespace roadslam::mapping::detail

@@ -73,8 +73,9 @@ double ate(const PoseVector& est, const PoseVector& truth, bool horizontal = fal
   return std::sqrt(s / static_cast<double>(est.size()));
 }
 
-GnssFusionParams params(const Eigen::Vector3d& lever) {
+GnssFusionParams params(const Eigen::Vector3d& lever, GnssOptimizer optimizer = GnssOptimizer::GaussNewton) {
   GnssFusionParams p;
+  p.optimizer = optimizer;
   p.lever_x_m = lever.x();
   p.lever_y_m = lever.y();
   p.lever_z_m = lever.z();
@@ -98,11 +99,16 @@ void expectCausal(const Drive& d, std::vector<GnssFactor> fixes, const GnssFusio
 }
 }  // namespace
 
-TEST(GnssFusion, BeatsBothInputsAndFindsTheMapFrame) {
+// The batch oracle tests run on each solver ([gnss_fusion] optimizer): the own IRLS Gauss-Newton and Ceres.
+class GnssFusionSolver : public ::testing::TestWithParam<GnssOptimizer> {};
+INSTANTIATE_TEST_SUITE_P(Optimizers, GnssFusionSolver, ::testing::Values(GnssOptimizer::GaussNewton, GnssOptimizer::Ceres),
+                         [](const auto& info) { return info.param == GnssOptimizer::Ceres ? "ceres" : "gauss_newton"; });
+
+TEST_P(GnssFusionSolver, BeatsBothInputsAndFindsTheMapFrame) {
   const Drive d = makeDrive(100);
   const Eigen::Vector3d lever(0.5, 0.2, 1.5);
   const auto fixes = makeFixes(d, lever, 1.0, 7);
-  const GnssFusionResult r = fuseGnss(d.t, d.odom, fixes, params(lever));
+  const GnssFusionResult r = fuseGnss(d.t, d.odom, fixes, params(lever, GetParam()));
   ASSERT_TRUE(r.ok) << r.status;
   const double fused = ate(r.T_enu_node, d.truth);
   // the inputs alone: the odometry placed by the true start, the fixes as positions (less the lever arm)
@@ -124,17 +130,17 @@ TEST(GnssFusion, BeatsBothInputsAndFindsTheMapFrame) {
   EXPECT_LT(Eigen::AngleAxisd(r.T_enu_map.rotation().transpose() * d.T_enu_map.rotation()).angle(), 0.02);
 }
 
-TEST(GnssFusion, MapToEnuOfAnUndriftedTrajectory) {
+TEST_P(GnssFusionSolver, MapToEnuOfAnUndriftedTrajectory) {
   const Drive d = makeDrive(60, 0.1, 1.0, 0.0);
   const Eigen::Vector3d lever(0.5, 0.2, 1.5);
-  const GnssFusionResult r = fuseGnss(d.t, d.odom, makeFixes(d, lever, 1.0, 5), params(lever));
+  const GnssFusionResult r = fuseGnss(d.t, d.odom, makeFixes(d, lever, 1.0, 5), params(lever, GetParam()));
   ASSERT_TRUE(r.ok) << r.status;
   // the truth's z wobbles by 0.5 m where the odometry is flat: compare horizontally and in heading
   EXPECT_LT((r.T_enu_map.translation() - d.T_enu_map.translation()).head<2>().norm(), 0.15);
   EXPECT_LT(Eigen::AngleAxisd(r.T_enu_map.rotation().transpose() * d.T_enu_map.rotation()).angle(), 0.002);
 }
 
-TEST(GnssFusion, OutageBridgedAndMultipathRejected) {
+TEST_P(GnssFusionSolver, OutageBridgedAndMultipathRejected) {
   const Drive d = makeDrive(120);
   const Eigen::Vector3d lever(0.5, 0.0, 1.5);
   auto all = makeFixes(d, lever, 1.0, 11);
@@ -148,7 +154,7 @@ TEST(GnssFusion, OutageBridgedAndMultipathRejected) {
     }
     fixes.push_back(f);
   }
-  const GnssFusionResult r = fuseGnss(d.t, d.odom, fixes, params(lever));
+  const GnssFusionResult r = fuseGnss(d.t, d.odom, fixes, params(lever, GetParam()));
   ASSERT_TRUE(r.ok) << r.status;
   EXPECT_EQ(r.rejected, jumps);
   for (size_t k = 0; k < fixes.size(); ++k) {

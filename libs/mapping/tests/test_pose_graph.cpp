@@ -32,8 +32,10 @@ Matrix6d info() {
   return I;
 }
 
-PoseGraph ringWithDrift(const PoseVector& gt) {
-  PoseGraph g;
+PoseGraph ringWithDrift(const PoseVector& gt, GraphOptimizer optimizer = GraphOptimizer::Lm) {
+  PoseGraphParams p;
+  p.optimizer = optimizer;
+  PoseGraph g(p);
   Eigen::Isometry3d T = gt[0];
   g.addNode(T);
   const Eigen::Isometry3d bias(Eigen::AngleAxisd(0.004, Eigen::Vector3d::UnitZ()));
@@ -54,9 +56,14 @@ double maxError(const PoseGraph& g, const PoseVector& gt) {
 
 }  // namespace
 
-TEST(PoseGraph, LoopEdgeRemovesHeadingDrift) {
+// The oracle tests run on each solver ([pose_graph] optimizer): the own LM and Ceres.
+class PoseGraphSolver : public ::testing::TestWithParam<GraphOptimizer> {};
+INSTANTIATE_TEST_SUITE_P(Optimizers, PoseGraphSolver, ::testing::Values(GraphOptimizer::Lm, GraphOptimizer::Ceres),
+                         [](const auto& info) { return info.param == GraphOptimizer::Ceres ? "ceres" : "lm"; });
+
+TEST_P(PoseGraphSolver, LoopEdgeRemovesHeadingDrift) {
   const auto gt = truth();
-  PoseGraph g = ringWithDrift(gt);
+  PoseGraph g = ringWithDrift(gt, GetParam());
   const double before = maxError(g, gt);
   g.addEdge(gt.size() - 1, 0, gt.back().inverse() * gt[0], info());
   const auto st = g.optimize();
@@ -70,9 +77,9 @@ TEST(PoseGraph, LoopEdgeRemovesHeadingDrift) {
   EXPECT_LT(g.edgeChi2(g.numEdges() - 1), 3 * odo_chi2 + 1e-9);
 }
 
-TEST(PoseGraph, RemoveLastEdgeAndRestore) {
+TEST_P(PoseGraphSolver, RemoveLastEdgeAndRestore) {
   const auto gt = truth();
-  PoseGraph g = ringWithDrift(gt);
+  PoseGraph g = ringWithDrift(gt, GetParam());
   const auto before = g.poses();
   g.addEdge(gt.size() - 1, 0, gt.back().inverse() * gt[0], info());
   g.optimize();
@@ -225,7 +232,7 @@ Matrix6d anisotropicInformation(double scale, unsigned seed) {
 // MRPT 2.5.8's optimize_graph_spa_levmarq (POSE_GRAPH_MRPT=1 runs it here) leaves the graph 56 m off at
 // 1e6 and 1e8: its first step raises the unweighted error, is refused, and it never recovers
 // (pose_graph_solver.h).
-TEST(PoseGraph, ExactEdgesGiveTheTruthAtAnyLoopInformation) {
+TEST_P(PoseGraphSolver, ExactEdgesGiveTheTruthAtAnyLoopInformation) {
   const PoseVector gt = hillyTruth();
   // 0.001 rad of heading and 0.0003 rad of pitch per edge: 56 m off at the loop
   const Eigen::Isometry3d bias(Eigen::AngleAxisd(0.001, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(0.0003, Eigen::Vector3d::UnitY()));
@@ -233,6 +240,7 @@ TEST(PoseGraph, ExactEdgesGiveTheTruthAtAnyLoopInformation) {
     for (bool reversed : {false, true}) {
       SCOPED_TRACE("loop information " + std::to_string(loop_scale) + (reversed ? ", edges reversed" : ""));
       PoseGraphParams gp;
+      gp.optimizer = GetParam();
       if (getenv("POSE_GRAPH_MRPT")) gp.optimizer = GraphOptimizer::MrptLevmarq;  // the old optimiser, for comparison
       PoseGraph g(gp);
       Eigen::Isometry3d T = gt[0];

@@ -40,6 +40,11 @@ namespace roadslam::mapping {
 
 enum class RobustKernel { None, Huber, Cauchy };
 
+/// Ini values: gauss_newton (the IRLS Gauss-Newton above, gnss_fusion.cpp) | ceres (the same factors,
+/// information and robust kernel as Ceres's loss on its Levenberg-Marquardt, src/gnss_fusion_ceres.cpp;
+/// docs/benchmarks.md compares the two).
+enum class GnssOptimizer { GaussNewton, Ceres };
+
 /// Ini section [gnss_fusion].
 struct GnssFusionParams {
   double lever_x_m = 0, lever_y_m = 0, lever_z_m = 0;  ///< antenna in the node frame [m]
@@ -59,6 +64,7 @@ struct GnssFusionParams {
   double max_time_offset_s = 0.15;       ///< a fix farther in time from every node is not used [s]
   double attitude_prior_sigma_rad = 2.0 * M_PI / 180;  ///< first node's roll / pitch prior [rad]; ini _deg
   int max_iterations = 30;               ///< Gauss-Newton iterations [-]
+  GnssOptimizer optimizer = GnssOptimizer::GaussNewton;  ///< ini optimizer
   double uere_m = 3.0;                   ///< user equivalent range error: sigma = HDOP x uere without GST [m]
   double fallback_sigma_m = 5.0;         ///< sigma of a fix with neither GST nor HDOP [m]
   bool receiver_time = true;             ///< stamp fixes with the receiver's time (else the receive time)

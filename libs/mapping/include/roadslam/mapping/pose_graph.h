@@ -3,7 +3,8 @@
 /// 3D pose graph of keyframes: MRPT's CNetworkOfPoses3DInf (the store and its VERTEX3/EDGE3 text
 /// format) optimised by our sparse Levenberg-Marquardt (src/pose_graph_solver.h; [pose_graph] optimizer
 /// = mrpt_levmarq runs mrpt::graphslam::optimize_graph_spa_levmarq instead). The MRPT headers stay in
-/// pose_graph.cpp (graphslam/levmarq.h alone costs ~4 s per translation unit).
+/// pose_graph.cpp (graphslam/levmarq.h alone costs ~4 s per translation unit); optimizer = ceres runs
+/// the same model on Ceres (src/pose_graph_ceres.cpp).
 ///
 /// Frames: node i holds T_map_keyframe_i (map = world frame of the odometry, anchored at node 0,
 /// which stays fixed). Edge (i, j) measures T_i_j = T_map_i^-1 * T_map_j. Information matrices are
@@ -33,8 +34,10 @@ using PoseVector = std::vector<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen
 
 /// Ini values: lm (ours: steps accepted on the information-weighted cost, pose_graph_solver.h) |
 /// mrpt_levmarq (MRPT 2.5.8's optimize_graph_spa_levmarq, which accepts steps on the unweighted error
-/// and stalls when edges' information differs by orders of magnitude; kept for comparison).
-enum class GraphOptimizer { Lm, MrptLevmarq };
+/// and stalls when edges' information differs by orders of magnitude; kept for comparison) |
+/// ceres (the same residuals and information as lm on Ceres's Levenberg-Marquardt with sparse
+/// Cholesky, src/pose_graph_ceres.cpp; docs/benchmarks.md compares the two).
+enum class GraphOptimizer { Lm, MrptLevmarq, Ceres };
 
 /// Ini section [pose_graph].
 struct PoseGraphParams {
