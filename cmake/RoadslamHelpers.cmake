@@ -30,6 +30,8 @@ endfunction()
 # roadslam_add_test(<name> SOURCES ... DEPS ... [LABELS ...] [TIMEOUT s])
 # One gtest executable; every TEST is registered with ctest through gtest_discover_tests.
 # The environment variable ROADSLAM_SHARED_DATA points at ../shared/data for data-driven tests.
+# ROADSLAM_SIM_CACHE is the build tree's one cache of simulated drives (sim::simulateCached), shared
+# by every test binary.
 function(roadslam_add_test name)
   if(NOT ROADSLAM_BUILD_TESTS)
     return()
@@ -46,7 +48,8 @@ function(roadslam_add_test name)
   target_compile_definitions(${name} PRIVATE
     ROADSLAM_SHARED_DATA="${ROADSLAM_SHARED_DATA}"
     ROADSLAM_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
-    ROADSLAM_BINARY_DIR="${PROJECT_BINARY_DIR}")
+    ROADSLAM_BINARY_DIR="${PROJECT_BINARY_DIR}"
+    ROADSLAM_SIM_CACHE="${PROJECT_BINARY_DIR}/sim-cache")
   roadslam_set_warnings(${name})
   include(GoogleTest)
   gtest_discover_tests(${name}

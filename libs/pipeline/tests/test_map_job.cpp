@@ -31,7 +31,7 @@ struct Run {
 const Run& smallLoopRun() {
   static const Run run = [] {
     Run r;
-    r.sim_dir = pipeline::test::simulateOnce(pipeline::test::smallLoop(), "mapping-small-loop-v1");
+    r.sim_dir = pipeline::test::simulateOnce(pipeline::test::smallLoop());
     r.out_dir = std::string(ROADSLAM_BINARY_DIR) + "/test-out/map-job-small-loop";
     pipeline::MapRequest req;
     req.config_path = std::string(ROADSLAM_SOURCE_DIR) + "/ini/default.ini";
@@ -146,7 +146,7 @@ TEST(MapJob, OutputsReadBackByIndependentReaders) {
 TEST(MapJob, ParkingLotFromItsPcapKeepsItsCourseThroughDegenerateFrames) {
   auto p = sim::ScenarioParams::fromFile(std::string(ROADSLAM_SOURCE_DIR) + "/ini/sim/parking-lot.ini");
   p.duration_s = 30;
-  const std::string drive = pipeline::test::simulateOnce(p, "parking-lot-30s");
+  const std::string drive = pipeline::test::simulateOnce(p);
   pipeline::MapRequest req;
   req.config_path = std::string(ROADSLAM_SOURCE_DIR) + "/ini/default.ini";
   req.input_path = drive + "/velodyne.pcap";
@@ -169,7 +169,7 @@ TEST(MapJob, ParkingLotFromItsPcapKeepsItsCourseThroughDegenerateFrames) {
 TEST(MapJob, APacketGapDoesNotThrowTheOdometryOff) {
   auto p = sim::ScenarioParams::fromFile(std::string(ROADSLAM_SOURCE_DIR) + "/ini/sim/urban-loop.ini");
   p.duration_s = 20;
-  const std::string drive = pipeline::test::simulateOnce(p, "urban-loop-20s");
+  const std::string drive = pipeline::test::simulateOnce(p);
   const std::string cut = std::string(ROADSLAM_BINARY_DIR) + "/test_data/urban-loop-20s-gap.pcap";
   {
     pcap::PcapReader in(drive + "/velodyne.pcap");
