@@ -72,10 +72,8 @@ std::vector<Eigen::Vector3f> readPly(const std::string& path) {
   return pts;
 }
 
-}  // namespace
-
-TEST(MapJob, SmallLoopClosedAgainstGroundTruth) {
-  const auto& r = smallLoopRun();
+/// The small loop's map job against the GT (loop closed, ATE below the odometry's).
+void expectClosedAgainstGroundTruth(const Run& r) {
   const auto& s = r.outcome.summary;
   EXPECT_GE(s["loop_closures"].get<int>(), 1) << s.dump(2);
   const double ate_odo = ate(r.sim_dir + "/gt_trajectory.tum", r.out_dir + "/trajectory_odometry.tum");
@@ -91,8 +89,8 @@ TEST(MapJob, SmallLoopClosedAgainstGroundTruth) {
   }
 }
 
-TEST(MapJob, OutputsReadBackByIndependentReaders) {
-  const auto& r = smallLoopRun();
+/// Every output file of the small loop's map job read back by an independent reader.
+void expectOutputsReadBack(const Run& r) {
   const auto& s = r.outcome.summary;
   // OctoMap
   octomap::OcTree tree(0.1);
@@ -138,6 +136,20 @@ TEST(MapJob, OutputsReadBackByIndependentReaders) {
                           "[octomap]", "[grid]", "[point_map]"}) {
     EXPECT_NE(c.find(sec), std::string::npos) << sec;
   }
+}
+
+}  // namespace
+
+// One map job serves both checks: ctest runs every TEST in a process of its own, so two TESTs on the
+// small loop ran the same job twice (each ~10 s of CPU), at once under ctest -j2 and into one folder.
+TEST(MapJob, SmallLoopClosedAgainstGroundTruthAndItsOutputsReadBack) {
+  const auto& r = smallLoopRun();
+  {
+    SCOPED_TRACE("closed against the ground truth");
+    expectClosedAgainstGroundTruth(r);
+  }
+  SCOPED_TRACE("outputs read back by independent readers");
+  expectOutputsReadBack(r);
 }
 
 // The motion axis's degeneracy correction is taken about the sensor, not about the world's origin:
