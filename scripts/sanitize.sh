@@ -4,7 +4,7 @@
 # rows) and the libraries they link, no tests or benchmarks; -O0 -g1 (the table's inputs are small, and
 # it compiles fastest); a unity build of one batch per target (fewest translation units: the shared
 # headers compiled once per target; ROADSLAM_UNITY=OFF in the environment compiles every file alone).
-# scripts/test.sh runs it beside ctest (the build niced, from the start); ctest by hand runs it as
+# scripts/test.sh runs it beside ctest (from the start); ctest by hand runs it as
 # BadInputsUnderSanitizers (label `sanitize`); by hand:
 #   bash scripts/sanitize.sh [BUILD_DIR]   (BUILD_DIR holds the built table, default build)
 # SANITIZE_STEP=build only configures and builds the tree, SANITIZE_STEP=table only runs the table

@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # Runs the whole test suite: ctest (unit, oracle, end-to-end, heavy, bounded fuzz) and the bad-input
 # table against the apps built with ASan + UBSan (scripts/sanitize.sh, its own tree BUILD_DIR-sanitize).
-# The sanitized build starts first, in the background and niced, so it takes the cores the tests leave
-# idle; the table runs against it when it is built; the script waits for it at the end and fails when
-# either ctest or the sanitized step failed (its output is printed then, and kept in
+# The sanitized build starts first, in the background beside ctest (both -j2: whichever ends first, the
+# other has both cores); the table runs against it when it is built; the script waits for it at the end
+# and fails when either ctest or the sanitized step failed (its output is printed then, and kept in
 # BUILD_DIR-sanitize.log).
 # With arguments, they go to ctest alone: select with ctest labels, e.g. `bash scripts/test.sh -L unit`
 # or `-LE heavy`; `-L sanitize` runs the sanitized step as ctest's BadInputsUnderSanitizers.
@@ -15,7 +15,7 @@ if (($#)); then
 fi
 SAN_LOG="$(realpath -m "$BUILD_DIR")-sanitize.log"
 set -m  # the sanitized step in a process group of its own: stopped with the script
-( SANITIZE_STEP=build nice -n 10 bash scripts/sanitize.sh "$BUILD_DIR" &&
+( SANITIZE_STEP=build bash scripts/sanitize.sh "$BUILD_DIR" &&
   SANITIZE_STEP=table bash scripts/sanitize.sh "$BUILD_DIR" ) > "$SAN_LOG" 2>&1 &
 san_pid=$!
 set +m
