@@ -30,6 +30,8 @@ endfunction()
 # roadslam_add_test(<name> SOURCES ... DEPS ... [LABELS ...] [TIMEOUT s])
 # One gtest executable; every TEST is registered with ctest through gtest_discover_tests.
 # The environment variable ROADSLAM_SHARED_DATA points at ../shared/data for data-driven tests.
+# ROADSLAM_SIM_CACHE is the build tree's one cache of simulated drives (sim::simulateCached), shared
+# by every test binary.
 function(roadslam_add_test name)
   if(NOT ROADSLAM_BUILD_TESTS)
     return()
@@ -46,12 +48,19 @@ function(roadslam_add_test name)
   target_compile_definitions(${name} PRIVATE
     ROADSLAM_SHARED_DATA="${ROADSLAM_SHARED_DATA}"
     ROADSLAM_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
-    ROADSLAM_BINARY_DIR="${PROJECT_BINARY_DIR}")
+    ROADSLAM_BINARY_DIR="${PROJECT_BINARY_DIR}"
+    ROADSLAM_SIM_CACHE="${PROJECT_BINARY_DIR}/sim-cache")
   roadslam_set_warnings(${name})
+  # On a clean clone ctest has no CTestCostData.txt and starts the tests in the order they were
+  # declared: a heavy test started last runs alone with a core idle. COST starts the heavy ones first.
+  set(_cost 0)
+  if("heavy" IN_LIST ARG_LABELS)
+    set(_cost 100)
+  endif()
   include(GoogleTest)
   gtest_discover_tests(${name}
     WORKING_DIRECTORY ${PROJECT_BINARY_DIR}
-    PROPERTIES LABELS "${ARG_LABELS}" TIMEOUT ${ARG_TIMEOUT}
+    PROPERTIES LABELS "${ARG_LABELS}" TIMEOUT ${ARG_TIMEOUT} COST ${_cost}
     DISCOVERY_TIMEOUT 60)
 endfunction()
 

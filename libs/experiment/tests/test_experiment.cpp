@@ -44,7 +44,7 @@ const std::string& drive() {
   static const std::string dir = [] {
     auto p = sim::ScenarioParams::fromFile(kSrc + "/ini/sim/urban-loop.ini");
     p.duration_s = 3.0;
-    return sim::simulateOnce(p, std::string(ROADSLAM_BINARY_DIR) + "/test_data/experiment_urban3");
+    return sim::simulateCached(p, ROADSLAM_SIM_CACHE);
   }();
   return dir;
 }

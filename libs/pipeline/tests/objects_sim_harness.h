@@ -58,6 +58,7 @@ inline std::string objectsIni(bool remove = true, const IniEdits& edits = {}, co
 struct ObjectsRun {
   eval::MotMetrics m;
   nlohmann::json summary;
+  std::string drive;  ///< the simulated drive's folder (gt_trajectory.tum, gt_objects.json)
   std::string out_dir;
 };
 
@@ -65,7 +66,7 @@ inline ObjectsRun runObjects(const std::string& scenario, double duration_s, con
                              bool remove = true, const IniEdits& edits = {}, const std::string& tag = "") {
   auto p = sim::ScenarioParams::fromFile(std::string(ROADSLAM_SOURCE_DIR) + "/ini/sim/" + scenario + ".ini");
   p.duration_s = duration_s;
-  const std::string drive = pipeline::test::simulateOnce(p, name);
+  const std::string drive = pipeline::test::simulateOnce(p);
   pipeline::MapRequest req;
   req.config_path = objectsIni(remove, edits, tag);
   req.input_path = drive + "/velodyne.pcap";
@@ -74,6 +75,7 @@ inline ObjectsRun runObjects(const std::string& scenario, double duration_s, con
   req.progress = false;
   ObjectsRun r;
   r.summary = pipeline::runMapJob(req).summary;
+  r.drive = drive;
   r.out_dir = req.out_dir;
   r.m = eval::evaluateMotFiles(drive + "/gt_objects.json", drive + "/gt_trajectory.tum", req.out_dir);
   std::cout << name << ": " << eval::toJson(r.m).dump() << "\nobjects stage: " << r.summary["objects"].dump() << "\n";

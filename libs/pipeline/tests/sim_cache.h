@@ -1,6 +1,7 @@
 #pragma once
-// Simulated recordings for the pipeline tests, generated once into the build tree (like
-// datasets::unpackTarZstOnce): a completion marker written last makes an interrupted run regenerate.
+// Simulated recordings for the pipeline tests, generated once per build tree into the cache every test
+// binary shares (sim::simulateCached: <build>/sim-cache/<scenario>-<duration>-<hash>, a completion
+// marker written last makes an interrupted run regenerate, a lock file makes parallel tests take turns).
 #include <filesystem>
 #include <string>
 
@@ -17,9 +18,7 @@ inline sim::ScenarioParams smallLoop() {
   return p;
 }
 
-/// Simulates \p p into ROADSLAM_BINARY_DIR/test-cache/<name> unless done before; returns the folder.
-inline std::string simulateOnce(const sim::ScenarioParams& p, const std::string& name) {
-  return sim::simulateOnce(p, std::string(ROADSLAM_BINARY_DIR) + "/test-cache/" + name);
-}
+/// Simulates \p p into the build tree's drive cache unless done before; returns the folder.
+inline std::string simulateOnce(const sim::ScenarioParams& p) { return sim::simulateCached(p, ROADSLAM_SIM_CACHE); }
 
 }  // namespace roadslam::pipeline::test

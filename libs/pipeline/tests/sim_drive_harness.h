@@ -1,7 +1,7 @@
 #pragma once
-// Harness of the simulated-drive tests: drives simulated once into the build folder (cache keyed by
-// the tag), the roadslam-bounds job over them with GT poses, the eval's scores, and the check that
-// no boundary vertex lies on a moving car (GT tracks).
+// Harness of the simulated-drive tests: drives simulated once per build tree (sim::simulateCached, the
+// cache every test binary shares), the roadslam-bounds job over them with GT poses, the eval's scores,
+// and the check that no boundary vertex lies on a moving car (GT tracks).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -14,25 +14,17 @@
 #include "roadslam/pipeline/bounds_job.h"
 #include "roadslam/eval/boundary_metrics.h"
 #include "roadslam/sim/outputs.h"
-#include "roadslam/sim/simulator.h"
 
 namespace roadslam::pipeline::bounds_test {
 
 namespace fs = std::filesystem;
 
-/// Simulates \p duration_s of \p ini (with \p tweak applied) into the build folder once.
-inline std::string cachedDrive(const std::string& tag, const std::string& ini, double duration_s,
-                        void (*tweak)(sim::ScenarioParams&)) {
-  const std::string dir = std::string(ROADSLAM_BINARY_DIR) + "/test_data/boundary_" + tag;
-  if (fs::exists(dir + "/summary.json") && fs::exists(dir + "/gt_boundaries.json")) return dir;
+/// Simulates \p duration_s of \p ini (with \p tweak applied) into the build tree's drive cache once.
+inline std::string cachedDrive(const std::string& ini, double duration_s, void (*tweak)(sim::ScenarioParams&)) {
   auto p = sim::ScenarioParams::fromFile(std::string(ROADSLAM_SOURCE_DIR) + "/ini/sim/" + ini);
   p.duration_s = duration_s;
   if (tweak) tweak(p);
-  sim::Simulator s(p);
-  sim::OutputOptions opt;
-  opt.dir = dir;
-  sim::runToDirectory(s, opt);
-  return dir;
+  return sim::simulateCached(p, ROADSLAM_SIM_CACHE);
 }
 
 struct Run {

@@ -20,7 +20,7 @@ using namespace roadslam::pipeline::bounds_test;
 // Urban loop start (straight street, curbs both sides, trees, poles, oncoming cars), parking lanes
 // empty so both curbs are in view: the targets of the issue hold.
 TEST(SimDrive, VisibleCurbsMeetTheTargets) {
-  const auto drive = cachedDrive("urban_noparking", "urban-loop.ini", 10.0,
+  const auto drive = cachedDrive("urban-loop.ini", 10.0,
                                  [](sim::ScenarioParams& p) { p.world.parked_car_prob = 0.0; });
   const auto r = runBounds(drive, "bounds.ini", "urban_noparking");
   EXPECT_GE(r.m.frames_scored, 90);
@@ -33,7 +33,7 @@ TEST(SimDrive, VisibleCurbsMeetTheTargets) {
 // Slopes up to ~12 % with pitch and roll (hills.ini), parking lanes empty: the ground follows the
 // hills, the curbs stay found, and boundaries lie on the road so the roll does not shift them.
 TEST(SimDrive, HillsMeetTheTargets) {
-  const auto drive = cachedDrive("hills_noparking", "hills.ini", 12.0,
+  const auto drive = cachedDrive("hills.ini", 12.0,
                                  [](sim::ScenarioParams& p) { p.world.parked_car_prob = 0.0; });
   const auto r = runBounds(drive, "bounds.ini", "hills_noparking");
   const auto [on_cars, near] = verticesOnMovingCars(drive, r.out_dir);
@@ -49,7 +49,7 @@ TEST(SimDrive, HillsMeetTheTargets) {
 // parked cars, so the curb they hide from the vehicle ahead was seen through the gaps and from
 // behind. The right side is found where the live mode above finds it in 43 % of the sweeps.
 TEST(SimDrive, WholeDriveSeesTheCurbParkedCarsHide) {
-  const auto drive = cachedDrive("urban", "urban-loop.ini", 10.0, nullptr);
+  const auto drive = cachedDrive("urban-loop.ini", 10.0, nullptr);
   const auto r = runBounds(drive, "bounds.ini", "urban_whole", {true, true});
   EXPECT_EQ(r.summary["mode"], "whole_drive");
   EXPECT_GE(r.m.frames_scored, 90);
@@ -81,7 +81,7 @@ TEST(SimDrive, WholeDriveSeesTheCurbParkedCarsHide) {
 // the right side is found from the accumulated curb map; where nothing was ever seen it is unknown
 // and says why (or is an explicitly held track), never guessed; the left curb is held throughout.
 TEST(SimDrive, ParkedCarsHideTheRightCurbAndSaySo) {
-  const auto drive = cachedDrive("urban", "urban-loop.ini", 10.0, nullptr);
+  const auto drive = cachedDrive("urban-loop.ini", 10.0, nullptr);
   const auto r = runBounds(drive, "bounds.ini", "urban");
   EXPECT_GE(r.m.left_detection_rate, 0.95);
   EXPECT_GE(r.m.right_detection_rate, 0.42);  // measured 0.43 (0.44 with the 10-sweep memory)
@@ -116,7 +116,7 @@ TEST(SimDrive, ParkedCarsHideTheRightCurbAndSaySo) {
 }
 
 TEST(SimDrive, ThesisBaselineRunsOnTheSameDrive) {
-  const auto drive = cachedDrive("urban_noparking", "urban-loop.ini", 10.0,
+  const auto drive = cachedDrive("urban-loop.ini", 10.0,
                                  [](sim::ScenarioParams& p) { p.world.parked_car_prob = 0.0; });
   const auto r = runBounds(drive, "bounds-thesis.ini", "urban_thesis");
   EXPECT_GE(r.m.frames_scored, 90);

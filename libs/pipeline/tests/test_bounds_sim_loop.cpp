@@ -120,7 +120,7 @@ void expectCeiling(const std::string& drive, const Run& r) {
 // outputs differed only in the "ms" fields), and the job is most of their time (as two tests 10.4 s
 // and 11.2 s, together 12.3 s).
 TEST(SimLoop, WholeUrbanLoopAsReachedAndItsCeiling) {
-  const auto drive = cachedDrive("urban_loop_full", "urban-loop.ini", 0.0, nullptr);
+  const auto drive = cachedDrive("urban-loop.ini", 0.0, nullptr);
   const auto r = runBounds(drive, "bounds.ini", "urban_loop_full");
   {
     SCOPED_TRACE("as reached");
@@ -139,7 +139,7 @@ TEST(SimLoop, WholeUrbanLoopAsReachedAndItsCeiling) {
 // p95 0.232 m (seeds 8 / 9: 0.718 / 0.092 / 0.223 and 0.725 / 0.095 / 0.241); with the ground's
 // parked-car rules 0.728 / 0.088 / 0.221 (0.728 / 0.097 / 0.218, 0.731 / 0.102 / 0.222): the error targets.
 TEST(SimLoop, WholeHillsDriveTakesTheCurbNotTheSidewalksFarEdge) {
-  const auto drive = cachedDrive("hills_full", "hills.ini", 0.0, nullptr);
+  const auto drive = cachedDrive("hills.ini", 0.0, nullptr);
   const auto r = runBounds(drive, "bounds.ini", "hills_full");
   EXPECT_GE(r.m.frames_scored, 1000);
   EXPECT_GE(r.m.detection_rate, 0.72);
@@ -156,7 +156,7 @@ TEST(SimLoop, WholeHillsDriveTakesTheCurbNotTheSidewalksFarEdge) {
 TEST(SimLoop, WholeDrivesWithVisibleCurbsMeetTheTargets) {
   for (const auto& [ini, tag] : {std::pair<std::string, std::string>{"urban-loop.ini", "urban_loop_empty_lanes"},
                                  {"hills.ini", "hills_empty_lanes"}}) {
-    const auto drive = cachedDrive(tag, ini, 0.0, [](sim::ScenarioParams& p) { p.world.parked_car_prob = 0.0; });
+    const auto drive = cachedDrive(ini, 0.0, [](sim::ScenarioParams& p) { p.world.parked_car_prob = 0.0; });
     const auto r = runBounds(drive, "bounds.ini", tag);
     const auto m = alongPath(drive, r);
     EXPECT_GE(m.frames_scored, 1000) << tag;
@@ -196,7 +196,7 @@ TEST(SimLoop, WholeDriveModeMeetsTheTargetsBehindParkedCars) {
     bool gt;
   };
   for (const Case& c : {Case{"urban-loop.ini", "urban_loop_full", true}, Case{"hills.ini", "hills_full", false}}) {
-    const auto drive = cachedDrive(c.tag, c.ini, 0.0, nullptr);
+    const auto drive = cachedDrive(c.ini, 0.0, nullptr);
     const std::string run = std::string(c.tag) + (c.gt ? "_whole_gt" : "_whole_odometry");
     const auto r = runBounds(drive, "bounds.ini", run, {true, c.gt});
     const auto m = alongPath(drive, r);

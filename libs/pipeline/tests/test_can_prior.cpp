@@ -61,7 +61,7 @@ std::string biasedTunnel() {
   p.trajectory.start_standing_s = 0;
   p.can.yaw_rate_bias_radps = -0.4 * M_PI / 180;
   p.can.wheel_speed_scale_error = -0.009;
-  return pipeline::test::simulateOnce(p, "tunnel-40s-biased-can-v1");
+  return pipeline::test::simulateOnce(p);
 }
 
 /// RTE [%] and ATE [m] of \p est over the frames stamped after \p t_from_s (the tunnel).
@@ -132,7 +132,7 @@ TEST(CanPrior, OnlineCalibrationAndCanEdgesOnTheBiasedTunnel) {
 TEST(CanPrior, TunnelHoldsWithTheWheelOdometryPrior) {
   auto p = sim::ScenarioParams::fromFile(std::string(ROADSLAM_SOURCE_DIR) + "/ini/sim/tunnel.ini");
   p.duration_s = 30;
-  const std::string dir = pipeline::test::simulateOnce(p, "tunnel-30s-can-v1");
+  const std::string dir = pipeline::test::simulateOnce(p);
   const auto with = runTunnel(dir, "tunnel-can", true);
   const auto without = runTunnel(dir, "tunnel-nocan", false);
   EXPECT_EQ(with.summary["can"]["priors_missing"].get<int>(), 0);

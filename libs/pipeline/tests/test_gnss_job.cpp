@@ -23,7 +23,7 @@ using namespace roadslam;
 
 TEST(GnssJob, SmallLoopFusedGeoreferencedOutputs) {
   auto sp = pipeline::test::smallLoop();
-  const std::string sim_dir = pipeline::test::simulateOnce(sp, "mapping-small-loop-v1");
+  const std::string sim_dir = pipeline::test::simulateOnce(sp);
   sp.gnss.enabled = true;
   sp.gnss.multipath_start_s = 20;
   sp.gnss.multipath_duration_s = 2;

@@ -31,7 +31,7 @@ struct Run {
 const Run& smallLoopRun() {
   static const Run run = [] {
     Run r;
-    r.sim_dir = pipeline::test::simulateOnce(pipeline::test::smallLoop(), "mapping-small-loop-v1");
+    r.sim_dir = pipeline::test::simulateOnce(pipeline::test::smallLoop());
     r.out_dir = std::string(ROADSLAM_BINARY_DIR) + "/test-out/map-job-small-loop";
     pipeline::MapRequest req;
     req.config_path = std::string(ROADSLAM_SOURCE_DIR) + "/ini/default.ini";
@@ -72,10 +72,8 @@ std::vector<Eigen::Vector3f> readPly(const std::string& path) {
   return pts;
 }
 
-}  // namespace
-
-TEST(MapJob, SmallLoopClosedAgainstGroundTruth) {
-  const auto& r = smallLoopRun();
+/// The small loop's map job against the GT (loop closed, ATE below the odometry's).
+void expectClosedAgainstGroundTruth(const Run& r) {
   const auto& s = r.outcome.summary;
   EXPECT_GE(s["loop_closures"].get<int>(), 1) << s.dump(2);
   const double ate_odo = ate(r.sim_dir + "/gt_trajectory.tum", r.out_dir + "/trajectory_odometry.tum");
@@ -91,8 +89,8 @@ TEST(MapJob, SmallLoopClosedAgainstGroundTruth) {
   }
 }
 
-TEST(MapJob, OutputsReadBackByIndependentReaders) {
-  const auto& r = smallLoopRun();
+/// Every output file of the small loop's map job read back by an independent reader.
+void expectOutputsReadBack(const Run& r) {
   const auto& s = r.outcome.summary;
   // OctoMap
   octomap::OcTree tree(0.1);
@@ -140,13 +138,27 @@ TEST(MapJob, OutputsReadBackByIndependentReaders) {
   }
 }
 
+}  // namespace
+
+// One map job serves both checks: ctest runs every TEST in a process of its own, so two TESTs on the
+// small loop ran the same job twice (each ~10 s of CPU), at once under ctest -j2 and into one folder.
+TEST(MapJob, SmallLoopClosedAgainstGroundTruthAndItsOutputsReadBack) {
+  const auto& r = smallLoopRun();
+  {
+    SCOPED_TRACE("closed against the ground truth");
+    expectClosedAgainstGroundTruth(r);
+  }
+  SCOPED_TRACE("outputs read back by independent readers");
+  expectOutputsReadBack(r);
+}
+
 // The motion axis's degeneracy correction is taken about the sensor, not about the world's origin:
 // 63 m from it, a 0.5 deg yaw correction moved the sensor 0.55 m along the motion and the simulated
 // parking lot read from its pcap ran backwards at 14 m/s from 25 s on (RTE 10.7 %). Oracle: the GT.
 TEST(MapJob, ParkingLotFromItsPcapKeepsItsCourseThroughDegenerateFrames) {
   auto p = sim::ScenarioParams::fromFile(std::string(ROADSLAM_SOURCE_DIR) + "/ini/sim/parking-lot.ini");
   p.duration_s = 30;
-  const std::string drive = pipeline::test::simulateOnce(p, "parking-lot-30s");
+  const std::string drive = pipeline::test::simulateOnce(p);
   pipeline::MapRequest req;
   req.config_path = std::string(ROADSLAM_SOURCE_DIR) + "/ini/default.ini";
   req.input_path = drive + "/velodyne.pcap";
@@ -169,7 +181,7 @@ TEST(MapJob, ParkingLotFromItsPcapKeepsItsCourseThroughDegenerateFrames) {
 TEST(MapJob, APacketGapDoesNotThrowTheOdometryOff) {
   auto p = sim::ScenarioParams::fromFile(std::string(ROADSLAM_SOURCE_DIR) + "/ini/sim/urban-loop.ini");
   p.duration_s = 20;
-  const std::string drive = pipeline::test::simulateOnce(p, "urban-loop-20s");
+  const std::string drive = pipeline::test::simulateOnce(p);
   const std::string cut = std::string(ROADSLAM_BINARY_DIR) + "/test_data/urban-loop-20s-gap.pcap";
   {
     pcap::PcapReader in(drive + "/velodyne.pcap");

@@ -41,7 +41,7 @@ Eigen::Vector3d gtPositionAt(const datasets::Trajectory& gt, double t) {
 
 TEST(MapJobHeavy, FullUrbanLoop) {
   const auto p = sim::ScenarioParams::fromFile(std::string(ROADSLAM_SOURCE_DIR) + "/ini/sim/urban-loop.ini");
-  const std::string sim_dir = pipeline::test::simulateOnce(p, "mapping-urban-loop-v1");
+  const std::string sim_dir = pipeline::test::simulateOnce(p);
   const auto out = run(sim_dir, "map-job-urban-loop");
   const std::string dir = std::string(ROADSLAM_BINARY_DIR) + "/test-out/map-job-urban-loop";
   const double ate_odo = ate(sim_dir + "/gt_trajectory.tum", dir + "/trajectory_odometry.tum");
@@ -58,7 +58,7 @@ TEST(MapJobHeavy, FullUrbanLoop) {
 
 TEST(MapJobHeavy, ParallelStreetsNoFalseLoop) {
   const auto p = sim::ScenarioParams::fromFile(std::string(ROADSLAM_SOURCE_DIR) + "/ini/sim/parallel-streets.ini");
-  const std::string sim_dir = pipeline::test::simulateOnce(p, "mapping-parallel-streets-v1");
+  const std::string sim_dir = pipeline::test::simulateOnce(p);
   const auto out = run(sim_dir, "map-job-parallel-streets");
   const auto gt = datasets::readTum(sim_dir + "/gt_trajectory.tum");
   // a true revisit: the two frames are within the candidate radius in the truth (streets are 60 m apart)
@@ -77,7 +77,7 @@ TEST(MapJobHeavy, ParallelStreetsNoFalseLoop) {
 // accuracy on a second, different lap is MapperSim.SecondLapByPlaceRecognition's; here every sweep must get
 // a pose in the map and the trajectory must match the truth.
 TEST(MapJobHeavy, LocalizesInAPriorMap) {
-  const std::string sim_dir = pipeline::test::simulateOnce(pipeline::test::smallLoop(), "mapping-small-loop-v1");
+  const std::string sim_dir = pipeline::test::simulateOnce(pipeline::test::smallLoop());
   run(sim_dir, "map-job-prior-map-a");
   const std::string map_dir = std::string(ROADSLAM_BINARY_DIR) + "/test-out/map-job-prior-map-a";
   pipeline::MapRequest req;

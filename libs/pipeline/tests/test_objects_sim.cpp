@@ -48,7 +48,7 @@ TEST(ObjectsSim, RemovalFromTheOdometrysMapKeepsItsRte) {
                                   {{"objects", "remove_moving_from_odometry", "true"}}, "-odo");
   const size_t kept_out = r.summary["objects"]["moving_points_kept_out_of_odometry_map"].get<size_t>();
   eval::EvalRequest er;
-  er.gt_path = std::string(ROADSLAM_BINARY_DIR) + "/test-cache/urban-loop-25s/gt_trajectory.tum";  // simulated by runObjects
+  er.gt_path = r.drive + "/gt_trajectory.tum";
   er.est_path = r.out_dir + "/trajectory_odometry.tum";
   const auto m = eval::evaluate(er).metrics;
   std::cout << "odometry with the moving tracks kept out of its map: " << kept_out << " points kept out, RTE "

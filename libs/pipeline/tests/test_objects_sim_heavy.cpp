@@ -79,7 +79,7 @@ static std::string fileText(const std::string& path) {
 TEST(ObjectsSimHeavy, RemovalKeepsMostOfTheTrailsOutOfTheMap) {
   const ObjectsRun on = runObjects("urban-loop", 30, "urban-loop-30s", true, true);
   const ObjectsRun off = runObjects("urban-loop", 30, "urban-loop-30s", true, false);
-  const std::string drive = std::string(ROADSLAM_BINARY_DIR) + "/test-cache/urban-loop-30s";
+  const std::string& drive = on.drive;
   const auto g_on = eval::countGhostPoints(drive + "/gt_objects.json", drive + "/gt_trajectory.tum",
                                            on.out_dir + "/trajectory.tum", on.out_dir + "/map.ply");
   const auto g_off = eval::countGhostPoints(drive + "/gt_objects.json", drive + "/gt_trajectory.tum",

@@ -22,7 +22,7 @@ using namespace roadslam;
 TEST(MapJobSigint, InterruptedRunLeavesConsistentOutputs) {
   const std::string exe = std::string(ROADSLAM_BINARY_DIR) + "/bin/roadslam-map";
   if (!fs::exists(exe)) GTEST_SKIP() << exe << " not built";
-  const std::string sim_dir = pipeline::test::simulateOnce(pipeline::test::smallLoop(), "mapping-small-loop-v1");
+  const std::string sim_dir = pipeline::test::simulateOnce(pipeline::test::smallLoop());
   const std::string out = std::string(ROADSLAM_BINARY_DIR) + "/test-out/map-job-sigint";
   fs::remove_all(out);
   const std::string cfg = std::string(ROADSLAM_SOURCE_DIR) + "/ini/default.ini";

@@ -46,7 +46,7 @@ const std::string& drive() {
   static const std::string dir = [] {
     auto p = sim::ScenarioParams::fromFile(kSrc + "/ini/sim/urban-loop.ini");
     p.duration_s = 5.0;
-    return sim::simulateOnce(p, std::string(ROADSLAM_BINARY_DIR) + "/test_data/recording_report_urban5");
+    return sim::simulateCached(p, ROADSLAM_SIM_CACHE);
   }();
   return dir;
 }

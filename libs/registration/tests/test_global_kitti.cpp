@@ -26,7 +26,7 @@ Error errorOf(const Eigen::Isometry3d& gt, const Eigen::Isometry3d& est) {
 TEST(GlobalRegistrationKitti, RawPairsTenMetresApartWithNoGuess) {
   if (!std::filesystem::exists(kRaw + "velodyne.tar.zst")) GTEST_SKIP() << "missing " << kRaw << "velodyne.tar.zst";
   const std::string cache =
-      ds::unpackTarZstOnce(kRaw + "velodyne.tar.zst", std::string(ROADSLAM_BINARY_DIR) + "/test-cache/kitti-raw-2011_09_26-0001");
+      ds::unpackTarZstOnce(kRaw + "velodyne.tar.zst", std::string(ROADSLAM_BINARY_DIR) + "/data/kitti-raw-0001");
   const ds::KittiScanFolder folder(cache + "/velodyne");
   const ds::PoseList T_w = ds::readKittiPoses(kRaw + "poses_velo_kitti.txt");
   const GlobalParams prm;

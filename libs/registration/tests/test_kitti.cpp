@@ -97,7 +97,7 @@ TEST_P(KittiTest, RawDrivePairsFromIdentityGuess) {
   const std::string raw = std::string(ROADSLAM_SHARED_DATA) + "/kitti/raw-2011_09_26-0001/";
   if (!std::filesystem::exists(raw + "velodyne.tar.zst")) GTEST_SKIP() << "missing " << raw << "velodyne.tar.zst";
   const std::string cache =
-      ds::unpackTarZstOnce(raw + "velodyne.tar.zst", std::string(ROADSLAM_BINARY_DIR) + "/test-cache/kitti-raw-2011_09_26-0001");
+      ds::unpackTarZstOnce(raw + "velodyne.tar.zst", std::string(ROADSLAM_BINARY_DIR) + "/data/kitti-raw-0001");
   const ds::KittiScanFolder folder(cache + "/velodyne");
   Kitti00 k;
   const ds::PoseList all = ds::readKittiPoses(raw + "poses_velo_kitti.txt");

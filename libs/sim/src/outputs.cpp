@@ -2,12 +2,17 @@
 
 #include <mrpt/config/CConfigFileMemory.h>
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <cctype>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <unistd.h>
 #include <nlohmann/json.hpp>
 
 #include "roadslam/can/candump.h"
@@ -221,32 +226,84 @@ RunReport runToDirectory(Simulator& sim, const OutputOptions& opt) {
   return rep;
 }
 
-std::string simulateOnce(const ScenarioParams& p, const std::string& dir) {
-  namespace fs = std::filesystem;
-  // the marker holds the scenario the folder was simulated from: a changed scenario ini (or a
-  // default) under the same name simulates again instead of reusing the old drive
+namespace {
+
+std::string savedScenario(const ScenarioParams& p) {
   mrpt::config::CConfigFileMemory used;
   p.saveToConfigFile(used);
-  const std::string scenario = used.getContent();
+  return used.getContent();
+}
+
+/// An exclusive flock on a file, held until destroyed (or the process ends: a killed test frees it).
+class FileLock {
+ public:
+  explicit FileLock(const std::string& path) : fd_(::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644)) {
+    if (fd_ < 0) throw std::runtime_error("cannot open lock file " + path);
+    while (::flock(fd_, LOCK_EX) != 0) {
+      if (errno != EINTR) {
+        ::close(fd_);
+        throw std::runtime_error("cannot lock " + path);
+      }
+    }
+  }
+  ~FileLock() { ::close(fd_); }
+  FileLock(const FileLock&) = delete;
+  FileLock& operator=(const FileLock&) = delete;
+
+ private:
+  int fd_;
+};
+
+}  // namespace
+
+std::string simulateOnce(const ScenarioParams& p, const std::string& dir, bool* simulated) {
+  namespace fs = std::filesystem;
+  if (simulated) *simulated = false;
+  // the marker holds the scenario the folder was simulated from: a changed scenario ini (or a
+  // default) under the same name simulates again instead of reusing the old drive
+  const std::string scenario = savedScenario(p);
   const auto readMarker = [&] {
     std::ifstream f(dir + "/.complete", std::ios::binary);
     return std::string(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
   };
+  std::error_code ec;
+  const fs::path parent = fs::path(dir).parent_path();
+  if (!parent.empty()) fs::create_directories(parent, ec);
+  const FileLock lock(dir + ".lock");  // a process simulating this drive finishes before we look
   if (fs::exists(dir + "/.complete")) {
     if (readMarker() == scenario) return dir;
     std::fprintf(stderr, "simulateOnce: %s was simulated from another scenario: simulating it again\n", dir.c_str());
   }
   const std::string tmp = dir + ".tmp" + std::to_string(::getpid());
+  fs::remove_all(tmp, ec);
   Simulator s(p);
   OutputOptions o;
   o.dir = tmp;
   runToDirectory(s, o);
   writeFileAtomically(tmp + "/.complete", scenario);
-  std::error_code ec;
-  if (readMarker() != scenario) fs::remove_all(dir, ec);  // unfinished, or of another scenario
+  fs::remove_all(dir, ec);  // unfinished, or of another scenario (under the lock: no one else uses it)
   fs::rename(tmp, dir, ec);
-  if (ec) fs::remove_all(tmp, ec);  // another process finished first
+  if (ec) throw std::runtime_error("cannot rename " + tmp + " to " + dir + ": " + ec.message());
+  if (simulated) *simulated = true;
   return dir;
+}
+
+std::string cachedDriveDir(const ScenarioParams& p, const std::string& cache_dir) {
+  uint64_t h = 1469598103934665603ull;  // FNV-1a: stable across runs and compilers (std::hash is not)
+  for (const unsigned char c : savedScenario(p)) h = (h ^ c) * 1099511628211ull;
+  std::string name;
+  for (const char c : p.name) name += std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' ? c : '_';
+  char tail[64];
+  if (p.duration_s > 0) {
+    std::snprintf(tail, sizeof(tail), "-%gs-%016llx", p.duration_s, static_cast<unsigned long long>(h));
+  } else {
+    std::snprintf(tail, sizeof(tail), "-full-%016llx", static_cast<unsigned long long>(h));
+  }
+  return cache_dir + "/" + name + tail;
+}
+
+std::string simulateCached(const ScenarioParams& p, const std::string& cache_dir, bool* simulated) {
+  return simulateOnce(p, cachedDriveDir(p, cache_dir), simulated);
 }
 
 }  // namespace roadslam::sim

@@ -52,10 +52,20 @@ RunReport runToDirectory(Simulator& sim, const OutputOptions& opt);
 
 /// Simulates \p p into \p dir (runToDirectory, no UDP) unless a finished run is there; returns \p dir.
 /// For tests that share one drive per build tree: the run is written beside (dir.tmp<pid>), marked
-/// finished (dir/.complete) and renamed into place, so test processes running in parallel and a run
-/// interrupted part way never leave a half-written folder in use. The marker holds \p p as saved
-/// (ScenarioParams::saveToConfigFile): a folder simulated from other parameters is simulated again.
-std::string simulateOnce(const ScenarioParams& p, const std::string& dir);
+/// finished (dir/.complete) and renamed into place, so a run interrupted part way never leaves a
+/// half-written folder in use. The marker holds \p p as saved (ScenarioParams::saveToConfigFile): a
+/// folder simulated from other parameters is simulated again. Test processes running in parallel
+/// take turns on the lock file dir.lock (flock), so a drive two of them want at once is simulated
+/// once: the second waits for the first and reuses its folder. \p simulated (when given) tells which.
+std::string simulateOnce(const ScenarioParams& p, const std::string& dir, bool* simulated = nullptr);
+
+/// The folder of \p p's drive in a cache of drives: \p cache_dir/<name>-<duration>-<hash>, the hash
+/// (FNV-1a, 64 bits) of \p p as saved, so every scenario has a folder of its own whoever asks for it.
+std::string cachedDriveDir(const ScenarioParams& p, const std::string& cache_dir);
+
+/// simulateOnce(p, cachedDriveDir(p, cache_dir)): the tests' drives, one cache per build tree
+/// (ROADSLAM_SIM_CACHE, <build>/sim-cache) shared by every test binary.
+std::string simulateCached(const ScenarioParams& p, const std::string& cache_dir, bool* simulated = nullptr);
 
 /// Top view: world primitives, roads, curbs (green), route (red), start (circle) to a PNG.
 void drawTopView(const Simulator& sim, const std::string& png_path, int max_px = 1600);
