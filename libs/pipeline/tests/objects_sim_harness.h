@@ -1,11 +1,11 @@
 #pragma once
 // Harness of the objects stage end to end: roadslam-map's job with [objects] enabled on simulated drives, its
 // tracks.csv scored with CLEAR MOT against the simulator's moving cars (eval::evaluateMotFiles).
-// The tests' bounds are the figures measured when they were written minus a margin (docs/architecture.md,
-// "Objects"); the MOTA >= 0.90 and MOTP <= 0.20 m are reached on the three drives, its id-switch
-// target (<= 1 per 100 tracked s) on all three counting the cars that stayed in view (since session 14,
-// on the physical traffic), under CLEAR MOT on the 30 s loop and the parallel streets, not on the 90 s
-// loop (3 cars back after 44-51 s around the block in 31 tracked s; docs/benchmarks.md, "Objects").
+// The tests' bounds are the figures measured when they were written minus a margin (docs/benchmarks.md,
+// "Objects and tracking"); the targets MOTA >= 0.90 and MOTP <= 0.20 m are reached on the three drives,
+// the id-switch target (<= 1 per 100 tracked s) on all three counting the cars that stayed in view (on the
+// physical traffic), under CLEAR MOT on the 30 s loop and the parallel streets, not on the 90 s loop
+// (3 cars back after 44-51 s around the block in 31 tracked s).
 #include <mrpt/config/CConfigFileMemory.h>
 
 #include <algorithm>
