@@ -1,5 +1,7 @@
 // A folder from the real map job (a simulated 4 s of the urban loop, [objects] enabled) read back
 // through the run-folder readers, against what the job returned in memory and the simulator's truth.
+// One TEST: ctest runs each TEST as a process of its own, and two of them at once would run the same
+// job into one folder.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -19,12 +21,11 @@ struct JobRun {
   pipeline::MapOutcome out;
 };
 
-const JobRun& jobRun() {
-  static const JobRun r = [] {
+JobRun runJob() {
     JobRun x;
     auto p = sim::ScenarioParams::fromFile(std::string(ROADSLAM_SOURCE_DIR) + "/ini/sim/urban-loop.ini");
     p.duration_s = 4;
-    x.drive = sim::simulateOnce(p, std::string(ROADSLAM_BINARY_DIR) + "/test-cache/runfolder-urban-4s");
+    x.drive = sim::simulateCached(p, ROADSLAM_SIM_CACHE);
     x.dir = runfolder::test::freshDir("map-job");
     const std::string ini = x.dir + "-objects.ini";
     runfolder::test::writeText(ini, runfolder::test::readText(std::string(ROADSLAM_SOURCE_DIR) + "/ini/default.ini") +
@@ -36,14 +37,9 @@ const JobRun& jobRun() {
     req.progress = false;
     x.out = pipeline::runMapJob(req);
     return x;
-  }();
-  return r;
 }
 
-}  // namespace
-
-TEST(MapJobFolder, ReadsBackWhatTheJobHeld) {
-  const JobRun& r = jobRun();
+void readsBackWhatTheJobHeld(const JobRun& r) {
   const auto folder = runfolder::openMapRun(r.dir);
   EXPECT_EQ(folder.manifest().program, "roadslam-map");
   EXPECT_EQ(folder.manifest().input, r.out.summary["input"].get<std::string>());
@@ -74,8 +70,7 @@ TEST(MapJobFolder, ReadsBackWhatTheJobHeld) {
   EXPECT_TRUE(s.loop_closures.has_value());
 }
 
-TEST(MapJobFolder, TheTrajectoryFollowsTheSimulatorsTruth) {
-  const JobRun& r = jobRun();
+void theTrajectoryFollowsTheSimulatorsTruth(const JobRun& r) {
   const auto est = runfolder::openMapRun(r.dir).trajectory();
   const auto gt = runfolder::readTrajectory(r.drive + "/gt_trajectory.tum");
   // both start at the lidar's first pose: T_gt_est from the first estimated pose, then compare positions
@@ -92,8 +87,7 @@ TEST(MapJobFolder, TheTrajectoryFollowsTheSimulatorsTruth) {
   EXPECT_GT(compared, est.size() * 9 / 10);
 }
 
-TEST(MapJobFolder, TracksAndObjectsAsWritten) {
-  const JobRun& r = jobRun();
+void tracksAndObjectsAsWritten(const JobRun& r) {
   const auto folder = runfolder::openMapRun(r.dir);
   ASSERT_TRUE(folder.has(runfolder::kTracksCsv));
   const auto tracks = folder.tracks();
@@ -109,4 +103,22 @@ TEST(MapJobFolder, TracksAndObjectsAsWritten) {
   EXPECT_GT(objects.size(), 0u);
   for (const auto& o : objects) EXPECT_LT(o.frame, r.out.frames.size());
   EXPECT_NO_THROW(folder.tracksEnded());
+}
+
+}  // namespace
+
+TEST(MapJobFolder, ReadsBackTheJobsFramesTrajectoryTracksAndObjects) {
+  const JobRun r = runJob();
+  {
+    SCOPED_TRACE("frames, trajectory and summary as the job held them");
+    readsBackWhatTheJobHeld(r);
+  }
+  {
+    SCOPED_TRACE("trajectory against the simulator's truth");
+    theTrajectoryFollowsTheSimulatorsTruth(r);
+  }
+  {
+    SCOPED_TRACE("tracks and objects as written");
+    tracksAndObjectsAsWritten(r);
+  }
 }

@@ -1,0 +1,104 @@
+#!/usr/bin/env bash
+# Do two builds write the same outputs, byte for byte? Runs both builds' roadslam-map and roadslam-bounds
+# on the same inputs and compares every file they write, except the keys that hold times (ms_*, wall_*,
+# *_time_s), the program's own paths and the manifest's date. Inputs: the simulated urban loop, parking
+# lot and highway (30 s each, simulated once by BEFORE's roadslam-sim), an objects-on and a GNSS-on run
+# (the urban loop with [objects] enabled; the highway with its own gnss.nmea), both real VLP-16 pcaps
+# and KITTI raw 0001 from ../shared/data (skipped, and said, when absent).
+# usage: scripts/same_outputs.sh BEFORE_BIN AFTER_BIN [WORK_DIR]
+#   e.g. scripts/same_outputs.sh /tmp/main/build/bin build/bin
+# Exit 0 when every compared file is identical; the differing files are listed otherwise.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+BEFORE=$(realpath "$1") AFTER=$(realpath "$2")
+WORK=$(realpath -m "${3:-$(mktemp -d)}")
+DATA=$(realpath -m ../shared/data)
+mkdir -p "$WORK/drives"
+
+for s in urban-loop parking-lot highway; do
+  [[ -f "$WORK/drives/$s/velodyne.pcap" ]] ||
+    "$BEFORE/roadslam-sim" --scenario "ini/sim/$s.ini" --duration 30 --out "$WORK/drives/$s" --quiet
+done
+printf '%s\n' "$(cat ini/default.ini)" "" "[objects]" "enabled = true" > "$WORK/objects.ini"
+printf '%s\n' "$(cat ini/kitti-hdl64.ini)" "" "[objects]" "enabled = true" > "$WORK/kitti-objects.ini"
+
+# name | program args (INPUT and OUT filled in per side)
+RUNS=(
+  "map-urban|map --config ini/default.ini --input $WORK/drives/urban-loop/velodyne.pcap"
+  "map-parking|map --config ini/default.ini --input $WORK/drives/parking-lot/velodyne.pcap"
+  "map-highway|map --config ini/default.ini --input $WORK/drives/highway/velodyne.pcap"
+  "map-urban-objects|map --config $WORK/objects.ini --input $WORK/drives/urban-loop/velodyne.pcap"
+  "map-highway-gnss|map --config ini/default.ini --input $WORK/drives/highway/velodyne.pcap --gnss $WORK/drives/highway/gnss.nmea"
+  "bounds-urban|bounds --config ini/bounds.ini --input $WORK/drives/urban-loop/velodyne.pcap --png-every 0"
+)
+if [[ -d "$DATA/velodyne" ]]; then
+  RUNS+=("map-vlp16-gps|map --config ini/default.ini --input $DATA/velodyne/mrpt_sample_velodyne_vlp16_gps.pcap"
+         "map-vlp16-veloview|map --config ini/default.ini --input $DATA/velodyne/veloview_vlp-16-test-90deg-1-50-frames.pcap")
+else
+  echo "== $DATA/velodyne absent: the real VLP-16 pcaps are not compared"
+fi
+KITTI=$DATA/kitti/raw-2011_09_26-0001
+if [[ -f "$KITTI/velodyne.tar.zst" ]]; then
+  if [[ ! -d "$WORK/kitti-0001/velodyne_points" ]]; then
+    mkdir -p "$WORK/kitti-0001"
+    tar -C "$WORK/kitti-0001" -I zstd -xf "$KITTI/velodyne.tar.zst"
+  fi
+  KDIR=$(dirname "$(find "$WORK/kitti-0001" -name '*.bin' -print -quit)")
+  RUNS+=("map-kitti-0001|map --config ini/kitti-hdl64.ini --input $KDIR --times $KITTI/times.txt"
+         "map-kitti-0001-objects|map --config $WORK/kitti-objects.ini --input $KDIR --times $KITTI/times.txt")
+else
+  echo "== $KITTI absent: KITTI raw 0001 is not compared"
+fi
+
+for run in "${RUNS[@]}"; do
+  name=${run%%|*} args=${run#*|}
+  prog=${args%% *} rest=${args#* }
+  for side in before after; do
+    bin=$BEFORE; [[ $side == after ]] && bin=$AFTER
+    rm -rf "$WORK/$side/$name"
+    # shellcheck disable=SC2086
+    "$bin/roadslam-$prog" $rest --out "$WORK/$side/$name" --quiet > "$WORK/$side-$name.log" 2>&1 ||
+      echo "== $side $name exited $? (log $WORK/$side-$name.log)"
+  done
+done
+
+/usr/bin/python3 - "$WORK" <<'PY'
+import json, os, re, sys, filecmp
+work = sys.argv[1]
+VOLATILE = re.compile(r"^(ms_|wall_|cpu_)|_ms$|_ms_|time_s$|^created|^date|^host|^command|^config_path|^out|^program_path")
+def strip(o):
+    if isinstance(o, dict):
+        return {k: strip(v) for k, v in o.items() if not VOLATILE.search(k)}
+    if isinstance(o, list):
+        return [strip(v) for v in o]
+    return o
+same = differ = 0
+for name in sorted(os.listdir(os.path.join(work, "before"))):
+    b_dir, a_dir = os.path.join(work, "before", name), os.path.join(work, "after", name)
+    for root, _, files in os.walk(b_dir):
+        for f in sorted(files):
+            b = os.path.join(root, f)
+            a = os.path.join(a_dir, os.path.relpath(b, b_dir))
+            rel = os.path.relpath(b, os.path.join(work, "before"))
+            if not os.path.exists(a):
+                print("missing after:", rel); differ += 1; continue
+            if f.endswith(".json") or f.endswith(".jsonl"):
+                ok = True
+                with open(b) as fb, open(a) as fa:
+                    if f.endswith(".jsonl"):
+                        ok = [strip(json.loads(l)) for l in fb if l.strip()] == [strip(json.loads(l)) for l in fa if l.strip()]
+                    else:
+                        ok = strip(json.load(fb)) == strip(json.load(fa))
+            elif f in ("config_used.ini",) or f.endswith(".log"):
+                continue
+            else:
+                ok = filecmp.cmp(b, a, shallow=False)
+            if ok: same += 1
+            else: print("DIFFERS:", rel); differ += 1
+    for root, _, files in os.walk(a_dir):
+        for f in files:
+            if not os.path.exists(os.path.join(b_dir, os.path.relpath(os.path.join(root, f), a_dir))):
+                print("new after:", os.path.relpath(os.path.join(root, f), os.path.join(work, "after"))); differ += 1
+print(f"== {same} files identical, {differ} differ ({work})")
+sys.exit(1 if differ else 0)
+PY
