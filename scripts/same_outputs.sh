@@ -3,7 +3,7 @@
 # on the same inputs and compares every file they write, except the keys that hold times (ms_*, wall_*,
 # *_time_s), the program's own paths and the manifest's date. Inputs: the simulated urban loop, parking
 # lot and highway (30 s each, simulated once by BEFORE's roadslam-sim), an objects-on and a GNSS-on run
-# (the urban loop with [objects] enabled; the highway with its own gnss.nmea), both real VLP-16 pcaps
+# (the urban loop with [objects] enabled; the highway with the simulator's gnss.nmea), both real VLP-16 pcaps
 # and KITTI raw 0001 from ../shared/data (skipped, and said, when absent).
 # usage: scripts/same_outputs.sh BEFORE_BIN AFTER_BIN [WORK_DIR]
 #   e.g. scripts/same_outputs.sh /tmp/main/build/bin build/bin
@@ -15,9 +15,13 @@ WORK=$(realpath -m "${3:-$(mktemp -d)}")
 DATA=$(realpath -m ../shared/data)
 mkdir -p "$WORK/drives"
 
+# the highway with the simulator's GNSS receiver on ([gnss] enabled: gnss.nmea beside the capture)
+printf '%s\n' "$(cat ini/sim/highway.ini)" "" "[gnss]" "enabled = true" > "$WORK/highway-gnss.ini"
 for s in urban-loop parking-lot highway; do
-  [[ -f "$WORK/drives/$s/velodyne.pcap" ]] ||
-    "$BEFORE/roadslam-sim" --scenario "ini/sim/$s.ini" --duration 30 --out "$WORK/drives/$s" --quiet
+  ini=ini/sim/$s.ini mark=velodyne.pcap
+  [[ $s == highway ]] && ini=$WORK/highway-gnss.ini mark=gnss.nmea
+  [[ -f "$WORK/drives/$s/$mark" ]] ||
+    "$BEFORE/roadslam-sim" --scenario "$ini" --duration 30 --out "$WORK/drives/$s" --quiet
 done
 printf '%s\n' "$(cat ini/default.ini)" "" "[objects]" "enabled = true" > "$WORK/objects.ini"
 printf '%s\n' "$(cat ini/kitti-hdl64.ini)" "" "[objects]" "enabled = true" > "$WORK/kitti-objects.ini"

@@ -22,7 +22,7 @@ TEST(ObjectsSimHeavy, UrbanLoop90s) {
   EXPECT_GE(r.m.mota, 0.93);
   EXPECT_LE(r.m.false_positives, 6u);  // measured 1 (15; 19 on the physical traffic without the free-space check)
   EXPECT_LE(r.m.misses, 25u);   // measured 2 (11, cv 12; 55 before: cars 30-40 m away, their one-ring faces taken for ground)
-  EXPECT_LE(r.m.motp_m, 0.16);  // measured 0.108 m (0.109 with the IMM, cv 0.117; 0.124 at the 50 m reach of sessions 9-10)
+  EXPECT_LE(r.m.motp_m, 0.16);  // measured 0.108 m (0.109 with the IMM, cv 0.117; 0.124 with a 50 m reach)
   // measured 0.27 m/s (0.125 on constant-speed traffic): the cars brake into the corners and accelerate out
   EXPECT_LE(r.m.speed_error_mean_mps, 0.35);
   // 3 switches (8), all of them cars back in range after 44-51 s around the loop (eval::MotMetrics::id_switches_after_gap)
