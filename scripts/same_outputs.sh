@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Do two builds write the same outputs, byte for byte? Runs both builds' roadslam-map and roadslam-bounds
-# on the same inputs and compares every file they write, except the keys that hold times (ms_*, wall_*,
-# *_time_s), the program's own paths and the manifest's date. Inputs: the simulated urban loop, parking
-# lot and highway (30 s each, simulated once by BEFORE's roadslam-sim), an objects-on and a GNSS-on run
+# on the same inputs and compares every file they write, except what holds times (JSON keys ms, ms_*,
+# wall_*, *_time_s; frames.csv's ms_* columns), the program's own paths and the manifest's date.
+# Inputs: the simulated urban loop, parking lot and highway (30 s each, simulated once by BEFORE's roadslam-sim), an objects-on and a GNSS-on run
 # (the urban loop with [objects] enabled; the highway with the simulator's gnss.nmea), both real VLP-16 pcaps
 # and KITTI raw 0001 from ../shared/data (skipped, and said, when absent).
 # usage: scripts/same_outputs.sh BEFORE_BIN AFTER_BIN [WORK_DIR]
@@ -69,7 +69,15 @@ done
 /usr/bin/python3 - "$WORK" <<'PY'
 import json, os, re, sys, filecmp
 work = sys.argv[1]
-VOLATILE = re.compile(r"^(ms_|wall_|cpu_)|_ms$|_ms_|time_s$|^created|^date|^host|^command|^config_path|^out|^program_path")
+VOLATILE = re.compile(r"^ms$|^(ms_|wall_|cpu_)|_ms$|_ms_|time_s$|^created|^date|^host|^command|^config_path|^out|^program_path")
+def csv_rows(path):
+    """The rows without the columns that hold times (frames.csv's ms_*)."""
+    with open(path) as f:
+        lines = f.read().splitlines()
+    if not lines:
+        return lines
+    keep = [i for i, c in enumerate(lines[0].split(",")) if not VOLATILE.search(c)]
+    return [[r[i] for i in keep if i < len(r)] for r in (l.split(",") for l in lines)]
 def strip(o):
     if isinstance(o, dict):
         return {k: strip(v) for k, v in o.items() if not VOLATILE.search(k)}
@@ -95,6 +103,8 @@ for name in sorted(os.listdir(os.path.join(work, "before"))):
                         ok = strip(json.load(fb)) == strip(json.load(fa))
             elif f in ("config_used.ini",) or f.endswith(".log"):
                 continue
+            elif f.endswith(".csv"):
+                ok = csv_rows(b) == csv_rows(a)
             else:
                 ok = filecmp.cmp(b, a, shallow=False)
             if ok: same += 1
