@@ -17,6 +17,7 @@ PACKAGES=(
   libgeographiclib-dev   # libs/gnss: WGS84, ECEF, ENU (LocalCartesian) and UTM
   libgps-dev gpsd        # libs/sources: gpsd client (roadslam-grab [gnss] source = gpsd); gpsd runs in its test
   libgl-dev xvfb xauth   # roadslam-view: OpenGL (window screenshots); its window test runs under xvfb-run
+  clang libclang-rt-14-dev  # scripts/sanitize.sh: the bad-input table's apps built by clang with ASan + UBSan
 )
 
 if [[ "${SKIP_APT:-0}" != "1" ]]; then

@@ -27,8 +27,7 @@ constexpr double kMaxRingLineSlope = 0.7;  // |z| of the line direction below th
 
 GaussianVoxelMap::GaussianVoxelMap(double voxel_m, int max_points_per_voxel, double radius_m, int neighbours,
                                    bool ring_lines_on_walls)
-    : voxel_m_(voxel_m),
-      inv_voxel_(1.0 / voxel_m),
+    : inv_voxel_(1.0 / voxel_m),
       radius_m_(radius_m),
       max_points_(max_points_per_voxel),
       neighbours_(neighbours == 1 ? 1 : 7),

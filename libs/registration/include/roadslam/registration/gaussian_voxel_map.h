@@ -97,7 +97,7 @@ class GaussianVoxelMap {
  private:
   void refresh(Voxel& v) const;
 
-  double voxel_m_, inv_voxel_, radius_m_;
+  double inv_voxel_, radius_m_;
   int max_points_;
   int neighbours_;
   bool ring_lines_on_walls_;
