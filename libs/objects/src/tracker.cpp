@@ -34,7 +34,7 @@ constexpr double kFreeMinEvidence = 10;  // points with evidence below which the
 
 void remember(Track& tr, const Detection& d, double t) {
   if (tr.moving_since >= 0 || tr.history->size() >= kHistoryMax) return;
-  tr.history->push_back({t, d.centre, d.yaw, d.length, d.width, d.z_min, d.z_max});
+  tr.history->push_back({t, {d.centre, d.yaw, d.length, d.width, d.z_min, d.z_max}});
 }
 
 Detection toMap(const Object& o, const Eigen::Isometry3d& T_map_lidar) {
