@@ -173,9 +173,9 @@ std::string objectsCsvRows(size_t frame, double stamp_s, const Eigen::Isometry3d
     const Object& o = f.objects[k];
     const Eigen::Vector3d c = T_map_lidar * Eigen::Vector3d(o.box.cx, o.box.cy, 0);
     runfolder::ObjectRow r;
-    r.frame = frame, r.stamp_s = stamp_s, r.object = k, r.cx = c.x(), r.cy = c.y();
-    r.yaw_rad = std::atan2(std::sin(o.box.yaw + dyaw), std::cos(o.box.yaw + dyaw));
-    r.length_m = o.box.length, r.width_m = o.box.width, r.z_min = o.z_min + z0, r.z_max = o.z_max + z0;
+    r.frame = frame, r.stamp_s = stamp_s, r.object = k, r.box.centre_m = c.head<2>();
+    r.box.yaw_rad = std::atan2(std::sin(o.box.yaw + dyaw), std::cos(o.box.yaw + dyaw));
+    r.box.length_m = o.box.length, r.box.width_m = o.box.width, r.box.z_min_m = o.z_min + z0, r.box.z_max_m = o.z_max + z0;
     r.points = o.points, r.track_id = k < f.object_track.size() ? f.object_track[k] : -1;
     out += runfolder::objectsCsvRow(r);
   }
@@ -188,9 +188,8 @@ std::string tracksCsvRows(size_t frame, double stamp_s, const ObjectsFrame& f) {
   std::string out;
   for (const Track& t : f.tracks) {
     runfolder::TrackRow r;
-    r.frame = frame, r.stamp_s = stamp_s, r.track_id = t.id, r.x = t.x(0), r.y = t.x(1), r.vx = t.x(2), r.vy = t.x(3);
-    r.speed_mps = t.speed(), r.heading_rad = t.heading, r.length_m = t.length, r.width_m = t.width;
-    r.z_min = t.z_min, r.z_max = t.z_max, r.moving = t.moving, r.hits = t.hits, r.misses = t.misses;
+    r.frame = frame, r.stamp_s = stamp_s, r.track_id = t.id, r.box = t.box(), r.vx = t.x(2), r.vy = t.x(3);
+    r.speed_mps = t.speed(), r.moving = t.moving, r.hits = t.hits, r.misses = t.misses;
     r.age_s = stamp_s - t.t_birth;
     out += runfolder::tracksCsvRow(r);
   }

@@ -90,14 +90,14 @@ TEST(ViewerObjects, TracksCsvReadsBackWhatTheObjectsStageWrote) {
   const ObjectBox& m = frames[0].boxes[0];
   EXPECT_EQ(m.track_id, 7);
   EXPECT_TRUE(m.moving);
-  EXPECT_NEAR(m.x, 12, 1e-3);
+  EXPECT_NEAR(m.box.centre_m.x(), 12, 1e-3);
   EXPECT_NEAR(m.vx_mps, 8, 1e-3);
-  EXPECT_NEAR(m.length_m, 4.5, 1e-3);
+  EXPECT_NEAR(m.box.length_m, 4.5, 1e-3);
   EXPECT_EQ(frames[0].boxes[1].track_id, 3);
   EXPECT_FALSE(frames[0].boxes[1].moving);
   EXPECT_EQ(frames[0].boxes[2].track_id, -1);
-  EXPECT_NEAR(frames[0].boxes[2].y, -12, 1e-3);
-  EXPECT_NEAR(frames[1].boxes[0].x, 20, 1e-3);
+  EXPECT_NEAR(frames[0].boxes[2].box.centre_m.y(), -12, 1e-3);
+  EXPECT_NEAR(frames[1].boxes[0].box.centre_m.x(), 20, 1e-3);
 
   std::ofstream(dir / "tracks.csv", std::ios::app) << "2,100.2,9,oops\n";
   try {
