@@ -146,12 +146,7 @@ size_t removeMovingPoints(std::vector<Eigen::Vector3d>& pts_lidar, const Objects
   const size_t before = pts_lidar.size();
   auto inside = [&](const Eigen::Vector3d& q) {
     for (const Object* o : moving) {
-      const Box2& b = o->box;
-      const double c = std::cos(b.yaw), s = std::sin(b.yaw), dx = q.x() - b.cx, dy = q.y() - b.cy;
-      if (std::abs(c * dx + s * dy) <= 0.5 * b.length + margin_m && std::abs(-s * dx + c * dy) <= 0.5 * b.width + margin_m &&
-          q.z() >= o->z_min - margin_m && q.z() <= o->z_max + margin_m) {
-        return true;
-      }
+      if (o->box.contains(q, margin_m)) return true;
     }
     if (f.moving_boxes.empty()) return false;
     const Eigen::Vector3d q_map = T_map_lidar * q;
@@ -171,11 +166,12 @@ std::string objectsCsvRows(size_t frame, double stamp_s, const Eigen::Isometry3d
   const double dyaw = std::atan2(T_map_lidar(1, 0), T_map_lidar(0, 0)), z0 = T_map_lidar.translation().z();
   for (size_t k = 0; k < f.objects.size(); ++k) {
     const Object& o = f.objects[k];
-    const Eigen::Vector3d c = T_map_lidar * Eigen::Vector3d(o.box.cx, o.box.cy, 0);
+    const Eigen::Vector3d c = T_map_lidar * Eigen::Vector3d(o.box.centre_m.x(), o.box.centre_m.y(), 0);
     runfolder::ObjectRow r;
     r.frame = frame, r.stamp_s = stamp_s, r.object = k, r.box.centre_m = c.head<2>();
-    r.box.yaw_rad = std::atan2(std::sin(o.box.yaw + dyaw), std::cos(o.box.yaw + dyaw));
-    r.box.length_m = o.box.length, r.box.width_m = o.box.width, r.box.z_min_m = o.z_min + z0, r.box.z_max_m = o.z_max + z0;
+    r.box.yaw_rad = std::atan2(std::sin(o.box.yaw_rad + dyaw), std::cos(o.box.yaw_rad + dyaw));
+    r.box.length_m = o.box.length_m, r.box.width_m = o.box.width_m;
+    r.box.z_min_m = o.box.z_min_m + z0, r.box.z_max_m = o.box.z_max_m + z0;
     r.points = o.points, r.track_id = k < f.object_track.size() ? f.object_track[k] : -1;
     out += runfolder::objectsCsvRow(r);
   }

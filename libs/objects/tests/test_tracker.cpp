@@ -19,9 +19,9 @@ namespace {
 
 Object car(double x, double y, double yaw = 0, double L = 4.5, double W = 1.8) {
   Object o;
-  o.box = {x, y, yaw, L, W};
+  o.box = {{x, y}, yaw, L, W, -1.9, -0.4};
   o.centroid = {x, y, -1};
-  o.z_min = -1.9, o.z_max = -0.4, o.points = 100;
+  o.points = 100;
   return o;
 }
 

@@ -45,8 +45,8 @@ void writeFolder(const fs::path& dir, double t) {
   roadslam::objects::ObjectsFrame f;
   f.tracks = {track(7, true, 12, 0, 8, 0), track(3, false, -10, 6, 0, 0)};
   roadslam::objects::Object o;
-  o.box = {0, -12, 0, 2.0, 1.0};
-  o.z_min = -1.9, o.z_max = -0.9, o.points = 40;
+  o.box = {{0, -12}, 0, 2.0, 1.0, -1.9, -0.9};
+  o.points = 40;
   f.objects = {o};
   f.object_track = {-1};
   roadslam::objects::ObjectsFrame later;
