@@ -4,6 +4,7 @@
 #include <mrpt/opengl/CSetOfLines.h>
 #include <mrpt/opengl/CText.h>
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -26,7 +27,9 @@ mrpt::img::TColor colourOf(const ObjectBox& b) {
 }
 
 void addBox(const OrientedBox& b, mrpt::opengl::CSetOfLines& l) {
-  const auto c = b.corners();
+  const auto fl_fr_rr_rl = b.corners();
+  // counter-clockwise from the rear right corner: the scene's line order, which a render's pixels depend on
+  const std::array<Eigen::Vector2d, 4> c = {fl_fr_rr_rl[2], fl_fr_rr_rl[1], fl_fr_rr_rl[0], fl_fr_rr_rl[3]};
   for (int k = 0; k < 4; ++k) {
     const Eigen::Vector2d &p = c[k], &q = c[(k + 1) % 4];
     l.appendLine(p.x(), p.y(), b.z_min_m, q.x(), q.y(), b.z_min_m);
