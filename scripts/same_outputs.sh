@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Do two builds write the same outputs, byte for byte? Runs both builds' roadslam-map and roadslam-bounds
 # on the same inputs and compares every file they write, except what holds times (JSON keys ms, ms_*,
-# wall_*, *_time_s; frames.csv's ms_* columns), the program's own paths and the manifest's date.
+# wall_*, *_time_s; frames.csv's ms_* columns), the program's own paths and version, the manifest's date,
+# and whether a path written into an output runs through the before or the after folder.
 # Inputs: the simulated urban loop, parking lot and highway (30 s each, simulated once by BEFORE's roadslam-sim), an objects-on and a GNSS-on run
 # (the urban loop with [objects] enabled; the highway with the simulator's gnss.nmea), both real VLP-16 pcaps
 # and KITTI raw 0001 from ../shared/data (skipped, and said, when absent).
@@ -69,7 +70,9 @@ done
 /usr/bin/python3 - "$WORK" <<'PY'
 import json, os, re, sys, filecmp
 work = sys.argv[1]
-VOLATILE = re.compile(r"^ms$|^(ms_|wall_|cpu_)|_ms$|_ms_|time_s$|^created|^date|^host|^command|^config_path|^out|^program_path")
+# program_version names the build (its commit): two builds differ there by definition
+VOLATILE = re.compile(r"^ms$|^(ms_|wall_|cpu_)|_ms$|_ms_|time_s$|^created|^date|^host|^command|^config_path|^out|^program_path|^program_version$")
+SIDES = [os.path.join(work, side) + os.sep for side in ("before", "after")]
 def csv_rows(path):
     """The rows without the columns that hold times (frames.csv's ms_*)."""
     with open(path) as f:
@@ -83,6 +86,9 @@ def strip(o):
         return {k: strip(v) for k, v in o.items() if not VOLATILE.search(k)}
     if isinstance(o, list):
         return [strip(v) for v in o]
+    if isinstance(o, str):  # a path into the run's own folder (summary.json's enu_maps dir) names its side
+        for side in SIDES:
+            o = o.replace(side, "WORK/SIDE/")
     return o
 same = differ = 0
 for name in sorted(os.listdir(os.path.join(work, "before"))):

@@ -49,9 +49,9 @@ std::vector<Obstacle> clusterObstacles(const Scan& scan, const Labelling& lab, c
     o.points = static_cast<int>(ob.points);
     o.max_height_m = ob.top_height_m;
     o.hull = detail::convexHull(std::move(cp));
-    o.center = {ob.box.cx, ob.box.cy};
-    o.length_m = ob.box.length, o.width_m = ob.box.width;
-    o.yaw_rad = std::remainder(ob.box.yaw, M_PI);  // a rectangle's direction is defined modulo pi
+    o.center = {ob.box.centre_m.x(), ob.box.centre_m.y()};
+    o.length_m = ob.box.length_m, o.width_m = ob.box.width_m;
+    o.yaw_rad = std::remainder(ob.box.yaw_rad, M_PI);  // a rectangle's direction is defined modulo pi
     out.push_back(std::move(o));
   }
   return out;

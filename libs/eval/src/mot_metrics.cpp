@@ -118,7 +118,7 @@ std::map<long long, std::vector<Hyp>> readTracks(const std::string& path) {
   for (const runfolder::TrackRow& r : runfolder::readTracksCsv(path)) {
     Hyp h;
     h.id = r.track_id;
-    h.p_map = {r.x, r.y}, h.v_map = {r.vx, r.vy};
+    h.p_map = r.box.centre_m, h.v_map = {r.vx, r.vy};
     h.moving = r.moving, h.age_s = r.age_s;
     out[std::llround(r.stamp_s * 1e6)].push_back(h);
   }

@@ -61,20 +61,18 @@ void drawTopView(const std::string& png_path, const std::vector<Eigen::Vector3f>
   }
   const mrpt::img::TColor yellow(255, 220, 0);
   for (const TopViewBox& b : boxes) {
-    const Eigen::Vector2d u(std::cos(b.yaw), std::sin(b.yaw)), v(-u.y(), u.x());
-    const double hl = 0.5 * b.length, hw = 0.5 * b.width;
-    const Eigen::Vector2d c[4] = {b.centre + hl * u + hw * v, b.centre + hl * u - hw * v, b.centre - hl * u - hw * v,
-                                  b.centre - hl * u + hw * v};
+    const auto c = b.box.corners();
     for (int k = 0; k < 4; ++k) {
       const auto a = px(c[k]), e = px(c[(k + 1) % 4]);
       img.line(a.x(), a.y(), e.x(), e.y(), yellow, 2);
     }
     // velocity arrow: 1 s of travel, head 30 deg either side
-    const auto a = px(b.centre), e = px(b.centre + b.velocity);
+    const Eigen::Vector2d& centre = b.box.centre_m;
+    const auto a = px(centre), e = px(centre + b.velocity);
     img.line(a.x(), a.y(), e.x(), e.y(), yellow, 2);
     const double speed = b.velocity.norm();
     if (speed > 0.5) {
-      const Eigen::Vector2d d = b.velocity / speed, n(-d.y(), d.x()), tip = b.centre + b.velocity;
+      const Eigen::Vector2d d = b.velocity / speed, n(-d.y(), d.x()), tip = centre + b.velocity;
       const double head = std::min(2.0, 0.3 * speed);
       for (double side : {-1.0, 1.0}) {
         const auto h = px(tip - head * (std::cos(M_PI / 6) * d + side * std::sin(M_PI / 6) * n));

@@ -218,8 +218,8 @@ preprocess::GroundLabels objectGroundLabels(const std::vector<ScanPoint>& pts, c
   return g;
 }
 
-Box2 fitLShape(const std::vector<Eigen::Vector2d>& xy, double step_rad) {
-  Box2 b;
+OrientedBox fitLShape(const std::vector<Eigen::Vector2d>& xy, double step_rad) {
+  OrientedBox b;
   if (xy.empty()) return b;
   const size_t stride = std::max<size_t>(1, xy.size() / kMaxFitPoints);
   std::vector<double> c1, c2;
@@ -262,11 +262,10 @@ Box2 fitLShape(const std::vector<Eigen::Vector2d>& xy, double step_rad) {
     lo1 = std::min(lo1, a), hi1 = std::max(hi1, a), lo2 = std::min(lo2, c), hi2 = std::max(hi2, c);
   }
   const double m1 = 0.5 * (lo1 + hi1), m2 = 0.5 * (lo2 + hi2);
-  b.cx = co * m1 - si * m2;
-  b.cy = si * m1 + co * m2;
-  b.length = hi1 - lo1, b.width = hi2 - lo2, b.yaw = best_theta;
-  if (b.width > b.length) std::swap(b.length, b.width), b.yaw += M_PI / 2;
-  b.yaw = std::fmod(b.yaw, M_PI);
+  b.centre_m = {co * m1 - si * m2, si * m1 + co * m2};
+  b.length_m = hi1 - lo1, b.width_m = hi2 - lo2, b.yaw_rad = best_theta;
+  if (b.width_m > b.length_m) std::swap(b.length_m, b.width_m), b.yaw_rad += M_PI / 2;
+  b.yaw_rad = std::fmod(b.yaw_rad, M_PI);
   return b;
 }
 
@@ -302,13 +301,13 @@ std::vector<Object> segmentObjects(const std::vector<ScanPoint>& pts, bool has_r
   for (auto& m : members) {
     if (m.size() < static_cast<size_t>(p.min_points)) continue;
     Object o;
-    o.z_min = std::numeric_limits<double>::max(), o.z_max = -o.z_min;
+    double z_min = std::numeric_limits<double>::max(), z_max = -z_min;
     xy.clear();
     for (uint32_t i : m) {
       const ScanPoint& q = pts[i];
       o.centroid += Eigen::Vector3d(q.x, q.y, q.z);
       o.t_mean += q.t;
-      o.z_min = std::min<double>(o.z_min, q.z), o.z_max = std::max<double>(o.z_max, q.z);
+      z_min = std::min<double>(z_min, q.z), z_max = std::max<double>(z_max, q.z);
       o.top_height_m = std::max<double>(o.top_height_m, height[i]);
       xy.emplace_back(q.x, q.y);
     }
@@ -316,7 +315,8 @@ std::vector<Object> segmentObjects(const std::vector<ScanPoint>& pts, bool has_r
     o.t_mean /= static_cast<double>(m.size());
     if (o.top_height_m < p.min_top_height_m) continue;
     o.box = fitLShape(xy, p.lshape_step_rad);
-    if (o.box.length > p.max_length_m || o.box.width > p.max_width_m) continue;
+    o.box.z_min_m = z_min, o.box.z_max_m = z_max;
+    if (o.box.length_m > p.max_length_m || o.box.width_m > p.max_width_m) continue;
     o.points = m.size();
     o.indices = std::move(m);
     out.push_back(std::move(o));

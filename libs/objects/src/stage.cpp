@@ -1,5 +1,6 @@
 #include "roadslam/objects/stage.h"
 
+#include "roadslam/objects/track_box.h"
 #include "roadslam/runfolder/objects_csv.h"
 
 #include <algorithm>
@@ -11,16 +12,16 @@ namespace roadslam::objects {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-constexpr double kHalfSweep_s = 0.05;
+constexpr double kHalfSweep_s = 0.05;  // half a turn at 10 Hz: how far from the sweep's time a point may be
 constexpr size_t kFreeSamples = 64;  // points of an object checked against the earlier sweep
-constexpr double kRetroStep_s = 0.1;   // extrapolated boxes every sweep at 10 Hz (the keyframes match within half)  // half a turn at 10 Hz: how far from the sweep's time a point may be
+constexpr double kRetroStep_s = 0.1;   // extrapolated boxes every sweep at 10 Hz (the keyframes match within half)
 
 double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
 /// \p b's floor lowered to \p floor_m above the ground under \p t's last detection (never raised;
-/// \p floor_m < 0: as it is). insideBox subtracts \p margin_m again.
-void lowerFloor(BoxRecord& b, const Track& t, double floor_m, double margin_m) {
-  if (floor_m >= 0) b.z_min = std::min(b.z_min, t.ground_z + floor_m + margin_m);
+/// \p floor_m < 0: as it is). OrientedBox::contains subtracts \p margin_m again.
+void lowerFloor(OrientedBox& b, const Track& t, double floor_m, double margin_m) {
+  if (floor_m >= 0) b.z_min_m = std::min(b.z_min_m, t.ground_z + floor_m + margin_m);
 }
 
 }  // namespace
@@ -32,12 +33,8 @@ ObjectsFrame ObjectsStage::snapshot() const {
     if (t.state != TrackState::Confirmed) continue;
     if (t.misses <= tp.output_max_misses) f.tracks.push_back(t);
     if (!t.moving) continue;  // the removal boxes keep every coasting moving track: their points may be there
-    BoxRecord b;
-    b.t = t.t_last, b.centre = t.x.head<2>(), b.yaw = t.heading;
-    b.length = std::max(t.length, tp.car_length_m) + 2 * t.speed() * kHalfSweep_s;
-    b.width = std::max(t.width, tp.car_width_m);
-    b.z_min = t.z_min, b.z_max = t.z_max;
-    lowerFloor(b, t, p_.removal_floor_m, p_.removal_margin_m);
+    BoxRecord b{t.t_last, movingTrackBox(t, tp, kHalfSweep_s)};
+    lowerFloor(b.box, t, p_.removal_floor_m, p_.removal_margin_m);
     f.moving_boxes.push_back(b);
   }
   return f;
@@ -84,17 +81,13 @@ ObjectsFrame ObjectsStage::process(const Scan& scan, const Eigen::Isometry3d& T_
     // too sparse for an object)
     const TrackerParams& tp = tracker_.params();
     const int steps = static_cast<int>(std::floor((t_s - t.t_birth + p_.retro_extrapolate_s) / kRetroStep_s + 1e-9));
+    const OrientedBox box = movingTrackBox(t, tp, kHalfSweep_s);
     for (int k = 1; k <= steps; ++k) {
-      BoxRecord b;
-      b.t = t_s - k * kRetroStep_s;
-      b.centre = t.x.head<2>() - t.x.tail<2>() * (t_s - b.t);
-      b.yaw = t.heading;
-      b.length = std::max(t.length, tp.car_length_m) + 2 * t.speed() * kHalfSweep_s;
-      b.width = std::max(t.width, tp.car_width_m);
-      b.z_min = t.z_min, b.z_max = t.z_max;
+      BoxRecord b{t_s - k * kRetroStep_s, box};
+      b.box.centre_m = t.x.head<2>() - t.x.tail<2>() * (t_s - b.t);
       f.retro.push_back(b);
     }
-    for (size_t k = first; k < f.retro.size(); ++k) lowerFloor(f.retro[k], t, p_.removal_floor_m, p_.removal_margin_m);
+    for (size_t k = first; k < f.retro.size(); ++k) lowerFloor(f.retro[k].box, t, p_.removal_floor_m, p_.removal_margin_m);
   }
   f.ms_track = msSince(t0);
   f.objects = std::move(objs);
@@ -135,14 +128,9 @@ void ObjectsStage::forwardBoxes(ObjectsFrame& f, const std::vector<Track>& befor
     // beyond the sweeps' reach it leaves no point
     if (dt > p_.forward_extrapolate_s || (centre - lidar_xy).norm() > p_.max_range_m + t.length) continue;
     keep.push_back(e);
-    BoxRecord b;
-    b.t = t_s;
-    b.centre = centre;
-    b.yaw = t.heading;
-    b.length = std::max(t.length, tp.car_length_m) + 2 * t.speed() * kHalfSweep_s;
-    b.width = std::max(t.width, tp.car_width_m);
-    b.z_min = t.z_min, b.z_max = t.z_max;
-    lowerFloor(b, t, p_.removal_floor_m, p_.removal_margin_m);
+    BoxRecord b{t_s, movingTrackBox(t, tp, kHalfSweep_s)};
+    b.box.centre_m = centre;
+    lowerFloor(b.box, t, p_.removal_floor_m, p_.removal_margin_m);
     f.moving_boxes.push_back(b);
   }
   ended_moving_ = std::move(keep);
@@ -158,28 +146,17 @@ size_t removeMovingPoints(std::vector<Eigen::Vector3d>& pts_lidar, const Objects
   const size_t before = pts_lidar.size();
   auto inside = [&](const Eigen::Vector3d& q) {
     for (const Object* o : moving) {
-      const Box2& b = o->box;
-      const double c = std::cos(b.yaw), s = std::sin(b.yaw), dx = q.x() - b.cx, dy = q.y() - b.cy;
-      if (std::abs(c * dx + s * dy) <= 0.5 * b.length + margin_m && std::abs(-s * dx + c * dy) <= 0.5 * b.width + margin_m &&
-          q.z() >= o->z_min - margin_m && q.z() <= o->z_max + margin_m) {
-        return true;
-      }
+      if (o->box.contains(q, margin_m)) return true;
     }
     if (f.moving_boxes.empty()) return false;
     const Eigen::Vector3d q_map = T_map_lidar * q;
     for (const BoxRecord& b : f.moving_boxes) {
-      if (insideBox(b, q_map, margin_m)) return true;
+      if (b.box.contains(q_map, margin_m)) return true;
     }
     return false;
   };
   pts_lidar.erase(std::remove_if(pts_lidar.begin(), pts_lidar.end(), inside), pts_lidar.end());
   return before - pts_lidar.size();
-}
-
-bool insideBox(const BoxRecord& b, const Eigen::Vector3d& p_map, double margin_m) {
-  const double c = std::cos(b.yaw), s = std::sin(b.yaw), dx = p_map.x() - b.centre.x(), dy = p_map.y() - b.centre.y();
-  return std::abs(c * dx + s * dy) <= 0.5 * b.length + margin_m && std::abs(-s * dx + c * dy) <= 0.5 * b.width + margin_m &&
-         p_map.z() >= b.z_min - margin_m && p_map.z() <= b.z_max + margin_m;
 }
 
 std::string objectsCsvHeader() { return runfolder::objectsCsvHeader(); }
@@ -189,11 +166,12 @@ std::string objectsCsvRows(size_t frame, double stamp_s, const Eigen::Isometry3d
   const double dyaw = std::atan2(T_map_lidar(1, 0), T_map_lidar(0, 0)), z0 = T_map_lidar.translation().z();
   for (size_t k = 0; k < f.objects.size(); ++k) {
     const Object& o = f.objects[k];
-    const Eigen::Vector3d c = T_map_lidar * Eigen::Vector3d(o.box.cx, o.box.cy, 0);
+    const Eigen::Vector3d c = T_map_lidar * Eigen::Vector3d(o.box.centre_m.x(), o.box.centre_m.y(), 0);
     runfolder::ObjectRow r;
-    r.frame = frame, r.stamp_s = stamp_s, r.object = k, r.cx = c.x(), r.cy = c.y();
-    r.yaw_rad = std::atan2(std::sin(o.box.yaw + dyaw), std::cos(o.box.yaw + dyaw));
-    r.length_m = o.box.length, r.width_m = o.box.width, r.z_min = o.z_min + z0, r.z_max = o.z_max + z0;
+    r.frame = frame, r.stamp_s = stamp_s, r.object = k, r.box.centre_m = c.head<2>();
+    r.box.yaw_rad = std::atan2(std::sin(o.box.yaw_rad + dyaw), std::cos(o.box.yaw_rad + dyaw));
+    r.box.length_m = o.box.length_m, r.box.width_m = o.box.width_m;
+    r.box.z_min_m = o.box.z_min_m + z0, r.box.z_max_m = o.box.z_max_m + z0;
     r.points = o.points, r.track_id = k < f.object_track.size() ? f.object_track[k] : -1;
     out += runfolder::objectsCsvRow(r);
   }
@@ -206,9 +184,8 @@ std::string tracksCsvRows(size_t frame, double stamp_s, const ObjectsFrame& f) {
   std::string out;
   for (const Track& t : f.tracks) {
     runfolder::TrackRow r;
-    r.frame = frame, r.stamp_s = stamp_s, r.track_id = t.id, r.x = t.x(0), r.y = t.x(1), r.vx = t.x(2), r.vy = t.x(3);
-    r.speed_mps = t.speed(), r.heading_rad = t.heading, r.length_m = t.length, r.width_m = t.width;
-    r.z_min = t.z_min, r.z_max = t.z_max, r.moving = t.moving, r.hits = t.hits, r.misses = t.misses;
+    r.frame = frame, r.stamp_s = stamp_s, r.track_id = t.id, r.box = t.box(), r.vx = t.x(2), r.vy = t.x(3);
+    r.speed_mps = t.speed(), r.moving = t.moving, r.hits = t.hits, r.misses = t.misses;
     r.age_s = stamp_s - t.t_birth;
     out += runfolder::tracksCsvRow(r);
   }

@@ -14,13 +14,10 @@ using detail::wrapPi;
 constexpr double kUnassignable = 1e9;  // cost of a gated-out pair in the assignment
 constexpr double kFaceMaxObliquity = 0.766;  // cos 40 deg: a car's front or rear seen roughly head-on
 
-/// A detection in the map frame: its box's corners (x-y) and heading of its length axis.
+/// A detection in the map frame: its box and the box's corners (x-y).
 struct Detection {
+  OrientedBox box;
   std::array<Eigen::Vector2d, 4> corners;
-  Eigen::Vector2d centre;
-  double yaw = 0;
-  double length = 0, width = 0;
-  double z_min = 0, z_max = 0;
   double dt = 0;  // its points' time minus the sweep's reference time [s]
   double top = 0;  // highest point above the local ground [m]
   int free_through = 0, free_hit = 0;  // Object's
@@ -34,27 +31,23 @@ constexpr double kFreeMinEvidence = 10;  // points with evidence below which the
 
 void remember(Track& tr, const Detection& d, double t) {
   if (tr.moving_since >= 0 || tr.history->size() >= kHistoryMax) return;
-  tr.history->push_back({t, d.centre, d.yaw, d.length, d.width, d.z_min, d.z_max});
+  tr.history->push_back({t, d.box});
 }
 
 Detection toMap(const Object& o, const Eigen::Isometry3d& T_map_lidar) {
   Detection d;
-  const Box2& b = o.box;
-  const Eigen::Vector2d u(std::cos(b.yaw), std::sin(b.yaw)), v(-u.y(), u.x());
-  const Eigen::Vector2d c(b.cx, b.cy);
-  const double hl = 0.5 * b.length, hw = 0.5 * b.width;
-  const std::array<Eigen::Vector2d, 4> lidar = {c + hl * u + hw * v, c + hl * u - hw * v, c - hl * u - hw * v,
-                                                c - hl * u + hw * v};
+  const OrientedBox& b = o.box;
+  const std::array<Eigen::Vector2d, 4> lidar = b.corners();
   for (size_t k = 0; k < 4; ++k) d.corners[k] = (T_map_lidar * Eigen::Vector3d(lidar[k].x(), lidar[k].y(), 0)).head<2>();
-  d.centre = (T_map_lidar * Eigen::Vector3d(c.x(), c.y(), 0)).head<2>();
-  const Eigen::Vector3d um = T_map_lidar.linear() * Eigen::Vector3d(u.x(), u.y(), 0);
-  d.yaw = std::atan2(um.y(), um.x());
-  d.length = b.length, d.width = b.width;
+  d.box.centre_m = (T_map_lidar * Eigen::Vector3d(b.centre_m.x(), b.centre_m.y(), 0)).head<2>();
+  const Eigen::Vector3d um = T_map_lidar.linear() * Eigen::Vector3d(std::cos(b.yaw_rad), std::sin(b.yaw_rad), 0);
+  d.box.yaw_rad = std::atan2(um.y(), um.x());
+  d.box.length_m = b.length_m, d.box.width_m = b.width_m;
   d.top = o.top_height_m;
   d.free_through = o.free_through, d.free_hit = o.free_hit;
   d.dt = std::isfinite(o.dt_s) && std::abs(o.dt_s) < 0.5 ? o.dt_s : 0.0;
   const double z0 = T_map_lidar.translation().z();
-  d.z_min = o.z_min + z0, d.z_max = o.z_max + z0;
+  d.box.z_min_m = b.z_min_m + z0, d.box.z_max_m = b.z_max_m + z0;
   return d;
 }
 
@@ -79,8 +72,8 @@ Completed complete(const Detection& d, double h, double L, double W, const Eigen
   Completed c;
   // the extents are the box's own, paired with the heading's axes by its orientation: the projections
   // of a box turned off the heading (a car in a turn, its velocity lagging) overstate both
-  const bool aligned = std::abs(std::cos(d.yaw - h)) >= std::sqrt(0.5);
-  c.along = aligned ? d.length : d.width, c.across = aligned ? d.width : d.length;
+  const bool aligned = std::abs(std::cos(d.box.yaw_rad - h)) >= std::sqrt(0.5);
+  c.along = aligned ? d.box.length_m : d.box.width_m, c.across = aligned ? d.box.width_m : d.box.length_m;
   c.centre = centreOn(lo_u, hi_u, L, s.dot(u)) * u + centreOn(lo_v, hi_v, W, s.dot(v)) * v;
   return c;
 }
@@ -92,15 +85,16 @@ Completed complete(const Detection& d, double h, double L, double W, const Eigen
 /// from the size). \p centre: the detection's centre moved so; \p los_dir: the normal.
 bool isCarFace(const Detection& d, const Eigen::Vector2d& s, const TrackerParams& p, Eigen::Vector2d* centre = nullptr,
                Eigen::Vector2d* los_dir = nullptr) {
-  const Eigen::Vector2d los = d.centre - s;
+  const Eigen::Vector2d los = d.box.centre_m - s;
   const double range = los.norm();
   if (p.car_length_m <= 0 || range < p.car_prior_min_range_m) return false;
-  if (d.width > p.car_face_max_depth_m || d.length < p.car_face_min_m || d.length > p.car_face_max_m) return false;
+  const OrientedBox& b = d.box;
+  if (b.width_m > p.car_face_max_depth_m || b.length_m < p.car_face_min_m || b.length_m > p.car_face_max_m) return false;
   // the face's normal, away from the sensor, within 40 deg of the line of sight
-  Eigen::Vector2d n(-std::sin(d.yaw), std::cos(d.yaw));
+  Eigen::Vector2d n(-std::sin(d.box.yaw_rad), std::cos(d.box.yaw_rad));
   if (n.dot(los) < 0) n = -n;
   if (n.dot(los) < kFaceMaxObliquity * range) return false;
-  if (centre) *centre = d.centre + n * 0.5 * std::max(0.0, p.car_length_m - d.width);
+  if (centre) *centre = d.box.centre_m + n * 0.5 * std::max(0.0, p.car_length_m - d.box.width_m);
   if (los_dir) *los_dir = n;
   return true;
 }
@@ -183,7 +177,7 @@ std::vector<std::vector<double>> associationCosts(const std::vector<Track>& trac
     const Eigen::Matrix2d S_inv = (tr.P.topLeftCorner<2, 2>() + R).inverse();  // innovation covariance
     for (size_t j = 0; j < dets.size(); ++j) {
       // completion moves a centre by at most half the capped extents: farther boxes cannot be in the gate
-      if ((dets[j].centre - tr.x.head<2>()).norm() > p.gate_m + p.max_extent_growth_m) continue;
+      if ((dets[j].box.centre_m - tr.x.head<2>()).norm() > p.gate_m + p.max_extent_growth_m) continue;
       comp[i][j] = completeFor(tr, dets[j], s, p);
       const Eigen::Vector2d r = comp[i][j].centre - (tr.x.head<2>() + dets[j].dt * tr.x.tail<2>());
       const double d = r.norm(), m2 = r.dot(S_inv * r);
@@ -231,7 +225,7 @@ void takeHeading(Track& tr, const Detection& d, const TrackerParams& p_) {
   const double h = std::atan2(tr.x(3), tr.x(2));
   double best = 1e9;
   for (int k = 0; k < 4; ++k) {
-    const double diff = std::remainder(d.yaw + k * M_PI / 2 - h, 2 * M_PI);
+    const double diff = std::remainder(d.box.yaw_rad + k * M_PI / 2 - h, 2 * M_PI);
     if (std::abs(diff) < std::abs(best)) best = diff;
   }
   if (std::abs(best) > kHeadingGate_rad) return;
@@ -248,7 +242,7 @@ void take(Track& tr, const Detection& d, const Completed& c, const Eigen::Vector
   ++tr.hits, tr.misses = 0, tr.t_last = t, tr.last_detection = j;
   tr.free_through = kFreeDecay * tr.free_through + d.free_through;
   tr.free_hit = kFreeDecay * tr.free_hit + d.free_hit;
-  tr.z_min = d.z_min, tr.z_max = d.z_max, tr.ground_z = d.z_max - d.top;
+  tr.z_min = d.box.z_min_m, tr.z_max = d.box.z_max_m, tr.ground_z = d.box.z_max_m - d.top;
   remember(tr, d, t);
   tr.top_height = std::max(tr.top_height, d.top);
   if (tr.hits >= p_.confirm_hits) tr.state = TrackState::Confirmed;
@@ -262,20 +256,20 @@ Track born(int id, const Detection& d, const Eigen::Vector2d& s, double t, int j
   const double m2 = p_.meas_sigma_m * p_.meas_sigma_m, v2 = p_.init_speed_sigma_mps * p_.init_speed_sigma_mps;
   Track tr;
   tr.id = id;
-  tr.x << d.centre, 0, 0;
+  tr.x << d.box.centre_m, 0, 0;
   tr.P = Eigen::Vector4d(m2, m2, v2, v2).asDiagonal();
-  tr.heading = d.yaw;
+  tr.heading = d.box.yaw_rad;
   const Completed c = complete(d, tr.heading, 0, 0, s);
   tr.length = c.along, tr.width = c.across;
   // a car's face: its centre is behind it, and it drives along the line of sight (the filter's heading)
-  Eigen::Vector2d centre = d.centre, los;
-  double heading = d.yaw;
+  Eigen::Vector2d centre = d.box.centre_m, los;
+  double heading = d.box.yaw_rad;
   if (isCarFace(d, s, p_, &centre, &los)) heading = std::atan2(los.y(), los.x());
   tr.x.head<2>() = centre;
   growToCarBehindFace(tr, d, s, p_);
   tr.filter = TrackFilter(filter.clone());
   tr.filter->start(heading, tr.x, tr.P);
-  tr.z_min = d.z_min, tr.z_max = d.z_max, tr.top_height = d.top, tr.ground_z = d.z_max - d.top;
+  tr.z_min = d.box.z_min_m, tr.z_max = d.box.z_max_m, tr.top_height = d.top, tr.ground_z = d.box.z_max_m - d.top;
   tr.hits = 1, tr.t_birth = tr.t_last = t, tr.birth_xy = tr.x.head<2>(), tr.last_detection = j;
   tr.free_through = d.free_through, tr.free_hit = d.free_hit;
   remember(tr, d, t);

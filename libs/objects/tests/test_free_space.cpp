@@ -74,9 +74,9 @@ bool labelledMoving(int through, int hit, const TrackerParams& p = {}) {
   Tracker tr(p);
   for (int k = 0; k <= 30; ++k) {
     Object o;
-    o.box = {10 + 0.6 * k, 5, 0, 4.5, 1.8};
-    o.centroid = {o.box.cx, o.box.cy, -1};
-    o.z_min = -1.9, o.z_max = -0.4, o.points = 100, o.top_height_m = 1.5;
+    o.box = {{10 + 0.6 * k, 5}, 0, 4.5, 1.8, -1.9, -0.4};
+    o.centroid = {o.box.centre_m.x(), o.box.centre_m.y(), -1};
+    o.points = 100, o.top_height_m = 1.5;
     o.free_through = through, o.free_hit = hit;
     tr.update(0.1 * k, Eigen::Isometry3d::Identity(), {o});
   }

@@ -49,8 +49,9 @@ TEST(Segmentation, EachBoxOfAStreetIsOneObjectWithEveryMethod) {
     EXPECT_EQ(objs.size(), boxes.size());
     if (objs.size() != boxes.size()) {
       for (const auto& o : objs) {
-        std::cout << "object " << o.box.cx << "," << o.box.cy << " " << o.box.length << " x " << o.box.width
-                  << " yaw " << o.box.yaw << " points " << o.points << " z " << o.z_min << ".." << o.z_max << "\n";
+        std::cout << "object " << o.box.centre_m.x() << "," << o.box.centre_m.y() << " " << o.box.length_m << " x "
+                  << o.box.width_m << " yaw " << o.box.yaw_rad << " points " << o.points << " z " << o.box.z_min_m
+                  << ".." << o.box.z_max_m << "\n";
       }
     }
     const auto n = objectsPerBox(boxes, objs);
@@ -114,8 +115,8 @@ TEST(Segmentation, EmptyAndOnePointSweepsGiveNoObjects) {
   p.method = ClusterMethod::RangeImage;
   const auto objs = segmentSweep(one, p);
   ASSERT_EQ(objs.size(), 1u);
-  EXPECT_TRUE(std::isfinite(objs[0].box.cx) && std::isfinite(objs[0].box.yaw));
-  EXPECT_NEAR(objs[0].box.length, 0, 1e-9);
+  EXPECT_TRUE(std::isfinite(objs[0].box.centre_m.x()) && std::isfinite(objs[0].box.yaw_rad));
+  EXPECT_NEAR(objs[0].box.length_m, 0, 1e-9);
 }
 
 // A car rolls out of a turn (Gillespie 1992: 3-7 deg/g; 1.5 deg at 3 m/s^2 with the hard loop's
@@ -189,12 +190,12 @@ TEST(LShape, RecoversTheYawOfARectanglesTwoVisibleSides) {
     std::vector<Eigen::Vector2d> pts;
     for (double a = -L / 2; a <= L / 2; a += 0.05) pts.push_back(c + a * u + W / 2 * sv + noise(rng) * sv);
     for (double b = -W / 2; b <= W / 2; b += 0.05) pts.push_back(c + L / 2 * su + b * v + noise(rng) * su);
-    const Box2 box = fitLShape(pts, M_PI / 180);
-    EXPECT_LT(axisError(box.yaw, yaw), 2.0 * M_PI / 180) << "yaw " << yaw_deg << " got " << box.yaw * 180 / M_PI;
-    EXPECT_NEAR(box.length, L, 0.1);
-    EXPECT_NEAR(box.width, W, 0.1);
-    EXPECT_NEAR(box.cx, c.x(), 0.1);
-    EXPECT_NEAR(box.cy, c.y(), 0.1);
+    const roadslam::OrientedBox box = fitLShape(pts, M_PI / 180);
+    EXPECT_LT(axisError(box.yaw_rad, yaw), 2.0 * M_PI / 180) << "yaw " << yaw_deg << " got " << box.yaw_rad * 180 / M_PI;
+    EXPECT_NEAR(box.length_m, L, 0.1);
+    EXPECT_NEAR(box.width_m, W, 0.1);
+    EXPECT_NEAR(box.centre_m.x(), c.x(), 0.1);
+    EXPECT_NEAR(box.centre_m.y(), c.y(), 0.1);
   }
 }
 
@@ -205,8 +206,9 @@ TEST(LShape, BoxesOfTheRayCastCarsHaveTheirYaw) {
   for (const auto& b : boxes) {
     if (b.length < 2) continue;  // the pole has no axis
     for (const auto& o : objs) {
-      if (std::hypot(o.box.cx - b.cx, o.box.cy - b.cy) > 1.5 || o.box.length < 3.5) continue;  // fully seen cars
-      EXPECT_LT(axisError(o.box.yaw, b.yaw), 3.0 * M_PI / 180) << "car at " << b.cx << "," << b.cy;
+      const roadslam::OrientedBox& ob = o.box;
+      if (std::hypot(ob.centre_m.x() - b.cx, ob.centre_m.y() - b.cy) > 1.5 || ob.length_m < 3.5) continue;  // fully seen cars
+      EXPECT_LT(axisError(ob.yaw_rad, b.yaw), 3.0 * M_PI / 180) << "car at " << b.cx << "," << b.cy;
       ++checked;
     }
   }

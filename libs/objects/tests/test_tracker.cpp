@@ -8,6 +8,7 @@
 #include <random>
 
 #include "roadslam/objects/stage.h"
+#include "roadslam/objects/track_box.h"
 #include "roadslam/objects/tracker.h"
 #include "../src/imm_filter.h"
 #include "synthetic_boxes.h"
@@ -18,9 +19,9 @@ namespace {
 
 Object car(double x, double y, double yaw = 0, double L = 4.5, double W = 1.8) {
   Object o;
-  o.box = {x, y, yaw, L, W};
+  o.box = {{x, y}, yaw, L, W, -1.9, -0.4};
   o.centroid = {x, y, -1};
-  o.z_min = -1.9, o.z_max = -0.4, o.points = 100;
+  o.points = 100;
   return o;
 }
 
@@ -174,6 +175,29 @@ TEST(Tracker, AnOncomingCarSeenByItsFrontFaceIsTrackedAtItsCentre) {
 // The stage on ray-cast sweeps of a car driving past at 10 m/s: the sweep that labels its track
 // moving hands out the boxes of its earlier detections (each on the car at its time) and car-sized
 // boxes along the path before its birth; from then on, the track's own box covers the car.
+// A track seen 3 m x 2 m driving 5 m/s along (0.6, 0.8): its removal box is a car's length (4.5 m)
+// plus 5 m/s x 0.05 s at each end, its own 2 m width (wider than a car's 1.8 m), on its state.
+TEST(TrackBox, AMovingTracksBoxIsAtLeastACarLengthenedByItsDriveAtEachEnd) {
+  Track t;
+  t.x << 10, -4, 3, 4;
+  t.heading = std::atan2(4.0, 3.0), t.length = 3, t.width = 2, t.z_min = -1.9, t.z_max = -0.4;
+  TrackerParams p;
+  p.car_length_m = 4.5, p.car_width_m = 1.8;
+  const roadslam::OrientedBox b = movingTrackBox(t, p, 0.05);
+  EXPECT_EQ(b.centre_m, Eigen::Vector2d(10, -4));
+  EXPECT_EQ(b.yaw_rad, t.heading);
+  EXPECT_DOUBLE_EQ(b.length_m, 4.5 + 2 * 5 * 0.05);
+  EXPECT_EQ(b.width_m, 2);
+  EXPECT_EQ(b.z_min_m, -1.9);
+  EXPECT_EQ(b.z_max_m, -0.4);
+  EXPECT_DOUBLE_EQ(movingTrackBox(t, p, 0.1).length_m, 5.5);
+  t.length = 6, t.x.tail<2>().setZero();  // standing, longer than a car: its own length
+  EXPECT_EQ(movingTrackBox(t, p, 0.05).length_m, 6);
+  // the measured box: its own extents
+  EXPECT_EQ(t.box().length_m, 6);
+  EXPECT_EQ(t.box().width_m, 2);
+}
+
 TEST(ObjectsStage, ACarLabelledMovingHandsOutItsEarlierBoxes) {
   ClusterParams cp;
   cp.min_points = 4;
@@ -189,8 +213,8 @@ TEST(ObjectsStage, ACarLabelledMovingHandsOutItsEarlierBoxes) {
       double t_first = t;
       for (const BoxRecord& b : f.retro) {
         EXPECT_LE(b.t, t + 1e-9);
-        EXPECT_NEAR(b.centre.x(), -12.0 + v * b.t, 1.5) << "box at " << b.t;  // the detections' own boxes are partial
-        EXPECT_NEAR(b.centre.y(), 6.0, 1.0);
+        EXPECT_NEAR(b.box.centre_m.x(), -12.0 + v * b.t, 1.5) << "box at " << b.t;  // the detections' own boxes are partial
+        EXPECT_NEAR(b.box.centre_m.y(), 6.0, 1.0);
         t_first = std::min(t_first, b.t);
       }
       // retro_extrapolate_s before the birth (the first detection's time), one box per 0.1 s
@@ -201,7 +225,7 @@ TEST(ObjectsStage, ACarLabelledMovingHandsOutItsEarlierBoxes) {
     }
     if (k == 24) {
       ASSERT_EQ(f.moving_boxes.size(), 1u);
-      EXPECT_TRUE(insideBox(f.moving_boxes[0], Eigen::Vector3d(xc + 2.0, 6.0, -1.0), 0.3));
+      EXPECT_TRUE(f.moving_boxes[0].box.contains(Eigen::Vector3d(xc + 2.0, 6.0, -1.0), 0.3));
     }
   }
   EXPECT_EQ(retro_frames, 1u);
@@ -229,8 +253,8 @@ TEST(ObjectsStage, RemovalBoxesReachDownToTheRoadUnderTheCar) {
       for (const BoxRecord& b : all) {
         const double x = -12.0 + 10.0 * b.t;  // the car at the box's time: its near face at y = 37.1
         ++boxes;
-        low_in += insideBox(b, Eigen::Vector3d(x, 37.1, -1.9 + 0.4), cp.removal_margin_m);
-        road_in += insideBox(b, Eigen::Vector3d(x, 37.1, -1.9), cp.removal_margin_m);
+        low_in += b.box.contains(Eigen::Vector3d(x, 37.1, -1.9 + 0.4), cp.removal_margin_m);
+        road_in += b.box.contains(Eigen::Vector3d(x, 37.1, -1.9), cp.removal_margin_m);
       }
     }
     SCOPED_TRACE(floor_m);
@@ -284,8 +308,8 @@ TEST(ObjectsStage, AnEndedMovingTrackKeepsABoxAlongItsVelocity) {
       if (!stage.tracker().tracks().empty() || f.moving_boxes.empty()) continue;
       ++boxed_after_end, last_boxed_t = t;
       ASSERT_EQ(f.moving_boxes.size(), 1u);
-      EXPECT_NEAR(f.moving_boxes[0].centre.x(), -12.0 + v * t, 1.0) << "t " << t;
-      EXPECT_NEAR(f.moving_boxes[0].centre.y(), 6.0, 0.5);
+      EXPECT_NEAR(f.moving_boxes[0].box.centre_m.x(), -12.0 + v * t, 1.0) << "t " << t;
+      EXPECT_NEAR(f.moving_boxes[0].box.centre_m.y(), 6.0, 0.5);
     }
     SCOPED_TRACE(fwd);
     if (fwd > 0) {

@@ -250,10 +250,9 @@ void Odometry::redeskewFirstFrame(const Eigen::Isometry3d& delta_sweep) {
 }
 
 bool MapExclusion::contains(const Eigen::Vector3d& p, double t_s) const {
-  const Eigen::Vector2d d = p.head<2>() - (centre_world + velocity_world_mps * (t_s - stamp_s));
-  const double c = std::cos(yaw_rad), s = std::sin(yaw_rad);
-  return std::abs(c * d.x() + s * d.y()) <= half_length_m && std::abs(-s * d.x() + c * d.y()) <= half_width_m &&
-         p.z() >= z_min_m && p.z() <= z_max_m;
+  OrientedBox moved = box;
+  moved.centre_m += velocity_world_mps * (t_s - stamp_s);
+  return moved.contains(p);
 }
 
 size_t Odometry::setMapExclusions(std::vector<MapExclusion> boxes) {

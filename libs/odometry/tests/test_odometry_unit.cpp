@@ -146,8 +146,8 @@ TEST(OdometryUnit, ParamsRoundTripAndBadValuesNameTheKey) {
 
 TEST(OdometryUnit, MapExclusionMovesWithItsVelocity) {
   odometry::MapExclusion b;
-  b.stamp_s = 10.0, b.centre_world = {10, 0}, b.velocity_world_mps = {5, 0};
-  b.yaw_rad = M_PI / 2, b.half_length_m = 2.0, b.half_width_m = 1.0, b.z_min_m = -2, b.z_max_m = 0;
+  b.stamp_s = 10.0, b.box.centre_m = {10, 0}, b.velocity_world_mps = {5, 0};
+  b.box.yaw_rad = M_PI / 2, b.box.length_m = 4.0, b.box.width_m = 2.0, b.box.z_min_m = -2, b.box.z_max_m = 0;
   EXPECT_TRUE(b.contains({10.9, 1.9, -1}, 10.0));    // the length axis along y
   EXPECT_FALSE(b.contains({11.1, 0, -1}, 10.0));
   EXPECT_TRUE(b.contains({15.9, 0, -1}, 11.0));      // 5 m further 1 s later
@@ -170,10 +170,10 @@ TEST(OdometryUnit, ExcludedBoxesKeepACarsPointsOutOfTheMap) {
     return s;
   };
   odometry::MapExclusion car;
-  car.centre_world = {5, 3}, car.velocity_world_mps = {12, 0};
-  car.half_length_m = 2.3, car.half_width_m = 0.5, car.z_min_m = -1.7, car.z_max_m = -0.3;
+  car.box.centre_m = {5, 3}, car.velocity_world_mps = {12, 0};
+  car.box.length_m = 4.6, car.box.width_m = 1.0, car.box.z_min_m = -1.7, car.box.z_max_m = -0.3;
   odometry::MapExclusion elsewhere = car;
-  elsewhere.centre_world = {5, -3};
+  elsewhere.box.centre_m = {5, -3};
   for (const auto& boxes : {std::vector<odometry::MapExclusion>{car}, std::vector<odometry::MapExclusion>{elsewhere}}) {
     odometry::Odometry odo(testParams());
     odo.setMapExclusions(boxes);
@@ -183,11 +183,11 @@ TEST(OdometryUnit, ExcludedBoxesKeepACarsPointsOutOfTheMap) {
       ASSERT_NE(r.status, FrameStatus::NotConverged) << r.reason;
       EXPECT_NEAR(r.T_world_lidar.translation().x(), 0.8 * i, 0.05) << "frame " << i;
       excluded += r.map_points_excluded;
-      if (boxes.front().centre_world.y() > 0) {
+      if (boxes.front().box.centre_m.y() > 0) {
         EXPECT_GT(r.map_points_excluded, 20) << "frame " << i;  // the car's side, one point per 0.25 m voxel
       }
     }
-    if (boxes.front().centre_world.y() < 0) {
+    if (boxes.front().box.centre_m.y() < 0) {
       EXPECT_EQ(excluded, 0) << "a box where nothing stands keeps nothing out";
     }
   }
@@ -217,8 +217,8 @@ TEST(OdometryUnit, ExclusionBoxesEraseWhatTheCarLeftBeforeItsLabel) {
   const int car_before = count(true), rest_before = count(false);
   ASSERT_GT(car_before, 5);
   odometry::MapExclusion car;
-  car.stamp_s = 0.9, car.centre_world = {5 + 1.2 * 9, 3}, car.velocity_world_mps = {12, 0};
-  car.half_length_m = 2.3 + 0.3, car.half_width_m = 0.9 + 0.3, car.z_min_m = -1.8, car.z_max_m = -0.2;
+  car.stamp_s = 0.9, car.box.centre_m = {5 + 1.2 * 9, 3}, car.velocity_world_mps = {12, 0};
+  car.box.length_m = 2 * (2.3 + 0.3), car.box.width_m = 2 * (0.9 + 0.3), car.box.z_min_m = -1.8, car.box.z_max_m = -0.2;
   odometry::MapExclusion no_erase = car;
   no_erase.erase_back_s = 0;
   EXPECT_EQ(odo.setMapExclusions({no_erase}), 0u);  // 0 s: its current box only keeps new points out

@@ -21,7 +21,7 @@ void ObjectsOutput::add(const PipelineFrame& f, objects::ObjectsStage& stage) {
   }
   tracks += objects::tracksCsvRows(f.index, t, o);
   for (const objects::Track& tr : o.tracks) {
-    if (tr.moving) last_moving[tr.id] = {tr.id, tr.x.head<2>(), tr.heading, tr.length, tr.width, tr.x.tail<2>()};
+    if (tr.moving) last_moving[tr.id] = {tr.id, tr.box(), tr.x.tail<2>()};
   }
   takeEnded(stage);
 }

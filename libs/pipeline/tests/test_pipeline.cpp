@@ -241,10 +241,10 @@ TEST(Pipeline, MovingTracksBecomeOdometryExclusions) {
   ASSERT_EQ(boxes.size(), 1u);
   const auto& b = boxes[0];
   EXPECT_DOUBLE_EQ(b.stamp_s, 7.0);
-  EXPECT_NEAR(b.half_length_m, 0.5 * 4.5 + 5 * 0.1 + 0.3, 1e-12);  // the car's length, not the 3 m seen
-  EXPECT_NEAR(b.half_width_m, 0.5 * 2.0 + 0.3, 1e-12);             // the 2 m seen, wider than a car
-  EXPECT_NEAR(b.z_min_m, -1.8, 1e-12);
-  EXPECT_NEAR(b.z_max_m, 0.3, 1e-12);
+  EXPECT_NEAR(b.box.length_m, 4.5 + 2 * 5 * 0.1 + 2 * 0.3, 1e-12);  // the car's length, not the 3 m seen
+  EXPECT_NEAR(b.box.width_m, 2.0 + 2 * 0.3, 1e-12);                // the 2 m seen, wider than a car
+  EXPECT_NEAR(b.box.z_min_m, -1.8, 1e-12);
+  EXPECT_NEAR(b.box.z_max_m, 0.3, 1e-12);
   // one sweep later the box has driven 0.5 m
   EXPECT_TRUE(b.contains({10.5 + 3.0, 2, -1}, 7.1));
   EXPECT_FALSE(b.contains({10.5 + 3.1, 2, -1}, 7.1));

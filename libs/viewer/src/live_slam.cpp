@@ -54,7 +54,7 @@ ObjectBoxes boxesOf(const pipeline::PipelineFrame& f) {
   ObjectBoxes out;
   out.stamp_s = f.pose.ok ? f.pose.t_ref : f.pose.stamp_s;
   for (const objects::Track& t : f.objects->tracks) {
-    out.boxes.push_back({t.id, t.moving, t.x(0), t.x(1), t.heading, t.length, t.width, t.z_min, t.z_max, t.x(2), t.x(3)});
+    out.boxes.push_back({t.id, t.moving, t.box(), t.x(2), t.x(3)});
   }
   if (!f.pose.ok) return out;
   const Eigen::Isometry3d& T = f.pose.ref;
@@ -62,9 +62,11 @@ ObjectBoxes boxesOf(const pipeline::PipelineFrame& f) {
   for (std::size_t k = 0; k < f.objects->objects.size(); ++k) {
     if (k < f.objects->object_track.size() && f.objects->object_track[k] >= 0) continue;  // drawn as its track
     const objects::Object& o = f.objects->objects[k];
-    const Eigen::Vector3d c = T * Eigen::Vector3d(o.box.cx, o.box.cy, 0);
+    const Eigen::Vector3d c = T * Eigen::Vector3d(o.box.centre_m.x(), o.box.centre_m.y(), 0);
     const double z0 = T.translation().z();
-    out.boxes.push_back({-1, false, c.x(), c.y(), o.box.yaw + dyaw, o.box.length, o.box.width, o.z_min + z0, o.z_max + z0, 0, 0});
+    const OrientedBox& b = o.box;
+    const OrientedBox box{c.head<2>(), b.yaw_rad + dyaw, b.length_m, b.width_m, b.z_min_m + z0, b.z_max_m + z0};
+    out.boxes.push_back({-1, false, box, 0, 0});
   }
   return out;
 }

@@ -4,6 +4,7 @@
 #include <mrpt/opengl/CSetOfLines.h>
 #include <mrpt/opengl/CText.h>
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -25,26 +26,24 @@ mrpt::img::TColor colourOf(const ObjectBox& b) {
   return {c[0], c[1], c[2], 255};
 }
 
-void addBox(const ObjectBox& b, mrpt::opengl::CSetOfLines& l) {
-  const double c = std::cos(b.yaw_rad), s = std::sin(b.yaw_rad);
-  double cx[4], cy[4];
+void addBox(const OrientedBox& b, mrpt::opengl::CSetOfLines& l) {
+  const auto fl_fr_rr_rl = b.corners();
+  // counter-clockwise from the rear right corner: the scene's line order, which a render's pixels depend on
+  const std::array<Eigen::Vector2d, 4> c = {fl_fr_rr_rl[2], fl_fr_rr_rl[1], fl_fr_rr_rl[0], fl_fr_rr_rl[3]};
   for (int k = 0; k < 4; ++k) {
-    const double u = (k == 0 || k == 3 ? -0.5 : 0.5) * b.length_m, v = (k < 2 ? -0.5 : 0.5) * b.width_m;
-    cx[k] = b.x + c * u - s * v, cy[k] = b.y + s * u + c * v;
-  }
-  for (int k = 0; k < 4; ++k) {
-    const int n = (k + 1) % 4;
-    l.appendLine(cx[k], cy[k], b.z_min_m, cx[n], cy[n], b.z_min_m);
-    l.appendLine(cx[k], cy[k], b.z_max_m, cx[n], cy[n], b.z_max_m);
-    l.appendLine(cx[k], cy[k], b.z_min_m, cx[k], cy[k], b.z_max_m);
+    const Eigen::Vector2d &p = c[k], &q = c[(k + 1) % 4];
+    l.appendLine(p.x(), p.y(), b.z_min_m, q.x(), q.y(), b.z_min_m);
+    l.appendLine(p.x(), p.y(), b.z_max_m, q.x(), q.y(), b.z_max_m);
+    l.appendLine(p.x(), p.y(), b.z_min_m, p.x(), p.y(), b.z_max_m);
   }
 }
 
 void addArrow(const ObjectBox& b, mrpt::opengl::CSetOfLines& l) {
   const double speed = std::hypot(b.vx_mps, b.vy_mps);
   if (speed < kArrowMinSpeed_mps) return;
-  const double z = b.z_max_m, tx = b.x + b.vx_mps, ty = b.y + b.vy_mps;  // where it is in 1 s
-  l.appendLine(b.x, b.y, z, tx, ty, z);
+  const double x = b.box.centre_m.x(), y = b.box.centre_m.y();
+  const double z = b.box.z_max_m, tx = x + b.vx_mps, ty = y + b.vy_mps;  // where it is in 1 s
+  l.appendLine(x, y, z, tx, ty, z);
   const double back = std::atan2(-b.vy_mps, -b.vx_mps);
   for (double side : {-1.0, 1.0}) {
     const double a = back + side * kArrowHeadAngle_rad;
@@ -62,9 +61,7 @@ std::vector<ObjectBoxes> readObjectsFolder(const std::string& dir) {
     ObjectBox b;
     b.track_id = r.track_id;
     b.moving = r.moving;
-    b.x = r.x, b.y = r.y, b.yaw_rad = r.heading_rad;
-    b.length_m = r.length_m, b.width_m = r.width_m;
-    b.z_min_m = r.z_min, b.z_max_m = r.z_max;
+    b.box = r.box;
     b.vx_mps = r.vx, b.vy_mps = r.vy;
     by_stamp[r.stamp_s].stamp_s = r.stamp_s;
     by_stamp[r.stamp_s].boxes.push_back(b);
@@ -73,9 +70,7 @@ std::vector<ObjectBoxes> readObjectsFolder(const std::string& dir) {
     for (const runfolder::ObjectRow& r : runfolder::readObjectsCsv(objects)) {
       if (r.track_id >= 0) continue;  // drawn as its track
       ObjectBox b;
-      b.x = r.cx, b.y = r.cy, b.yaw_rad = r.yaw_rad;
-      b.length_m = r.length_m, b.width_m = r.width_m;
-      b.z_min_m = r.z_min, b.z_max_m = r.z_max;
+      b.box = r.box;
       by_stamp[r.stamp_s].stamp_s = r.stamp_s;
       by_stamp[r.stamp_s].boxes.push_back(b);
     }
@@ -90,7 +85,7 @@ void addObjectBoxes(const ObjectBoxes& f, mrpt::opengl::COpenGLScene& scene) {
   using mrpt::opengl::CSetOfLines;
   for (const ObjectBox& b : f.boxes) {
     auto lines = CSetOfLines::Create();
-    addBox(b, *lines);
+    addBox(b.box, *lines);
     addArrow(b, *lines);
     lines->setColor_u8(colourOf(b));
     lines->setLineWidth(2.f);
@@ -98,7 +93,7 @@ void addObjectBoxes(const ObjectBoxes& f, mrpt::opengl::COpenGLScene& scene) {
     scene.insert(lines);
     if (b.track_id < 0) continue;
     auto label = mrpt::opengl::CText::Create(std::to_string(b.track_id));
-    label->setLocation(b.x, b.y, b.z_max_m + 0.5);
+    label->setLocation(b.box.centre_m.x(), b.box.centre_m.y(), b.box.z_max_m + 0.5);
     label->setColor_u8(colourOf(b));
     scene.insert(label);
   }

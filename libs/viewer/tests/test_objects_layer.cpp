@@ -45,8 +45,8 @@ void writeFolder(const fs::path& dir, double t) {
   roadslam::objects::ObjectsFrame f;
   f.tracks = {track(7, true, 12, 0, 8, 0), track(3, false, -10, 6, 0, 0)};
   roadslam::objects::Object o;
-  o.box = {0, -12, 0, 2.0, 1.0};
-  o.z_min = -1.9, o.z_max = -0.9, o.points = 40;
+  o.box = {{0, -12}, 0, 2.0, 1.0, -1.9, -0.9};
+  o.points = 40;
   f.objects = {o};
   f.object_track = {-1};
   roadslam::objects::ObjectsFrame later;
@@ -90,14 +90,14 @@ TEST(ViewerObjects, TracksCsvReadsBackWhatTheObjectsStageWrote) {
   const ObjectBox& m = frames[0].boxes[0];
   EXPECT_EQ(m.track_id, 7);
   EXPECT_TRUE(m.moving);
-  EXPECT_NEAR(m.x, 12, 1e-3);
+  EXPECT_NEAR(m.box.centre_m.x(), 12, 1e-3);
   EXPECT_NEAR(m.vx_mps, 8, 1e-3);
-  EXPECT_NEAR(m.length_m, 4.5, 1e-3);
+  EXPECT_NEAR(m.box.length_m, 4.5, 1e-3);
   EXPECT_EQ(frames[0].boxes[1].track_id, 3);
   EXPECT_FALSE(frames[0].boxes[1].moving);
   EXPECT_EQ(frames[0].boxes[2].track_id, -1);
-  EXPECT_NEAR(frames[0].boxes[2].y, -12, 1e-3);
-  EXPECT_NEAR(frames[1].boxes[0].x, 20, 1e-3);
+  EXPECT_NEAR(frames[0].boxes[2].box.centre_m.y(), -12, 1e-3);
+  EXPECT_NEAR(frames[1].boxes[0].box.centre_m.x(), 20, 1e-3);
 
   std::ofstream(dir / "tracks.csv", std::ios::app) << "2,100.2,9,oops\n";
   try {

@@ -1,8 +1,7 @@
 #include "roadslam/pipeline/stages/dynamic_removal.h"
 
-#include <algorithm>
-
 #include "roadslam/objects/stage.h"
+#include "roadslam/objects/track_box.h"
 
 namespace roadslam::pipeline {
 
@@ -28,12 +27,8 @@ std::vector<odometry::MapExclusion> movingExclusions(const objects::ObjectsFrame
     if (!tr.moving) continue;
     odometry::MapExclusion b;
     b.stamp_s = t_s;
-    b.centre_world = tr.x.head<2>();
+    b.box = objects::movingTrackBox(tr, tp, sweep_s).grown(margin_m);
     b.velocity_world_mps = tr.x.tail<2>();
-    b.yaw_rad = tr.heading;
-    b.half_length_m = 0.5 * std::max(tr.length, tp.car_length_m) + tr.speed() * sweep_s + margin_m;
-    b.half_width_m = 0.5 * std::max(tr.width, tp.car_width_m) + margin_m;
-    b.z_min_m = tr.z_min - margin_m, b.z_max_m = tr.z_max + margin_m;
     b.erase_back_s = erase_back_s;
     out.push_back(b);
   }

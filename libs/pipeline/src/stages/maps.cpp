@@ -61,7 +61,7 @@ size_t MapsStage::eraseFromKeyframes(const KeyframeErasure& e) {
     removed += mapper_.erasePoints(k, [&](const Eigen::Vector3f& q) {
       const Eigen::Vector3d p_map = T_odom_lidar * q.cast<double>();
       for (const auto* b : here) {
-        if (objects::insideBox(*b, p_map, e.margin_m)) return true;
+        if (b->box.contains(p_map, e.margin_m)) return true;
       }
       return false;
     });

@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "roadslam/common/oriented_box.h"
 #include "roadslam/mapping/loop_closure.h"
 
 namespace roadslam {
@@ -74,8 +75,7 @@ void writeSimpleMap(const std::string& path, const std::vector<Keyframe>& kfs, c
 /// An object's box for the top view (map frame): a track's id, box and velocity.
 struct TopViewBox {
   int id = 0;
-  Eigen::Vector2d centre = Eigen::Vector2d::Zero();    ///< [m]
-  double yaw = 0, length = 0, width = 0;               ///< length axis direction [rad], extents [m]
+  OrientedBox box;                                     ///< its x-y rectangle is drawn [m, rad]
   Eigen::Vector2d velocity = Eigen::Vector2d::Zero();  ///< [m/s]; drawn as the arrow of 1 s of travel
 };
 

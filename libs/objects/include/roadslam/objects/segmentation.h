@@ -9,23 +9,16 @@
 #include <cstdint>
 #include <vector>
 
+#include "roadslam/common/oriented_box.h"
 #include "roadslam/common/scan.h"
 #include "roadslam/objects/params.h"
 
 namespace roadslam::objects {
 
-/// An oriented box in the x-y plane: centre, yaw of the length axis, length >= width.
-struct Box2 {
-  double cx = 0, cy = 0;      ///< centre [m] (frame of the points it was fit to)
-  double yaw = 0;             ///< direction of the length axis, in [0, pi) [rad]
-  double length = 0, width = 0;  ///< extents along yaw and across it [m]
-};
-
 /// One segmented object, lidar frame of its sweep.
 struct Object {
-  Box2 box;                   ///< L-shape box of the points' x-y [m]
+  OrientedBox box;            ///< L-shape box of the points' x-y (fitLShape), lowest to highest z [m, rad]
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();  ///< mean of the points [m]
-  double z_min = 0, z_max = 0;  ///< [m]
   double top_height_m = 0;      ///< highest point above the local ground [m]
   size_t points = 0;
   double t_mean = 0;            ///< mean firing time of the points, relative to Scan::stamp_s [s]
@@ -42,9 +35,10 @@ struct SegmentationStats {
   size_t objects = 0;          ///< components kept (size, extent)
 };
 
-/// The L-shape box of \p xy (search over [0, pi/2) in \p step_rad with the closeness criterion).
-/// One point: a zero-size box on it; none: a zero box at the origin.
-Box2 fitLShape(const std::vector<Eigen::Vector2d>& xy, double step_rad);
+/// The L-shape box of \p xy (search over [0, pi/2) in \p step_rad with the closeness criterion):
+/// yaw_rad in [0, pi), length_m >= width_m, heights 0 (the points are x-y only). One point: a
+/// zero-size box on it; none: a zero box at the origin.
+OrientedBox fitLShape(const std::vector<Eigen::Vector2d>& xy, double step_rad);
 
 /// The heights of the points no ground line reaches (NaN in \p heights, from
 /// preprocess::segmentGroundWithHeights): above a plane fit to the \p ground points within 25 m of the

@@ -31,9 +31,9 @@ struct ObjectsFrame {
   /// Tracks labelled moving at this sweep: the boxes of the detections they took before (map frame,
   /// with their sweep times), for taking their points out of the maps afterwards (retroactively).
   std::vector<BoxRecord> retro;
-  /// Confirmed moving tracks (coasting ones too) as boxes at the sweep's time, map frame: at least a
-  /// car's size (TrackerParams::car_length_m x car_width_m) and lengthened by the distance they drive
-  /// in half a sweep (their points are where the beam found them); their points leave the maps too.
+  /// Confirmed moving tracks (coasting ones too) as boxes at the sweep's time, map frame
+  /// (movingTrackBox over half a sweep: their points are where the beam found them); their points
+  /// leave the maps too.
   std::vector<BoxRecord> moving_boxes;
   SegmentationStats stats;
   double ms_ground = 0, ms_segment = 0, ms_track = 0;  ///< wall time [ms] (ms_track with the free-space evidence)
@@ -78,9 +78,6 @@ class ObjectsStage {
 /// moving_boxes, grown by \p margin_m; returns how many it removed.
 size_t removeMovingPoints(std::vector<Eigen::Vector3d>& pts_lidar, const ObjectsFrame& f, double margin_m,
                           const Eigen::Isometry3d& T_map_lidar = Eigen::Isometry3d::Identity());
-
-/// Whether \p p_map (map frame) lies inside \p b grown by \p margin_m (x-y and z).
-bool insideBox(const BoxRecord& b, const Eigen::Vector3d& p_map, double margin_m);
 
 /// CSV headers and rows (formats in the file comment and docs/run-folder.md; written through
 /// roadslam/runfolder/objects_csv.h, which reads them back); \p T_map_lidar places the objects in the map.

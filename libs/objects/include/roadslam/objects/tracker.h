@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "roadslam/common/oriented_box.h"
 #include "roadslam/objects/motion_filter.h"
 #include "roadslam/objects/params.h"
 #include "roadslam/objects/segmentation.h"
@@ -24,12 +25,11 @@ namespace roadslam::objects {
 
 enum class TrackState { Tentative, Confirmed };
 
-/// A detection a track took: its box in the map frame at the sweep's time (the points' box, not completed).
+/// A box of an object at a time: a detection a track took (the points' box, not completed), or a
+/// moving track's removal box (ObjectsFrame::retro, moving_boxes).
 struct BoxRecord {
-  double t = 0;                       ///< sweep reference time [s]
-  Eigen::Vector2d centre = Eigen::Vector2d::Zero();  ///< [m]
-  double yaw = 0, length = 0, width = 0;  ///< length axis direction [rad], extents [m]
-  double z_min = 0, z_max = 0;        ///< map frame [m]
+  double t = 0;     ///< sweep reference time [s]
+  OrientedBox box;  ///< map frame [m, rad]
 };
 
 struct Track {
@@ -57,6 +57,9 @@ struct Track {
   /// (the stage's snapshots) do not copy it.
   std::shared_ptr<std::vector<BoxRecord>> history = std::make_shared<std::vector<BoxRecord>>();
   double speed() const { return x.tail<2>().norm(); }
+  /// Its box as measured: centred on its filtered position, along its heading, its largest extents
+  /// and its last detection's heights (map frame). movingTrackBox (track_box.h) is the removal box.
+  OrientedBox box() const { return {x.head<2>(), heading, length, width, z_min, z_max}; }
 };
 
 /// A track that ended: its last state and why ("missed", "gap", "pose").

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "roadslam/common/oriented_box.h"
 #include "roadslam/common/scan.h"
 #include "roadslam/odometry/scan_matcher.h"
 #include "roadslam/odometry/vertical_structures.h"
@@ -148,14 +149,11 @@ struct MotionPrior {
 
 /// A region whose points stay out of the odometry's local map: a moving object a later stage found
 /// (the pipeline hands the objects stage's moving tracks back; the odometry knows nothing of objects).
-/// An x-y box in the world frame moving at constant velocity, with a height range.
+/// A box in the world frame moving at constant velocity in x-y.
 struct MapExclusion {
-  double stamp_s = 0;                                           ///< time of centre_world [s]
-  Eigen::Vector2d centre_world = Eigen::Vector2d::Zero();       ///< [m]
+  double stamp_s = 0;                                           ///< time of box [s]
+  OrientedBox box;                                              ///< at stamp_s, world frame, margins included [m, rad]
   Eigen::Vector2d velocity_world_mps = Eigen::Vector2d::Zero(); ///< [m/s]
-  double yaw_rad = 0;                                           ///< direction of the length axis, world frame [rad]
-  double half_length_m = 0, half_width_m = 0;                   ///< half extents, margins included [m]
-  double z_min_m = -INFINITY, z_max_m = INFINITY;               ///< world frame [m]
   /// setMapExclusions() also erases the local-map voxels whose mean the box held over this long
   /// before stamp_s (the points the object left before it was labelled moving); 0: none [s]
   double erase_back_s = 0;

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "roadslam/common/oriented_box.h"
+
 namespace roadslam::runfolder {
 
 constexpr const char* kObjectsCsv = "objects.csv";
@@ -18,10 +20,7 @@ struct ObjectRow {
   size_t frame = 0;        ///< frames.csv index [-]
   double stamp_s = 0;      ///< [s]
   size_t object = 0;       ///< the object's number in its sweep [-]
-  double cx = 0, cy = 0;   ///< box centre [m]
-  double yaw_rad = 0;      ///< length axis [rad]
-  double length_m = 0, width_m = 0;
-  double z_min = 0, z_max = 0;  ///< [m]
+  OrientedBox box;         ///< columns cx, cy, yaw_rad, length_m, width_m, z_min, z_max [m, rad]
   size_t points = 0;       ///< [-]
   int track_id = -1;       ///< the confirmed track that took it this sweep, -1 none
 };
@@ -31,11 +30,9 @@ struct TrackRow {
   size_t frame = 0;
   double stamp_s = 0;      ///< [s]
   int track_id = 0;
-  double x = 0, y = 0;     ///< [m]
+  OrientedBox box;         ///< columns x, y (its position), heading_rad, length_m, width_m, z_min, z_max [m, rad]
   double vx = 0, vy = 0;   ///< [m/s]
   double speed_mps = 0;
-  double heading_rad = 0;
-  double length_m = 0, width_m = 0, z_min = 0, z_max = 0;  ///< [m]
   bool moving = false;
   int hits = 0, misses = 0;  ///< [-]
   double age_s = 0;          ///< since the track's birth [s]

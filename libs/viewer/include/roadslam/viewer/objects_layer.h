@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "roadslam/common/oriented_box.h"
+
 namespace mrpt::opengl {
 class COpenGLScene;
 }
@@ -18,10 +20,7 @@ namespace roadslam::viewer {
 struct ObjectBox {
   int track_id = -1;             ///< the confirmed track; -1: an object no confirmed track took
   bool moving = false;           ///< the track is labelled moving
-  double x = 0, y = 0;           ///< box centre [m]
-  double yaw_rad = 0;            ///< direction of the length axis [rad]
-  double length_m = 0, width_m = 0;
-  double z_min_m = 0, z_max_m = 0;
+  OrientedBox box;               ///< [m, rad]
   double vx_mps = 0, vy_mps = 0; ///< the track's velocity (0 for untracked objects) [m/s]
 };
 

@@ -40,9 +40,8 @@ class DynamicRemovalStage : public Stage {
 };
 
 /// The confirmed moving tracks of \p f as regions for the odometry's map (map frame, at the tracks'
-/// state time \p t_s): at least a car's size (\p tp car_length_m x car_width_m), lengthened by the
-/// distance driven over one sweep either way (\p sweep_s: the next sweep's points spread over it),
-/// grown by \p margin_m in x-y and z.
+/// state time \p t_s): objects::movingTrackBox lengthened by the distance driven over one sweep at
+/// each end (\p sweep_s: the next sweep's points spread over it), grown by \p margin_m in x-y and z.
 std::vector<odometry::MapExclusion> movingExclusions(const objects::ObjectsFrame& f, double t_s,
                                                      const objects::TrackerParams& tp, double margin_m,
                                                      double sweep_s = 0.1, double erase_back_s = 0);
