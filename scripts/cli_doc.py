@@ -24,8 +24,7 @@ Every program also takes `--version`; a bad command line exits with CLI11's code
 
 
 def help_text(binary, args):
-    env = dict(os.environ, COLUMNS="100")
-    r = subprocess.run([binary, *args, "--help"], capture_output=True, text=True, env=env, timeout=60)
+    r = subprocess.run([binary, *args, "--help"], capture_output=True, text=True, timeout=60)
     if r.returncode != 0:
         raise SystemExit(f"{binary} {' '.join(args)} --help exited {r.returncode}: {r.stderr.strip()}")
     # the program's own path is where it was built: print its name only

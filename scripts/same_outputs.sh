@@ -1,14 +1,16 @@
 #!/usr/bin/env bash
 # Do two builds write the same outputs, byte for byte? Runs both builds' roadslam-map and roadslam-bounds
-# on the same inputs and compares every file they write, except what holds times (JSON keys ms, ms_*,
-# wall_*, *_time_s; frames.csv's ms_* columns), the program's own paths and version, the manifest's date,
-# and whether a path written into an output runs through the before or the after folder.
-# Inputs: the simulated urban loop, parking lot and highway (30 s each, simulated once by BEFORE's roadslam-sim), an objects-on and a GNSS-on run
-# (the urban loop with [objects] enabled; the highway with the simulator's gnss.nmea), both real VLP-16 pcaps
-# and KITTI raw 0001 from ../shared/data (skipped, and said, when absent).
+# on the same inputs and compares every file they write, except what holds times (JSON keys and CSV
+# columns ms, ms_*, *_ms, *_ms_*, wall_time_s) and the build's name (program_version); a path written
+# into an output is compared with the before/after folder taken out.
+# Inputs: the simulated urban loop, parking lot and highway (30 s each, simulated once by BEFORE's
+# roadslam-sim), an objects-on and a GNSS-on run (the urban loop with [objects] enabled; the highway
+# with the simulator's gnss.nmea), both real VLP-16 pcaps and KITTI raw 0001 from ../shared/data
+# (skipped, and said, when absent).
 # usage: scripts/same_outputs.sh BEFORE_BIN AFTER_BIN [WORK_DIR]
 #   e.g. scripts/same_outputs.sh /tmp/main/build/bin build/bin
-# Exit 0 when every compared file is identical; the differing files are listed otherwise.
+# Exit 0 when every run succeeded on both sides and every compared file is identical; the failed runs
+# and the differing files are listed otherwise.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BEFORE=$(realpath "$1") AFTER=$(realpath "$2")
@@ -55,23 +57,29 @@ else
   echo "== $KITTI absent: KITTI raw 0001 is not compared"
 fi
 
+# a run that fails on either side fails the comparison: two failed runs' folders would match
+failed=0
 for run in "${RUNS[@]}"; do
   name=${run%%|*} args=${run#*|}
   prog=${args%% *} rest=${args#* }
   for side in before after; do
     bin=$BEFORE; [[ $side == after ]] && bin=$AFTER
     rm -rf "$WORK/$side/$name"
+    rc=0
     # shellcheck disable=SC2086
-    "$bin/roadslam-$prog" $rest --out "$WORK/$side/$name" --quiet > "$WORK/$side-$name.log" 2>&1 ||
-      echo "== $side $name exited $? (log $WORK/$side-$name.log)"
+    "$bin/roadslam-$prog" $rest --out "$WORK/$side/$name" --quiet > "$WORK/$side-$name.log" 2>&1 || rc=$?
+    if ((rc)); then
+      echo "== FAILED: $side $name exited $rc (log $WORK/$side-$name.log)"
+      failed=$((failed + 1))
+    fi
   done
 done
 
-/usr/bin/python3 - "$WORK" <<'PY'
+/usr/bin/python3 - "$WORK" "$failed" <<'PY'
 import json, os, re, sys, filecmp
-work = sys.argv[1]
-# program_version names the build (its commit): two builds differ there by definition
-VOLATILE = re.compile(r"^ms$|^(ms_|wall_|cpu_)|_ms$|_ms_|time_s$|^created|^date|^host|^command|^config_path|^out|^program_path|^program_version$")
+work, failed = sys.argv[1], int(sys.argv[2])
+# what differs between two runs of one binary (times) or two builds (program_version names the commit)
+VOLATILE = re.compile(r"^ms$|^ms_|_ms$|_ms_|^wall_time_s$|^program_version$")
 SIDES = [os.path.join(work, side) + os.sep for side in ("before", "after")]
 def csv_rows(path):
     """The rows without the columns that hold times (frames.csv's ms_*)."""
@@ -107,8 +115,6 @@ for name in sorted(os.listdir(os.path.join(work, "before"))):
                         ok = [strip(json.loads(l)) for l in fb if l.strip()] == [strip(json.loads(l)) for l in fa if l.strip()]
                     else:
                         ok = strip(json.load(fb)) == strip(json.load(fa))
-            elif f in ("config_used.ini",) or f.endswith(".log"):
-                continue
             elif f.endswith(".csv"):
                 ok = csv_rows(b) == csv_rows(a)
             else:
@@ -119,6 +125,6 @@ for name in sorted(os.listdir(os.path.join(work, "before"))):
         for f in files:
             if not os.path.exists(os.path.join(b_dir, os.path.relpath(os.path.join(root, f), a_dir))):
                 print("new after:", os.path.relpath(os.path.join(root, f), os.path.join(work, "after"))); differ += 1
-print(f"== {same} files identical, {differ} differ ({work})")
-sys.exit(1 if differ else 0)
+print(f"== {same} files identical, {differ} differ, {failed} runs failed ({work})")
+sys.exit(1 if differ or failed else 0)
 PY

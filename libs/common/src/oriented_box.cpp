@@ -26,4 +26,13 @@ std::array<Eigen::Vector2d, 4> OrientedBox::corners() const {
   return {centre_m + hl * u + hw * v, centre_m + hl * u - hw * v, centre_m - hl * u - hw * v, centre_m - hl * u + hw * v};
 }
 
+OrientedBox OrientedBox::placed(const Eigen::Isometry3d& T_to_from) const {
+  const double dyaw = std::atan2(T_to_from(1, 0), T_to_from(0, 0)), z0 = T_to_from.translation().z();
+  OrientedBox b = *this;
+  b.centre_m = (T_to_from * Eigen::Vector3d(centre_m.x(), centre_m.y(), 0)).head<2>();
+  b.yaw_rad = std::atan2(std::sin(yaw_rad + dyaw), std::cos(yaw_rad + dyaw));
+  b.z_min_m = z_min_m + z0, b.z_max_m = z_max_m + z0;
+  return b;
+}
+
 }  // namespace roadslam

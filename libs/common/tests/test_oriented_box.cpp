@@ -96,3 +96,21 @@ TEST(OrientedBox, AMarginAndTheGrownBoxAgreeToTheLastBit) {
     }
   }
 }
+
+// A lidar-frame box placed in the map by a pose turned 90 deg and raised 2 m: the centre through the
+// pose, the yaw turned by 90 deg and wrapped, the heights raised, the extents kept.
+TEST(OrientedBox, PlacedThroughALevelPose) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  T.translation() = Eigen::Vector3d(10, 5, 2);
+  const OrientedBox p = box(1, 0, 0.2, 4, 2, -1.5, 0).placed(T);
+  EXPECT_NEAR(p.centre_m.x(), 10, 1e-12);
+  EXPECT_NEAR(p.centre_m.y(), 6, 1e-12);
+  EXPECT_NEAR(p.yaw_rad, 0.2 + M_PI / 2, 1e-12);
+  EXPECT_EQ(p.length_m, 4);
+  EXPECT_EQ(p.width_m, 2);
+  EXPECT_EQ(p.z_min_m, 0.5);
+  EXPECT_EQ(p.z_max_m, 2);
+  // 3.0 + pi/2 is past pi: wrapped to 3.0 + pi/2 - 2 pi
+  EXPECT_NEAR(box(0, 0, 3.0, 4, 2, 0, 1).placed(T).yaw_rad, 3.0 + M_PI / 2 - 2 * M_PI, 1e-12);
+}

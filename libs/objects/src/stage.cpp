@@ -163,15 +163,10 @@ std::string objectsCsvHeader() { return runfolder::objectsCsvHeader(); }
 
 std::string objectsCsvRows(size_t frame, double stamp_s, const Eigen::Isometry3d& T_map_lidar, const ObjectsFrame& f) {
   std::string out;
-  const double dyaw = std::atan2(T_map_lidar(1, 0), T_map_lidar(0, 0)), z0 = T_map_lidar.translation().z();
   for (size_t k = 0; k < f.objects.size(); ++k) {
     const Object& o = f.objects[k];
-    const Eigen::Vector3d c = T_map_lidar * Eigen::Vector3d(o.box.centre_m.x(), o.box.centre_m.y(), 0);
     runfolder::ObjectRow r;
-    r.frame = frame, r.stamp_s = stamp_s, r.object = k, r.box.centre_m = c.head<2>();
-    r.box.yaw_rad = std::atan2(std::sin(o.box.yaw_rad + dyaw), std::cos(o.box.yaw_rad + dyaw));
-    r.box.length_m = o.box.length_m, r.box.width_m = o.box.width_m;
-    r.box.z_min_m = o.box.z_min_m + z0, r.box.z_max_m = o.box.z_max_m + z0;
+    r.frame = frame, r.stamp_s = stamp_s, r.object = k, r.box = o.box.placed(T_map_lidar);
     r.points = o.points, r.track_id = k < f.object_track.size() ? f.object_track[k] : -1;
     out += runfolder::objectsCsvRow(r);
   }

@@ -85,16 +85,16 @@ Completed complete(const Detection& d, double h, double L, double W, const Eigen
 /// from the size). \p centre: the detection's centre moved so; \p los_dir: the normal.
 bool isCarFace(const Detection& d, const Eigen::Vector2d& s, const TrackerParams& p, Eigen::Vector2d* centre = nullptr,
                Eigen::Vector2d* los_dir = nullptr) {
-  const Eigen::Vector2d los = d.box.centre_m - s;
+  const OrientedBox& b = d.box;
+  const Eigen::Vector2d los = b.centre_m - s;
   const double range = los.norm();
   if (p.car_length_m <= 0 || range < p.car_prior_min_range_m) return false;
-  const OrientedBox& b = d.box;
   if (b.width_m > p.car_face_max_depth_m || b.length_m < p.car_face_min_m || b.length_m > p.car_face_max_m) return false;
   // the face's normal, away from the sensor, within 40 deg of the line of sight
-  Eigen::Vector2d n(-std::sin(d.box.yaw_rad), std::cos(d.box.yaw_rad));
+  Eigen::Vector2d n(-std::sin(b.yaw_rad), std::cos(b.yaw_rad));
   if (n.dot(los) < 0) n = -n;
   if (n.dot(los) < kFaceMaxObliquity * range) return false;
-  if (centre) *centre = d.box.centre_m + n * 0.5 * std::max(0.0, p.car_length_m - d.box.width_m);
+  if (centre) *centre = b.centre_m + n * 0.5 * std::max(0.0, p.car_length_m - b.width_m);
   if (los_dir) *los_dir = n;
   return true;
 }

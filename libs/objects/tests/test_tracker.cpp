@@ -172,9 +172,6 @@ TEST(Tracker, AnOncomingCarSeenByItsFrontFaceIsTrackedAtItsCentre) {
   }
 }
 
-// The stage on ray-cast sweeps of a car driving past at 10 m/s: the sweep that labels its track
-// moving hands out the boxes of its earlier detections (each on the car at its time) and car-sized
-// boxes along the path before its birth; from then on, the track's own box covers the car.
 // A track seen 3 m x 2 m driving 5 m/s along (0.6, 0.8): its removal box is a car's length (4.5 m)
 // plus 5 m/s x 0.05 s at each end, its own 2 m width (wider than a car's 1.8 m), on its state.
 TEST(TrackBox, AMovingTracksBoxIsAtLeastACarLengthenedByItsDriveAtEachEnd) {
@@ -198,6 +195,9 @@ TEST(TrackBox, AMovingTracksBoxIsAtLeastACarLengthenedByItsDriveAtEachEnd) {
   EXPECT_EQ(t.box().width_m, 2);
 }
 
+// The stage on ray-cast sweeps of a car driving past at 10 m/s: the sweep that labels its track
+// moving hands out the boxes of its earlier detections (each on the car at its time) and car-sized
+// boxes along the path before its birth; from then on, the track's own box covers the car.
 TEST(ObjectsStage, ACarLabelledMovingHandsOutItsEarlierBoxes) {
   ClusterParams cp;
   cp.min_points = 4;

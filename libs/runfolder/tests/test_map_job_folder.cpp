@@ -22,21 +22,21 @@ struct JobRun {
 };
 
 JobRun runJob() {
-    JobRun x;
-    auto p = sim::ScenarioParams::fromFile(std::string(ROADSLAM_SOURCE_DIR) + "/ini/sim/urban-loop.ini");
-    p.duration_s = 4;
-    x.drive = sim::simulateCached(p, ROADSLAM_SIM_CACHE);
-    x.dir = runfolder::test::freshDir("map-job");
-    const std::string ini = x.dir + "-objects.ini";
-    runfolder::test::writeText(ini, runfolder::test::readText(std::string(ROADSLAM_SOURCE_DIR) + "/ini/default.ini") +
-                                        "\n[objects]\nenabled = true\n");
-    pipeline::MapRequest req;
-    req.config_path = ini;
-    req.input_path = x.drive + "/velodyne.pcap";
-    req.out_dir = x.dir;
-    req.progress = false;
-    x.out = pipeline::runMapJob(req);
-    return x;
+  JobRun x;
+  auto p = sim::ScenarioParams::fromFile(std::string(ROADSLAM_SOURCE_DIR) + "/ini/sim/urban-loop.ini");
+  p.duration_s = 4;
+  x.drive = sim::simulateCached(p, ROADSLAM_SIM_CACHE);
+  x.dir = runfolder::test::freshDir("map-job");
+  const std::string ini = x.dir + "-objects.ini";
+  runfolder::test::writeText(ini, runfolder::test::readText(std::string(ROADSLAM_SOURCE_DIR) + "/ini/default.ini") +
+                                      "\n[objects]\nenabled = true\n");
+  pipeline::MapRequest req;
+  req.config_path = ini;
+  req.input_path = x.drive + "/velodyne.pcap";
+  req.out_dir = x.dir;
+  req.progress = false;
+  x.out = pipeline::runMapJob(req);
+  return x;
 }
 
 void readsBackWhatTheJobHeld(const JobRun& r) {

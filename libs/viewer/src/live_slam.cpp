@@ -57,16 +57,10 @@ ObjectBoxes boxesOf(const pipeline::PipelineFrame& f) {
     out.boxes.push_back({t.id, t.moving, t.box(), t.x(2), t.x(3)});
   }
   if (!f.pose.ok) return out;
-  const Eigen::Isometry3d& T = f.pose.ref;
-  const double dyaw = std::atan2(T(1, 0), T(0, 0));
   for (std::size_t k = 0; k < f.objects->objects.size(); ++k) {
     if (k < f.objects->object_track.size() && f.objects->object_track[k] >= 0) continue;  // drawn as its track
-    const objects::Object& o = f.objects->objects[k];
-    const Eigen::Vector3d c = T * Eigen::Vector3d(o.box.centre_m.x(), o.box.centre_m.y(), 0);
-    const double z0 = T.translation().z();
-    const OrientedBox& b = o.box;
-    const OrientedBox box{c.head<2>(), b.yaw_rad + dyaw, b.length_m, b.width_m, b.z_min_m + z0, b.z_max_m + z0};
-    out.boxes.push_back({-1, false, box, 0, 0});
+    // as objects.csv holds it (objects::objectsCsvRows)
+    out.boxes.push_back({-1, false, f.objects->objects[k].box.placed(f.pose.ref), 0, 0});
   }
   return out;
 }

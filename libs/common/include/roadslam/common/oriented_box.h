@@ -6,6 +6,7 @@
 /// objects.csv and tracks.csv. The frame is the holder's (lidar, map or world); metres and radians.
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include <array>
 
@@ -26,6 +27,10 @@ struct OrientedBox {
   /// The x-y corners, clockwise seen from above (z up): front left, front right, rear right, rear
   /// left ("front": along the yaw; "left": 90 deg counter-clockwise from it).
   std::array<Eigen::Vector2d, 4> corners() const;
+  /// The box in another frame, for a pose that is near level (a vehicle's): the centre through the
+  /// whole pose \p T_to_from, the yaw turned by the pose's heading (wrapped to [-pi, pi]), the heights
+  /// shifted by its z.
+  OrientedBox placed(const Eigen::Isometry3d& T_to_from) const;
 };
 
 }  // namespace roadslam
