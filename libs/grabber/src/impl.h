@@ -51,7 +51,7 @@ struct SensorRt {
   BoundedQueue<SensorItem> queue;
   std::thread thread;
   std::atomic<std::uint64_t> packets{0}, data_packets{0}, position_packets{0}, malformed{0},
-      foreign{0}, missing{0}, kernel_drops{0}, queue_drops{0}, sweeps{0};
+      foreign{0}, missing{0}, kernel_drops{0}, queue_drops{0}, sweeps{0}, pause_cuts{0};
   std::atomic<double> last_packet_s{0};  // host time of the last packet [s]
   std::atomic<double> offset_s{0}, offset_min_s{1e300}, offset_max_s{-1e300};
   // status() bookkeeping (under Impl::status_mutex)

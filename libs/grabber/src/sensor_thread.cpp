@@ -86,7 +86,9 @@ void Grabber::Impl::sensorLoop(SensorRt& s) {
     atomicMin(s.offset_min_s, off);
     atomicMax(s.offset_max_s, off);
     if (data) {
-      if (s.grouper.add(std::move(pkt))) pushOrCount(s, SensorItem{self, true, s.grouper.take()});
+      const bool closed = s.grouper.add(std::move(pkt));
+      s.pause_cuts.store(s.grouper.revolutionsCut(), std::memory_order_relaxed);
+      if (closed) pushOrCount(s, SensorItem{self, true, s.grouper.take()});
     } else {
       SensorItem item{self, false, {}};
       item.packets.push_back(std::move(pkt));

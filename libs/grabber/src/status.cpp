@@ -66,6 +66,7 @@ GrabStatus Grabber::status() {
     o.kernel_drops = s->kernel_drops;
     o.queue_drops = s->queue_drops;
     o.sweeps = s->sweeps;
+    o.pause_cuts = s->pause_cuts;
     o.queue_depth = s->queue.size();
     o.queue_high_water = s->queue.highWater();
     o.rate_pps = double(o.data_packets - s->rate_prev_packets) / dt;
@@ -188,7 +189,7 @@ void Grabber::writeSummary(const GrabStatus& s) const {
                        {"position_packets", o.position_packets}, {"malformed", o.malformed},
                        {"foreign", o.foreign}, {"missing", o.missing}, {"kernel_drops", o.kernel_drops},
                        {"queue_drops", o.queue_drops}, {"queue_high_water", o.queue_high_water},
-                       {"sweeps_queued", o.sweeps},
+                       {"sweeps_queued", o.sweeps}, {"pause_cuts", o.pause_cuts},
                        {"clock_offset_s", o.clock_offset_s}, {"clock_offset_min_s", o.clock_offset_min_s},
                        {"clock_offset_max_s", o.clock_offset_max_s}, {"silent_events", o.silent_events}});
   }

@@ -21,6 +21,8 @@ bool SweepGrouper::accepts(const velodyne::RawPacket& packet) {
 bool SweepGrouper::add(velodyne::RawPacket&& packet) {
   if (!accepts(packet)) return false;
   const std::uint8_t* p = packet.payload.data();
+  if (partial_azimuth_ >= 0 && blockAzimuth(p, 0) >= partial_azimuth_) ++revolutions_cut_;
+  partial_azimuth_ = -1;
   bool closes = false;
   // Cut before this packet: the previous packet ended a revolution inside its blocks, or the
   // azimuth decreased between the packets.
@@ -47,6 +49,7 @@ std::vector<velodyne::RawPacket> SweepGrouper::take() { return std::move(closed_
 std::vector<velodyne::RawPacket> SweepGrouper::takePartial() {
   std::vector<velodyne::RawPacket> out = std::move(current_);
   current_.clear();
+  partial_azimuth_ = out.empty() || straddled_ ? -1 : prev_azimuth_;
   prev_azimuth_ = -1;
   straddled_ = false;
   return out;

@@ -59,6 +59,38 @@ TEST(SweepGrouper, SameSweepCountAsSweepAssembler) {
   EXPECT_EQ(regrouped.size(), data);
 }
 
+// takePartial() in the middle of a revolution (the sensor thread's poll timeout) cuts it in two when
+// the packets after it go on with it; at a revolution's end, or at the end of the stream, nothing is cut.
+TEST(SweepGrouper, CountsTheRevolutionsAPartialHandOverCuts) {
+  const auto& pkts = test::simPackets(1.0);
+  std::vector<std::vector<uint8_t>> data;
+  for (const auto& p : pkts)
+    if (p.port == 2368) data.push_back(p.bytes);
+  auto feed = [](SweepGrouper& g, const std::vector<uint8_t>& bytes) {
+    velodyne::RawPacket rp;
+    rp.payload = bytes;
+    return g.add(std::move(rp));
+  };
+  SweepGrouper g;
+  std::size_t sweeps = 0;
+  bool handed_over = false;
+  for (const auto& d : data) {
+    if (!feed(g, d)) continue;
+    ++sweeps;
+    g.take();
+    if (!handed_over) {  // right after a revolution's first packet: the rest of it follows, a cut
+      sweeps += !g.takePartial().empty();
+      handed_over = true;
+    }
+  }
+  sweeps += !g.takePartial().empty();  // the end of the stream: not a cut
+  velodyne::SweepAssembler a;
+  for (const auto& d : data) a.addPacket(d.data(), d.size(), 0);
+  a.finish();
+  EXPECT_EQ(g.revolutionsCut(), 1u);
+  EXPECT_EQ(sweeps, a.stats().sweeps + 1);
+}
+
 TEST(SweepGrouper, RejectsMalformedPackets) {
   SweepGrouper g;
   velodyne::RawPacket shortp;

@@ -46,6 +46,10 @@ struct SensorStatus {
   std::uint64_t kernel_drops = 0;       ///< socket buffer overflows (SO_RXQ_OVFL) [count]
   std::uint64_t queue_drops = 0;        ///< packets dropped because the writer queue was full [count]
   std::uint64_t sweeps = 0;             ///< sweeps queued for writing [count]
+  /// Revolutions recorded as two observations: the sender paused longer than the receiver's poll
+  /// timeout, the sweep in progress was handed over, and the packets after the pause went on with
+  /// that revolution [count].
+  std::uint64_t pause_cuts = 0;
   std::size_t queue_depth = 0;          ///< items waiting for the writer [count]
   std::size_t queue_high_water = 0;     ///< largest queue_depth so far, to size queue_capacity [count]
   double rate_pps = 0;                  ///< data packets per second over the last status period [1/s]

@@ -26,11 +26,16 @@ class SweepGrouper {
   /// Packets of the sweep in progress (at the end of a recording: the last, partial sweep).
   std::vector<velodyne::RawPacket> takePartial();
   std::size_t pending() const { return current_.size(); }
+  /// Revolutions that takePartial() cut in two: the next packet added went on with the revolution
+  /// the partial sweep was in (its azimuth did not go back), so that revolution is two sweeps [count].
+  std::uint64_t revolutionsCut() const { return revolutions_cut_; }
 
  private:
   std::vector<velodyne::RawPacket> current_, closed_;
   int prev_azimuth_ = -1;  // last block azimuth of the previous packet [0.01 deg]
   bool straddled_ = false;  // the last packet added crossed the cut inside its blocks
+  int partial_azimuth_ = -1;  // after takePartial(): the last azimuth of the sweep taken, else -1
+  std::uint64_t revolutions_cut_ = 0;
 };
 
 }  // namespace roadslam::grabber
