@@ -182,6 +182,10 @@ std::optional<GnssFix> NmeaParser::feed(const std::string& raw, double receive_s
   while (!s.empty() && (s.back() == '\r' || s.back() == '\n' || s.back() == ' ')) s.pop_back();
   const size_t dollar = s.find('$');
   const size_t star = s.rfind('*');
+  if (p_.checksum_optional && dollar != std::string::npos && (star == std::string::npos || star < dollar)) {
+    ++c_.sentences;
+    return sentence(s.substr(dollar + 1), receive_s);
+  }
   if (dollar == std::string::npos || star == std::string::npos || star < dollar || star + 3 != s.size()) {
     ++c_.bad_checksum;
     problem("no checksum");
@@ -197,7 +201,11 @@ std::optional<GnssFix> NmeaParser::feed(const std::string& raw, double receive_s
     return std::nullopt;
   }
   ++c_.sentences;
-  const auto f = splitFields(s.substr(dollar + 1, star - dollar - 1));
+  return sentence(s.substr(dollar + 1, star - dollar - 1), receive_s);
+}
+
+std::optional<GnssFix> NmeaParser::sentence(const std::string& body, double receive_s) {
+  const auto f = splitFields(body);
   if (f[0].size() < 5) {
     ++c_.malformed;
     problem("no sentence type");
@@ -250,16 +258,19 @@ std::optional<GnssFix> NmeaParser::feed(const std::string& raw, double receive_s
     double v;
     if (toDouble(f[7], v)) e.speed_mps = v * kKnot_mps;
     if (toDouble(f[8], v)) e.course_rad = v * kDeg;
-    if (e.rmc_status == 'A' && !e.has_position) {
+    if (!e.has_position && (e.rmc_status == 'A' || p_.void_positions)) {
       double lat, lon;
-      if (!angle(f[3], f[4], 2, lat) || !angle(f[5], f[6], 3, lon) || std::abs(lat) > 90) {
+      const bool read = angle(f[3], f[4], 2, lat) && angle(f[5], f[6], 3, lon) && std::abs(lat) <= 90;
+      if (!read && e.rmc_status == 'A') {
         e.rmc_status = 'V';
         ++c_.malformed;
         problem("RMC: position");
         return done;
       }
-      e.position = {lat, lon, e.position.h_m};
-      e.has_position = true;
+      if (read) {
+        e.position = {lat, lon, e.position.h_m};
+        e.has_position = true;
+      }
     }
     appendType(e, type);
   } else if (type == "GST") {
@@ -300,6 +311,24 @@ std::optional<GnssFix> NmeaParser::flush() {
   finish(*done);
   c_.fixes += done->valid() && done->has_position;
   return done;
+}
+
+std::optional<GnssFix> parseRmc(const std::string& sentence) noexcept {
+  try {
+    if (sentence.size() < 7 || sentence[0] != '$' || sentence.compare(3, 3, "RMC") != 0) return std::nullopt;
+    NmeaParams p;
+    p.checksum_optional = true;
+    p.void_positions = true;
+    NmeaParser parser(p);
+    parser.feed(sentence);
+    std::optional<GnssFix> f = parser.flush();
+    const NmeaCounters& c = parser.counters();
+    if (!f || c.sentences != 1 || c.malformed != 0 || !f->has_position) return std::nullopt;
+    if (f->rmc_status != 'A' && f->rmc_status != 'V') return std::nullopt;
+    return f;
+  } catch (...) {
+    return std::nullopt;  // allocation failure only
+  }
 }
 
 NmeaLog parseNmeaLog(const std::string& text, NmeaParams p) {

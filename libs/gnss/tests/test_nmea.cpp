@@ -124,3 +124,40 @@ TEST(Nmea, EncoderRoundTrip) {
   EXPECT_NEAR(g.sigma_lat_m, 0.8, 1e-9);
   EXPECT_EQ(g.quality, 2);
 }
+
+// gnss::parseRmc: the RMC a Velodyne forwards (VLP-16 manual 9.4). The sentence of MRPT's own
+// test capture; the expected values from its fields by hand.
+TEST(ParseRmc, ParsesGprmcFields) {
+  const auto f = parseRmc("$GPRMC,081802.00,A,3649.7478558,N,00224.4542928,W,0.034,212.5,210116,0.0,E,A*2E");
+  ASSERT_TRUE(f);
+  EXPECT_TRUE(f->valid());
+  EXPECT_NEAR(f->position.lat_deg, 36.829130930, 1e-9);
+  EXPECT_NEAR(f->position.lon_deg, -2.407571547, 1e-9);
+  EXPECT_NEAR(f->speed_mps, 0.034 * 0.514444, 1e-5);
+  EXPECT_NEAR(f->course_rad, 212.5 * M_PI / 180, 1e-12);
+  EXPECT_NEAR(f->time_of_day_s, 8 * 3600 + 18 * 60 + 2, 1e-9);
+  EXPECT_NEAR(f->t_receiver_s, 1453364282.0, 1e-6);  // date -u -d '2016-01-21 08:18:02' +%s
+}
+
+TEST(ParseRmc, RejectsBadChecksumAndOtherSentencesKeepsAVoidFixsPosition) {
+  EXPECT_FALSE(parseRmc("$GPRMC,081802.00,A,3649.7478558,N,00224.4542928,W,0.034,212.5,210116,0.0,E,A*2F"));
+  EXPECT_FALSE(parseRmc("$GPGGA,081802.00,3649.7,N,00224.4,W,1,08,0.9,545.4,M,46.9,M,,*47"));
+  EXPECT_FALSE(parseRmc(""));
+  EXPECT_FALSE(parseRmc("$GPRMC,,,,"));
+  EXPECT_FALSE(parseRmc("$GPRMC,081802,A,3699.0,N,00224.4,W,0,0,210116,,"));  // 99 minutes
+  EXPECT_FALSE(parseRmc("$GPRMC,081802,V,,,,,,,210116,,"));                    // void, no position
+  const auto f = parseRmc("$GPRMC,220632,V,3707.83,S,12139.29,E,0.0,0.0,111212,,");  // no checksum
+  ASSERT_TRUE(f);
+  EXPECT_FALSE(f->valid());
+  EXPECT_EQ(f->rmc_status, 'V');
+  EXPECT_NEAR(f->position.lat_deg, -(37 + 7.83 / 60), 1e-12);
+  EXPECT_NEAR(f->position.lon_deg, 121 + 39.29 / 60, 1e-12);
+}
+
+// The NMEA log parser's defaults are unchanged by the RMC-alone options: a sentence without a
+// checksum is counted, a void RMC has no position.
+TEST(ParseRmc, LogParserStillRequiresChecksums) {
+  const NmeaLog log = parseNmeaLog("$GPRMC,220632,A,3707.83,S,12139.29,E,0.0,0.0,111212,,\n");
+  EXPECT_TRUE(log.fixes.empty());
+  EXPECT_EQ(log.counters.bad_checksum, 1u);
+}

@@ -287,10 +287,10 @@ void Writer::writeSweep(const SensorItem& it) {
 void Writer::writePosition(const SensorItem& it) {
   const velodyne::RawPacket& pkt = it.packets.front();
   velodyne::PositionPacket pos;
-  if (!velodyne::decodePositionPacket(pkt.payload.data(), pkt.payload.size(), pos) || !pos.has_fix)
+  if (!velodyne::decodePositionPacket(pkt.payload.data(), pkt.payload.size(), pos) || !pos.fix)
     return;  // kept in the pcap sidecar; nothing to put in an MRPT GPS record
   auto obs = std::make_shared<mrpt::obs::CObservationGPS>();
-  sources::fillGpsObservation(pos.fix, pkt.stamp_s, g_.params.sensors[std::size_t(it.sensor)].scan.gps_label, *obs);
+  sources::fillRmcObservation(*pos.fix, pkt.stamp_s, g_.params.sensors[std::size_t(it.sensor)].scan.gps_label, *obs);
   writeObs(obs);
   g_.writer.gps.fetch_add(1);
 }

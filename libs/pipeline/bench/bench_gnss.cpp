@@ -328,7 +328,7 @@ int rav4Figures(int argc, char** argv) {
     // fixes alone: linearly interpolated at the reference times
     std::vector<double> ft;
     PoseVector fT;
-    std::vector<vehicle::GnssFix> course;  // for the dead reckoning's yaw-rate bias (vehicle/can_odometry.h)
+    std::vector<gnss::GnssFix> course;  // for the dead reckoning's yaw-rate bias (vehicle/can_odometry.h)
     for (size_t k = 0; k < fixes.size(); ++k) {
       Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
       T.translation() = fixes[k].p_enu;
@@ -337,8 +337,13 @@ int rav4Figures(int argc, char** argv) {
       if (k == 0 || k + 1 == fixes.size()) continue;
       const Eigen::Vector3d d = fixes[k + 1].p_enu - fixes[k - 1].p_enu;  // central difference over 2 s
       const gnss::Geodetic g = enu.toGeodetic(fixes[k].p_enu);
-      course.push_back({fixes[k].t_s, g.lat_deg, g.lon_deg, d.head<2>().norm() / (fixes[k + 1].t_s - fixes[k - 1].t_s),
-                        std::atan2(d.x(), d.y()) * 180 / M_PI});
+      gnss::GnssFix c;
+      c.t_receiver_s = c.t_receive_s = fixes[k].t_s;
+      c.position = g;
+      c.has_position = true;
+      c.speed_mps = d.head<2>().norm() / (fixes[k + 1].t_s - fixes[k - 1].t_s);
+      c.course_rad = std::atan2(d.x(), d.y());
+      course.push_back(c);
     }
     const auto bias = vehicle::estimateYawRateBias(raw.samples, course);
     const Dr cal = deadReckon(bias.bias_radps);

@@ -65,13 +65,13 @@ std::string chooseGpsSource(const std::map<std::string, std::size_t>& sources, c
                            "); choose the one to fuse with --gnss-label LABEL");
 }
 
-GnssInput gnssInputFromFixes(const std::vector<sources::TimedGpsFix>& fixes, const std::string& describe,
+GnssInput gnssInputFromFixes(const std::vector<gnss::GnssFix>& fixes, const std::string& describe,
                              const mapping::GnssFusionParams& p) {
   GnssInput in;
   in.path = describe;
   for (const auto& f : fixes) {
     ++in.log.counters.epochs;
-    if (!f.fix.valid) {
+    if (!f.valid()) {
       ++in.log.counters.no_fix;
       continue;
     }
@@ -80,9 +80,9 @@ GnssInput gnssInputFromFixes(const std::vector<sources::TimedGpsFix>& fixes, con
     g.rmc_status = 'A';
     g.quality = f.quality;
     g.hdop = f.hdop;
-    g.position = {f.fix.latitude_deg, f.fix.longitude_deg, std::isfinite(f.h_m) ? f.h_m : 0.0};
-    g.t_receive_s = f.stamp_s;
-    g.t_receiver_s = f.fix.epochSeconds();
+    g.position = f.position;
+    g.t_receive_s = f.t_receive_s;
+    g.t_receiver_s = f.t_receiver_s;
     in.log.fixes.push_back(g);
   }
   in.log.counters.fixes = in.log.fixes.size();

@@ -13,9 +13,9 @@ LiveGnss::LiveGnss(const mapping::GnssFusionParams& p) : online_(p), p_(p) {
   counts_.source_chosen = has_source_ = !p.live_source_label.empty();
 }
 
-void LiveGnss::post(const sources::TimedGpsFix& f) {
+void LiveGnss::post(const gnss::GnssFix& f) {
   std::lock_guard<std::mutex> lock(m_);
-  if (!has_source_ && !f.fix.valid) {  // no source has a fix yet: kept per source until one has
+  if (!has_source_ && !f.valid()) {  // no source has a fix yet: kept per source until one has
     ++no_fix_before_source_[f.label];
     ++counts_.epochs;
     ++counts_.no_fix;
@@ -27,7 +27,7 @@ void LiveGnss::post(const sources::TimedGpsFix& f) {
     return;
   }
   ++counts_.epochs;
-  if (!f.fix.valid) {
+  if (!f.valid()) {
     ++counts_.no_fix;
     return;
   }
@@ -47,21 +47,21 @@ void LiveGnss::chooseSource(const std::string& label) {
 std::optional<Eigen::Isometry3d> LiveGnss::correct(double t_s, const Eigen::Isometry3d& T_map_lidar) {
   std::lock_guard<std::mutex> lock(m_);
   std::stable_sort(pending_.begin(), pending_.end(),
-                   [](const sources::TimedGpsFix& a, const sources::TimedGpsFix& b) { return a.stamp_s < b.stamp_s; });
+                   [](const gnss::GnssFix& a, const gnss::GnssFix& b) { return a.t_receive_s < b.t_receive_s; });
   std::size_t k = 0;
-  for (; k < pending_.size() && pending_[k].stamp_s <= t_s; ++k) {
+  for (; k < pending_.size() && pending_[k].t_receive_s <= t_s; ++k) {
     const auto& f = pending_[k];
     gnss::GnssFix g;  // as gnssInputFromFixes: GGA HDOP x uere, else the fallback sigma and the height free
     g.has_position = true;
     g.quality = f.quality;
     g.hdop = f.hdop;
-    g.position = {f.fix.latitude_deg, f.fix.longitude_deg, std::isfinite(f.h_m) ? f.h_m : 0.0};
+    g.position = f.position;
     if (!enu_) {
       origin_ = g.position;
       enu_.emplace(g.position);
     }
     mapping::GnssFactor factor;
-    factor.t_s = f.stamp_s;
+    factor.t_s = f.t_receive_s;
     factor.p_enu = enu_->toEnu(g.position);
     factor.cov = g.covarianceEnu(p_.uere_m, p_.fallback_sigma_m);
     if (!std::isfinite(f.hdop)) {

@@ -55,8 +55,8 @@ nlohmann::json loopsJson(const mapping::Mapper& m) {
 }
 
 /// Appends the fixes of the GPS source \p label to \p kept.
-void keepFixes(const std::vector<sources::TimedGpsFix>& fixes, const std::string& label,
-               std::vector<sources::TimedGpsFix>& kept) {
+void keepFixes(const std::vector<gnss::GnssFix>& fixes, const std::string& label,
+               std::vector<gnss::GnssFix>& kept) {
   for (const auto& f : fixes)
     if (f.label == label) kept.push_back(f);
 }
@@ -67,7 +67,7 @@ struct GnssRequest {
   std::optional<GnssInput> input;
   bool from_input = false;
   std::string label;
-  std::vector<sources::TimedGpsFix> fixes;
+  std::vector<gnss::GnssFix> fixes;
 
   GnssRequest(const MapRequest& req, const mapping::GnssFusionParams& p) : from_input(req.gnss_from_input) {
     if (!req.gnss_path.empty() && req.gnss_from_input) throw std::runtime_error("--gnss and --gnss-from-input exclude each other");

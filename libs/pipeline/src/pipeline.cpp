@@ -24,7 +24,7 @@ class PeekedSource : public sources::ScanSource {
     return src_->next();
   }
   bool finished() const override { return !first_ && src_->finished(); }
-  std::vector<sources::TimedGpsFix> takeGpsFixes() override { return src_->takeGpsFixes(); }
+  std::vector<gnss::GnssFix> takeGpsFixes() override { return src_->takeGpsFixes(); }
   std::string describe() const override { return src_->describe(); }
   sources::ScanSourceStats stats() const override { return src_->stats(); }
   size_t sizeHint() const override { return src_->sizeHint(); }

@@ -60,16 +60,16 @@ TEST(LiveGnss, CorrectsTheLiveOdometryInEnu) {
   std::size_t scored = 0;
   for (std::size_t i = 0; i < d.t.size(); ++i) {
     if (i % 10 == 5) {  // 1 Hz; each posted 0.2 s late, after the frame of its own time
-      sources::TimedGpsFix f;
-      f.stamp_s = d.t[i - 2];
+      gnss::GnssFix f;
+      f.t_receive_s = d.t[i - 2];
       const Eigen::Vector3d p_true = d.truth[i - 2].translation();
       const auto g = world.toGeodetic(p_true + Eigen::Vector3d(n01(), n01(), 1.5 * n01()));
-      f.fix.valid = i % 100 != 55;  // a no-fix epoch every 10 s
-      f.fix.latitude_deg = g.lat_deg, f.fix.longitude_deg = g.lon_deg, f.h_m = g.h_m;
+      f.position = g;
+      f.has_position = true;
       f.hdop = 1.0 / p.uere_m;  // sigma = HDOP x uere = 1 m
-      f.quality = f.fix.valid ? 1 : 0;
+      f.quality = i % 100 != 55 ? 1 : 0;  // a no-fix epoch every 10 s
       live.post(f);
-      if (f.fix.valid) {
+      if (f.valid()) {
         fix2 += (world.toEnu(g) - p_true).head<2>().squaredNorm();
         ++fixes_scored;
       }
@@ -121,11 +121,10 @@ TwoSources runTwoSources(const std::string& label) {
     return std::sqrt(-2 * std::log(u1)) * std::cos(2 * M_PI * (s >> 11) / 9007199254740992.0);
   };
   auto post = [&](std::size_t i, const char* source, const Eigen::Vector3d& offset, bool valid) {
-    sources::TimedGpsFix f;
-    f.stamp_s = d.t[i];
-    const auto g = world.toGeodetic(d.truth[i].translation() + offset + Eigen::Vector3d(n01(), n01(), 0));
-    f.fix.valid = valid;
-    f.fix.latitude_deg = g.lat_deg, f.fix.longitude_deg = g.lon_deg, f.h_m = g.h_m;
+    gnss::GnssFix f;
+    f.t_receive_s = d.t[i];
+    f.position = world.toGeodetic(d.truth[i].translation() + offset + Eigen::Vector3d(n01(), n01(), 0));
+    f.has_position = true;
     f.hdop = 1.0 / p.uere_m;
     f.quality = valid ? 1 : 0;
     f.label = source;
@@ -185,10 +184,11 @@ TEST(LiveGnss, FusesOneSourceTheFirstWithAFixOrTheOneNamed) {
 TEST(LiveGnss, NoFixRecordsBeforeTheChoiceCountUnderTheirOwnSource) {
   pipeline::LiveGnss live(mapping::GnssFusionParams{});
   auto post = [&live](const char* label, bool valid) {
-    sources::TimedGpsFix f;
+    gnss::GnssFix f;
     f.label = label;
-    f.fix.valid = valid;
-    f.fix.latitude_deg = 48.1, f.fix.longitude_deg = 11.5, f.h_m = 500;
+    f.position = {48.1, 11.5, 500};
+    f.has_position = true;
+    f.quality = valid ? 1 : 0;
     f.hdop = 1;
     live.post(f);
   };

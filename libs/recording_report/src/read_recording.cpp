@@ -93,7 +93,7 @@ struct SensorStreams {
   std::map<std::string, std::vector<double>> gps;    // position packets, GPS records
   std::map<std::string, std::vector<double>> other;  // other rawlog records by label and class
   uint64_t malformed = 0;
-  std::vector<sources::TimedGpsFix> fixes;  // valid RMC fixes
+  std::vector<gnss::GnssFix> fixes;  // valid RMC fixes
 
   bool empty() const { return lidars.empty() && gps.empty() && other.empty(); }
 
@@ -105,7 +105,7 @@ struct SensorStreams {
                                   : ipText(pkt.src_ip) + std::to_string(pkt.dst_port);
     if (!data) {
       gps["position packets " + where].push_back(pkt.stamp_s);
-      if (auto f = sources::decodeGpsFix(pkt); f && f->fix.valid) fixes.push_back(*f);
+      if (auto f = sources::decodeGpsFix(pkt); f && f->valid()) fixes.push_back(*f);
       return;
     }
     auto it = lidars.find("velodyne " + where);
@@ -116,8 +116,8 @@ struct SensorStreams {
   /// GPS fixes and other records the source decoded since the last call.
   void takeDecoded(sources::PacketSource& src, sources::RawlogPacketSource* rawlog) {
     for (const auto& fix : src.takeDecodedFixes()) {
-      gps["gps (rawlog)"].push_back(fix.stamp_s);
-      if (fix.fix.valid) fixes.push_back(fix);
+      gps["gps (rawlog)"].push_back(fix.t_receive_s);
+      if (fix.valid()) fixes.push_back(fix);
     }
     if (!rawlog) return;
     for (const auto& o : rawlog->takeOtherRecords()) {
@@ -181,16 +181,16 @@ struct SensorStreams {
 }  // namespace
 
 /// The fixes in a local east-north plane about the first (equirectangular; WGS84 equatorial radius).
-void gnssPath(std::vector<sources::TimedGpsFix> fixes, RecordingReport& r) {
+void gnssPath(std::vector<gnss::GnssFix> fixes, RecordingReport& r) {
   constexpr double kEarthRadius_m = 6378137.0, kDeg = M_PI / 180.0;
-  std::stable_sort(fixes.begin(), fixes.end(), [](const auto& a, const auto& b) { return a.stamp_s < b.stamp_s; });
+  std::stable_sort(fixes.begin(), fixes.end(), [](const auto& a, const auto& b) { return a.t_receive_s < b.t_receive_s; });
   if (fixes.empty()) return;
-  const double lat0 = fixes[0].fix.latitude_deg, lon0 = fixes[0].fix.longitude_deg;
+  const double lat0 = fixes[0].position.lat_deg, lon0 = fixes[0].position.lon_deg;
   for (const auto& f : fixes) {
-    const double x = (f.fix.longitude_deg - lon0) * kDeg * kEarthRadius_m * std::cos(lat0 * kDeg);
-    const double y = (f.fix.latitude_deg - lat0) * kDeg * kEarthRadius_m;
+    const double x = (f.position.lon_deg - lon0) * kDeg * kEarthRadius_m * std::cos(lat0 * kDeg);
+    const double y = (f.position.lat_deg - lat0) * kDeg * kEarthRadius_m;
     if (!r.gnss_x_m.empty()) r.gnss_length_m += std::hypot(x - r.gnss_x_m.back(), y - r.gnss_y_m.back());
-    r.gnss_t_s.push_back(f.stamp_s);
+    r.gnss_t_s.push_back(f.t_receive_s);
     r.gnss_x_m.push_back(x);
     r.gnss_y_m.push_back(y);
   }

@@ -75,7 +75,7 @@ TEST(SimPackets, TimestampsCaptureTimesAndGroundTruthAgree) {
   pcap::UdpDatagram d;
   std::size_t data = 0, position = 0;
   double first_data = -1;
-  std::vector<std::pair<double, velodyne::GpsFix>> fixes;
+  std::vector<std::pair<double, gnss::GnssFix>> fixes;
   while (reader.next(d) == pcap::ReadStatus::Ok) {
     if (d.dst_port == velodyne::kDefaultDataPort) {
       ASSERT_EQ(d.payload.size(), velodyne::kDataPacketSize);
@@ -90,9 +90,9 @@ TEST(SimPackets, TimestampsCaptureTimesAndGroundTruthAgree) {
       ASSERT_EQ(d.dst_port, velodyne::kDefaultPositionPort);
       velodyne::PositionPacket pp;
       ASSERT_TRUE(velodyne::decodePositionPacket(d.payload.data(), d.payload.size(), pp));
-      ASSERT_TRUE(pp.has_fix) << pp.nmea;
-      EXPECT_NEAR(pp.fix.epochSeconds(), d.stamp_s, 0.006) << pp.nmea;
-      fixes.emplace_back(d.stamp_s, pp.fix);
+      ASSERT_TRUE(pp.fix) << pp.nmea;
+      EXPECT_NEAR(pp.fix->t_receiver_s, d.stamp_s, 0.006) << pp.nmea;
+      fixes.emplace_back(d.stamp_s, *pp.fix);
       ++position;
     }
   }
@@ -131,8 +131,8 @@ TEST(SimPackets, TimestampsCaptureTimesAndGroundTruthAgree) {
   for (const auto& [stamp, fix] : fixes) {
     const std::size_t i = static_cast<std::size_t>(std::llround((stamp - gt.front()[0]) / 0.01));
     ASSERT_LT(i, gt.size());
-    const double y = (fix.latitude_deg - p.origin_lat_deg) * M_PI / 180.0 * 6378137.0;
-    const double x = (fix.longitude_deg - p.origin_lon_deg) * M_PI / 180.0 * 6378137.0 *
+    const double y = (fix.position.lat_deg - p.origin_lat_deg) * M_PI / 180.0 * 6378137.0;
+    const double x = (fix.position.lon_deg - p.origin_lon_deg) * M_PI / 180.0 * 6378137.0 *
                      std::cos(p.origin_lat_deg * M_PI / 180.0);
     EXPECT_NEAR(gt[i][1] - x, p.lidar.mount_x_m, 0.2) << "t " << stamp;  // NMEA: 1e-4 minute = 0.19 m
     EXPECT_NEAR(gt[i][2] - y, 0.0, 0.2);

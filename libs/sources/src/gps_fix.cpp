@@ -4,20 +4,19 @@
 
 #include "roadslam/sources/rawlog_index.h"
 #include "roadslam/sources/rawlog_session.h"
+#include "roadslam/velodyne/position.h"
 
 namespace fs = std::filesystem;
 
 namespace roadslam::sources {
 
-std::optional<TimedGpsFix> decodeGpsFix(const velodyne::RawPacket& pkt) {
+std::optional<gnss::GnssFix> decodeGpsFix(const velodyne::RawPacket& pkt) {
   velodyne::PositionPacket pos;
-  if (!velodyne::decodePositionPacket(pkt.payload.data(), pkt.payload.size(), pos) || !pos.has_fix)
+  if (!velodyne::decodePositionPacket(pkt.payload.data(), pkt.payload.size(), pos) || !pos.fix)
     return std::nullopt;
-  TimedGpsFix t;
-  t.stamp_s = pkt.stamp_s;
-  t.fix = pos.fix;
-  t.label = kPositionPacketsLabel;
-  return t;
+  pos.fix->t_receive_s = pkt.stamp_s;
+  pos.fix->label = kPositionPacketsLabel;
+  return pos.fix;
 }
 
 std::map<std::string, std::size_t> gpsSourcesOf(const std::string& path) {

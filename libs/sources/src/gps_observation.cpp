@@ -14,22 +14,28 @@ using unit::kDeg;
 using unit::kKnot;
 }  // namespace
 
-void fillGpsObservation(const velodyne::GpsFix& f, double stamp_s, const std::string& label,
+void fillRmcObservation(const gnss::GnssFix& f, double stamp_s, const std::string& label,
                         mrpt::obs::CObservationGPS& out) {
-  // The fields MRPT's NMEA parser (CGPSInterface::parse_NMEA) fills for an RMC sentence.
+  // The fields MRPT's NMEA parser (CGPSInterface::parse_NMEA) fills for an RMC sentence; an empty
+  // speed or course field is 0 there.
   mrpt::obs::gnss::Message_NMEA_RMC rmc;
   const double tod = f.time_of_day_s;
   rmc.fields.UTCTime.hour = uint8_t(tod / 3600);
   rmc.fields.UTCTime.minute = uint8_t(std::fmod(tod, 3600.0) / 60);
   rmc.fields.UTCTime.sec = std::fmod(tod, 60.0);
-  rmc.fields.validity_char = f.valid ? 'A' : 'V';
-  rmc.fields.latitude_degrees = f.latitude_deg;
-  rmc.fields.longitude_degrees = f.longitude_deg;
-  rmc.fields.speed_knots = f.speed_mps / kKnot;
-  rmc.fields.direction_degrees = f.course_rad / kDeg;
-  rmc.fields.date_day = uint8_t(f.day);
-  rmc.fields.date_month = uint8_t(f.month);
-  rmc.fields.date_year = uint8_t(f.year % 100);
+  rmc.fields.validity_char = f.valid() ? 'A' : 'V';
+  rmc.fields.latitude_degrees = f.position.lat_deg;
+  rmc.fields.longitude_degrees = f.position.lon_deg;
+  rmc.fields.speed_knots = std::isfinite(f.speed_mps) ? f.speed_mps / kKnot : 0.0;
+  rmc.fields.direction_degrees = std::isfinite(f.course_rad) ? f.course_rad / kDeg : 0.0;
+  if (std::isfinite(f.t_receiver_s)) {
+    const auto secs = static_cast<std::time_t>(std::floor(f.t_receiver_s));
+    std::tm tm{};
+    gmtime_r(&secs, &tm);
+    rmc.fields.date_day = uint8_t(tm.tm_mday);
+    rmc.fields.date_month = uint8_t(tm.tm_mon + 1);
+    rmc.fields.date_year = uint8_t(tm.tm_year % 100);
+  }
   out.setMsg(rmc);
   out.sensorLabel = label;
   out.timestamp = mrpt::Clock::fromDouble(stamp_s);

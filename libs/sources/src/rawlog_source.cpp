@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <ctime>
 #include <stdexcept>
 #include "mrpt_message.h"
 
@@ -38,35 +39,39 @@ using unit::kKnot;
 
 }  // namespace
 
-TimedGpsFix gpsFixFromObservation(const mrpt::obs::CObservationGPS& o) {
-  TimedGpsFix t;
+gnss::GnssFix gpsFixFromObservation(const mrpt::obs::CObservationGPS& o) {
+  gnss::GnssFix fix;
   const auto ts = o.originalReceivedTimestamp != INVALID_TIMESTAMP ? o.originalReceivedTimestamp
                                                                     : o.timestamp;
-  t.stamp_s = mrpt::Clock::toDouble(ts);
-  t.label = o.sensorLabel;
-  velodyne::GpsFix& fix = t.fix;
+  fix.t_receive_s = mrpt::Clock::toDouble(ts);
+  fix.label = o.sensorLabel;
   if (o.hasMsgClass<mrpt::obs::gnss::Message_NMEA_GGA>()) {
     const auto& g = o.getMsgByClass<mrpt::obs::gnss::Message_NMEA_GGA>().fields;
-    t.quality = g.fix_quality;
-    t.h_m = g.altitude_meters + g.geoidal_distance;  // ellipsoidal = MSL altitude + separation (NMEA GGA)
-    if (g.thereis_HDOP) t.hdop = g.HDOP;
+    fix.quality = g.fix_quality;
+    if (g.thereis_HDOP) fix.hdop = g.HDOP;
     fix.time_of_day_s = g.UTCTime.hour * 3600.0 + g.UTCTime.minute * 60.0 + g.UTCTime.sec;
-    fix.valid = g.fix_quality > 0;
-    fix.latitude_deg = g.latitude_degrees;
-    fix.longitude_deg = g.longitude_degrees;
+    // ellipsoidal height = MSL altitude + geoid separation (NMEA GGA)
+    fix.position = {g.latitude_degrees, g.longitude_degrees, g.altitude_meters + g.geoidal_distance};
+    fix.has_position = true;
   }
-  if (!o.hasMsgClass<mrpt::obs::gnss::Message_NMEA_RMC>()) return t;
+  if (!o.hasMsgClass<mrpt::obs::gnss::Message_NMEA_RMC>()) return fix;
   const auto& f = o.getMsgByClass<mrpt::obs::gnss::Message_NMEA_RMC>().fields;
   fix.time_of_day_s = f.UTCTime.hour * 3600.0 + f.UTCTime.minute * 60.0 + f.UTCTime.sec;
-  fix.valid = f.validity_char == 'A' && t.quality != 0;
-  fix.day = f.date_day;
-  fix.month = f.date_month;
-  fix.year = f.date_year == 0 ? 0 : 2000 + f.date_year;
-  fix.latitude_deg = f.latitude_degrees;
-  fix.longitude_deg = f.longitude_degrees;
+  fix.rmc_status = f.validity_char;
+  if (f.validity_char != 'A' && fix.quality > 0) fix.quality = 0;  // a void RMC: no fix, whatever the GGA says
+  if (f.date_year != 0) {  // RMC carries a two-digit year
+    std::tm t{};
+    t.tm_year = 2000 + f.date_year - 1900;
+    t.tm_mon = f.date_month - 1;
+    t.tm_mday = f.date_day;
+    fix.t_receiver_s = static_cast<double>(timegm(&t)) + fix.time_of_day_s;
+  }
+  fix.position.lat_deg = f.latitude_degrees;
+  fix.position.lon_deg = f.longitude_degrees;
+  fix.has_position = true;
   fix.speed_mps = f.speed_knots * kKnot;
   fix.course_rad = f.direction_degrees * M_PI / 180.0;
-  return t;
+  return fix;
 }
 
 struct RawlogPacketSource::Impl {
@@ -137,8 +142,8 @@ std::vector<RawlogPacketSource::OtherRecord> RawlogPacketSource::takeOtherRecord
   return out;
 }
 
-std::vector<TimedGpsFix> RawlogPacketSource::takeDecodedFixes() {
-  std::vector<TimedGpsFix> out;
+std::vector<gnss::GnssFix> RawlogPacketSource::takeDecodedFixes() {
+  std::vector<gnss::GnssFix> out;
   out.swap(gps_);
   return out;
 }

@@ -112,12 +112,12 @@ bool RawlogWriter::writePosition(const velodyne::RawPacket& position_packet) {
   velodyne::PositionPacket pos;
   if (!velodyne::decodePositionPacket(position_packet.payload.data(),
                                       position_packet.payload.size(), pos) ||
-      !pos.has_fix) {
+      !pos.fix) {
     ++skipped_;
     return false;
   }
   mrpt::obs::CObservationGPS obs;
-  fillGpsObservation(pos.fix, position_packet.stamp_s, impl_->params.gps_label, obs);
+  fillRmcObservation(*pos.fix, position_packet.stamp_s, impl_->params.gps_label, obs);
   mrpt::serialization::archiveFrom(impl_->out) << obs;
   ++gps_;
   return true;

@@ -57,10 +57,10 @@ std::optional<velodyne::RawPacket> SegmentedPacketSource::next() {
   return std::nullopt;
 }
 
-std::vector<TimedGpsFix> SegmentedPacketSource::takeDecodedFixes() {
+std::vector<gnss::GnssFix> SegmentedPacketSource::takeDecodedFixes() {
   if (source_)
     for (auto& f : source_->takeDecodedFixes()) fixes_.push_back(f);
-  std::vector<TimedGpsFix> out;
+  std::vector<gnss::GnssFix> out;
   out.swap(fixes_);
   return out;
 }

@@ -17,7 +17,7 @@ ScanSourceStats SweepSource::stats() const {
   return {a.sweeps, a.partial_sweeps, s.packets, s.malformed_packets + a.malformed()};
 }
 
-void SweepSource::keepFix(const TimedGpsFix& f) {
+void SweepSource::keepFix(const gnss::GnssFix& f) {
   if (max_pending_fixes_ > 0 && fixes_.size() >= max_pending_fixes_) {
     fixes_.pop_front();
     ++stats_.gps_fixes_dropped;
@@ -64,8 +64,8 @@ std::optional<Scan> SweepSource::next() {
   return deliver(assembler_.takeSweep());
 }
 
-std::vector<TimedGpsFix> SweepSource::takeGpsFixes() {
-  std::vector<TimedGpsFix> out(fixes_.begin(), fixes_.end());
+std::vector<gnss::GnssFix> SweepSource::takeGpsFixes() {
+  std::vector<gnss::GnssFix> out(fixes_.begin(), fixes_.end());
   fixes_.clear();
   stats_.gps_fixes += out.size();
   return out;

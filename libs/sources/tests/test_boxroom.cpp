@@ -58,7 +58,7 @@ TEST(BoxRoom, PacketsCarryTheCastRangesAndGps) {
     if (pkt->dst_port == 8308) {
       auto fix = decodeGpsFix(*pkt);
       ASSERT_TRUE(fix);
-      EXPECT_TRUE(fix->fix.valid);
+      EXPECT_TRUE(fix->valid());
       ++fixes;
       continue;
     }

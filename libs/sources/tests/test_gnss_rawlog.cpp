@@ -108,15 +108,15 @@ TEST(GnssRawlog, RawlogSourceReadsGgaFixes) {
   while (!src.finished()) src.next();
   const auto fixes = src.takeDecodedFixes();
   ASSERT_EQ(fixes.size(), 3u);
-  EXPECT_TRUE(fixes[0].fix.valid);
-  EXPECT_NEAR(fixes[0].h_m, 545.25, 1e-3);
+  EXPECT_TRUE(fixes[0].valid());
+  EXPECT_NEAR(fixes[0].position.h_m, 545.25, 1e-3);
   EXPECT_NEAR(fixes[0].hdop, 1.3, 1e-6);
   EXPECT_EQ(fixes[0].quality, 1);
-  EXPECT_NEAR(fixes[0].fix.epochSeconds(), 1700000000.0, 1e-3);
-  EXPECT_TRUE(fixes[1].fix.valid);
-  EXPECT_NEAR(fixes[1].fix.latitude_deg, 37.5, 1e-9);
-  EXPECT_NEAR(fixes[1].h_m, 12.5, 1e-9);
+  EXPECT_NEAR(fixes[0].t_receiver_s, 1700000000.0, 1e-3);
+  EXPECT_TRUE(fixes[1].valid());
+  EXPECT_NEAR(fixes[1].position.lat_deg, 37.5, 1e-9);
+  EXPECT_NEAR(fixes[1].position.h_m, 12.5, 1e-9);
   EXPECT_TRUE(std::isnan(fixes[1].hdop));
-  EXPECT_FALSE(fixes[2].fix.valid);
+  EXPECT_FALSE(fixes[2].valid());
   std::filesystem::remove(path);
 }

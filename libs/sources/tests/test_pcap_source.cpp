@@ -38,9 +38,9 @@ TEST(PcapPacketSource, MrptSampleCountsMatchManifest) {
       if (fix) {
         ++fixes;
         // MANIFEST: $GPRMC 36deg49.748'N 002deg24.454'W, 0.03 kn.
-        EXPECT_NEAR(fix->fix.latitude_deg, test_support::kAlmeriaLat_deg, 1e-3);
-        EXPECT_NEAR(fix->fix.longitude_deg, test_support::kAlmeriaLon_deg, 1e-3);
-        EXPECT_LT(fix->fix.speed_mps, 0.1);
+        EXPECT_NEAR(fix->position.lat_deg, test_support::kAlmeriaLat_deg, 1e-3);
+        EXPECT_NEAR(fix->position.lon_deg, test_support::kAlmeriaLon_deg, 1e-3);
+        EXPECT_LT(fix->speed_mps, 0.1);
       }
     }
     ++n;

@@ -92,12 +92,12 @@ TEST(Rawlog, PacketsRoundTripByteIdenticalWithStamps) {
   const auto fixes = src.takeDecodedFixes();
   ASSERT_EQ(fixes.size(), 3u);
   EXPECT_TRUE(src.takeDecodedFixes().empty()) << "fixes are handed out once";
-  EXPECT_NEAR(fixes[0].fix.latitude_deg, kAlmeriaLat_deg, 1e-7);
-  EXPECT_NEAR(fixes[0].fix.longitude_deg, kAlmeriaLon_deg, 1e-7);
-  EXPECT_TRUE(fixes[0].fix.valid);
-  EXPECT_NEAR(fixes[0].fix.time_of_day_s, 8 * 3600 + 18 * 60 + 2, 1e-6);
-  EXPECT_EQ(fixes[0].fix.year, 2016);
-  EXPECT_NEAR(fixes[0].stamp_s, rec.positions[0].stamp_s, 1e-6);
+  EXPECT_NEAR(fixes[0].position.lat_deg, kAlmeriaLat_deg, 1e-7);
+  EXPECT_NEAR(fixes[0].position.lon_deg, kAlmeriaLon_deg, 1e-7);
+  EXPECT_TRUE(fixes[0].valid());
+  EXPECT_NEAR(fixes[0].time_of_day_s, 8 * 3600 + 18 * 60 + 2, 1e-6);
+  EXPECT_NEAR(fixes[0].t_receiver_s, 1453334400.0 + 8 * 3600 + 18 * 60 + 2, 1e-6);  // 2016-01-21
+  EXPECT_NEAR(fixes[0].t_receive_s, rec.positions[0].stamp_s, 1e-6);
   fs::remove(path);
 }
 

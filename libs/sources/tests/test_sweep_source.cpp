@@ -78,7 +78,7 @@ TEST(SweepSource, UntakenGpsFixesAreCappedKeepingTheNewest) {
   BoxRoomParams p;
   p.revolutions = 3;
   const fs::path file = boxRoomFile(p, "sweep_gps_cap_");
-  std::vector<TimedGpsFix> all;
+  std::vector<gnss::GnssFix> all;
   {
     SweepSource ref(std::make_unique<PcapPacketSource>(file.string()));
     while (ref.next()) {
@@ -92,8 +92,8 @@ TEST(SweepSource, UntakenGpsFixesAreCappedKeepingTheNewest) {
   }
   const auto kept = capped.takeGpsFixes();
   ASSERT_EQ(kept.size(), 2u);
-  EXPECT_EQ(kept[0].stamp_s, all[1].stamp_s);
-  EXPECT_EQ(kept[1].stamp_s, all[2].stamp_s);
+  EXPECT_EQ(kept[0].t_receive_s, all[1].t_receive_s);
+  EXPECT_EQ(kept[1].t_receive_s, all[2].t_receive_s);
   EXPECT_EQ(capped.sweepStats().gps_fixes_dropped, 1u);
   fs::remove(file);
 }

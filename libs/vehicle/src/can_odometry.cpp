@@ -77,7 +77,7 @@ OdometryResult runOdometry(const std::vector<can::CanFrame>& frames, VehicleDeco
   return r;
 }
 
-std::vector<GnssFix> loadGnssFixCsv(const std::string& path) {
+std::vector<gnss::GnssFix> loadGnssFixCsv(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw std::runtime_error("cannot open GNSS fix file '" + path + "'");
   std::string line;
@@ -91,18 +91,20 @@ std::vector<GnssFix> loadGnssFixCsv(const std::string& path) {
   for (const char* need : {"t_unix", "lat_deg", "lon_deg", "speed_mps", "bearing_deg"}) {
     if (!col.count(need)) throw std::runtime_error(path + ":1: missing column '" + need + "'");
   }
-  std::vector<GnssFix> out;
+  std::vector<gnss::GnssFix> out;
   for (std::size_t ln = 2; std::getline(in, line); ++ln) {
     std::vector<std::string> c;
     std::stringstream ss(line);
     for (std::string tok; std::getline(ss, tok, ',');) c.push_back(tok);
     try {
-      GnssFix f;
-      f.t_s = std::stod(c.at(col["t_unix"]));
-      f.lat_deg = std::stod(c.at(col["lat_deg"]));
-      f.lon_deg = std::stod(c.at(col["lon_deg"]));
+      gnss::GnssFix f;
+      f.t_receiver_s = f.t_receive_s = std::stod(c.at(col["t_unix"]));
+      f.position.lat_deg = std::stod(c.at(col["lat_deg"]));
+      f.position.lon_deg = std::stod(c.at(col["lon_deg"]));
+      f.has_position = true;
+      f.rmc_status = 'A';
       f.speed_mps = std::stod(c.at(col["speed_mps"]));
-      f.bearing_deg = std::stod(c.at(col["bearing_deg"]));
+      f.course_rad = std::stod(c.at(col["bearing_deg"])) * M_PI / 180.0;
       out.push_back(f);
     } catch (const std::exception&) {
       throw std::runtime_error(path + ":" + std::to_string(ln) + ": malformed GNSS fix line");
@@ -111,36 +113,37 @@ std::vector<GnssFix> loadGnssFixCsv(const std::string& path) {
   return out;
 }
 
-ScaleEstimate estimateSpeedScale(const std::vector<MotionSample>& samples, const std::vector<GnssFix>& fixes,
+ScaleEstimate estimateSpeedScale(const std::vector<MotionSample>& samples, const std::vector<gnss::GnssFix>& fixes,
                                  double min_speed_mps) {
   ScaleEstimate e;
   const Integrator integ(samples);
   for (std::size_t i = 1; i < fixes.size(); ++i) {
-    const GnssFix& a = fixes[i - 1];
-    const GnssFix& b = fixes[i];
-    if (!integ.covers(a.t_s) || !integ.covers(b.t_s)) continue;
-    if (a.speed_mps < min_speed_mps || b.speed_mps < min_speed_mps) continue;
+    const gnss::Geodetic& a = fixes[i - 1].position;
+    const gnss::Geodetic& b = fixes[i].position;
+    const double ta = fixes[i - 1].stamp(), tb = fixes[i].stamp();
+    if (!integ.covers(ta) || !integ.covers(tb)) continue;
+    if (fixes[i - 1].speed_mps < min_speed_mps || fixes[i].speed_mps < min_speed_mps) continue;
     const double lat = 0.5 * (a.lat_deg + b.lat_deg) * M_PI / 180.0;
     const double dn = (b.lat_deg - a.lat_deg) * M_PI / 180.0 * kEarthRadius;
     const double de = (b.lon_deg - a.lon_deg) * M_PI / 180.0 * kEarthRadius * std::cos(lat);
     e.gnss_m += std::hypot(de, dn);
-    e.wheels_m += integ.distanceAt(b.t_s) - integ.distanceAt(a.t_s);
+    e.wheels_m += integ.distanceAt(tb) - integ.distanceAt(ta);
     ++e.intervals;
   }
   if (e.wheels_m > 0) e.scale = e.gnss_m / e.wheels_m;
   return e;
 }
 
-BiasEstimate estimateYawRateBias(const std::vector<MotionSample>& samples, const std::vector<GnssFix>& fixes,
+BiasEstimate estimateYawRateBias(const std::vector<MotionSample>& samples, const std::vector<gnss::GnssFix>& fixes,
                                  double min_speed_mps) {
   BiasEstimate e;
   const Integrator integ(samples);
   std::vector<double> ts, ds;
   double prev = 0, unwrapped = 0;
   bool first = true;
-  for (const GnssFix& f : fixes) {
-    if (f.speed_mps < min_speed_mps || !integ.covers(f.t_s)) continue;
-    const double heading = (90.0 - f.bearing_deg) * M_PI / 180.0;  // ENU: CCW from east
+  for (const gnss::GnssFix& f : fixes) {
+    if (f.speed_mps < min_speed_mps || !integ.covers(f.stamp())) continue;
+    const double heading = M_PI / 2 - f.course_rad;  // ENU: CCW from east
     if (first) {
       unwrapped = heading;
       first = false;
@@ -148,8 +151,8 @@ BiasEstimate estimateYawRateBias(const std::vector<MotionSample>& samples, const
       unwrapped += std::remainder(heading - prev, 2 * M_PI);
     }
     prev = heading;
-    ts.push_back(f.t_s - fixes.front().t_s);
-    ds.push_back(integ.angleAt(f.t_s) - unwrapped);
+    ts.push_back(f.stamp() - fixes.front().stamp());
+    ds.push_back(integ.angleAt(f.stamp()) - unwrapped);
   }
   e.fixes = ts.size();
   if (ts.size() < 3) return e;

@@ -5,6 +5,7 @@
 
 #include <mrpt/obs/CObservationVelodyneScan.h>
 
+#include <cmath>
 #include <cstring>
 #include <iostream>
 
@@ -57,18 +58,17 @@ TEST(OracleMrpt, Vlp16SampleGpsFixesFromGprmc) {
   for (const auto& d : pos) {
     PositionPacket pp;
     ASSERT_TRUE(decodePositionPacket(d.payload.data(), d.payload.size(), pp));
-    if (!pp.has_fix) continue;
+    if (!pp.fix) continue;
     ++fixes;
-    EXPECT_TRUE(pp.fix.valid);
+    EXPECT_TRUE(pp.fix->valid());
     // Sentence: 3649.7478558,N,00224.4542928,W (MANIFEST rounds to 49.748' / 24.454').
-    EXPECT_NEAR(pp.fix.latitude_deg, 36 + 49.7478558 / 60, 1e-9);
-    EXPECT_NEAR(pp.fix.longitude_deg, -(2 + 24.4542928 / 60), 1e-9);
-    EXPECT_NEAR(pp.fix.time_of_day_s, 8 * 3600 + 18 * 60 + 2, 1.0);
-    EXPECT_NEAR(pp.fix.course_rad, 212.5 * M_PI / 180, 1e-9);
-    EXPECT_EQ(pp.fix.year, 2016);
-    EXPECT_EQ(pp.fix.month, 1);
-    EXPECT_EQ(pp.fix.day, 21);
-    EXPECT_NEAR(pp.fix.speed_mps, 0.03 * 1852 / 3600, 0.02);
+    EXPECT_NEAR(pp.fix->position.lat_deg, 36 + 49.7478558 / 60, 1e-9);
+    EXPECT_NEAR(pp.fix->position.lon_deg, -(2 + 24.4542928 / 60), 1e-9);
+    EXPECT_NEAR(pp.fix->time_of_day_s, 8 * 3600 + 18 * 60 + 2, 1.0);
+    EXPECT_NEAR(pp.fix->course_rad, 212.5 * M_PI / 180, 1e-9);
+    // 2016-01-21 (date -u -d 2016-01-21 +%s = 1453334400)
+    EXPECT_EQ(std::floor(pp.fix->t_receiver_s / 86400) * 86400, 1453334400.0);
+    EXPECT_NEAR(pp.fix->speed_mps, 0.03 * 1852 / 3600, 0.02);
   }
   EXPECT_GT(fixes, 0);
 }

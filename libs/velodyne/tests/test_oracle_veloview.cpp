@@ -101,14 +101,13 @@ TEST(OracleVeloView, MontereyHas299PositionPackets) {
   for (const auto& d : pos) {
     PositionPacket pp;
     ASSERT_TRUE(decodePositionPacket(d.payload.data(), d.payload.size(), pp));
-    if (!pp.has_fix) continue;
+    if (!pp.fix) continue;
     ++fixes;
-    EXPECT_EQ(pp.fix.year, 2012);
-    EXPECT_EQ(pp.fix.month, 12);
-    EXPECT_EQ(pp.fix.day, 11);
-    EXPECT_NEAR(pp.fix.latitude_deg, 37 + 7.83 / 60, 0.01 / 60);
-    EXPECT_NEAR(pp.fix.longitude_deg, -(121 + 39.29 / 60), 0.01 / 60);
-    EXPECT_NEAR(pp.fix.speed_mps, 0.0, 0.1);
+    // 2012-12-11 (date -u -d 2012-12-11 +%s = 1355184000)
+    EXPECT_EQ(std::floor(pp.fix->t_receiver_s / 86400) * 86400, 1355184000.0) << pp.nmea;
+    EXPECT_NEAR(pp.fix->position.lat_deg, 37 + 7.83 / 60, 0.01 / 60);
+    EXPECT_NEAR(pp.fix->position.lon_deg, -(121 + 39.29 / 60), 0.01 / 60);
+    EXPECT_NEAR(pp.fix->speed_mps, 0.0, 0.1);
   }
   EXPECT_GT(fixes, 0);
   std::cout << "monterey: " << fixes << " RMC fixes in " << pos.size() << " position packets\n";

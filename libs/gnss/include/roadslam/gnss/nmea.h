@@ -34,7 +34,9 @@ namespace roadslam::gnss {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-/// One receiver epoch: the sentences sharing one UTC time of day.
+/// One receiver epoch: the sentences sharing one UTC time of day. The one GNSS fix type: a receiver's
+/// NMEA epoch, the RMC a Velodyne forwards in its position packets, a rawlog's CObservationGPS record,
+/// a u-blox CSV row.
 struct GnssFix {
   double time_of_day_s = kNaN;  ///< receiver UTC time of day [s]
   double t_receiver_s = kNaN;   ///< receiver UTC time [s since the Unix epoch]; NaN before the first RMC date
@@ -49,6 +51,10 @@ struct GnssFix {
   double course_rad = kNaN;     ///< course over ground, clockwise from true north [rad]
   double sigma_lat_m = kNaN, sigma_lon_m = kNaN, sigma_alt_m = kNaN;  ///< GST 1-sigma errors [m]
   std::string sentences;        ///< types read, e.g. "GGA,RMC,GST"
+  /// The sensor it came from where the input holds several: a CObservationGPS record's sensorLabel
+  /// (roadslam-grab's `<lidar>_GPS`, a receiver's `[gnss] label`, `CAN_GPS`), or the position packets
+  /// of a capture (sources::kPositionPacketsLabel); empty when the input has one source.
+  std::string label;
 
   /// A position the receiver calls a fix (GGA quality > 0, or RMC 'A' without GGA).
   bool valid() const;
@@ -77,6 +83,11 @@ struct NmeaCounters {
 
 struct NmeaParams {
   double max_gap_s = 2.0;  ///< a step between epochs above this counts as a time jump [s]
+  /// Sentences without `*HH` are read (NMEA 0183 made the checksum mandatory only in v2.3; older
+  /// devices, and some Velodyne firmware forwarding them, omit it); else counted as bad_checksum.
+  bool checksum_optional = false;
+  /// A void RMC ('V') keeps the position it carries (has_position; valid() stays false).
+  bool void_positions = false;
 };
 
 class NmeaParser {
@@ -93,6 +104,7 @@ class NmeaParser {
 
  private:
   void problem(const std::string& what);
+  std::optional<GnssFix> sentence(const std::string& body, double receive_s);  ///< body: between $ and *
   std::optional<GnssFix> startEpoch(double tod, double receive_s);
   void finish(GnssFix& f);
   NmeaParams p_;
@@ -106,6 +118,11 @@ class NmeaParser {
   bool cur_dropped_ = false;
   bool cur_datum_ok_ = true;    ///< datum_ok_ when the epoch being assembled started    ///< the epoch being assembled went back in time
 };
+
+/// One RMC sentence alone, as a Velodyne forwards its receiver's in a position packet (VLP-16 manual
+/// 9.4): checksum optional, a void fix keeps its position. nullopt unless it is an RMC with status A
+/// or V and a readable time and position. Never throws.
+std::optional<GnssFix> parseRmc(const std::string& sentence) noexcept;
 
 /// The valid fixes of an NMEA log file (format above), in order, and what was dropped.
 struct NmeaLog {

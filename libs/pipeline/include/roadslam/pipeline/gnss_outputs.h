@@ -57,7 +57,7 @@ std::string chooseGpsSource(const std::map<std::string, std::size_t>& sources, c
 /// height; else sigma fallback_sigma_m horizontally and the height unknown (sigma 1 km).
 /// Stamped with the fix's UTC time when p.receiver_time and it has a date, else the capture time.
 /// The "log" counts epochs, fixes and "no fix" (RMC 'V', GGA quality 0). Throws when none is valid.
-GnssInput gnssInputFromFixes(const std::vector<sources::TimedGpsFix>& fixes, const std::string& describe,
+GnssInput gnssInputFromFixes(const std::vector<gnss::GnssFix>& fixes, const std::string& describe,
                              const mapping::GnssFusionParams& p);
 
 /// Fuses \p in into (\p stamps_s, \p T_map_lidar), writes the files above into \p out_dir and returns

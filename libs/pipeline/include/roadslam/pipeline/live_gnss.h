@@ -38,7 +38,7 @@ class LiveGnss {
  public:
   explicit LiveGnss(const mapping::GnssFusionParams& p);
   /// A fix as it arrived (any thread); one of another source than the one fused is only counted.
-  void post(const sources::TimedGpsFix& f);
+  void post(const gnss::GnssFix& f);
   /// The frame at \p t_s with the odometry's pose; its T_enu_lidar once the online mode anchored.
   /// The fixes posted with a stamp up to \p t_s are added first (causal).
   std::optional<Eigen::Isometry3d> correct(double t_s, const Eigen::Isometry3d& T_map_lidar);
@@ -51,7 +51,7 @@ class LiveGnss {
 
  private:
   mutable std::mutex m_;
-  std::vector<sources::TimedGpsFix> pending_;
+  std::vector<gnss::GnssFix> pending_;
   std::optional<gnss::EnuFrame> enu_;
   std::optional<gnss::Geodetic> origin_;
   mapping::OnlineGnssFusion online_;

@@ -38,7 +38,7 @@ struct MapRequest {
   /// source hands them out: WGS84 latitude / longitude, no height, no accuracy) ([gnss_fusion]
   /// fallback_sigma_m horizontally, height left free); exclusive with gnss_path
   bool gnss_from_input = false;
-  /// With gnss_from_input: the sensor label of the GPS source to fuse (sources::TimedGpsFix::label,
+  /// With gnss_from_input: the sensor label of the GPS source to fuse (gnss::GnssFix::label,
   /// e.g. CAN_GPS); empty = the input's one source. Checked before the run: a label the input lacks,
   /// or several sources and none chosen, throws naming the sources present.
   std::string gnss_label;

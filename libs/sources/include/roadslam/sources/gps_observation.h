@@ -1,12 +1,11 @@
 #pragma once
 /// \file gps_observation.h
-/// A decoded $GPRMC fix as the standard MRPT observation (CObservationGPS with an NMEA RMC message),
-/// filled from our NMEA decoder so no MRPT hardware-driver library is needed.
+/// A GNSS fix as the standard MRPT observation (CObservationGPS with NMEA messages), filled from our
+/// NMEA decoder (libs/gnss) so no MRPT hardware-driver library is needed.
 
 #include <string>
 
 #include "roadslam/gnss/nmea.h"
-#include "roadslam/velodyne/position.h"
 
 namespace mrpt::obs {
 class CObservationGPS;
@@ -14,8 +13,10 @@ class CObservationGPS;
 
 namespace roadslam::sources {
 
-/// Fills \p out with \p fix received at \p stamp_s [s since epoch] under \p label.
-void fillGpsObservation(const velodyne::GpsFix& fix, double stamp_s, const std::string& label,
+/// Fills \p out with the RMC message of \p fix (a Velodyne position packet's sentence: status,
+/// position, speed, course, date) received at \p stamp_s [s since epoch] under \p label; both
+/// timestamps are \p stamp_s.
+void fillRmcObservation(const gnss::GnssFix& fix, double stamp_s, const std::string& label,
                         mrpt::obs::CObservationGPS& out);
 
 /// Fills \p out with a receiver epoch read from NMEA (libs/gnss): an NMEA GGA message (quality,

@@ -53,7 +53,7 @@ class PacketSource {
   virtual std::string errorMessage() const { return {}; }
   /// GPS fixes the source holds already decoded (rawlog CObservationGPS records) since the last
   /// call; position packets returned by next() are not repeated here.
-  virtual std::vector<TimedGpsFix> takeDecodedFixes() { return {}; }
+  virtual std::vector<gnss::GnssFix> takeDecodedFixes() { return {}; }
 };
 
 /// Counts packets missing from a data stream from the sensor's own timestamps (bytes 1200-1203, us

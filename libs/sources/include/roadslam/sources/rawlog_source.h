@@ -2,7 +2,7 @@
 /// \file rawlog_source.h
 /// Replays an MRPT rawlog as raw packets: every CObservationVelodyneScan's scan_packets come back
 /// as 1206-byte RawPackets (byte-identical to what was recorded), CObservationGPS records are
-/// turned into TimedGpsFix values. Observations are read one at a time (no full load), from both the
+/// turned into gnss::GnssFix values. Observations are read one at a time (no full load), from both the
 /// "observations" and the "sensory frames" rawlog formats.
 
 #include <deque>
@@ -39,7 +39,7 @@ class RawlogPacketSource : public PacketSource {
   std::string errorMessage() const override { return error_; }
 
   /// GPS fixes (CObservationGPS records with an RMC message) read since the last call.
-  std::vector<TimedGpsFix> takeDecodedFixes() override;
+  std::vector<gnss::GnssFix> takeDecodedFixes() override;
   /// CObservationVelodyneScan records read so far (= sweeps as written) [count].
   std::size_t scansRead() const { return scans_; }
   /// Records that are neither Velodyne scans nor GPS [count].
@@ -65,7 +65,7 @@ class RawlogPacketSource : public PacketSource {
   std::string path_, error_, scan_label_;
   PortConfig ports_;
   std::deque<velodyne::RawPacket> queue_;
-  std::vector<TimedGpsFix> gps_;
+  std::vector<gnss::GnssFix> gps_;
   SourceStats stats_;
   GapCounter gaps_;
   std::size_t scans_ = 0, other_ = 0;

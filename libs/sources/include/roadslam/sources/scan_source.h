@@ -38,7 +38,7 @@ class ScanSource {
   /// True once a recording is exhausted and every sweep was returned.
   virtual bool finished() const = 0;
   /// GPS fixes received since the last call, in arrival order (none for sources without GPS).
-  virtual std::vector<TimedGpsFix> takeGpsFixes() { return {}; }
+  virtual std::vector<gnss::GnssFix> takeGpsFixes() { return {}; }
   /// Short human-readable origin, e.g. "pcap:/path/file.pcap" or "kitti:/path/velodyne_points/data".
   virtual std::string describe() const = 0;
   /// Counters so far (see ScanSourceStats).

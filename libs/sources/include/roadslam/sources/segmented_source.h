@@ -28,7 +28,7 @@ class SegmentedPacketSource : public PacketSource {
   std::string describe() const override;
   /// Every damaged segment, one after the other ("; "-separated).
   std::string errorMessage() const override { return error_; }
-  std::vector<TimedGpsFix> takeDecodedFixes() override;
+  std::vector<gnss::GnssFix> takeDecodedFixes() override;
 
  private:
   void closeCurrent();
@@ -38,7 +38,7 @@ class SegmentedPacketSource : public PacketSource {
   std::size_t current_ = 0;
   std::unique_ptr<RawlogPacketSource> source_;
   SourceStats stats_, done_;  // done_: the closed segments' sums
-  std::vector<TimedGpsFix> fixes_;
+  std::vector<gnss::GnssFix> fixes_;
   std::string error_;
 };
 

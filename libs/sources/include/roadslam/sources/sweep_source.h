@@ -42,7 +42,7 @@ class SweepSource : public ScanSource {
   std::optional<Scan> next() override;
   bool finished() const override { return finished_ && !assembler_.hasSweep(); }
   /// GPS fixes received since the last call, in arrival order.
-  std::vector<TimedGpsFix> takeGpsFixes() override;
+  std::vector<gnss::GnssFix> takeGpsFixes() override;
   /// Keep at most \p n untaken fixes, the newest (0 = all, the default). For consumers that never
   /// take them: a VLP-16 sends about 150 position packets a second, so an hour's drive would pile
   /// up half a million. openScanSource() sets kMaxPendingGpsFixes.
@@ -69,11 +69,11 @@ class SweepSource : public ScanSource {
 
  private:
   Scan deliver(Scan s);
-  void keepFix(const TimedGpsFix& f);
+  void keepFix(const gnss::GnssFix& f);
 
   std::unique_ptr<PacketSource> packets_;
   velodyne::SweepAssembler assembler_;
-  std::deque<TimedGpsFix> fixes_;
+  std::deque<gnss::GnssFix> fixes_;
   std::size_t max_pending_fixes_ = 0;
   PacketObserver observer_;
   SweepSourceStats stats_;

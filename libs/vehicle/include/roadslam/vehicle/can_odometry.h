@@ -4,6 +4,7 @@
 /// GNSS fixes (wheel-speed scale factor, yaw-rate bias against the GNSS course).
 
 #include <roadslam/can/frame.h>
+#include <roadslam/gnss/nmea.h>
 #include <roadslam/vehicle/dead_reckoning.h>
 
 #include <string>
@@ -31,16 +32,10 @@ struct OdometryResult {
 OdometryResult runOdometry(const std::vector<can::CanFrame>& frames, VehicleDecoder& decoder,
                            const DeadReckoningParams& params, const Pose2D& start = {});
 
-/// One u-blox fix (gnss_ublox_fix.csv columns t_unix, lat_deg, lon_deg, speed_mps, bearing_deg).
-struct GnssFix {
-  double t_s = 0;          ///< [s since Unix epoch]
-  double lat_deg = 0;      ///< WGS84 [deg]
-  double lon_deg = 0;      ///< WGS84 [deg]
-  double speed_mps = 0;    ///< ground speed [m/s]
-  double bearing_deg = 0;  ///< course over ground, clockwise from north [deg]
-};
-/// Reads a CSV with a header naming those columns; throws naming the file and line.
-std::vector<GnssFix> loadGnssFixCsv(const std::string& path);
+/// Reads a u-blox fix CSV (gnss_ublox_fix.csv: a header naming the columns t_unix, lat_deg, lon_deg,
+/// speed_mps, bearing_deg) as valid fixes: t_receiver_s = t_unix, position (height 0), speed_mps,
+/// course_rad from the bearing (clockwise from north). Throws naming the file and line.
+std::vector<gnss::GnssFix> loadGnssFixCsv(const std::string& path);
 
 struct ScaleEstimate {
   double scale = 1.0;        ///< GNSS distance / wheel distance [-]
@@ -50,7 +45,7 @@ struct ScaleEstimate {
 };
 /// Wheel-speed scale factor: ratio of GNSS to wheel distance over fix intervals where the car
 /// moves faster than \p min_speed_mps (equirectangular local plane, fine over a few km).
-ScaleEstimate estimateSpeedScale(const std::vector<MotionSample>& samples, const std::vector<GnssFix>& fixes,
+ScaleEstimate estimateSpeedScale(const std::vector<MotionSample>& samples, const std::vector<gnss::GnssFix>& fixes,
                                  double min_speed_mps = 3.0);
 
 struct BiasEstimate {
@@ -59,7 +54,7 @@ struct BiasEstimate {
 };
 /// Yaw-rate bias against the GNSS course: slope of (integrated yaw rate - unwrapped course heading)
 /// over time, least squares; uses fixes faster than \p min_speed_mps (course is noise below).
-BiasEstimate estimateYawRateBias(const std::vector<MotionSample>& samples, const std::vector<GnssFix>& fixes,
+BiasEstimate estimateYawRateBias(const std::vector<MotionSample>& samples, const std::vector<gnss::GnssFix>& fixes,
                                  double min_speed_mps = 5.0);
 
 /// Writes poses as TUM text "t x y z qx qy qz qw" (atomically).
