@@ -4,6 +4,7 @@
 // changed recording, the stage wiring errors, and the factory's stage lists (a stage of one's own
 // plugs in beside them).
 #include <gtest/gtest.h>
+#include <unistd.h>
 #include <mrpt/config/CConfigFileMemory.h>
 
 #include <cmath>
@@ -72,7 +73,9 @@ std::string writeLinearTrajectory(double t_end_s) {
     traj.stamps_s.push_back(t);
     traj.poses.push_back(Eigen::Isometry3d(Eigen::Translation3d(kSpeed * t, 0, 0)));
   }
-  const std::string path = (fs::temp_directory_path() / "roadslam_test_pipeline_linear.tum").string();
+  // One file per process: ctest runs each TEST as its own process, two of them at once with -j2.
+  const std::string path =
+      (fs::temp_directory_path() / ("roadslam_test_pipeline_linear_" + std::to_string(::getpid()) + ".tum")).string();
   datasets::writeTum(path, traj);
   return path;
 }

@@ -78,7 +78,7 @@ TEST(SweepSource, UntakenGpsFixesAreCappedKeepingTheNewest) {
   BoxRoomParams p;
   p.revolutions = 3;
   const fs::path file = boxRoomFile(p, "sweep_gps_cap_");
-  std::vector<gnss::GnssFix> all;
+  std::vector<roadslam::gnss::GnssFix> all;
   {
     SweepSource ref(std::make_unique<PcapPacketSource>(file.string()));
     while (ref.next()) {

@@ -34,6 +34,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
   while (assembler.hasSweep()) assembler.takeSweep();
   PositionPacket pp;
   decodePositionPacket(data, size, pp);
-  gnss::parseRmc(std::string(reinterpret_cast<const char*>(data), size));
+  roadslam::gnss::parseRmc(std::string(reinterpret_cast<const char*>(data), size));
   return 0;
 }
