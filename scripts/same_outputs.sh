@@ -4,9 +4,10 @@
 # columns ms, ms_*, *_ms, *_ms_*, wall_time_s) and the build's name (program_version); a path written
 # into an output is compared with the before/after folder taken out.
 # Inputs: the simulated urban loop, parking lot and highway (30 s each, simulated once by BEFORE's
-# roadslam-sim), an objects-on and a GNSS-on run (the urban loop with [objects] enabled; the highway
-# with the simulator's gnss.nmea), both real VLP-16 pcaps and KITTI raw 0001 from ../shared/data
-# (skipped, and said, when absent).
+# roadslam-sim), an objects-on and two GNSS-on runs (the urban loop with [objects] enabled; the highway
+# with the simulator's gnss.nmea, and with its position packets' fixes), both real VLP-16 pcaps (the GPS
+# one also with its fixes) and KITTI raw 0001 from ../shared/data, and the rawlogs roadslam-rawlog
+# convert writes from the two captures with position packets (skipped, and said, when absent).
 # usage: scripts/same_outputs.sh BEFORE_BIN AFTER_BIN [WORK_DIR]
 #   e.g. scripts/same_outputs.sh /tmp/main/build/bin build/bin
 # Exit 0 when every run succeeded on both sides and every compared file is identical; the failed runs
@@ -36,11 +37,16 @@ RUNS=(
   "map-highway|map --config ini/default.ini --input $WORK/drives/highway/velodyne.pcap"
   "map-urban-objects|map --config $WORK/objects.ini --input $WORK/drives/urban-loop/velodyne.pcap"
   "map-highway-gnss|map --config ini/default.ini --input $WORK/drives/highway/velodyne.pcap --gnss $WORK/drives/highway/gnss.nmea"
+  "map-highway-gnss-input|map --config ini/default.ini --input $WORK/drives/highway/velodyne.pcap --gnss-from-input"
   "bounds-urban|bounds --config ini/bounds.ini --input $WORK/drives/urban-loop/velodyne.pcap --png-every 0"
 )
+CONVERTS=()
 if [[ -d "$DATA/velodyne" ]]; then
   RUNS+=("map-vlp16-gps|map --config ini/default.ini --input $DATA/velodyne/mrpt_sample_velodyne_vlp16_gps.pcap"
+         "map-vlp16-gps-input|map --config ini/default.ini --input $DATA/velodyne/mrpt_sample_velodyne_vlp16_gps.pcap --gnss-from-input"
          "map-vlp16-veloview|map --config ini/default.ini --input $DATA/velodyne/veloview_vlp-16-test-90deg-1-50-frames.pcap")
+  # rawlogs written from the captures (their position packets' RMC as CObservationGPS), compared whole
+  CONVERTS=("$DATA/velodyne/mrpt_sample_velodyne_vlp16_gps.pcap" "$DATA/velodyne/veloview_monterey-first-100-packets.pcap")
 else
   echo "== $DATA/velodyne absent: the real VLP-16 pcaps are not compared"
 fi
@@ -59,6 +65,18 @@ fi
 
 # a run that fails on either side fails the comparison: two failed runs' folders would match
 failed=0
+for pcap in "${CONVERTS[@]}"; do
+  name=rawlog-$(basename "$pcap" .pcap)
+  for side in before after; do
+    bin=$BEFORE; [[ $side == after ]] && bin=$AFTER
+    mkdir -p "$WORK/$side/$name"
+    "$bin/roadslam-rawlog" convert "$pcap" "$WORK/$side/$name/out.rawlog" > "$WORK/$side-$name.log" 2>&1 ||
+      { echo "== FAILED: $side $name (log $WORK/$side-$name.log)"; failed=$((failed + 1)); }
+    # the rawlog is gzip: compare what it holds, not the compressor's header
+    [[ -f "$WORK/$side/$name/out.rawlog" ]] && gzip -dc "$WORK/$side/$name/out.rawlog" > "$WORK/$side/$name/out.rawlog.raw" &&
+      rm "$WORK/$side/$name/out.rawlog"
+  done
+done
 for run in "${RUNS[@]}"; do
   name=${run%%|*} args=${run#*|}
   prog=${args%% *} rest=${args#* }
