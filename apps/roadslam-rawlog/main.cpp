@@ -12,6 +12,7 @@
 #include "roadslam/common/cli.h"
 #include "roadslam/common/stop_signal.h"
 #include "roadslam/sources/boxroom.h"
+#include "roadslam/rawlog/rawlog_writer.h"
 #include "roadslam/sources/nmea_source.h"
 #include "roadslam/sources/recorder.h"
 #include "roadslam/sources/recording.h"
@@ -95,6 +96,7 @@ int main(int argc, char** argv) {
 
   CLI11_PARSE(app, argc, argv);
   using namespace roadslam::sources;
+  using namespace roadslam::rawlog;
   try {
     if (*info) {
       const RecordingSummary s = summarizeRecording(info_in, info_opt.params());

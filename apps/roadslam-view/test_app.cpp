@@ -25,8 +25,8 @@
 
 #include "roadslam/runfolder/run_folder.h"
 #include "roadslam/datasets/kitti_scans.h"
-#include "roadslam/sources/rawlog_index.h"
-#include "roadslam/sources/rawlog_session.h"
+#include "roadslam/rawlog/rawlog_index.h"
+#include "roadslam/rawlog/rawlog_session.h"
 #include "roadslam/sources/recording.h"
 
 namespace fs = std::filesystem;
@@ -68,7 +68,7 @@ struct Fixture {
     map = dir / "map";
     roadslam::sources::convertToRawlog(std::string(ROADSLAM_SOURCE_DIR) + "/rawlogs/boxroom-vlp16.pcap",
                                        rawlog.string());
-    const double t0 = roadslam::sources::RawlogIndex::open(rawlog.string())->firstStamp();
+    const double t0 = roadslam::rawlog::RawlogIndex::open(rawlog.string())->firstStamp();
     roadslam::datasets::Trajectory poses;
     for (int k = 0; k <= 20; ++k) {
       Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
@@ -550,8 +550,8 @@ TEST(RoadslamViewLive, GrabIniWithCanShowsAndRecords) {
   const std::size_t shown = liveObservations(view.out, ini.string());
   ASSERT_GT(shown, 50u) << view.out;
   std::size_t observations = 0, odometry = 0, sweeps = 0, segments = 0;
-  for (const auto& seg : roadslam::sources::RawlogSession::segmentsOf(rec.string())) {  // cut every second
-    auto recorded = roadslam::sources::RawlogIndex::open(seg);
+  for (const auto& seg : roadslam::rawlog::RawlogSession::segmentsOf(rec.string())) {  // cut every second
+    auto recorded = roadslam::rawlog::RawlogIndex::open(seg);
     ++segments;
     observations += recorded->size();
     for (std::size_t i = 0; i < recorded->size(); ++i) {

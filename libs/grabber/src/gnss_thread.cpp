@@ -1,11 +1,11 @@
 // GNSS thread: NmeaSource -> lines for the NMEA sidecar, and each completed receiver epoch as a
-// CObservationGPS (sources::fillGnssObservation: receiver UTC in `timestamp`, host receive time in
+// CObservationGPS (rawlog::fillGnssObservation: receiver UTC in `timestamp`, host receive time in
 // `originalReceivedTimestamp`). Parsing problems (checksums, no fix, time jumps, other datums) are
 // counted by gnss::NmeaParser and never stop the thread.
 #include <mrpt/obs/CObservationGPS.h>
 
 #include "impl.h"
-#include "roadslam/sources/gps_observation.h"
+#include "roadslam/rawlog/gps_observation.h"
 
 namespace roadslam::grabber {
 
@@ -34,7 +34,7 @@ void Grabber::Impl::gnssLoop() {
     last_epoch_s = t;
     GnssItem it;
     it.obs = std::make_shared<mrpt::obs::CObservationGPS>();
-    sources::fillGnssObservation(*f, p.label, *it.obs);
+    rawlog::fillGnssObservation(*f, p.label, *it.obs);
     it.stamp_s = f->t_receive_s;
     {
       std::lock_guard<std::mutex> lock(r.mutex);

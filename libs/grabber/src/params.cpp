@@ -58,7 +58,7 @@ void SensorParams::fields(ParamTable& t) {
 }
 
 void SensorParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, const std::string& sec) {
-  rejectUnknown(cfg, sec, joined({fieldKeys<sources::UdpReceiver::Params>(), fieldKeys<sources::RawlogWriter::Params>(),
+  rejectUnknown(cfg, sec, joined({fieldKeys<sources::UdpReceiver::Params>(), fieldKeys<rawlog::RawlogWriter::Params>(),
                                   fieldKeys<SensorParams>()}));
   section = sec;
   udp.loadFromConfigFile(cfg, sec);

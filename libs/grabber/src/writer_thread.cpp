@@ -16,7 +16,7 @@
 #include "roadslam/can/candump.h"
 #include "roadslam/grabber/segment_writer.h"
 #include "roadslam/pcap/pcap_writer.h"
-#include "roadslam/sources/gps_observation.h"
+#include "roadslam/rawlog/gps_observation.h"
 #include "roadslam/vehicle/dead_reckoning.h"
 #include "roadslam/vehicle/rawlog_export.h"
 #include "roadslam/velodyne/position.h"
@@ -266,7 +266,7 @@ void Writer::writeObs(const std::shared_ptr<mrpt::obs::CObservation>& o) {
 
 void Writer::writeSweep(const SensorItem& it) {
   const SensorParams& sp = g_.params.sensors[std::size_t(it.sensor)];
-  const sources::RawlogWriter::Params& p = sp.scan;
+  const rawlog::RawlogWriter::Params& p = sp.scan;
   auto obs = std::make_shared<CObservationVelodyneScan>();
   obs->sensorLabel = p.sensor_label;
   obs->sensorPose = mrpt::poses::CPose3D(p.x_m, p.y_m, p.z_m, p.yaw_rad, p.pitch_rad, p.roll_rad);
@@ -283,14 +283,14 @@ void Writer::writeSweep(const SensorItem& it) {
   g_.writer.packets.fetch_add(it.packets.size());
 }
 
-// Same $GPRMC -> CObservationGPS mapping as sources::RawlogWriter (MRPT's parse_NMEA fields).
+// Same $GPRMC -> CObservationGPS mapping as rawlog::RawlogWriter (MRPT's parse_NMEA fields).
 void Writer::writePosition(const SensorItem& it) {
   const velodyne::RawPacket& pkt = it.packets.front();
   velodyne::PositionPacket pos;
   if (!velodyne::decodePositionPacket(pkt.payload.data(), pkt.payload.size(), pos) || !pos.fix)
     return;  // kept in the pcap sidecar; nothing to put in an MRPT GPS record
   auto obs = std::make_shared<mrpt::obs::CObservationGPS>();
-  sources::fillRmcObservation(*pos.fix, pkt.stamp_s, g_.params.sensors[std::size_t(it.sensor)].scan.gps_label, *obs);
+  rawlog::fillRmcObservation(*pos.fix, pkt.stamp_s, g_.params.sensors[std::size_t(it.sensor)].scan.gps_label, *obs);
   writeObs(obs);
   g_.writer.gps.fetch_add(1);
 }

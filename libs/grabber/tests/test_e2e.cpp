@@ -21,7 +21,7 @@
 #include "roadslam/can/candump.h"
 #include "roadslam/grabber/grabber.h"
 #include "roadslam/pcap/pcap_reader.h"
-#include "roadslam/sources/rawlog_index.h"
+#include "roadslam/rawlog/rawlog_index.h"
 #include "roadslam/sim/outputs.h"
 #include "roadslam/velodyne/sweep_assembler.h"
 
@@ -389,13 +389,13 @@ TEST(GrabIndex, EachClosedSegmentCarriesItsIndex) {
   ASSERT_GE(segments.size(), 2u);
   std::size_t points = 0, observations = 0;
   for (const auto& seg : segments) {
-    ASSERT_TRUE(std::filesystem::exists(sources::RawlogIndex::sidecarPath(seg))) << seg;
-    const auto cached = sources::RawlogIndex::open(seg);
+    ASSERT_TRUE(std::filesystem::exists(rawlog::RawlogIndex::sidecarPath(seg))) << seg;
+    const auto cached = rawlog::RawlogIndex::open(seg);
     EXPECT_TRUE(cached->openInfo().from_cache) << seg << ": " << cached->openInfo().cache_note;
-    sources::RawlogIndexOptions read;
+    rawlog::RawlogIndexOptions read;
     read.use_cache = read.write_cache = false;
     read.span_bytes = 1u << 20;
-    const auto built = sources::RawlogIndex::open(seg, read);
+    const auto built = rawlog::RawlogIndex::open(seg, read);
     ASSERT_EQ(cached->size(), built->size()) << seg;
     EXPECT_TRUE(cached->complete());
     EXPECT_EQ(cached->uncompressedBytes(), built->uncompressedBytes());

@@ -189,7 +189,7 @@ TEST(GnssJob, FromInputFusesOneChosenGpsSource) {
   std::ofstream(dir + "/r.nmea") << "$GPRMC,000001.00,A,4808.0000,N,01134.0000,E,0.0,0.0,010124,,,A*5A\n"
                                     "$GPRMC,000002.00,A,4808.0000,N,01134.0000,E,0.0,0.0,010124,,,A*59\n"
                                     "$GPRMC,000003.00,A,4808.0000,N,01134.0000,E,0.0,0.0,010124,,,A*58\n";
-  ASSERT_EQ(sources::nmeaLogToRawlog(dir + "/r.nmea", dir + "/r.rawlog", "RECEIVER").epochs, 3u);
+  ASSERT_EQ(rawlog::nmeaLogToRawlog(dir + "/r.nmea", dir + "/r.rawlog", "RECEIVER").epochs, 3u);
   {
     std::ofstream two(dir + "/two.rawlog", std::ios::binary);
     for (const char* part : {"/box.rawlog", "/r.rawlog"}) two << std::ifstream(dir + part, std::ios::binary).rdbuf();

@@ -2,8 +2,8 @@
 
 #include <filesystem>
 
-#include "roadslam/sources/rawlog_index.h"
-#include "roadslam/sources/rawlog_session.h"
+#include "roadslam/rawlog/rawlog_index.h"
+#include "roadslam/rawlog/rawlog_session.h"
 #include "roadslam/velodyne/position.h"
 
 namespace fs = std::filesystem;
@@ -22,13 +22,13 @@ std::optional<gnss::GnssFix> decodeGpsFix(const velodyne::RawPacket& pkt) {
 std::map<std::string, std::size_t> gpsSourcesOf(const std::string& path) {
   const std::string ext = fs::path(path).extension().string();
   if (ext == ".pcap" || ext == ".pcapng") return {{kPositionPacketsLabel, 0}};
-  std::vector<std::string> files = fs::is_directory(path) ? RawlogSession::segmentsOf(path) : std::vector<std::string>{};
+  std::vector<std::string> files = fs::is_directory(path) ? rawlog::RawlogSession::segmentsOf(path) : std::vector<std::string>{};
   if (ext == ".rawlog" || ext == ".gz") files = {path};
-  RawlogIndexOptions opt;
+  rawlog::RawlogIndexOptions opt;
   opt.write_cache = false;  // a mapping run leaves the recording's folder as it found it
   std::map<std::string, std::size_t> out;
   for (const auto& f : files) {
-    const auto index = RawlogIndex::open(f, opt);
+    const auto index = rawlog::RawlogIndex::open(f, opt);
     for (std::size_t i = 0; i < index->size(); ++i)
       if (index->className(i).find("CObservationGPS") != std::string::npos) ++out[index->label(i)];
   }

@@ -31,7 +31,7 @@ std::size_t LiveObservations::posted() const {
 }
 
 void LiveObservations::append(Posted& p) {
-  RawlogEntry e;
+  rawlog::RawlogEntry e;
   e.size = p.bytes;
   e.stamp_s = p.obs->timestamp != INVALID_TIMESTAMP ? mrpt::Clock::toDouble(p.obs->timestamp)
                                                     : std::numeric_limits<double>::quiet_NaN();

@@ -15,7 +15,7 @@
 #include "roadslam/common/atomic_file.h"
 #include "roadslam/common/stop_signal.h"
 #include "roadslam/gnss/nmea.h"
-#include "roadslam/sources/rawlog_writer.h"
+#include "roadslam/rawlog/rawlog_writer.h"
 
 namespace roadslam::sources {
 namespace {
@@ -147,11 +147,11 @@ NmeaRecordSummary recordNmea(NmeaSource& src, const std::string& log_path, const
                              std::size_t max_lines, const std::string& label) {
   NmeaRecordSummary s;
   AtomicFile log(log_path);
-  std::unique_ptr<RawlogWriter> rawlog;
+  std::unique_ptr<rawlog::RawlogWriter> rawlog;
   if (!rawlog_path.empty()) {
-    RawlogWriter::Params p;
+    rawlog::RawlogWriter::Params p;
     p.gps_label = label;
-    rawlog = std::make_unique<RawlogWriter>(rawlog_path, p);
+    rawlog = std::make_unique<rawlog::RawlogWriter>(rawlog_path, p);
   }
   gnss::NmeaParser parser;
   auto take = [&](std::optional<gnss::GnssFix> f) {

@@ -115,14 +115,14 @@ std::string toText(const RecordingSummary& s) {
 
 ConvertSummary convertToRawlog(const std::string& in, const std::string& out,
                                const velodyne::DecoderParams& params,
-                               RawlogWriter::Params writer_params) {
+                               rawlog::RawlogWriter::Params writer_params) {
   PortConfig ports;
   ports.model = params.model;
   SweepSource sweeps(openRecording(in, ports), params);
   if (writer_params.calibration_file.empty()) writer_params.calibration_file = params.calibration_file;
   bool model_set = params.model != velodyne::Model::Unknown;
   if (model_set) writer_params.model = params.model == velodyne::Model::HDL32 ? "HDL32" : "VLP16";
-  std::unique_ptr<RawlogWriter> writer;  // opened at the first data packet, once the model is known
+  std::unique_ptr<rawlog::RawlogWriter> writer;  // opened at the first data packet, once the model is known
   std::vector<velodyne::RawPacket> pending, pending_gps;
   ConvertSummary sum;
   // Observations go out in time order: a sweep is stamped with its first packet, so the position
@@ -141,7 +141,7 @@ ConvertSummary convertToRawlog(const std::string& in, const std::string& out,
       if (!model_set && p.payload.size() == velodyne::kDataPacketSize)
         writer_params.model = sweeps.decoder().modelOf(p.payload.data(), p.payload.size()) ==
                                       velodyne::Model::HDL32 ? "HDL32" : "VLP16";
-      writer = std::make_unique<RawlogWriter>(out, writer_params);
+      writer = std::make_unique<rawlog::RawlogWriter>(out, writer_params);
     }
     if (p.payload.size() == velodyne::kPositionPacketSize) {
       if (pending.empty()) writer->writePosition(p);

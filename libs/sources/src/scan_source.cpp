@@ -9,7 +9,7 @@
 
 #include "roadslam/datasets/kitti_scans.h"
 #include "roadslam/sources/pcap_source.h"
-#include "roadslam/sources/rawlog_session.h"
+#include "roadslam/rawlog/rawlog_session.h"
 #include "roadslam/sources/rawlog_source.h"
 #include "roadslam/sources/segmented_source.h"
 #include "roadslam/sources/sweep_source.h"
@@ -69,11 +69,11 @@ class KittiScanSource : public ScanSource {
 std::unique_ptr<ScanSource> openScanSource(const std::string& path, const mrpt::config::CConfigFileBase& cfg,
                                            const std::string& times_path) {
   if (!fs::exists(path)) throw std::runtime_error("input '" + path + "' does not exist");
-  if (fs::is_directory(path) && !RawlogSession::segmentsOf(path).empty()) {  // a roadslam-grab session
+  if (fs::is_directory(path) && !rawlog::RawlogSession::segmentsOf(path).empty()) {  // a roadslam-grab session
     if (!times_path.empty()) throw std::runtime_error("a times file applies to a KITTI folder; '" + path + "' is a rawlog session");
     velodyne::DecoderParams dp;
     dp.loadFromConfigFile(cfg, "velodyne");
-    auto sweeps = std::make_unique<SweepSource>(std::make_unique<SegmentedPacketSource>(RawlogSession::segmentsOf(path)), dp);
+    auto sweeps = std::make_unique<SweepSource>(std::make_unique<SegmentedPacketSource>(rawlog::RawlogSession::segmentsOf(path)), dp);
     sweeps->setMaxPendingGpsFixes(SweepSource::kMaxPendingGpsFixes);
     return sweeps;
   }

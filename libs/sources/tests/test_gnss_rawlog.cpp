@@ -11,9 +11,9 @@
 #include <filesystem>
 
 #include "roadslam/gnss/nmea.h"
-#include "roadslam/sources/gps_observation.h"
+#include "roadslam/rawlog/gps_observation.h"
 #include "roadslam/sources/rawlog_source.h"
-#include "roadslam/sources/rawlog_writer.h"
+#include "roadslam/rawlog/rawlog_writer.h"
 
 using namespace roadslam;
 
@@ -36,7 +36,7 @@ TEST(GnssRawlog, NmeaEpochsAreCObservationGps) {
   ASSERT_EQ(log.fixes.size(), 1u);
   const auto path = std::filesystem::temp_directory_path() / "roadslam_gnss_test.rawlog";
   {
-    sources::RawlogWriter w(path.string(), {});
+    rawlog::RawlogWriter w(path.string(), {});
     w.writeGnss(log.fixes[0]);
     w.close();
     EXPECT_EQ(w.gpsWritten(), 1u);
@@ -89,7 +89,7 @@ TEST(GnssRawlog, RawlogSourceReadsGgaFixes) {
     mrpt::io::CFileGZOutputStream out(path.string());
     auto ar = mrpt::serialization::archiveFrom(out);
     mrpt::obs::CObservationGPS epoch;
-    sources::fillGnssObservation(f, "GNSS", epoch);
+    rawlog::fillGnssObservation(f, "GNSS", epoch);
     ar << epoch;
     mrpt::obs::CObservationGPS gga_only;
     mrpt::obs::gnss::Message_NMEA_GGA gga;

@@ -8,10 +8,11 @@
 #include "roadslam/sources/gps_fix.h"
 #include "roadslam/sources/pcap_source.h"
 #include "roadslam/sources/rawlog_source.h"
-#include "roadslam/sources/rawlog_writer.h"
+#include "roadslam/rawlog/rawlog_writer.h"
 #include "test_packets.h"
 
 using namespace roadslam::sources;
+using namespace roadslam::rawlog;
 namespace fs = std::filesystem;
 
 namespace {

@@ -14,10 +14,11 @@
 #include <iterator>
 
 #include "roadslam/sources/rawlog_source.h"
-#include "roadslam/sources/rawlog_writer.h"
+#include "roadslam/rawlog/rawlog_writer.h"
 #include "test_packets.h"
 
 using namespace roadslam::sources;
+using namespace roadslam::rawlog;
 using namespace roadslam::sources::test_support;
 namespace fs = std::filesystem;
 

@@ -22,14 +22,15 @@
 #include <random>
 #include <thread>
 
-#include "roadslam/sources/background_rawlog_index.h"
-#include "roadslam/sources/rawlog_index.h"
-#include "roadslam/sources/rawlog_session.h"
+#include "roadslam/rawlog/background_rawlog_index.h"
+#include "roadslam/rawlog/rawlog_index.h"
+#include "roadslam/rawlog/rawlog_session.h"
 #include "roadslam/sources/scan_source.h"
-#include "roadslam/sources/rawlog_writer.h"
+#include "roadslam/rawlog/rawlog_writer.h"
 #include "test_packets.h"
 
 using namespace roadslam::sources;
+using namespace roadslam::rawlog;
 using namespace roadslam::sources::test_support;
 namespace fs = std::filesystem;
 

@@ -15,7 +15,7 @@
 #include <memory>
 #include <stdexcept>
 
-#include "roadslam/sources/rawlog_session.h"
+#include "roadslam/rawlog/rawlog_session.h"
 #include "roadslam/sources/recording.h"
 #include "roadslam/sources/scan_source.h"
 #include "roadslam/viewer/live_slam.h"
@@ -96,7 +96,7 @@ void kittiToRawlog(const std::string& folder, const std::string& out) {
 
 std::string recordingToOpen(const std::string& path, std::ostream& err) {
   namespace fs = std::filesystem;
-  if (fs::is_directory(path) && !sources::RawlogSession::segmentsOf(path).empty()) return path;  // a grab session
+  if (fs::is_directory(path) && !rawlog::RawlogSession::segmentsOf(path).empty()) return path;  // a grab session
   if (fs::is_directory(path)) {
     const std::string folder = fs::path(path).lexically_normal().string();
     std::string out = (folder.back() == '/' ? folder.substr(0, folder.size() - 1) : folder) + ".rawlog";
@@ -149,7 +149,7 @@ int runView(const ViewRequest& req, std::ostream& out, std::ostream& err) {
   if (req.no_index_cache) in.index.use_cache = in.index.write_cache = false;
   in.index.on_build = [&err, &req](const std::string& path) {
     err << "roadslam-view: indexing " << path << " once"
-        << (req.no_index_cache ? "" : " (kept in " + sources::RawlogIndex::sidecarPath(path) + ")") << " ...\n";
+        << (req.no_index_cache ? "" : " (kept in " + rawlog::RawlogIndex::sidecarPath(path) + ")") << " ...\n";
   };
   ViewerModel model(in);
   if (headless) model.waitForIndex();  // renders may need any time of the recording

@@ -68,12 +68,12 @@ std::vector<Eigen::Vector3f> readPlyPoints(const std::string& path, double voxel
 }
 
 ViewerModel::ViewerModel(const ViewerInputs& in) : in_(in) {
-  sources::RawlogIndexOptions opt = in.index;
+  rawlog::RawlogIndexOptions opt = in.index;
   opt.on_build = nullptr;  // told here, on this thread, not from the indexing ones
-  std::vector<std::string> segments = fs::is_directory(in.recording) ? sources::RawlogSession::segmentsOf(in.recording)
+  std::vector<std::string> segments = fs::is_directory(in.recording) ? rawlog::RawlogSession::segmentsOf(in.recording)
                                                                      : std::vector<std::string>{in.recording};
   if (segments.empty()) throw std::runtime_error("folder '" + in.recording + "' holds no rawlog segment (NAME_000.rawlog)");
-  auto idx = sources::RawlogSession::open(segments, opt);
+  auto idx = rawlog::RawlogSession::open(segments, opt);
   session_ = idx.get();
   index_ = std::move(idx);
   if (!session_->done() && in.index.on_build) in.index.on_build(in.recording);
@@ -90,7 +90,7 @@ ViewerModel::ViewerModel(const ViewerInputs& in) : in_(in) {
 void ViewerModel::indexDone() {
   const bool one = session_->segments() == 1;
   for (std::size_t k = 0; k < session_->segments(); ++k) {
-    const sources::RawlogIndex* idx = session_->segment(k).done();
+    const rawlog::RawlogIndex* idx = session_->segment(k).done();
     if (!idx) continue;  // its indexing stopped: in errors()
     const std::string what = one ? "recording" : "segment " + idx->path();
     if (!idx->complete()) warnings_.push_back(what + " damaged: " + idx->stopMessage());
@@ -100,7 +100,7 @@ void ViewerModel::indexDone() {
   }
   for (const auto& e : session_->errors()) warnings_.push_back(e);
   if (session_->size() == 0) {
-    const sources::RawlogIndex* first = session_->segment(0).done();
+    const rawlog::RawlogIndex* first = session_->segment(0).done();
     throw std::runtime_error("recording '" + in_.recording + "' holds no readable observation" +
                              (first && !first->complete() ? ": " + first->stopMessage() : std::string()));
   }

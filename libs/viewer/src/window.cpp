@@ -45,7 +45,7 @@ std::optional<Key> keyOf(int glfw_key) {
   }
 }
 
-std::string rowText(const sources::ObservationIndex& idx, std::size_t i, double t0) {
+std::string rowText(const rawlog::ObservationIndex& idx, std::size_t i, double t0) {
   char buf[160];
   const auto& e = idx.entry(i);
   std::snprintf(buf, sizeof buf, "%6zu  %9.3f s  %-10s %-26s %7.1f kB", i, e.stamp_s - t0, idx.label(i).c_str(),

@@ -278,7 +278,7 @@ TEST(ViewerModel, IndexedInTheBackgroundEndsAsTheWholeRecording) {
       ar << o;
     }
   }
-  fs::remove(roadslam::sources::RawlogIndex::sidecarPath(rec.string()));
+  fs::remove(roadslam::rawlog::RawlogIndex::sidecarPath(rec.string()));
   fs::create_directories(dir);
   roadslam::runfolder::writeMapRun(dir.string(), poseFolder({100.0, 100.1}, {{0, 0}, {1, 0}}));
   ViewerInputs in;
@@ -304,5 +304,5 @@ TEST(ViewerModel, IndexedInTheBackgroundEndsAsTheWholeRecording) {
   EXPECT_DOUBLE_EQ(model.endTime(), 1000.0 + 0.01 * 19999);
   EXPECT_TRUE(overlapWarned());
   ASSERT_NE(model.rawlog(), nullptr);
-  EXPECT_TRUE(fs::exists(roadslam::sources::RawlogIndex::sidecarPath(rec.string())));
+  EXPECT_TRUE(fs::exists(roadslam::rawlog::RawlogIndex::sidecarPath(rec.string())));
 }

@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "roadslam/can/socketcan_source.h"
-#include "roadslam/sources/rawlog_writer.h"
+#include "roadslam/rawlog/rawlog_writer.h"
 #include "roadslam/sources/udp_receiver.h"
 
 namespace mrpt::config {
@@ -35,7 +35,7 @@ namespace roadslam::grabber {
 struct SensorParams {
   std::string section;                  ///< ini section name (also the sidecar file stem)
   sources::UdpReceiver::Params udp;     ///< ports, bind address, sender filter, socket buffer
-  sources::RawlogWriter::Params scan;   ///< sensorLabel, model, calibration, T_base_lidar, ranges
+  rawlog::RawlogWriter::Params scan;   ///< sensorLabel, model, calibration, T_base_lidar, ranges
   double silent_after_s = 1.0;          ///< watchdog: no packet for this long = silent [s]
   /// Without source_filter: record only the first sender seen on the ports; packets of any other
   /// sender (a second sensor on the same port) are counted as foreign and not recorded.

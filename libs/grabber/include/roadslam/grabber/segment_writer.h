@@ -10,7 +10,7 @@
 /// flush and then sees a truncated stream (no gzip trailer). close() writes the trailer.
 /// Segments concatenate: `cat grab_*.rawlog > all.rawlog` is a valid multi-member gzip rawlog.
 ///
-/// Each closed segment gets its index sidecar "<segment>.idx" (sources::RawlogIndexRecorder: every
+/// Each closed segment gets its index sidecar "<segment>.idx" (rawlog::RawlogIndexRecorder: every
 /// observation's offset, size, time, label and class, and a gzip access point at the sync flushes
 /// every 4 MB), so the first open of a recording (roadslam-view) reads the sidecar, not the whole
 /// file. A segment cut short by a crash has none and is indexed when opened.
@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "roadslam/sources/rawlog_index.h"
+#include "roadslam/rawlog/rawlog_index.h"
 
 namespace mrpt::serialization {
 class CSerializable;
@@ -72,7 +72,7 @@ class SegmentWriter {
   std::uint64_t objects_ = 0, raw_bytes_ = 0, closed_bytes_ = 0;
   std::uint64_t segment_raw_ = 0;          // uncompressed bytes of the current segment
   std::vector<std::uint8_t> history_;      // its last 32 KiB, circular: the access points' dictionary
-  sources::RawlogIndexRecorder index_;
+  rawlog::RawlogIndexRecorder index_;
 };
 
 }  // namespace roadslam::grabber

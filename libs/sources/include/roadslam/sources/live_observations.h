@@ -12,11 +12,11 @@
 #include <deque>
 #include <mutex>
 
-#include "roadslam/sources/observation_index.h"
+#include "roadslam/rawlog/observation_index.h"
 
 namespace roadslam::sources {
 
-class LiveObservations : public ObservationIndex {
+class LiveObservations : public rawlog::ObservationIndex {
  public:
   /// \p keep_s: payloads kept for this long behind the newest stamp [s].
   explicit LiveObservations(std::string name, double keep_s = 30.0);
@@ -32,7 +32,7 @@ class LiveObservations : public ObservationIndex {
   double keepSeconds() const { return keep_s_; }
 
   std::size_t size() const override { return entries_.size(); }
-  const RawlogEntry& entry(std::size_t i) const override { return entries_.at(i); }
+  const rawlog::RawlogEntry& entry(std::size_t i) const override { return entries_.at(i); }
   const std::vector<std::string>& labels() const override { return labels_.names(); }
   const std::vector<std::string>& classNames() const override { return classes_.names(); }
   double firstStamp() const override { return time_.first(); }
@@ -56,11 +56,11 @@ class LiveObservations : public ObservationIndex {
   std::vector<Posted> queue_;
   std::size_t posted_ = 0;
 
-  std::vector<RawlogEntry> entries_;
+  std::vector<rawlog::RawlogEntry> entries_;
   std::deque<std::shared_ptr<mrpt::obs::CObservation>> payload_;  // parallel to entries_
   std::size_t freed_ = 0;                 // payloads [0, freed_) released (arrival order)
-  TimeOrder time_;
-  NameIds labels_, classes_;
+  rawlog::TimeOrder time_;
+  rawlog::NameIds labels_, classes_;
 };
 
 }  // namespace roadslam::sources

@@ -9,7 +9,7 @@
 #include <string>
 
 #include "roadslam/sources/packet_source.h"
-#include "roadslam/sources/rawlog_writer.h"
+#include "roadslam/rawlog/rawlog_writer.h"
 #include "roadslam/velodyne/decoder_params.h"
 
 namespace roadslam::sources {
@@ -59,6 +59,6 @@ struct ConvertSummary {
 /// [velodyne] = DecoderParams, [rawlog] = RawlogWriter::Params), loadable by both Params.
 ConvertSummary convertToRawlog(const std::string& in, const std::string& out,
                                const velodyne::DecoderParams& params = {},
-                               RawlogWriter::Params writer_params = {});
+                               rawlog::RawlogWriter::Params writer_params = {});
 
 }  // namespace roadslam::sources

@@ -1,6 +1,6 @@
 #pragma once
 /// \file model.h
-/// What the replay viewer shows: a recording (an MRPT rawlog, opened through sources::RawlogIndex)
+/// What the replay viewer shows: a recording (an MRPT rawlog, opened through rawlog::RawlogIndex)
 /// and, optionally, the results of the other programs over it: a `roadslam-map` output folder
 /// (trajectory.tum, frames.csv, summary.json loops, map.ply), a `roadslam-bounds` output folder
 /// (boundaries.jsonl) and a ground-truth TUM trajectory. A map folder of a run with `[objects] enabled`
@@ -22,9 +22,9 @@
 #include <vector>
 
 #include "roadslam/viewer/objects_layer.h"
-#include "roadslam/sources/rawlog_session.h"
+#include "roadslam/rawlog/rawlog_session.h"
 #include "roadslam/sources/live_observations.h"
-#include "roadslam/sources/rawlog_index.h"
+#include "roadslam/rawlog/rawlog_index.h"
 
 namespace roadslam::viewer {
 
@@ -80,7 +80,7 @@ struct ViewerInputs {
   double map_voxel_m = 0.5; ///< the point map is decimated to one point per voxel of this size [m]
   bool octomap = false;     ///< the map folder's OctoMap (map.bt) occupied voxels instead of its point map
   bool grid = false;        ///< the map folder's occupancy grid (grid.gridmap) on the ground under the car
-  sources::RawlogIndexOptions index;
+  rawlog::RawlogIndexOptions index;
 };
 
 class ViewerModel {
@@ -88,7 +88,7 @@ class ViewerModel {
   /// Opens everything named in \p in; throws std::runtime_error naming the file that cannot be read.
   /// Soft problems (a damaged recording, results whose times miss the recording) go to warnings().
   /// A recording without a fresh index returns as soon as its first observation is indexed; the
-  /// rest is indexed in the background (sources::BackgroundRawlogIndex): poll() takes it in, and the
+  /// rest is indexed in the background (rawlog::BackgroundRawlogIndex): poll() takes it in, and the
   /// checks that need the whole recording (damage, time overlap of the results) warn once it is done.
   explicit ViewerModel(const ViewerInputs& in);
   /// A live view: the observations come from \p live (a grabber's tap) as they arrive; poll() takes
@@ -96,16 +96,16 @@ class ViewerModel {
   ViewerModel(const ViewerInputs& in, std::unique_ptr<sources::LiveObservations> live);
   ~ViewerModel();
 
-  sources::ObservationIndex& recording() { return *index_; }
-  const sources::ObservationIndex& recording() const { return *index_; }
+  rawlog::ObservationIndex& recording() { return *index_; }
+  const rawlog::ObservationIndex& recording() const { return *index_; }
   /// The rawlog opened, once wholly indexed (nullptr while indexing and in a live view), and the
   /// live source (nullptr in a replay).
-  const sources::RawlogIndex* rawlog() const {
+  const rawlog::RawlogIndex* rawlog() const {
     return session_ && session_->done() && session_->segments() == 1 ? session_->segment(0).done() : nullptr;
   }
   /// The recording as segments (one for a rawlog file, several for a roadslam-grab session folder);
   /// nullptr in a live view.
-  const sources::RawlogSession* session() const { return session_; }
+  const rawlog::RawlogSession* session() const { return session_; }
   /// True while the recording is still being indexed; indexProgress() in [0, 1].
   bool indexing() const { return session_ && !session_->done(); }
   double indexProgress() const { return session_ ? session_->progress() : 1.0; }
@@ -170,8 +170,8 @@ class ViewerModel {
   void checkOverlap(const std::string& what, double t0, double t1);
 
   ViewerInputs in_;
-  std::unique_ptr<sources::ObservationIndex> index_;
-  sources::RawlogSession* session_ = nullptr;
+  std::unique_ptr<rawlog::ObservationIndex> index_;
+  rawlog::RawlogSession* session_ = nullptr;
   struct Overlap {
     std::string what;
     double t0, t1;

@@ -16,7 +16,7 @@ namespace mrpt::obs {
 class CObservation;
 }
 
-namespace roadslam::sources {
+namespace roadslam::rawlog {
 
 /// One observation of the sequence.
 struct RawlogEntry {
@@ -87,4 +87,4 @@ class ObservationIndex {
   virtual std::shared_ptr<mrpt::obs::CObservation> load(std::size_t i) = 0;
 };
 
-}  // namespace roadslam::sources
+}  // namespace roadslam::rawlog

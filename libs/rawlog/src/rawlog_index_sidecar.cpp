@@ -6,7 +6,7 @@
 // The sidecar "<rawlog>.idx": magic, format version, the rawlog's size and modification time, then
 // the index (names, entries, damage) and the gzip access points; an end marker. Any mismatch makes
 // the caller rebuild it.
-namespace roadslam::sources {
+namespace roadslam::rawlog {
 
 using detail::GzAccessPoint;
 using detail::SeekableStream;
@@ -153,4 +153,4 @@ bool RawlogIndex::Impl::deserialize(const std::string& buf, std::string& why) {
 }
 
 
-}  // namespace roadslam::sources
+}  // namespace roadslam::rawlog

@@ -1,8 +1,8 @@
-#include "roadslam/sources/observation_index.h"
+#include "roadslam/rawlog/observation_index.h"
 
 #include <algorithm>
 
-namespace roadslam::sources {
+namespace roadslam::rawlog {
 
 void TimeOrder::add(uint32_t i, double t_s) {
   if (!std::isfinite(t_s)) return;
@@ -39,4 +39,4 @@ void NameIds::clear() {
   ids_.clear();
 }
 
-}  // namespace roadslam::sources
+}  // namespace roadslam::rawlog

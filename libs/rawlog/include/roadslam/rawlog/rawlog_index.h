@@ -24,13 +24,13 @@
 #include <utility>
 #include <vector>
 
-#include "roadslam/sources/observation_index.h"
+#include "roadslam/rawlog/observation_index.h"
 
 namespace mrpt::obs {
 class CObservation;
 }
 
-namespace roadslam::sources {
+namespace roadslam::rawlog {
 
 struct RawlogIndexOptions {
   uint64_t span_bytes = 4u << 20;  ///< gzip: uncompressed bytes between access points [bytes]
@@ -104,9 +104,9 @@ class RawlogIndex : public ObservationIndex {
   std::unique_ptr<Impl> impl_;
 };
 
-}  // namespace roadslam::sources
+}  // namespace roadslam::rawlog
 
-namespace roadslam::sources {
+namespace roadslam::rawlog {
 
 /// The index of a gzip rawlog kept by the program that writes it (roadslam-grab's segments), written
 /// as the "<rawlog>.idx" sidecar RawlogIndex reads, so even the first open of a recording reads the
@@ -135,4 +135,4 @@ class RawlogIndexRecorder {
   std::vector<std::vector<uint8_t>> windows_z_;
 };
 
-}  // namespace roadslam::sources
+}  // namespace roadslam::rawlog

@@ -17,9 +17,9 @@
 #include <thread>
 #include <vector>
 
-#include "roadslam/sources/rawlog_index.h"
+#include "roadslam/rawlog/rawlog_index.h"
 
-namespace roadslam::sources {
+namespace roadslam::rawlog {
 
 namespace detail {
 class SeekableStream;
@@ -85,4 +85,4 @@ class BackgroundRawlogIndex : public ObservationIndex {
   std::string error_;
 };
 
-}  // namespace roadslam::sources
+}  // namespace roadslam::rawlog

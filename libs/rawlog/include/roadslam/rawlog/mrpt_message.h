@@ -1,8 +1,8 @@
 #pragma once
-// Internal to libs/sources: MRPT's exception text on one line.
+// MRPT's exception text on one line.
 #include <string>
 
-namespace roadslam::sources::detail {
+namespace roadslam::rawlog::detail {
 
 /// MRPT nests exceptions ("==== MRPT exception ====\nMessage: ...\nOriginal exception: ..."); the
 /// innermost "Message:" line names the cause on one line (else the text's first line).
@@ -14,4 +14,4 @@ inline std::string innermostMessage(const std::string& what) {
   return line;
 }
 
-}  // namespace roadslam::sources::detail
+}  // namespace roadslam::rawlog::detail

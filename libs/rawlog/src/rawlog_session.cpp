@@ -1,4 +1,4 @@
-#include "roadslam/sources/rawlog_session.h"
+#include "roadslam/rawlog/rawlog_session.h"
 
 #include <algorithm>
 #include <chrono>
@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <thread>
 
-namespace roadslam::sources {
+namespace roadslam::rawlog {
 namespace fs = std::filesystem;
 
 std::vector<std::string> RawlogSession::segmentsOf(const std::string& folder) {
@@ -94,4 +94,4 @@ std::shared_ptr<mrpt::obs::CObservation> RawlogSession::load(std::size_t i) {
   return parts_[seg]->load(local);
 }
 
-}  // namespace roadslam::sources
+}  // namespace roadslam::rawlog

@@ -17,12 +17,12 @@
 
 #include <thread>
 
-#include "roadslam/sources/background_rawlog_index.h"
-#include "roadslam/sources/rawlog_index.h"
+#include "roadslam/rawlog/background_rawlog_index.h"
+#include "roadslam/rawlog/rawlog_index.h"
 
-using roadslam::sources::BackgroundRawlogIndex;
-using roadslam::sources::RawlogIndex;
-using roadslam::sources::RawlogIndexOptions;
+using roadslam::rawlog::BackgroundRawlogIndex;
+using roadslam::rawlog::RawlogIndex;
+using roadslam::rawlog::RawlogIndexOptions;
 using Clock = std::chrono::steady_clock;
 
 namespace {

@@ -11,7 +11,7 @@ namespace mrpt::obs {
 class CObservationGPS;
 }
 
-namespace roadslam::sources {
+namespace roadslam::rawlog {
 
 /// Fills \p out with the RMC message of \p fix (a Velodyne position packet's sentence: status,
 /// position, speed, course, date) received at \p stamp_s [s since epoch] under \p label; both
@@ -26,4 +26,4 @@ void fillRmcObservation(const gnss::GnssFix& fix, double stamp_s, const std::str
 /// MRPT 2.5 has no GST message: the GST sigmas are not kept (the NMEA log keeps them).
 void fillGnssObservation(const gnss::GnssFix& fix, const std::string& label, mrpt::obs::CObservationGPS& out);
 
-}  // namespace roadslam::sources
+}  // namespace roadslam::rawlog

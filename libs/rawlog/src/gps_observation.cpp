@@ -1,4 +1,4 @@
-#include "roadslam/sources/gps_observation.h"
+#include "roadslam/rawlog/gps_observation.h"
 
 #include <mrpt/obs/CObservationGPS.h>
 
@@ -8,7 +8,7 @@
 #include <cmath>
 #include <ctime>
 
-namespace roadslam::sources {
+namespace roadslam::rawlog {
 namespace {
 using unit::kDeg;
 using unit::kKnot;
@@ -93,4 +93,4 @@ void fillGnssObservation(const gnss::GnssFix& f, const std::string& label, mrpt:
   out.originalReceivedTimestamp = mrpt::Clock::fromDouble(std::isfinite(f.t_receive_s) ? f.t_receive_s : f.t_receiver_s);
 }
 
-}  // namespace roadslam::sources
+}  // namespace roadslam::rawlog

@@ -1,4 +1,4 @@
-#include "roadslam/sources/rawlog_index.h"
+#include "roadslam/rawlog/rawlog_index.h"
 
 #include <mrpt/core/Clock.h>
 #include <mrpt/obs/CObservation.h>
@@ -21,9 +21,9 @@
 
 #include "roadslam/common/atomic_file.h"
 #include "rawlog_index_impl.h"
-#include "mrpt_message.h"
+#include "roadslam/rawlog/mrpt_message.h"
 
-namespace roadslam::sources {
+namespace roadslam::rawlog {
 
 using detail::innermostMessage;
 
@@ -252,9 +252,9 @@ std::shared_ptr<mrpt::obs::CObservation> detail::loadEntry(SeekableStream& strea
   }
 }
 
-}  // namespace roadslam::sources
+}  // namespace roadslam::rawlog
 
-namespace roadslam::sources {
+namespace roadslam::rawlog {
 
 RawlogIndexRecorder::RawlogIndexRecorder() : impl_(std::make_unique<RawlogIndex::Impl>()) {}
 RawlogIndexRecorder::~RawlogIndexRecorder() = default;
@@ -300,4 +300,4 @@ void RawlogIndexRecorder::clear() {
   windows_z_.clear();
 }
 
-}  // namespace roadslam::sources
+}  // namespace roadslam::rawlog

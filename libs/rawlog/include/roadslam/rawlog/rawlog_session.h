@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "roadslam/sources/background_rawlog_index.h"
+#include "roadslam/rawlog/background_rawlog_index.h"
 
-namespace roadslam::sources {
+namespace roadslam::rawlog {
 
 class RawlogSession : public ObservationIndex {
  public:
@@ -61,4 +61,4 @@ class RawlogSession : public ObservationIndex {
   NameIds labels_, classes_;
 };
 
-}  // namespace roadslam::sources
+}  // namespace roadslam::rawlog

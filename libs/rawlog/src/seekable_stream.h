@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-namespace roadslam::sources::detail {
+namespace roadslam::rawlog::detail {
 
 /// One restart point in a gzip stream (zran.c's `point`). The dictionary is kept zlib-compressed.
 struct GzAccessPoint {
@@ -73,4 +73,4 @@ class SeekableStream : public mrpt::io::CStream {
   std::string damage_;
 };
 
-}  // namespace roadslam::sources::detail
+}  // namespace roadslam::rawlog::detail

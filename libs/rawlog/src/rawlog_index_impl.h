@@ -13,10 +13,10 @@
 #include <string>
 #include <vector>
 
-#include "roadslam/sources/rawlog_index.h"
+#include "roadslam/rawlog/rawlog_index.h"
 #include "seekable_stream.h"
 
-namespace roadslam::sources {
+namespace roadslam::rawlog {
 namespace detail {
 /// What identifies a version of the rawlog file: its size and modification time.
 struct FileStamp {
@@ -67,4 +67,4 @@ struct RawlogIndex::Impl {
   bool deserialize(const std::string& buf, std::string& why);
 };
 
-}  // namespace roadslam::sources
+}  // namespace roadslam::rawlog

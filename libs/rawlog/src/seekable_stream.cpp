@@ -4,7 +4,7 @@
 #include <cstring>
 #include <stdexcept>
 
-namespace roadslam::sources::detail {
+namespace roadslam::rawlog::detail {
 
 namespace {
 constexpr std::size_t kChunk = 1 << 16;   // compressed bytes read from the file at a time
@@ -202,4 +202,4 @@ uint64_t SeekableStream::Seek(int64_t offset, CStream::TSeekOrigin origin) {
   return getPosition();
 }
 
-}  // namespace roadslam::sources::detail
+}  // namespace roadslam::rawlog::detail

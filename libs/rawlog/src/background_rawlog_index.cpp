@@ -1,4 +1,4 @@
-#include "roadslam/sources/background_rawlog_index.h"
+#include "roadslam/rawlog/background_rawlog_index.h"
 
 #include <mrpt/obs/CObservation.h>
 
@@ -9,7 +9,7 @@
 
 #include "rawlog_index_impl.h"
 
-namespace roadslam::sources {
+namespace roadslam::rawlog {
 
 std::unique_ptr<BackgroundRawlogIndex> BackgroundRawlogIndex::open(const std::string& path,
                                                                    const RawlogIndexOptions& options) {
@@ -136,4 +136,4 @@ std::shared_ptr<mrpt::obs::CObservation> BackgroundRawlogIndex::load(std::size_t
   return detail::loadEntry(*stream_, e, path_, i);
 }
 
-}  // namespace roadslam::sources
+}  // namespace roadslam::rawlog

@@ -1,6 +1,6 @@
-#include "roadslam/sources/rawlog_writer.h"
+#include "roadslam/rawlog/rawlog_writer.h"
 
-#include "roadslam/sources/gps_observation.h"
+#include "roadslam/rawlog/gps_observation.h"
 
 #include <mrpt/core/Clock.h>
 #include <mrpt/io/CFileGZOutputStream.h>
@@ -18,7 +18,7 @@
 #include "roadslam/common/param_table.h"
 #include "roadslam/velodyne/position.h"
 
-namespace roadslam::sources {
+namespace roadslam::rawlog {
 
 using mrpt::obs::CObservationVelodyneScan;
 static_assert(sizeof(CObservationVelodyneScan::TVelodyneRawPacket) == velodyne::kDataPacketSize,
@@ -148,4 +148,4 @@ NmeaImportSummary nmeaLogToRawlog(const std::string& nmea_path, const std::strin
   return {w.gpsWritten(), log.counters, log.problems};
 }
 
-}  // namespace roadslam::sources
+}  // namespace roadslam::rawlog

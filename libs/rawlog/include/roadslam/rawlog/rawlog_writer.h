@@ -27,7 +27,7 @@ namespace roadslam {
 class ParamTable;
 }
 
-namespace roadslam::sources {
+namespace roadslam::rawlog {
 
 class RawlogWriter {
  public:
@@ -86,4 +86,4 @@ struct NmeaImportSummary {
 NmeaImportSummary nmeaLogToRawlog(const std::string& nmea_path, const std::string& rawlog_path,
                                   const std::string& label = "GPS");
 
-}  // namespace roadslam::sources
+}  // namespace roadslam::rawlog
