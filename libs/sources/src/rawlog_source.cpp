@@ -12,13 +12,13 @@
 #include <cstring>
 #include <ctime>
 #include <stdexcept>
-#include "mrpt_message.h"
+#include "roadslam/rawlog/mrpt_message.h"
 
 #include "roadslam/common/param_table.h"
 
 namespace roadslam::sources {
 
-using detail::innermostMessage;
+using rawlog::detail::innermostMessage;
 
 using mrpt::obs::CObservationVelodyneScan;
 

@@ -1,5 +1,7 @@
 #pragma once
-// MRPT's exception text on one line.
+/// \file mrpt_message.h
+/// MRPT's exception text on one line: what the rawlog index and the rawlog replay report when MRPT
+/// cannot read a record.
 #include <string>
 
 namespace roadslam::rawlog::detail {
