@@ -2,7 +2,7 @@
 /// \file live_gnss.h
 /// The online GNSS correction on a live feed: CObservationGPS records as they arrive
 /// (roadslam-grab's receiver epochs, a car's CAN_GPS) and the odometry's frames, in one
-/// mapping::OnlineGnssFusion. The ENU frame is at the first valid fix (as gnss_outputs.h).
+/// mapping::OnlineGnssFusion. The ENU frame is at the first valid fix (as jobs/gnss_outputs.h).
 /// Fixes are stamped with their receive time: the frames of a live feed carry the host's receive
 /// time, and the receiver's UTC is another clock (a replayed log's is the recording's day).
 /// One GPS source is fused, never a mix of receivers (their antennas, clocks and errors differ; as
