@@ -21,9 +21,9 @@
 #include "roadslam/common/config.h"
 #include "roadslam/datasets/trajectory_io.h"
 #include "roadslam/gnss/geo.h"
+#include "roadslam/gnss_fusion/gnss_fusion.h"
+#include "roadslam/gnss_fusion/gnss_fusion_online.h"
 #include "roadslam/jobs/gnss_outputs.h"
-#include "roadslam/mapping/gnss_fusion.h"
-#include "roadslam/mapping/gnss_fusion_online.h"
 #include "roadslam/sim/eigen.h"
 #include "roadslam/sim/simulator.h"
 #include "roadslam/vehicle/can_odometry.h"
@@ -31,7 +31,7 @@
 #include "roadslam/vehicle/vehicle_state.h"
 
 using namespace roadslam;
-using mapping::PoseVector;
+using gnss_fusion::PoseVector;
 
 namespace {
 
@@ -43,10 +43,10 @@ std::string arg(int argc, char** argv, const std::string& name, const std::strin
 }
 
 /// --optimizer gauss_newton | ceres ([gnss_fusion] optimizer; absent: the config's or the default).
-void optimizerArg(int argc, char** argv, mapping::GnssFusionParams& fp) {
+void optimizerArg(int argc, char** argv, gnss_fusion::GnssFusionParams& fp) {
   const std::string o = arg(argc, argv, "--optimizer", "-");
-  if (o == "ceres") fp.optimizer = mapping::GnssOptimizer::Ceres;
-  else if (o == "gauss_newton") fp.optimizer = mapping::GnssOptimizer::GaussNewton;
+  if (o == "ceres") fp.optimizer = gnss_fusion::GnssOptimizer::Ceres;
+  else if (o == "gauss_newton") fp.optimizer = gnss_fusion::GnssOptimizer::GaussNewton;
   else if (o != "-") throw std::runtime_error("--optimizer " + o + ": expected gauss_newton or ceres");
 }
 
@@ -85,11 +85,11 @@ void row(const std::string& name, const Err& e, const std::string& extra = "") {
 /// The online (causal) mode on the odometry's own trajectory: its error over the frames it anchored,
 /// and the largest step error (fused step against the true step) anywhere and within 2 s of \p t_reacq.
 template <class GtAt>
-void onlineRow(const std::string& name, const datasets::Trajectory& odo, const std::vector<mapping::GnssFactor>& fixes,
-               const mapping::GnssFusionParams& fp, const gnss::EnuFrame& world, const gnss::EnuFrame& fe, GtAt gtAt,
+void onlineRow(const std::string& name, const datasets::Trajectory& odo, const std::vector<gnss_fusion::GnssFactor>& fixes,
+               const gnss_fusion::GnssFusionParams& fp, const gnss::EnuFrame& world, const gnss::EnuFrame& fe, GtAt gtAt,
                double t_reacq, bool outage) {
-  mapping::GnssOnlineStats st;
-  const auto on = mapping::replayOnline(odo.stamps_s, odo.poses, fixes, fp, &st);
+  gnss_fusion::GnssOnlineStats st;
+  const auto on = gnss_fusion::replayOnline(odo.stamps_s, odo.poses, fixes, fp, &st);
   std::vector<Eigen::Vector3d> est, truth;
   std::vector<double> t;
   for (size_t i = 0; i < on.size(); ++i) {
@@ -116,14 +116,14 @@ void onlineRow(const std::string& name, const datasets::Trajectory& odo, const s
 int simFigures(int argc, char** argv) {
   const auto sp0 = sim::ScenarioParams::fromFile(arg(argc, argv, "--scenario"));
   const std::string sim_dir = arg(argc, argv, "--sim"), run = arg(argc, argv, "--run");
-  mapping::GnssFusionParams fp;
+  gnss_fusion::GnssFusionParams fp;
   fp.loadFromConfigFile(*loadIniFile(arg(argc, argv, "--config")), "gnss_fusion");
   optimizerArg(argc, argv, fp);
   const auto traj = datasets::readTum(run + "/trajectory.tum");
   const auto odo_traj = datasets::readTum(run + "/trajectory_odometry.tum");  // causal: the online mode's input
   const auto gt = datasets::readTum(sim_dir + "/gt_trajectory.tum");
   const gnss::EnuFrame world({sp0.origin_lat_deg, sp0.origin_lon_deg, sp0.gnss.origin_h_m});
-  auto gtAt = [&](double t) { return mapping::interpolatePose(gt.stamps_s, gt.poses, t); };
+  auto gtAt = [&](double t) { return gnss_fusion::interpolatePose(gt.stamps_s, gt.poses, t); };
   std::vector<Eigen::Vector3d> truth, odo;
   for (size_t i = 0; i < traj.poses.size(); ++i) {
     truth.push_back(gtAt(traj.stamps_s[i]).translation());
@@ -174,7 +174,7 @@ int simFigures(int argc, char** argv) {
       fx.push_back(world.toEnu(fe.toGeodetic(f.p_enu)));
       fx_truth.push_back(gtAt(f.t_s) * fp.lever());
     }
-    const auto r = mapping::fuseGnss(traj.stamps_s, traj.poses, in.factors, fp);
+    const auto r = gnss_fusion::fuseGnss(traj.stamps_s, traj.poses, in.factors, fp);
     std::vector<Eigen::Vector3d> fused;
     for (const auto& T : r.T_enu_node) fused.push_back(world.toEnu(fe.toGeodetic(T.translation())));
     row("GNSS fixes alone (" + v.name + ")", errors(fx, fx_truth),
@@ -287,7 +287,7 @@ int rav4Figures(int argc, char** argv) {
     out.samples = dr.samples;
     for (double t = rt.front(); t <= rt.back() + 1e-9; t += 0.1) {
       out.t.push_back(t);
-      out.T.push_back(mapping::interpolatePose(dt_all, dr_all, t));
+      out.T.push_back(gnss_fusion::interpolatePose(dt_all, dr_all, t));
     }
     // re-anchored at the first reference time (the log starts ~0.04 s before the reference)
     const Eigen::Vector3d shift = ref[0] - out.T[0].translation();
@@ -300,10 +300,10 @@ int rav4Figures(int argc, char** argv) {
   const std::vector<Eigen::Vector3d> ref_eval(ref.begin(), ref.begin() + static_cast<long>(n_eval));
   auto at = [&](const std::vector<double>& t, const PoseVector& T) {
     std::vector<Eigen::Vector3d> out;
-    for (size_t i = 0; i < n_eval; ++i) out.push_back(mapping::interpolatePose(t, T, rt[i]).translation());
+    for (size_t i = 0; i < n_eval; ++i) out.push_back(gnss_fusion::interpolatePose(t, T, rt[i]).translation());
     return out;
   };
-  mapping::GnssFusionParams fp;  // [gnss_fusion] defaults but the dead reckoning's looser steps:
+  gnss_fusion::GnssFusionParams fp;  // [gnss_fusion] defaults but the dead reckoning's looser steps:
   fp.edge_sigma_t_per_m = 0.01;  // wheel-speed scale errors of a few tenths of a percent
   fp.edge_sigma_r_rad_per_m = 0.01 * M_PI / 180;
   fp.attitude_prior_sigma_rad = 0.5 * M_PI / 180;
@@ -317,9 +317,9 @@ int rav4Figures(int argc, char** argv) {
   for (double sigma : {1.0, 2.0, 3.0}) {
     std::mt19937_64 rng(seed);
     std::normal_distribution<double> n01(0, 1);
-    std::vector<mapping::GnssFactor> fixes;
+    std::vector<gnss_fusion::GnssFactor> fixes;
     for (size_t i = 0; i < rt.size(); i += 20) {
-      mapping::GnssFactor f;
+      gnss_fusion::GnssFactor f;
       f.t_s = rt[i];
       f.p_enu = ref[i] + Eigen::Vector3d(n01(rng) * sigma, n01(rng) * sigma, n01(rng) * 1.5 * sigma);
       f.cov = Eigen::Vector3d(sigma * sigma, sigma * sigma, 2.25 * sigma * sigma).asDiagonal();
@@ -342,7 +342,7 @@ int rav4Figures(int argc, char** argv) {
     }
     const auto bias = vehicle::estimateYawRateBias(raw.samples, course);
     const Dr cal = deadReckon(bias.bias_radps);
-    const auto r = mapping::fuseGnss(cal.t, cal.T, fixes, fp);
+    const auto r = gnss_fusion::fuseGnss(cal.t, cal.T, fixes, fp);
     char s[64];
     std::snprintf(s, sizeof(s), "%.0f m", sigma);
     row(std::string("fixes alone, 1 Hz, ") + s + " noise, interpolated", errors(at(ft, fT), ref_eval),
@@ -373,8 +373,8 @@ int rav4Figures(int argc, char** argv) {
       auto op = fp;
       op.online_yaw_rate_bias = with_bias;
       op.online_odometry_scale = mode == 2;
-      mapping::GnssOnlineStats ost;
-      const auto on = mapping::replayOnline(raw.t, raw.T, fixes, op, &ost);
+      gnss_fusion::GnssOnlineStats ost;
+      const auto on = gnss_fusion::replayOnline(raw.t, raw.T, fixes, op, &ost);
       std::vector<double> ot;
       PoseVector oT;
       for (size_t i = 0; i < on.size(); ++i)
@@ -385,7 +385,7 @@ int rav4Figures(int argc, char** argv) {
       std::vector<Eigen::Vector3d> oe, orf;
       for (size_t i = 0; !ot.empty() && i < n_eval; ++i)
         if (rt[i] >= ot.front()) {
-          oe.push_back(mapping::interpolatePose(ot, oT, rt[i]).translation());
+          oe.push_back(gnss_fusion::interpolatePose(ot, oT, rt[i]).translation());
           orf.push_back(ref[i]);
         }
       std::snprintf(notes, sizeof(notes), "scored from its first solve (t = %.0f s), %zu solves, %zu failed, %.1f ms per solve%s",
@@ -397,11 +397,11 @@ int rav4Figures(int argc, char** argv) {
       row(std::string("online, causal, ") + s + " noise (raw DR)" + (mode == 1 ? ", bias state" : mode == 2 ? ", bias + scale" : ""),
           errors(oe, orf), notes);
     }
-    mapping::GnssOnlineStats ost;
+    gnss_fusion::GnssOnlineStats ost;
     if (sigma == 1.0) {  // the first anchoring on 50 m of path
       auto late = fp;
       late.online_min_path_m = 50;
-      const auto on50 = mapping::replayOnline(raw.t, raw.T, fixes, late, &ost);
+      const auto on50 = gnss_fusion::replayOnline(raw.t, raw.T, fixes, late, &ost);
       std::vector<double> t50;
       PoseVector T50;
       for (size_t i = 0; i < on50.size(); ++i)
@@ -412,7 +412,7 @@ int rav4Figures(int argc, char** argv) {
       std::vector<Eigen::Vector3d> e50, r50;
       for (size_t i = 0; !t50.empty() && i < n_eval; ++i)
         if (rt[i] >= t50.front()) {
-          e50.push_back(mapping::interpolatePose(t50, T50, rt[i]).translation());
+          e50.push_back(gnss_fusion::interpolatePose(t50, T50, rt[i]).translation());
           r50.push_back(ref[i]);
         }
       std::snprintf(notes, sizeof(notes), "scored from its first solve (t = %.0f s)", t50.empty() ? 0.0 : t50.front() - rt.front());

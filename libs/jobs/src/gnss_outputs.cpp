@@ -12,11 +12,11 @@
 namespace roadslam::jobs {
 namespace {
 
-const char* useName(mapping::FixUse u) {
+const char* useName(gnss_fusion::FixUse u) {
   switch (u) {
-    case mapping::FixUse::Used: return "used";
-    case mapping::FixUse::Rejected: return "rejected";
-    case mapping::FixUse::Unmatched: return "unmatched";
+    case gnss_fusion::FixUse::Used: return "used";
+    case gnss_fusion::FixUse::Rejected: return "rejected";
+    case gnss_fusion::FixUse::Unmatched: return "unmatched";
   }
   return "?";
 }
@@ -29,7 +29,7 @@ nlohmann::json matrixJson(const Eigen::Isometry3d& T) {
 
 }  // namespace
 
-GnssInput readGnssInput(const std::string& path, const mapping::GnssFusionParams& p) {
+GnssInput readGnssInput(const std::string& path, const gnss_fusion::GnssFusionParams& p) {
   GnssInput in;
   in.path = path;
   in.log = gnss::readNmeaLog(path);
@@ -41,7 +41,7 @@ GnssInput readGnssInput(const std::string& path, const mapping::GnssFusionParams
   in.origin = in.log.fixes.front().position;
   const gnss::EnuFrame enu(in.origin);
   for (const auto& f : in.log.fixes) {
-    mapping::GnssFactor g;
+    gnss_fusion::GnssFactor g;
     g.t_s = f.stamp(p.receiver_time);
     g.p_enu = enu.toEnu(f.position);
     g.cov = f.covarianceEnu(p.uere_m, p.fallback_sigma_m);
@@ -66,7 +66,7 @@ std::string chooseGpsSource(const std::map<std::string, std::size_t>& sources, c
 }
 
 GnssInput gnssInputFromFixes(const std::vector<sources::TimedGpsFix>& fixes, const std::string& describe,
-                             const mapping::GnssFusionParams& p) {
+                             const gnss_fusion::GnssFusionParams& p) {
   GnssInput in;
   in.path = describe;
   for (const auto& f : fixes) {
@@ -91,7 +91,7 @@ GnssInput gnssInputFromFixes(const std::vector<sources::TimedGpsFix>& fixes, con
   const gnss::EnuFrame enu(in.origin);
   for (size_t k = 0; k < in.log.fixes.size(); ++k) {
     const auto& f = in.log.fixes[k];
-    mapping::GnssFactor g;
+    gnss_fusion::GnssFactor g;
     g.t_s = f.stamp(p.receiver_time);
     g.p_enu = enu.toEnu(f.position);
     // a GGA's HDOP gives the covariance (nmea.h covarianceEnu); RMC alone: fallback sigma, height free
@@ -117,9 +117,9 @@ std::string tumLine(double t_s, const Eigen::Isometry3d& T) {
 }  // namespace
 
 nlohmann::json writeOnlineGnss(const std::string& dir, const std::vector<double>& st, const mapping::PoseVector& T_odom,
-                               const GnssInput& in, const mapping::GnssFusionParams& p) {
-  mapping::GnssOnlineStats s;
-  const auto online = mapping::replayOnline(st, T_odom, in.factors, p, &s);
+                               const GnssInput& in, const gnss_fusion::GnssFusionParams& p) {
+  gnss_fusion::GnssOnlineStats s;
+  const auto online = gnss_fusion::replayOnline(st, T_odom, in.factors, p, &s);
   std::string tum;
   std::size_t anchored = 0;
   for (std::size_t i = 0; i < online.size(); ++i) {
@@ -227,7 +227,7 @@ nlohmann::json writeEnuMaps(const std::string& dir, const std::vector<mapping::K
   std::filesystem::create_directories(enu_dir, ec);
   if (ec) throw std::runtime_error("cannot create '" + enu_dir + "': " + ec.message());
   mapping::PoseVector T_enu_kf;
-  for (const auto& kf : kfs) T_enu_kf.push_back(mapping::interpolatePose(st, T_enu, kf.stamp_s));
+  for (const auto& kf : kfs) T_enu_kf.push_back(gnss_fusion::interpolatePose(st, T_enu, kf.stamp_s));
   const auto points = mapping::buildPointMap(kfs, T_enu_kf, p.point_map.voxel_m);
   mapping::writePly(enu_dir + "/map.ply", points);
   mapping::writePcd(enu_dir + "/map.pcd", points);
@@ -242,13 +242,13 @@ nlohmann::json writeEnuMaps(const std::string& dir, const std::vector<mapping::K
 }
 
 nlohmann::json fuseAndWriteGnss(const std::string& dir, const std::vector<double>& st, const mapping::PoseVector& T_map,
-                                const GnssInput& in, const mapping::GnssFusionParams& p, mapping::PoseVector* T_enu_out) {
+                                const GnssInput& in, const gnss_fusion::GnssFusionParams& p, mapping::PoseVector* T_enu_out) {
   nlohmann::json j;
   j["input"] = in.path;
   j["nmea"] = in.log.counters.named();
   j["problems"] = in.log.problems;
   j["origin"] = {{"lat_deg", in.origin.lat_deg}, {"lon_deg", in.origin.lon_deg}, {"h_m", in.origin.h_m}};
-  const mapping::GnssFusionResult r = mapping::fuseGnss(st, T_map, in.factors, p);
+  const gnss_fusion::GnssFusionResult r = gnss_fusion::fuseGnss(st, T_map, in.factors, p);
   j["status"] = r.status;
   j["fixes"] = in.factors.size();
   j["fixes_used"] = r.used;

@@ -69,7 +69,7 @@ struct GnssRequest {
   std::string label;
   std::vector<sources::TimedGpsFix> fixes;
 
-  GnssRequest(const MapRequest& req, const mapping::GnssFusionParams& p) : from_input(req.gnss_from_input) {
+  GnssRequest(const MapRequest& req, const gnss_fusion::GnssFusionParams& p) : from_input(req.gnss_from_input) {
     if (!req.gnss_path.empty() && req.gnss_from_input) throw std::runtime_error("--gnss and --gnss-from-input exclude each other");
     if (!req.gnss_path.empty()) input = readGnssInput(req.gnss_path, p);
     if (!req.gnss_label.empty() && !req.gnss_from_input) throw std::runtime_error("--gnss-label needs --gnss-from-input");

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "roadslam/datasets/kitti_scans.h"
-#include "roadslam/mapping/gnss_fusion.h"
+#include "roadslam/gnss_fusion/gnss_fusion.h"
 #include "roadslam/pipeline/stage_factory.h"
 #include "roadslam/pipeline/vehicle_prior.h"
 #include "roadslam/velodyne/decoder_params.h"
@@ -19,7 +19,7 @@ struct MapJobParams {
   velodyne::DecoderParams decoder;
   datasets::KittiParams kitti;
   pipeline::VehiclePriorParams vehicle_prior;  ///< read by CanPriorStream with --can; recorded always
-  mapping::GnssFusionParams gnss_fusion;       ///< [gnss_fusion], read by --gnss; recorded always
+  gnss_fusion::GnssFusionParams gnss_fusion;   ///< [gnss_fusion], read by --gnss; recorded always
 
   void load(const mrpt::config::CConfigFileBase& cfg);
   std::string used() const;  ///< config_used.ini

@@ -13,9 +13,9 @@
 
 #include "roadslam/datasets/trajectory_io.h"
 #include "roadslam/gnss/geo.h"
+#include "roadslam/gnss_fusion/gnss_fusion.h"
 #include "roadslam/jobs/gnss_outputs.h"
 #include "roadslam/jobs/map_job.h"
-#include "roadslam/mapping/gnss_fusion.h"
 #include "roadslam/sources/recording.h"
 #include "sim_cache.h"
 
@@ -66,7 +66,7 @@ TEST(GnssJob, SmallLoopFusedGeoreferencedOutputs) {
   double sq = 0;
   for (size_t i = 0; i < fused.poses.size(); ++i) {
     const Eigen::Vector3d p = world.toEnu(fused_enu.toGeodetic(fused.poses[i].translation()));
-    const Eigen::Vector3d t = mapping::interpolatePose(gt.stamps_s, gt.poses, fused.stamps_s[i]).translation();
+    const Eigen::Vector3d t = gnss_fusion::interpolatePose(gt.stamps_s, gt.poses, fused.stamps_s[i]).translation();
     sq += (p - t).head<2>().squaredNorm();
   }
   EXPECT_LT(std::sqrt(sq / fused.poses.size()), 0.30);
@@ -78,7 +78,7 @@ TEST(GnssJob, SmallLoopFusedGeoreferencedOutputs) {
   double sq_on = 0;
   for (size_t i = 0; i < online.poses.size(); ++i) {
     const Eigen::Vector3d p = world.toEnu(fused_enu.toGeodetic(online.poses[i].translation()));
-    const Eigen::Vector3d t = mapping::interpolatePose(gt.stamps_s, gt.poses, online.stamps_s[i]).translation();
+    const Eigen::Vector3d t = gnss_fusion::interpolatePose(gt.stamps_s, gt.poses, online.stamps_s[i]).translation();
     sq_on += (p - t).head<2>().squaredNorm();
   }
   const double ate_online = std::sqrt(sq_on / std::max<size_t>(1, online.poses.size()));
@@ -166,7 +166,7 @@ TEST(GnssJob, EnuMapsAtTheFusedPoses) {
   std::vector<Eigen::Vector3f> pts(10);
   ply.read(reinterpret_cast<char*>(pts.data()), std::streamsize(pts.size() * sizeof(Eigen::Vector3f)));
   ASSERT_TRUE(ply) << header;
-  const Eigen::Isometry3d T_mid = mapping::interpolatePose(st, T, 10.5);
+  const Eigen::Isometry3d T_mid = gnss_fusion::interpolatePose(st, T, 10.5);
   for (size_t i = 0; i < 5; ++i) {
     EXPECT_LT((pts[i].cast<double>() - T[0] * kfs[0].points_lidar[i].cast<double>()).norm(), 1e-4);
     EXPECT_LT((pts[5 + i].cast<double>() - T_mid * kfs[1].points_lidar[i].cast<double>()).norm(), 1e-4);

@@ -1,7 +1,7 @@
 #pragma once
 /// \file gnss_outputs.h
 /// GNSS at the end of a map job: an NMEA log's fixes into a local ENU frame, their batch
-/// fusion into the job's trajectory (mapping/gnss_fusion.h) and the geo-referenced outputs.
+/// fusion into the job's trajectory (gnss_fusion/gnss_fusion.h) and the geo-referenced outputs.
 ///
 /// ENU frame: origin at the first valid fix (WGS84 lat, lon, ellipsoidal height). Files in DIR:
 ///   trajectory_enu.tum    fused T_enu_lidar per frame, "t x y z qx qy qz qw" (batch: every fix)
@@ -25,8 +25,8 @@
 
 #include "roadslam/gnss/geo.h"
 #include "roadslam/gnss/nmea.h"
-#include "roadslam/mapping/gnss_fusion.h"
-#include "roadslam/mapping/gnss_fusion_online.h"
+#include "roadslam/gnss_fusion/gnss_fusion.h"
+#include "roadslam/gnss_fusion/gnss_fusion_online.h"
 #include "roadslam/mapping/map_outputs.h"
 #include "roadslam/sources/gps_fix.h"
 
@@ -37,11 +37,11 @@ struct GnssInput {
   std::string path;
   gnss::NmeaLog log;
   gnss::Geodetic origin;                   ///< the ENU origin (first valid fix)
-  std::vector<mapping::GnssFactor> factors;  ///< one per valid fix
+  std::vector<gnss_fusion::GnssFactor> factors;  ///< one per valid fix
 };
 
 /// Reads \p nmea_path; throws naming the file when it cannot be read or holds no valid fix.
-GnssInput readGnssInput(const std::string& nmea_path, const mapping::GnssFusionParams& p);
+GnssInput readGnssInput(const std::string& nmea_path, const gnss_fusion::GnssFusionParams& p);
 
 /// The GPS source `--gnss-from-input` fuses, from \p sources (label -> GPS records, 0 = not counted:
 /// sources::gpsSourcesOf(\p input)): \p wanted when given, else the one source there is; "" when
@@ -58,7 +58,7 @@ std::string chooseGpsSource(const std::map<std::string, std::size_t>& sources, c
 /// Stamped with the fix's UTC time when p.receiver_time and it has a date, else the capture time.
 /// The "log" counts epochs, fixes and "no fix" (RMC 'V', GGA quality 0). Throws when none is valid.
 GnssInput gnssInputFromFixes(const std::vector<sources::TimedGpsFix>& fixes, const std::string& describe,
-                             const mapping::GnssFusionParams& p);
+                             const gnss_fusion::GnssFusionParams& p);
 
 /// Fuses \p in into (\p stamps_s, \p T_map_lidar), writes the files above into \p out_dir and returns
 /// the summary's "gnss" object. A fusion that cannot run (too few fixes, no motion) writes nothing
@@ -66,7 +66,7 @@ GnssInput gnssInputFromFixes(const std::vector<sources::TimedGpsFix>& fixes, con
 /// \p T_enu_lidar_out (optional) receives the fused poses (empty when the fusion could not run).
 nlohmann::json fuseAndWriteGnss(const std::string& out_dir, const std::vector<double>& stamps_s,
                                 const mapping::PoseVector& T_map_lidar, const GnssInput& in,
-                                const mapping::GnssFusionParams& p, mapping::PoseVector* T_enu_lidar_out = nullptr);
+                                const gnss_fusion::GnssFusionParams& p, mapping::PoseVector* T_enu_lidar_out = nullptr);
 
 /// The maps rebuilt at the fused poses, in the ENU frame of trajectory_enu.tum: \p out_dir/enu/map.ply,
 /// map.pcd, grid.png + grid.yaml (map_server, origin in ENU metres); each keyframe placed at the fused
@@ -81,7 +81,7 @@ nlohmann::json writeEnuMaps(const std::string& out_dir, const std::vector<mappin
 /// {"frames", "anchored_frames", "solves", "failed_solves", "ms_per_solve", "ms_max"}.
 nlohmann::json writeOnlineGnss(const std::string& out_dir, const std::vector<double>& stamps_s,
                                const mapping::PoseVector& T_map_lidar_odometry, const GnssInput& in,
-                               const mapping::GnssFusionParams& p);
+                               const gnss_fusion::GnssFusionParams& p);
 
 /// map_georef.json read back: the ENU origin and T_enu_map. Throws naming the file and the key.
 struct Georef {

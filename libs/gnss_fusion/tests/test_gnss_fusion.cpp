@@ -8,10 +8,10 @@
 #include <iostream>
 #include <random>
 
-#include "roadslam/mapping/gnss_fusion.h"
-#include "roadslam/mapping/gnss_fusion_online.h"
+#include "roadslam/gnss_fusion/gnss_fusion.h"
+#include "roadslam/gnss_fusion/gnss_fusion_online.h"
 
-using namespace roadslam::mapping;
+using namespace roadslam::gnss_fusion;
 
 namespace {
 struct Drive {

@@ -27,9 +27,9 @@
 #include <deque>
 #include <optional>
 
-#include "roadslam/mapping/gnss_fusion.h"
+#include "roadslam/gnss_fusion/gnss_fusion.h"
 
-namespace roadslam::mapping {
+namespace roadslam::gnss_fusion {
 
 struct GnssOnlineStats {
   std::size_t solves = 0;        ///< window solves run [count]
@@ -83,4 +83,4 @@ std::vector<std::optional<Eigen::Isometry3d>> replayOnline(const std::vector<dou
                                                            const std::vector<GnssFactor>& fixes,
                                                            const GnssFusionParams& p, GnssOnlineStats* stats = nullptr);
 
-}  // namespace roadslam::mapping
+}  // namespace roadslam::gnss_fusion

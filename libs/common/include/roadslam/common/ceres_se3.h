@@ -1,15 +1,17 @@
 #pragma once
-// Residuals shared by the Ceres solvers (pose_graph_ceres.cpp, gnss_fusion_ceres.cpp): a node is a
-// translation t (R^3) and a unit quaternion q (Eigen's x, y, z, w order, EigenQuaternionManifold).
+// Residuals shared by the Ceres solvers (libs/mapping's pose_graph_ceres.cpp, libs/gnss_fusion's
+// gnss_fusion_ceres.cpp): a node is a translation t (R^3) and a unit quaternion q (Eigen's x, y, z, w
+// order, EigenQuaternionManifold). Header only: libs/common does not link Ceres, a target that
+// includes this links Ceres::ceres itself.
 #include <ceres/ceres.h>
 #include <ceres/rotation.h>
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
-#include "roadslam/mapping/pose_graph.h"
+namespace roadslam::ceres_se3 {
 
-namespace roadslam::mapping::detail {
+using Matrix6d = Eigen::Matrix<double, 6, 6>;
 
 /// S with S^T S = W for a symmetric positive semi-definite W (S = sqrt(Lambda) V^T), so that
 /// |S e|^2 = e^T W e.
@@ -19,7 +21,7 @@ inline Matrix6d sqrtInformation(const Matrix6d& W) {
 }
 
 /// Binary factor on (t_i, q_i, t_j, q_j), measurement Z = T_i_j with information W in [t, r] order:
-/// r = S [t_E; Log(R_E)], E = Z^-1 T_i^-1 T_j (MRPT's pseudo-logarithm, pose_graph_solver.h).
+/// r = S [t_E; Log(R_E)], E = Z^-1 T_i^-1 T_j (MRPT's pseudo-logarithm, mapping's pose_graph_solver.h).
 struct RelativePoseResidual {
   Eigen::Quaterniond q_Z_inv;
   Eigen::Vector3d t_Z;
@@ -50,4 +52,4 @@ struct RelativePoseResidual {
   }
 };
 
-}  // namespace roadslam::mapping::detail
+}  // namespace roadslam::ceres_se3

@@ -1,4 +1,4 @@
-#include "roadslam/mapping/gnss_fusion.h"
+#include "roadslam/gnss_fusion/gnss_fusion.h"
 
 #include <Eigen/SparseCholesky>
 #include <Eigen/SVD>
@@ -14,7 +14,7 @@
 #include "roadslam/common/param_table.h"
 #include "gnss_fusion_solver.h"
 
-namespace roadslam::mapping {
+namespace roadslam::gnss_fusion {
 namespace {
 
 using Vec6 = Eigen::Matrix<double, 6, 1>;
@@ -385,4 +385,4 @@ GnssFusionResult fuseGnss(const std::vector<double>& st, const PoseVector& T_map
   return res;
 }
 
-}  // namespace roadslam::mapping
+}  // namespace roadslam::gnss_fusion

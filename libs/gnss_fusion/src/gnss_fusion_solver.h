@@ -4,9 +4,9 @@
 #include <Eigen/Geometry>
 #include <vector>
 
-#include "roadslam/mapping/gnss_fusion.h"
+#include "roadslam/gnss_fusion/gnss_fusion.h"
 
-namespace roadslam::mapping::detail {
+namespace roadslam::gnss_fusion::detail {
 
 /// A fix on its node.
 struct MatchedFix {
@@ -31,4 +31,4 @@ struct GnssSolve {
 /// Minimises the factors over \p T_enu_node (started at the robust fit) in place, on Ceres.
 GnssSolve solveGnssCeres(const GnssFactors& f, const GnssFusionParams& p, PoseVector& T_enu_node);
 
-}  // namespace roadslam::mapping::detail
+}  // namespace roadslam::gnss_fusion::detail

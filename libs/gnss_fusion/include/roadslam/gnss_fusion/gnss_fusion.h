@@ -22,11 +22,10 @@
 ///    line unobserved by positions).
 /// The start: T_enu_map by a robust (IRLS) yaw + translation fit of the antenna path to the fixes.
 
+#include <cmath>
 #include <Eigen/Geometry>
 #include <string>
 #include <vector>
-
-#include "roadslam/mapping/pose_graph.h"
 
 namespace mrpt::config {
 class CConfigFileBase;
@@ -36,7 +35,10 @@ namespace roadslam {
 class ParamTable;
 }
 
-namespace roadslam::mapping {
+namespace roadslam::gnss_fusion {
+
+using Matrix6d = Eigen::Matrix<double, 6, 6>;  ///< a motion factor's information, [t, r] order
+using PoseVector = std::vector<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>>;  ///< one per node
 
 enum class RobustKernel { None, Huber, Cauchy };
 
@@ -129,4 +131,4 @@ GnssFusionResult fuseGnss(const std::vector<double>& stamps_s, const PoseVector&
 /// T at time \p t along (stamps, poses): linear translation, slerped rotation, clamped at the ends.
 Eigen::Isometry3d interpolatePose(const std::vector<double>& stamps_s, const PoseVector& T, double t);
 
-}  // namespace roadslam::mapping
+}  // namespace roadslam::gnss_fusion

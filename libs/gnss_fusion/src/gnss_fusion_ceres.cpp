@@ -1,6 +1,6 @@
 // The GNSS fusion on Ceres ([gnss_fusion] optimizer = ceres): the factors of gnss_fusion.h, each as
 // the own Gauss-Newton weighs it, so both minimise the same robust cost.
-//  - node i: translation t_i and unit quaternion q_i (ceres_se3.h), every node free;
+//  - node i: translation t_i and unit quaternion q_i (common/ceres_se3.h), every node free;
 //  - motion i -> i+1: RelativePoseResidual, r = S [t_E; Log(R_E)], E = Z^-1 T_i^-1 T_j, S^T S = I_i;
 //  - fix k on node i: r = L (R_i p + t_i - z), L^T L the fix's information, under the robust kernel
 //    as a Ceres loss of s = |r|^2 = m^2: Cauchy rho(s) = c^2 log(1 + s/c^2) (rho' = 1 / (1 + (m/c)^2),
@@ -15,10 +15,10 @@
 #include <algorithm>
 #include <memory>
 
-#include "ceres_se3.h"
 #include "gnss_fusion_solver.h"
+#include "roadslam/common/ceres_se3.h"
 
-namespace roadslam::mapping::detail {
+namespace roadslam::gnss_fusion::detail {
 namespace {
 
 /// r = L (R_i p + t_i - z).
@@ -98,8 +98,8 @@ GnssSolve solveGnssCeres(const GnssFactors& f, const GnssFusionParams& p, PoseVe
   ceres::Problem problem(po);
   ceres::EigenQuaternionManifold quaternion;
   for (size_t i = 0; i + 1 < N; ++i)
-    problem.AddResidualBlock(RelativePoseResidual::create(f.Z[i], f.I[i]), nullptr, t[i].data(), q[i].coeffs().data(),
-                             t[i + 1].data(), q[i + 1].coeffs().data());
+    problem.AddResidualBlock(ceres_se3::RelativePoseResidual::create(f.Z[i], f.I[i]), nullptr, t[i].data(),
+                             q[i].coeffs().data(), t[i + 1].data(), q[i + 1].coeffs().data());
   ceres::LossFunction* loss = robustLoss(p.kernel, p.kernel_width);  // one for all fixes; the problem owns it
   for (const auto& m : f.matched) {
     const Eigen::Matrix3d L = Eigen::LLT<Eigen::Matrix3d>(m.info).matrixU();  // L^T L = info
@@ -136,4 +136,4 @@ GnssSolve solveGnssCeres(const GnssFactors& f, const GnssFusionParams& p, PoseVe
   return out;
 }
 
-}  // namespace roadslam::mapping::detail
+}  // namespace roadslam::gnss_fusion::detail

@@ -1,9 +1,9 @@
-#include "roadslam/mapping/gnss_fusion_online.h"
+#include "roadslam/gnss_fusion/gnss_fusion_online.h"
 
 #include <algorithm>
 #include <cmath>
 
-namespace roadslam::mapping {
+namespace roadslam::gnss_fusion {
 
 void OnlineGnssFusion::addFix(const GnssFactor& f) { fixes_.push_back(f); }
 
@@ -128,4 +128,4 @@ std::vector<std::optional<Eigen::Isometry3d>> replayOnline(const std::vector<dou
   return out;
 }
 
-}  // namespace roadslam::mapping
+}  // namespace roadslam::gnss_fusion
