@@ -61,15 +61,15 @@ void ObjectsOutput::write(const std::string& out_dir) const {
 }
 
 void LocalizationOutput::add(const pipeline::PipelineFrame& f) {
-  const mapping::LocalizationResult& r = *f.localization;
-  localized.push_back(r.status != mapping::LocalizationStatus::Lost ? 1 : 0);
+  const localization::LocalizationResult& r = *f.localization;
+  localized.push_back(r.status != localization::LocalizationStatus::Lost ? 1 : 0);
   T_map_lidar.push_back(r.T_map_lidar);
-  tracked += r.status == mapping::LocalizationStatus::Tracked;
-  relocalized += r.status == mapping::LocalizationStatus::Relocalized;
-  lost += r.status == mapping::LocalizationStatus::Lost;
+  tracked += r.status == localization::LocalizationStatus::Tracked;
+  relocalized += r.status == localization::LocalizationStatus::Relocalized;
+  lost += r.status == localization::LocalizationStatus::Lost;
   sum_conf += r.confidence;
   csv += runfolder::localizationCsvRow(
-      {f.index, f.pose.stamp_s, mapping::toString(r.status), r.confidence, r.keyframe, r.weak_directions, r.reason});
+      {f.index, f.pose.stamp_s, localization::toString(r.status), r.confidence, r.keyframe, r.weak_directions, r.reason});
 }
 
 void LocalizationOutput::bridge(const std::vector<odometry::FrameResult>& frames) {

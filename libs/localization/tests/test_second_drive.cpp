@@ -8,12 +8,13 @@
 #include <filesystem>
 #include <iostream>
 
-#include "roadslam/mapping/localizer.h"
+#include "../../mapping/tests/sim_drive.h"
+#include "roadslam/localization/localizer.h"
 #include "roadslam/mapping/map_folder.h"
 #include "roadslam/registration/point_cloud.h"
-#include "sim_drive.h"
 
 using namespace roadslam;
+using namespace roadslam::localization;
 using namespace roadslam::mapping;
 
 namespace {

@@ -1,7 +1,7 @@
 #pragma once
 /// \file localizer.h
 /// Localization in a prior map: each sweep is registered against a map folder's keyframes
-/// (map_folder.h) without growing the map. Tracking: point-to-plane ICP of the sweep against the whole map
+/// (mapping/map_folder.h) without growing the map. Tracking: point-to-plane ICP of the sweep against the whole map
 /// (one kd-tree built once) from the constant-velocity prediction. Relocalization, from an unknown start or
 /// after a failure (a "kidnapped" vehicle): the sweep's Scan Context against the map's keyframes, each
 /// candidate registered with no guess (global_registration.h) and then refined against the map. Every sweep
@@ -16,7 +16,7 @@
 #include "roadslam/registration/global_registration.h"
 #include "roadslam/registration/registration.h"
 
-namespace roadslam::mapping {
+namespace roadslam::localization {
 
 /// Ini sections [localization] and [localization_track] (registration::Params keys); the relocalization's
 /// global registration is the loop closure's ([loop_closure_global], set by the caller).
@@ -53,7 +53,7 @@ struct LocalizationResult {
 
 class Localizer {
  public:
-  Localizer(MapFolder map, LocalizerParams p = {});
+  Localizer(mapping::MapFolder map, LocalizerParams p = {});
   ~Localizer();
   /// Localizes one deskewed sweep (lidar frame [m]). Tracks from the prediction when the previous sweep
   /// was localized, relocalizes otherwise or when tracking fails.
@@ -69,4 +69,4 @@ class Localizer {
   std::unique_ptr<Impl> impl_;
 };
 
-}  // namespace roadslam::mapping
+}  // namespace roadslam::localization

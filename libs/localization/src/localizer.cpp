@@ -1,4 +1,4 @@
-#include "roadslam/mapping/localizer.h"
+#include "roadslam/localization/localizer.h"
 
 #include <optional>
 #include <stdexcept>
@@ -9,7 +9,7 @@
 #include "roadslam/mapping/loop_closure.h"
 #include "roadslam/place/scan_context.h"
 
-namespace roadslam::mapping {
+namespace roadslam::localization {
 
 LocalizerParams::LocalizerParams() {
   track.method = registration::Method::IcpPointToPlane;
@@ -50,16 +50,16 @@ std::string toString(LocalizationStatus s) {
 }
 
 struct Localizer::Impl {
-  MapFolder map;
+  mapping::MapFolder map;
   LocalizerParams p;
   std::unique_ptr<registration::Target> target;
   place::ScanContextDatabase places;
-  mutable KeyframeFeatures features;  ///< map keyframes' global-registration features, on first use
+  mutable mapping::KeyframeFeatures features;  ///< map keyframes' global-registration features, on first use
   std::optional<Eigen::Isometry3d> last, before_last;  ///< T_map_lidar of the last two localized sweeps
   size_t map_points = 0;
 };
 
-Localizer::Localizer(MapFolder map, LocalizerParams p) : impl_(std::make_unique<Impl>()) {
+Localizer::Localizer(mapping::MapFolder map, LocalizerParams p) : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
   m.p = std::move(p);
   m.map = std::move(map);
@@ -148,4 +148,4 @@ LocalizationResult Localizer::localize(const std::vector<Eigen::Vector3d>& point
   return r;
 }
 
-}  // namespace roadslam::mapping
+}  // namespace roadslam::localization
