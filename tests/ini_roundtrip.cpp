@@ -18,8 +18,8 @@
 #include "roadslam/datasets/kitti_scans.h"
 #include "roadslam/experiment/jobs.h"
 #include "roadslam/grabber/params.h"
+#include "roadslam/jobs/map_job.h"
 #include "roadslam/odometry/odometry.h"
-#include "roadslam/pipeline/map_job.h"
 #include "roadslam/preprocess/chain.h"
 #include "roadslam/sim/simulator.h"
 #include "roadslam/vehicle/params.h"
@@ -34,7 +34,7 @@ namespace {
 /// Loads \p cfg with the components that read a kind of ini and returns what they save.
 using Reader = std::function<std::string(const Config&)>;
 
-std::string mapJob(const Config& cfg) { return pipeline::effectiveMapConfig(cfg); }
+std::string mapJob(const Config& cfg) { return jobs::effectiveMapConfig(cfg); }
 
 std::string boundsJob(const Config& cfg) {  // what runBoundsJob reads
   boundary::Params bp;

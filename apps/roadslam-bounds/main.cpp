@@ -2,13 +2,13 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 
-#include "roadslam/pipeline/bounds_job.h"
+#include "roadslam/jobs/bounds_job.h"
 #include "roadslam/common/cli.h"
 #include "roadslam/common/stop_signal.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"Road boundaries (curbs), obstacles, free space and a cost grid per sweep"};
-  roadslam::pipeline::BoundsRequest req;
+  roadslam::jobs::BoundsRequest req;
   bool quiet = false, json = false;
   roadslam::addVersionFlag(app, "roadslam-bounds");
   app.add_option("--config", req.config_path, "ini file (e.g. ini/bounds.ini)")->required()->check(CLI::ExistingFile);
@@ -33,8 +33,8 @@ int main(int argc, char** argv) {
   req.progress = !quiet;
   roadslam::installStopSignalHandlers();
   try {
-    const auto summary = roadslam::pipeline::runBoundsJob(req);
-    if (!quiet) std::cout << (json ? summary.dump(2) + "\n" : roadslam::pipeline::boundsSummaryText(summary, req.out_dir));
+    const auto summary = roadslam::jobs::runBoundsJob(req);
+    if (!quiet) std::cout << (json ? summary.dump(2) + "\n" : roadslam::jobs::boundsSummaryText(summary, req.out_dir));
     for (const auto& w : summary["warnings"]) std::cerr << "roadslam-bounds: warning: " << w.get<std::string>() << "\n";
     return 0;
   } catch (const std::exception& e) {

@@ -4,11 +4,11 @@
 
 #include "roadslam/common/cli.h"
 #include "roadslam/common/stop_signal.h"
-#include "roadslam/pipeline/map_job.h"
+#include "roadslam/jobs/map_job.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"LiDAR odometry and mapping over a recording (.pcap, .rawlog or a KITTI .bin folder)"};
-  roadslam::pipeline::MapRequest req;
+  roadslam::jobs::MapRequest req;
   bool quiet = false, json = false;
   roadslam::addVersionFlag(app, "roadslam-map");
   app.add_option("--config", req.config_path, "ini file (e.g. ini/default.ini)")->required()->check(CLI::ExistingFile);
@@ -38,8 +38,8 @@ int main(int argc, char** argv) {
   req.progress = !quiet;
   roadslam::installStopSignalHandlers();
   try {
-    const auto out = roadslam::pipeline::runMapJob(req);
-    if (!quiet) std::cout << (json ? out.summary.dump(2) + "\n" : roadslam::pipeline::summaryText(out.summary, req.out_dir));
+    const auto out = roadslam::jobs::runMapJob(req);
+    if (!quiet) std::cout << (json ? out.summary.dump(2) + "\n" : roadslam::jobs::summaryText(out.summary, req.out_dir));
     for (const auto& w : out.summary["warnings"]) std::cerr << "roadslam-map: warning: " << w.get<std::string>() << "\n";
     return out.interrupted ? 130 : 0;
   } catch (const std::exception& e) {

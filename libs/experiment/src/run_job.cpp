@@ -9,8 +9,8 @@
 #include "roadslam/common/atomic_file.h"
 #include "roadslam/eval/boundary_metrics.h"
 #include "roadslam/eval/evaluate.h"
-#include "roadslam/pipeline/bounds_job.h"
-#include "roadslam/pipeline/map_job.h"
+#include "roadslam/jobs/bounds_job.h"
+#include "roadslam/jobs/map_job.h"
 #include "roadslam/runfolder/run_folder.h"
 
 namespace fs = std::filesystem;
@@ -46,9 +46,9 @@ Request jobRequest(const std::string& dir, const nlohmann::json& job, const std:
 }
 
 void runTrajectoryStage(const std::string& dir, const nlohmann::json& job, bool maps, nlohmann::json& m) {
-  auto req = jobRequest<pipeline::MapRequest>(dir, job, "map");
+  auto req = jobRequest<jobs::MapRequest>(dir, job, "map");
   req.maps = maps;
-  pipeline::runMapJob(req);
+  jobs::runMapJob(req);
   const runfolder::MapSummary s = runfolder::openMapRun(req.out_dir).mapSummary();  // the folder as it was written
   m["frames"] = s.frames;
   m["failed_frames"] = s.byStatus("not_converged") + s.byStatus("empty");
@@ -60,7 +60,7 @@ void runTrajectoryStage(const std::string& dir, const nlohmann::json& job, bool 
 
 void runBoundsStage(const std::string& dir, const nlohmann::json& job, nlohmann::json& m) {
   const auto& d = job["dataset"];
-  auto req = jobRequest<pipeline::BoundsRequest>(dir, job, "bounds");
+  auto req = jobRequest<jobs::BoundsRequest>(dir, job, "bounds");
   req.png_every = 0;
   const std::string poses = job["bounds_poses"];
   const std::string own_tum = dir + "/map/" + runfolder::kTrajectoryTum;
@@ -68,7 +68,7 @@ void runBoundsStage(const std::string& dir, const nlohmann::json& job, nlohmann:
   if (poses == "gt" || (poses == "auto" && !own)) req.trajectory_path = d["gt"];
   if (poses == "auto" && own) req.trajectory_path = own_tum;
   if (poses == "gt" && req.trajectory_path.empty()) throw std::runtime_error("bounds_poses = gt, but the dataset has no gt");
-  const runfolder::BoundsSummary s = runfolder::boundsSummaryFromJson(pipeline::runBoundsJob(req), req.out_dir + "/summary.json");
+  const runfolder::BoundsSummary s = runfolder::boundsSummaryFromJson(jobs::runBoundsJob(req), req.out_dir + "/summary.json");
   m["both_found_rate"] = s.both_found_rate;
   m["bounds_ms_per_frame"] = s.ms_per_frame_mean;
 }

@@ -11,7 +11,7 @@
 #include "roadslam/boundary/params.h"
 #include "roadslam/common/checked_config.h"
 #include "roadslam/common/config.h"
-#include "roadslam/pipeline/map_job.h"
+#include "roadslam/jobs/map_job.h"
 
 namespace fs = std::filesystem;
 
@@ -195,7 +195,7 @@ bool ExperimentSpec::has(Stage s) const { return std::find(stages.begin(), stage
 
 std::vector<std::string> knownConfigKeys(const std::string& config_path) {
   const auto cfg = loadIniFile(config_path);
-  mrpt::config::CConfigFileMemory all(pipeline::effectiveMapConfig(*cfg));
+  mrpt::config::CConfigFileMemory all(jobs::effectiveMapConfig(*cfg));
   boundary::Params bp;
   bp.loadFromConfigFile(*cfg);
   bp.saveToConfigFile(all);

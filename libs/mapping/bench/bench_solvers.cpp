@@ -21,7 +21,7 @@
 #include <string>
 
 #include "roadslam/datasets/trajectory_io.h"
-#include "roadslam/mapping/gnss_fusion.h"
+#include "roadslam/gnss_fusion/gnss_fusion.h"
 #include "roadslam/mapping/pose_graph.h"
 
 using namespace roadslam;
@@ -203,7 +203,7 @@ int graph(int argc, char** argv) {
   }
   if (stamps.size() != N) throw std::runtime_error("frames.csv has " + std::to_string(stamps.size()) + " keyframes, the graph " + std::to_string(N));
   std::vector<Eigen::Vector3d> truth;
-  for (const double t : stamps) truth.push_back((interpolatePose(gt.stamps_s, gt.poses, t) * mount).translation());
+  for (const double t : stamps) truth.push_back((gnss_fusion::interpolatePose(gt.stamps_s, gt.poses, t) * mount).translation());
   std::printf("map job %s: %zu keyframes, %zu edges (%zu loop edges); keyframe ATE after a rigid fit to the truth: "
               "odometry %.3f m, the job's own (incremental) graph %.3f m\n",
               run.c_str(), N, edges.size(), loops, ate(init, truth), ate(job, truth));

@@ -12,8 +12,8 @@
 // Jacobians by automatic differentiation (the own LM takes central differences).
 #include <ceres/ceres.h>
 
-#include "ceres_se3.h"
 #include "pose_graph_solver.h"
+#include "roadslam/common/ceres_se3.h"
 
 namespace roadslam::mapping::detail {
 
@@ -31,7 +31,7 @@ SolverResult optimizePosesCeres(PoseVector& T, const std::vector<SolverEdge>& ed
   ceres::Problem problem(po);
   ceres::EigenQuaternionManifold quaternion;
   for (const auto& e : edges) {
-    auto* f = RelativePoseResidual::create(e.T_from_to, e.information);
+    auto* f = ceres_se3::RelativePoseResidual::create(e.T_from_to, e.information);
     problem.AddResidualBlock(f, nullptr, t[e.from].data(), q[e.from].coeffs().data(), t[e.to].data(),
                              q[e.to].coeffs().data());
   }

@@ -8,7 +8,7 @@
 #include <fstream>
 #include <iostream>
 
-#include "roadslam/mapping/localizer.h"
+#include "roadslam/localization/localizer.h"
 #include "roadslam/mapping/mapper.h"
 #include "roadslam/pipeline/vehicle_prior.h"
 #include "roadslam/sim/can_output.h"
@@ -17,6 +17,7 @@
 #include "sim_drive.h"
 
 using namespace roadslam;
+using namespace roadslam::localization;
 using namespace roadslam::mapping;
 
 namespace {

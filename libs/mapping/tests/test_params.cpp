@@ -6,7 +6,6 @@
 #include <fstream>
 
 #include "roadslam/common/config.h"
-#include "roadslam/mapping/gnss_fusion.h"
 #include "roadslam/mapping/map_outputs.h"
 #include "roadslam/mapping/mapper.h"
 #include "roadslam/mapping/pose_graph.h"
@@ -58,45 +57,33 @@ TEST(MappingParams, UnknownAndBadKeysAreNamed) {
   EXPECT_THROW(op.loadFromConfigFile(bad), std::runtime_error);
 }
 
-// The solvers' ini keys: [pose_graph] optimizer and [gnss_fusion] optimizer select the solver from a
-// file, default to the own solvers, and an unknown value names the key and the file.
+// The solver's ini key: [pose_graph] optimizer selects the solver from a file, defaults to the own
+// solver, and an unknown value names the key and the file ([gnss_fusion] optimizer: libs/gnss_fusion's
+// GnssFusionIni.OptimizerKeySelectsTheSolver).
 TEST(MappingParams, OptimizerKeysSelectTheSolver) {
   const std::string path = std::string(ROADSLAM_BINARY_DIR) + "/test-out-optimizer-keys.ini";
-  auto write = [&](const std::string& graph, const std::string& gnss) {
-    std::ofstream(path) << "[pose_graph]\noptimizer = " << graph << "\n[gnss_fusion]\noptimizer = " << gnss << "\n";
-  };
+  auto write = [&](const std::string& graph) { std::ofstream(path) << "[pose_graph]\noptimizer = " << graph << "\n"; };
   EXPECT_EQ(PoseGraphParams{}.optimizer, GraphOptimizer::Lm);
-  EXPECT_EQ(GnssFusionParams{}.optimizer, GnssOptimizer::GaussNewton);
-  write("ceres", "ceres");
+  write("ceres");
   PoseGraphParams g;
-  GnssFusionParams f;
   g.loadFromConfigFile(*loadIniFile(path));
-  f.loadFromConfigFile(*loadIniFile(path));
   EXPECT_EQ(g.optimizer, GraphOptimizer::Ceres);
-  EXPECT_EQ(f.optimizer, GnssOptimizer::Ceres);
   // saved as loaded (config_used.ini)
   mrpt::config::CConfigFileMemory mem;
   g.saveToConfigFile(mem);
-  f.saveToConfigFile(mem);
   EXPECT_EQ(mem.read_string("pose_graph", "optimizer", ""), "ceres");
-  EXPECT_EQ(mem.read_string("gnss_fusion", "optimizer", ""), "ceres");
-  write("lm", "gauss_newton");
+  write("lm");
   g.loadFromConfigFile(*loadIniFile(path));
-  f.loadFromConfigFile(*loadIniFile(path));
   EXPECT_EQ(g.optimizer, GraphOptimizer::Lm);
-  EXPECT_EQ(f.optimizer, GnssOptimizer::GaussNewton);
-  for (const std::string section : {"pose_graph", "gnss_fusion"}) {
-    write(section == "pose_graph" ? "g2o" : "lm", section == "gnss_fusion" ? "g2o" : "gauss_newton");
-    try {
-      if (section == "pose_graph") g.loadFromConfigFile(*loadIniFile(path));
-      else f.loadFromConfigFile(*loadIniFile(path));
-      ADD_FAILURE() << section << ": g2o accepted";
-    } catch (const std::runtime_error& e) {
-      const std::string what = e.what();
-      EXPECT_NE(what.find(path), std::string::npos) << what;
-      EXPECT_NE(what.find("optimizer"), std::string::npos) << what;
-      EXPECT_NE(what.find("g2o"), std::string::npos) << what;
-    }
+  write("g2o");
+  try {
+    g.loadFromConfigFile(*loadIniFile(path));
+    ADD_FAILURE() << "pose_graph: g2o accepted";
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(path), std::string::npos) << what;
+    EXPECT_NE(what.find("optimizer"), std::string::npos) << what;
+    EXPECT_NE(what.find("g2o"), std::string::npos) << what;
   }
   std::filesystem::remove(path);
 }

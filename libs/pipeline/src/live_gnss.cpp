@@ -8,7 +8,7 @@
 
 namespace roadslam::pipeline {
 
-LiveGnss::LiveGnss(const mapping::GnssFusionParams& p) : online_(p), p_(p) {
+LiveGnss::LiveGnss(const gnss_fusion::GnssFusionParams& p) : online_(p), p_(p) {
   counts_.source = p.live_source_label;
   counts_.source_chosen = has_source_ = !p.live_source_label.empty();
 }
@@ -60,7 +60,7 @@ std::optional<Eigen::Isometry3d> LiveGnss::correct(double t_s, const Eigen::Isom
       origin_ = g.position;
       enu_.emplace(g.position);
     }
-    mapping::GnssFactor factor;
+    gnss_fusion::GnssFactor factor;
     factor.t_s = f.t_receive_s;
     factor.p_enu = enu_->toEnu(g.position);
     factor.cov = g.covarianceEnu(p_.uere_m, p_.fallback_sigma_m);

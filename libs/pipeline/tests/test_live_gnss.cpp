@@ -17,7 +17,7 @@ namespace {
 // A 60 s drive at 15 m/s along gentle bends; the odometry turns 0.05 deg/s too fast and is 0.5 % long.
 struct Drive {
   std::vector<double> t;
-  mapping::PoseVector truth, odom;
+  gnss_fusion::PoseVector truth, odom;
 };
 Drive drive() {
   Drive d;
@@ -42,7 +42,7 @@ Drive drive() {
 TEST(LiveGnss, CorrectsTheLiveOdometryInEnu) {
   const Drive d = drive();
   const gnss::EnuFrame world({48.1, 11.5, 500});  // the truth's frame
-  mapping::GnssFusionParams p;
+  gnss_fusion::GnssFusionParams p;
   p.edge_sigma_t_per_m = 0.01;
   p.online_yaw_rate_bias = true;  // a dead reckoning's drift: both states on
   p.online_odometry_scale = true;
@@ -107,7 +107,7 @@ TwoSources runTwoSources(const std::string& label) {
   const Drive d = drive();
   const gnss::EnuFrame world({48.1, 11.5, 500});
   const Eigen::Vector3d shift(20, 0, 0);
-  mapping::GnssFusionParams p;
+  gnss_fusion::GnssFusionParams p;
   p.edge_sigma_t_per_m = 0.01;
   p.online_yaw_rate_bias = true;
   p.online_odometry_scale = true;
@@ -182,7 +182,7 @@ TEST(LiveGnss, FusesOneSourceTheFirstWithAFixOrTheOneNamed) {
 // The no-fix records that arrive before any source has a fix are counted under their own source once
 // one is chosen: here 2 of GNSS (its own no fix) and 3 of CAN_GPS (left out), not 5 under GNSS.
 TEST(LiveGnss, NoFixRecordsBeforeTheChoiceCountUnderTheirOwnSource) {
-  pipeline::LiveGnss live(mapping::GnssFusionParams{});
+  pipeline::LiveGnss live(gnss_fusion::GnssFusionParams{});
   auto post = [&live](const char* label, bool valid) {
     gnss::GnssFix f;
     f.label = label;

@@ -297,7 +297,7 @@ TEST(StageFactory, TheJobsListsInTheirOrder) {
   }
   {
     pipeline::StageRequest r;
-    r.live_gnss = std::make_shared<pipeline::LiveGnss>(mapping::GnssFusionParams{});
+    r.live_gnss = std::make_shared<pipeline::LiveGnss>(gnss_fusion::GnssFusionParams{});
     chain.objects.enabled = false;
     EXPECT_EQ(names(pipeline::buildStages(chain, std::move(r))), V({"poses", "gnss"}));
   }

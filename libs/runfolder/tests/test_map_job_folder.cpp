@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "roadslam/pipeline/map_job.h"
+#include "roadslam/jobs/map_job.h"
 #include "roadslam/runfolder/run_folder.h"
 #include "roadslam/sim/outputs.h"
 #include "test_util.h"
@@ -18,7 +18,7 @@ namespace {
 
 struct JobRun {
   std::string drive, dir;
-  pipeline::MapOutcome out;
+  jobs::MapOutcome out;
 };
 
 JobRun runJob() {
@@ -30,12 +30,12 @@ JobRun runJob() {
   const std::string ini = x.dir + "-objects.ini";
   runfolder::test::writeText(ini, runfolder::test::readText(std::string(ROADSLAM_SOURCE_DIR) + "/ini/default.ini") +
                                       "\n[objects]\nenabled = true\n");
-  pipeline::MapRequest req;
+  jobs::MapRequest req;
   req.config_path = ini;
   req.input_path = x.drive + "/velodyne.pcap";
   req.out_dir = x.dir;
   req.progress = false;
-  x.out = pipeline::runMapJob(req);
+  x.out = jobs::runMapJob(req);
   return x;
 }
 

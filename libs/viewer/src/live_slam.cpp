@@ -30,7 +30,7 @@ struct Config {
   std::unique_ptr<CheckedConfig> cfg;
   pipeline::ChainParams chain;
   velodyne::DecoderParams decoder;
-  mapping::GnssFusionParams gnss;
+  gnss_fusion::GnssFusionParams gnss;
   explicit Config(const std::string& path) : cfg(loadIniFile(path)) {
     chain.odometry.loadFromConfigFile(*cfg);
     chain.objects.loadFromConfigFile(*cfg, "objects", "preprocess");

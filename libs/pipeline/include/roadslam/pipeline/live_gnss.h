@@ -2,7 +2,7 @@
 /// \file live_gnss.h
 /// The online GNSS correction on a live feed: CObservationGPS records as they arrive
 /// (roadslam-grab's receiver epochs, a car's CAN_GPS) and the odometry's frames, in one
-/// mapping::OnlineGnssFusion. The ENU frame is at the first valid fix (as gnss_outputs.h).
+/// gnss_fusion::OnlineGnssFusion. The ENU frame is at the first valid fix (as jobs/gnss_outputs.h).
 /// Fixes are stamped with their receive time: the frames of a live feed carry the host's receive
 /// time, and the receiver's UTC is another clock (a replayed log's is the recording's day).
 /// One GPS source is fused, never a mix of receivers (their antennas, clocks and errors differ; as
@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "roadslam/gnss/geo.h"
-#include "roadslam/mapping/gnss_fusion_online.h"
+#include "roadslam/gnss_fusion/gnss_fusion_online.h"
 #include "roadslam/sources/gps_fix.h"
 
 namespace roadslam::pipeline {
@@ -27,7 +27,7 @@ struct LiveGnssCounts {
   /// every record posted (none has a fix).
   std::size_t epochs = 0, no_fix = 0;
   std::size_t fixes = 0;               ///< valid fixes handed to the online mode [count]
-  std::size_t solves = 0, failed = 0, rejected = 0;  ///< mapping::GnssOnlineStats [count]
+  std::size_t solves = 0, failed = 0, rejected = 0;  ///< gnss_fusion::GnssOnlineStats [count]
   bool anchored = false;
   std::string source;          ///< the label of the source fused (empty until one gives a fix)
   bool source_chosen = false;  ///< named by live_source_label (else the first source with a fix)
@@ -36,7 +36,7 @@ struct LiveGnssCounts {
 
 class LiveGnss {
  public:
-  explicit LiveGnss(const mapping::GnssFusionParams& p);
+  explicit LiveGnss(const gnss_fusion::GnssFusionParams& p);
   /// A fix as it arrived (any thread); one of another source than the one fused is only counted.
   void post(const gnss::GnssFix& f);
   /// The frame at \p t_s with the odometry's pose; its T_enu_lidar once the online mode anchored.
@@ -54,8 +54,8 @@ class LiveGnss {
   std::vector<gnss::GnssFix> pending_;
   std::optional<gnss::EnuFrame> enu_;
   std::optional<gnss::Geodetic> origin_;
-  mapping::OnlineGnssFusion online_;
-  mapping::GnssFusionParams p_;
+  gnss_fusion::OnlineGnssFusion online_;
+  gnss_fusion::GnssFusionParams p_;
   LiveGnssCounts counts_;
   bool has_source_ = false;  ///< the source is set (chosen, or the first with a fix)
   std::map<std::string, std::size_t> no_fix_before_source_;  ///< per label, until a source is set [count]

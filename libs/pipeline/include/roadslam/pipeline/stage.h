@@ -29,7 +29,7 @@
 
 #include "roadslam/boundary/detector.h"
 #include "roadslam/common/scan.h"
-#include "roadslam/mapping/localizer.h"
+#include "roadslam/localization/localizer.h"
 #include "roadslam/objects/stage.h"
 #include "roadslam/pipeline/sweep_pose.h"
 
@@ -58,7 +58,7 @@ struct PipelineFrame {
   /// drops it after the stages (and the odometry may have taken its points).
   std::optional<Scan> scan;
   SweepPose pose;                                   ///< the pose stage's
-  std::optional<mapping::LocalizationResult> localization;  ///< the localization stage's
+  std::optional<localization::LocalizationResult> localization;  ///< the localization stage's
   std::optional<objects::ObjectsFrame> objects;     ///< the objects stage's: objects (with a pose) and confirmed tracks
   /// The dynamic-removal stage's: the odometry's points without the moving objects', for the maps
   /// stage (lidar frame), and the earlier keyframes' points to drop.

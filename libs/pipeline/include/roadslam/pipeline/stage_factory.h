@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "roadslam/boundary/detector.h"
-#include "roadslam/mapping/localizer.h"
+#include "roadslam/localization/localizer.h"
 #include "roadslam/mapping/map_folder.h"
 #include "roadslam/mapping/map_outputs.h"
 #include "roadslam/mapping/mapper.h"
@@ -33,7 +33,7 @@ struct ChainParams {
   objects::TrackerParams tracking;    ///< [tracking]
   mapping::MapperParams mapper;       ///< [keyframes], [loop_closure], ...
   mapping::MapOutputParams maps;      ///< [octomap], [point_map], [seen_through], ...
-  mapping::LocalizerParams localizer; ///< [localization]; its global registration: [loop_closure_global]
+  localization::LocalizerParams localizer; ///< [localization]; its global registration: [loop_closure_global]
 };
 
 /// What a job asks of the chain beyond its ini.

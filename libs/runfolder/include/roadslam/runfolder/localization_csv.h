@@ -13,7 +13,7 @@ constexpr const char* kLocalizationCsv = "localization.csv";
 struct LocalizationRow {
   size_t frame = 0;        ///< frames.csv index [-]
   double stamp_s = 0;      ///< [s]
-  std::string status;      ///< mapping::toString(LocalizationStatus): tracked, relocalized, lost
+  std::string status;      ///< localization::toString(LocalizationStatus): tracked, relocalized, lost
   double confidence = 0;   ///< overlap of the final alignment [0, 1]
   size_t keyframe = 0;     ///< relocalized: the prior map's keyframe it was found at [-]
   int weak_directions = 0; ///< [-]
