@@ -244,6 +244,27 @@ TEST(AppsCli, EvalWarnsWhenFewPosesPair) {
   EXPECT_TRUE(nlohmann::json::parse(ok.out)["warnings"].empty());
 }
 
+// A KITTI estimate without its times against a timed ground truth would pair unrelated poses by
+// index; a ground truth that does not move leaves nothing to score per distance: both refused.
+TEST(AppsCli, EvalRefusesAnUntimedSideAndAStandingGroundTruth) {
+  if (!built("roadslam-eval")) GTEST_SKIP() << "roadslam-eval not built";
+  const fs::path dir = fs::path(::testing::TempDir()) / "apps_cli_eval_refusals";
+  fs::create_directories(dir);
+  const auto gt = drive(16, 1700000000.0);
+  datasets::writeTum((dir / "gt.tum").string(), gt);
+  datasets::writeKittiPoses((dir / "est_kitti.txt").string(), gt.poses);
+  const AppRun untimed = run("roadslam-eval", "--gt " + (dir / "gt.tum").string() + " --est " + (dir / "est_kitti.txt").string());
+  EXPECT_EQ(untimed.code, 1) << untimed.out;
+  EXPECT_NE(untimed.err.find("est_kitti.txt' is a KITTI 3x4 file without times"), std::string::npos) << untimed.err;
+  EXPECT_NE(untimed.err.find("--est-times"), std::string::npos) << untimed.err;
+  auto standing = gt;
+  for (auto& T : standing.poses) T = gt.poses.front();
+  datasets::writeTum((dir / "standing.tum").string(), standing);
+  const AppRun still = run("roadslam-eval", "--gt " + (dir / "standing.tum").string() + " --est " + (dir / "standing.tum").string());
+  EXPECT_EQ(still.code, 1) << still.out;
+  EXPECT_NE(still.err.find("the 16 matched ground-truth poses span 0.000 m"), std::string::npos) << still.err;
+}
+
 TEST(AppsCli, EvalCalibTurnsCameraGroundTruthIntoLidarFrame) {
   if (!built("roadslam-eval")) GTEST_SKIP() << "roadslam-eval not built";
   const fs::path dir = fs::path(::testing::TempDir()) / "apps_cli_eval_calib";
@@ -274,10 +295,11 @@ TEST(AppsCli, EvalCalibTurnsCameraGroundTruthIntoLidarFrame) {
   const auto jw = nlohmann::json::parse(with.out);
   EXPECT_LT(jw["rpe_trans_rmse_m"].get<double>(), 1e-6);
   EXPECT_LT(jw["ate_rmse_origin_aligned_m"].get<double>(), 1e-6);
+  // Without --calib the camera-frame ground truth is refused: its figures would be meaningless.
   const AppRun without = run("roadslam-eval", args);
-  ASSERT_EQ(without.code, 0) << without.err;
-  EXPECT_GT(nlohmann::json::parse(without.out)["ate_rmse_origin_aligned_m"].get<double>(), 1.0)
-      << "camera and LiDAR frames should differ without --calib";
+  EXPECT_EQ(without.code, 1) << without.out;
+  EXPECT_NE(without.err.find("moves along its z axis"), std::string::npos) << without.err;
+  EXPECT_NE(without.err.find("--calib"), std::string::npos) << without.err;
   const AppRun bad = run("roadslam-eval", args + " --calib " + (dir / "times.txt").string());
   EXPECT_EQ(bad.code, 1);
   EXPECT_NE(bad.err.find("no 'Tr:' line"), std::string::npos) << bad.err;

@@ -188,6 +188,12 @@ void makeFiles() {
   write(w / "words.tum", "# t x y z qx qy qz qw\n1.0 0 0 zero 0 0 0 1\n");
   write(w / "a.tum", "1.0 0 0 0 0 0 0 1\n2.0 1 0 0 0 0 0 1\n3.0 2 0 0 0 0 0 1\n");
   write(w / "later.tum", "100.0 0 0 0 0 0 0 1\n101.0 1 0 0 0 0 0 1\n");
+  write(w / "standing.tum", "1.0 5 0 0 0 0 0 1\n2.0 5 0 0 0 0 0 1\n3.0 5 0 0 0 0 0 1\n");
+  write(w / "a_kitti.txt", "1 0 0 0 0 1 0 0 0 0 1 0\n1 0 0 1 0 1 0 0 0 0 1 0\n1 0 0 2 0 1 0 0 0 0 1 0\n");
+  // KITTI odometry's camera frame: the car goes along z (forward), 1 m a pose
+  write(w / "camera.txt", "1 0 0 0 0 1 0 0 0 0 1 0\n1 0 0 0 0 1 0 0 0 0 1 1\n1 0 0 0 0 1 0 0 0 0 1 2\n1 0 0 0 0 1 0 0 0 0 1 3\n");
+  write(w / "camera-times.txt", "1.0\n2.0\n3.0\n4.0\n");
+  write(w / "lidar.tum", "1.0 0 0 0 0 0 0 1\n2.0 1 0 0 0 0 0 1\n3.0 2 0 0 0 0 0 1\n4.0 3 0 0 0 0 0 1\n");
   // simulator and grabber inis
   write(w / "sim-typo.ini", fileText(kSrc + "/ini/sim/urban-loop.ini") + "\n[lidar]\nrange_nosie_m = 0.1\n");
   {
@@ -312,6 +318,9 @@ const Row kTable[] = {
   {"eval-three-columns",   "roadslam-eval --gt {W}/three-columns.tum --est {W}/a.tum", 1, "3 columns, expected 8"},
   {"eval-words",           "roadslam-eval --gt {W}/words.tum --est {W}/a.tum", 1, "words.tum"},
   {"eval-no-pairs",        "roadslam-eval --gt {W}/a.tum --est {W}/later.tum", 1, "only 0 poses"},
+  {"eval-untimed-est",     "roadslam-eval --gt {W}/a.tum --est {W}/a_kitti.txt", 1, "a_kitti.txt' is a KITTI 3x4 file without times"},
+  {"eval-standing-gt",     "roadslam-eval --gt {W}/standing.tum --est {W}/standing.tum", 1, "span 0.000 m: no motion to score"},
+  {"eval-camera-gt",       "roadslam-eval --gt {W}/camera.txt --gt-times {W}/camera-times.txt --est {W}/lidar.tum", 1, "with --calib"},
   // roadslam-sim
   {"sim-typo-key",         "roadslam-sim --scenario {W}/sim-typo.ini --out {O}", 1, "range_nosie_m"},
   {"sim-bad-value",        "roadslam-sim --scenario {W}/sim-bad-value.ini --out {O}", 1, "duration_s"},

@@ -27,6 +27,30 @@ int columnsOfFirstDataLine(const std::string& path) {
   throw std::runtime_error("trajectory '" + path + "' holds no pose");
 }
 
+/// The first displacement of at least \p min_m from the first pose, in the first pose's frame; zero
+/// when the trajectory never moves that far.
+Eigen::Vector3d firstMotion(const datasets::PoseList& poses, double min_m) {
+  if (poses.empty()) return Eigen::Vector3d::Zero();
+  for (const auto& T : poses) {
+    const Eigen::Vector3d d = poses.front().rotation().transpose() * (T.translation() - poses.front().translation());
+    if (d.norm() >= min_m) return d;
+  }
+  return Eigen::Vector3d::Zero();
+}
+
+/// KITTI odometry's ground truth holds camera 0's poses (x right, y down, z forward): a car moves along
+/// its z axis. A LiDAR trajectory (x forward, z up) moves in its x-y plane. Told apart by the first
+/// 2 m of motion of each, in its own first pose's frame.
+void refuseCameraFrameGt(const MatchedTrajectories& m, const EvalRequest& req) {
+  const Eigen::Vector3d g = firstMotion(m.gt, 2.0), e = firstMotion(m.est, 2.0);
+  if (g.isZero() || e.isZero()) return;
+  if (std::abs(g.z()) > 0.8 * g.norm() && std::abs(e.z()) < 0.3 * e.norm()) {
+    throw std::runtime_error("'" + req.gt_path + "' moves along its z axis, as KITTI odometry's camera-frame poses "
+                             "(z forward) do, and '" + req.est_path + "' in its x-y plane: give the sequence's "
+                             "calib.txt with --calib to turn the ground truth into LiDAR poses");
+  }
+}
+
 }  // namespace
 
 datasets::Trajectory readTrajectoryAnyFormat(const std::string& path, const std::string& times_path) {
@@ -48,6 +72,14 @@ EvalOutcome evaluate(const EvalRequest& req) {
     gt.poses = datasets::cameraPosesToVelodyne(gt.poses, datasets::readKittiOdometryCalib(req.gt_calib_path).T_cam0_velo);
   }
   const auto est = readTrajectoryAnyFormat(req.est_path, req.est_times_path);
+  // Pairing a timed file with an untimed one by index pairs unrelated poses: refused.
+  if (gt.stamps_s.empty() != est.stamps_s.empty()) {
+    const bool gt_untimed = gt.stamps_s.empty();
+    throw std::runtime_error("'" + (gt_untimed ? req.gt_path : req.est_path) +
+                             "' is a KITTI 3x4 file without times and '" + (gt_untimed ? req.est_path : req.gt_path) +
+                             "' has them: give " + (gt_untimed ? "--gt-times" : "--est-times") +
+                             " (the drive's times.txt), or two files without times to pair by index");
+  }
   EvalOutcome out;
   out.matched = associate(gt, est, req.max_dt_s);
   out.est_poses = est.poses.size();
@@ -72,10 +104,17 @@ EvalOutcome evaluate(const EvalRequest& req) {
                              req.est_path + "' match '" + req.gt_path +
                              "' in time (tolerance " + std::to_string(req.max_dt_s) + " s)");
   }
+  if (req.gt_calib_path.empty()) refuseCameraFrameGt(out.matched, req);
   try {
     out.metrics = computeMetrics(out.matched, req.metrics);
   } catch (const std::invalid_argument& e) {
     throw std::runtime_error(e.what());
+  }
+  if (out.metrics.path_length_m < 0.01) {  // relative errors per distance would divide by nothing
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "the %d matched ground-truth poses span %.3f m: no motion to score", out.metrics.matched_poses,
+                  out.metrics.path_length_m);
+    throw std::runtime_error(buf);
   }
   if (!req.plot_path.empty()) {
     plotTrajectories(req.plot_path, out.matched, out.metrics, req.est_path + " vs " + req.gt_path);

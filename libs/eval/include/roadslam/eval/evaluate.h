@@ -39,8 +39,11 @@ struct EvalOutcome {
   std::vector<std::string> warnings;  ///< for stderr and the JSON output (e.g. few poses paired)
 };
 
-/// Runs the evaluation; throws std::runtime_error with a one-line reason on bad input
-/// (missing file, malformed line, fewer than 2 matched poses).
+/// Runs the evaluation; throws std::runtime_error with a one-line reason on bad input (missing file,
+/// malformed line, fewer than 2 matched poses) and on a pairing whose figures would be wrong: one side
+/// with stamps and the other without, matched ground truth spanning under 1 cm, or (without
+/// gt_calib_path) a ground truth moving along its z axis (KITTI's camera frame) against an estimate
+/// moving in its x-y plane.
 EvalOutcome evaluate(const EvalRequest& req);
 
 nlohmann::json toJson(const TrajectoryMetrics& m);
