@@ -240,6 +240,9 @@ const Row kTable[] = {
   {"map-kitti-times-value","roadslam-map --config {S}/ini/default.ini --input {W}/kitti-bad-times-value/velodyne --out {O}", 1, "times.txt:1"},
   {"map-out-is-a-file",    "roadslam-map --config {S}/ini/default.ini --input {W}/truncated.pcap --out {W}/a-file/x", 1, "cannot create output folder"},
   // roadslam-map: inis
+  {"map-config-pcap",      "roadslam-map --config {W}/truncated.pcap --input {W}/truncated.pcap --out {O}", 1, "truncated.pcap' is a binary file, not an ini"},
+  {"map-config-empty",     "roadslam-map --config {W}/empty.nmea --input {W}/truncated.pcap --out {O}", 1, "empty.nmea' has no [section]: not a roadslam ini"},
+  {"sim-scenario-empty",   "roadslam-sim --scenario {W}/empty.nmea --out {O}", 1, "has no [section]"},
   {"map-typo-key",         "roadslam-map --config {W}/typo-key.ini --input {W}/truncated.pcap --out {O}", 1, "unknown key 'voxel_sise_m' in [odometry]"},
   {"map-typo-section",     "roadslam-map --config {W}/typo-section.ini --input {W}/truncated.pcap --out {O}", 1, "unknown section [odometri] (nearest known: [odometry])"},
   {"map-typo-allowed",     "roadslam-map --config {W}/typo-key.ini --input {W}/truncated.pcap --out {O} --quiet --allow-unknown-keys", 0, "warning: "},

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstring>
 #include <fstream>
 #include <stdexcept>
 
@@ -58,8 +59,16 @@ size_t editDistance(const std::string& a0, const std::string& b0) {
 }
 
 CheckedConfig::CheckedConfig(const std::string& path) : path_(path) {
-  std::ifstream in(path);
+  std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error("cannot open config file '" + path + "'");
+  {  // an ini is text: a NUL byte in its head means a capture, a rawlog or a map was given instead
+    char head[4096];
+    in.read(head, sizeof head);
+    if (std::memchr(head, '\0', static_cast<size_t>(in.gcount())))
+      throw std::runtime_error("config file '" + path + "' is a binary file, not an ini");
+    in.clear();
+    in.seekg(0);
+  }
   file_.setFileName(path);
   std::string line, section;
   for (int n = 1; std::getline(in, line); ++n) {
@@ -73,6 +82,10 @@ CheckedConfig::CheckedConfig(const std::string& path) : path_(path) {
     const auto eq = t.find('=');
     if (eq != std::string::npos) key_lines_.emplace(std::make_pair(section, lower(trim(t.substr(0, eq)))), n);
   }
+  // Every roadslam ini is made of sections: one without any would leave every component on its
+  // built-in defaults without a word.
+  if (section_lines_.empty())
+    throw std::runtime_error("config file '" + path + "' has no [section]: not a roadslam ini (every shipped one is in ini/)");
 }
 
 void CheckedConfig::writeString(const std::string& section, const std::string& name, const std::string& str) {
