@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "internal.h"
+#include "roadslam/rawlog/rawlog_session.h"
 #include "roadslam/sources/gps_fix.h"
 #include "roadslam/sources/rawlog_source.h"
 #include "roadslam/sources/recording.h"
@@ -73,13 +74,8 @@ std::string modelName(uint8_t product) {
 
 std::vector<std::string> recordingFiles(const std::string& path) {
   if (!fs::is_directory(path)) return {path};
-  std::vector<std::string> files;
-  for (const auto& e : fs::directory_iterator(path)) {
-    const std::string n = e.path().filename().string();
-    if (e.is_regular_file() && n.find(".rawlog") != std::string::npos && n.find(".ini") == std::string::npos)
-      files.push_back(e.path().string());
-  }
-  std::sort(files.begin(), files.end());  // grab_000, grab_001, ...: recording order
+  // the segments as every reader takes them: PREFIX_NNN.rawlog, in order; not their .idx or .ini
+  std::vector<std::string> files = rawlog::RawlogSession::segmentsOf(path);
   if (files.empty()) throw std::runtime_error(path + ": a folder without rawlog segments (grab_*.rawlog)");
   return files;
 }

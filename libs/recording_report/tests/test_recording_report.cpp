@@ -283,6 +283,8 @@ TEST(RecordingReport, GrabFolderSegmentsAndCanSidecarsReadAsOneRecording) {
     const std::string out = dir + "/session/grab_00" + (half[0] == 'a' ? "0" : "1") + ".rawlog";
     ASSERT_EQ(std::system((kBin + "/roadslam-rawlog convert " + dir + "/" + half + ".pcap " + out + " > /dev/null").c_str()), 0);
   }
+  // the index sidecar a replay leaves beside a segment (rawlog_index.h) is no segment either
+  fs::copy_file(dir + "/session/grab_000.rawlog", dir + "/session/grab_000.rawlog.idx");
   std::ifstream can(drive() + "/can.log");
   std::ofstream c0(dir + "/session/can_000.candump.log"), c1(dir + "/session/can_001.candump.log");
   std::string line;
@@ -292,7 +294,8 @@ TEST(RecordingReport, GrabFolderSegmentsAndCanSidecarsReadAsOneRecording) {
   in.recording = dir + "/session";
   const auto r = rr::buildReport(in);
   const auto whole = rr::buildReport(simInputs(drive() + "/velodyne.pcap"));
-  ASSERT_EQ(r.files.size(), 2u) << "the .rawlog.ini beside each segment is no segment";
+  ASSERT_EQ(r.files.size(), 2u) << "the .rawlog.ini and .rawlog.idx beside a segment are no segment";
+  EXPECT_TRUE(r.damage.empty()) << r.damage;
   EXPECT_EQ(r.format, "rawlog");
   EXPECT_EQ(stream(r, "lidar")->count, stream(whole, "lidar")->count);
   EXPECT_EQ(stream(r, "lidar")->sweeps, stream(whole, "lidar")->sweeps);
