@@ -265,6 +265,7 @@ const Row kTable[] = {
   // roadslam-map: signals
   {"map-sigint",           "roadslam-map --config {S}/ini/default.ini --input {W}/kitti-long --out {O} --quiet", 130, "", 1500},
   // roadslam-bounds
+  {"bounds-sigint",        "roadslam-bounds --config {S}/ini/bounds.ini --input {W}/kitti-long --out {O} --quiet", 130, "interrupted: the outputs of the sweeps so far", 1500},
   {"bounds-typo-key",      "roadslam-bounds --config {W}/bounds-typo.ini --input {W}/truncated.pcap --out {O}", 1, "unknown key 'curb_min_jmup_m' in [boundary] (nearest known: curb_min_jump_m)"},
   {"bounds-bad-cluster",   "roadslam-bounds --config {W}/bounds-bad-cluster.ini --input {W}/truncated.pcap --out {O}", 1, "kmeans"},
   {"bounds-random-rawlog", "roadslam-bounds --config {S}/ini/bounds.ini --input {W}/random.rawlog --out {O}", 1, "gives no sweep"},

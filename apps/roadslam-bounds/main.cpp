@@ -36,6 +36,10 @@ int main(int argc, char** argv) {
     const auto summary = roadslam::jobs::runBoundsJob(req);
     if (!quiet) std::cout << (json ? summary.dump(2) + "\n" : roadslam::jobs::boundsSummaryText(summary, req.out_dir));
     for (const auto& w : summary["warnings"]) std::cerr << "roadslam-bounds: warning: " << w.get<std::string>() << "\n";
+    if (summary.value("interrupted", false)) {
+      std::cerr << "roadslam-bounds: interrupted: the outputs of the sweeps so far are in " << req.out_dir << "\n";
+      return 130;  // 128 + SIGINT, as roadslam-map
+    }
     return 0;
   } catch (const std::exception& e) {
     std::cerr << "roadslam-bounds: " << e.what() << "\n";

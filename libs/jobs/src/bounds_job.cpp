@@ -176,6 +176,7 @@ nlohmann::json runBoundsJob(const BoundsRequest& req) {
   if (req.whole_drive) s["ms_per_frame_first_pass_mean"] = drive.ms_mean;
   s["warnings"] = unknown_keys;
   if (!stream.errorMessage().empty()) s["warnings"].push_back("input damaged: " + stream.errorMessage());
+  s["interrupted"] = stopRequested();  // Ctrl-C / SIGTERM: the outputs so far, as roadslam-map's
   s["complete"] = stream.errorMessage().empty() && !stopRequested();
   for (const auto& w : stream.warnings()) s["warnings"].push_back(w);
   runfolder::writeSummaryJson(req.out_dir + "/summary.json", s);
