@@ -102,7 +102,10 @@ class XyGrid {
 
  private:
   int64_t cellOf(double v) const { return static_cast<int64_t>(std::floor(v / cell_)); }
-  static int64_t key(int64_t ix, int64_t iy) { return (ix << 32) ^ (iy & 0xffffffff); }
+  // unsigned: a negative cell shifted left is undefined behaviour (UBSan); the same bits
+  static int64_t key(int64_t ix, int64_t iy) {
+    return static_cast<int64_t>((static_cast<uint64_t>(ix) << 32) ^ (static_cast<uint64_t>(iy) & 0xffffffffu));
+  }
   const std::vector<ScanPoint>& pts_;
   double cell_;
   std::unordered_map<int64_t, std::vector<uint32_t>> grid_;
