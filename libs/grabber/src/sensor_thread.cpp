@@ -52,6 +52,7 @@ void copyStats(SensorRt& s) {
   s.foreign.store(st.skipped_packets + s.other_sender, std::memory_order_relaxed);
   s.missing.store(s.gaps.missing(), std::memory_order_relaxed);
   s.kernel_drops.store(st.kernel_drops, std::memory_order_relaxed);
+  s.pause_cuts.store(s.grouper.revolutionsCut(), std::memory_order_relaxed);
 }
 
 }  // namespace
@@ -86,9 +87,7 @@ void Grabber::Impl::sensorLoop(SensorRt& s) {
     atomicMin(s.offset_min_s, off);
     atomicMax(s.offset_max_s, off);
     if (data) {
-      const bool closed = s.grouper.add(std::move(pkt));
-      s.pause_cuts.store(s.grouper.revolutionsCut(), std::memory_order_relaxed);
-      if (closed) pushOrCount(s, SensorItem{self, true, s.grouper.take()});
+      if (s.grouper.add(std::move(pkt))) pushOrCount(s, SensorItem{self, true, s.grouper.take()});
     } else {
       SensorItem item{self, false, {}};
       item.packets.push_back(std::move(pkt));

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "roadslam/common/atomic_file.h"
+#include "roadslam/pipeline/live_gnss.h"
 
 namespace roadslam::jobs {
 namespace {
@@ -75,33 +76,13 @@ GnssInput gnssInputFromFixes(const std::vector<gnss::GnssFix>& fixes, const std:
       ++in.log.counters.no_fix;
       continue;
     }
-    gnss::GnssFix g;
-    g.has_position = true;
-    g.rmc_status = 'A';
-    g.quality = f.quality;
-    g.hdop = f.hdop;
-    g.position = f.position;
-    g.t_receive_s = f.t_receive_s;
-    g.t_receiver_s = f.t_receiver_s;
-    in.log.fixes.push_back(g);
+    in.log.fixes.push_back(f);
   }
   in.log.counters.fixes = in.log.fixes.size();
   if (in.log.fixes.empty()) throw std::runtime_error("the input carries no valid GPS fix (" + std::to_string(fixes.size()) + " fixes read)");
   in.origin = in.log.fixes.front().position;
   const gnss::EnuFrame enu(in.origin);
-  for (size_t k = 0; k < in.log.fixes.size(); ++k) {
-    const auto& f = in.log.fixes[k];
-    gnss_fusion::GnssFactor g;
-    g.t_s = f.stamp(p.receiver_time);
-    g.p_enu = enu.toEnu(f.position);
-    // a GGA's HDOP gives the covariance (nmea.h covarianceEnu); RMC alone: fallback sigma, height free
-    g.cov = f.covarianceEnu(p.uere_m, p.fallback_sigma_m);
-    if (!std::isfinite(f.hdop)) {
-      const double s = p.fallback_sigma_m;
-      g.cov = Eigen::Vector3d(s * s, s * s, 1e6).asDiagonal();
-    }
-    in.factors.push_back(g);
-  }
+  for (const auto& f : in.log.fixes) in.factors.push_back(pipeline::recordedFixFactor(f, f.stamp(p.receiver_time), enu, p));
   return in;
 }
 

@@ -8,6 +8,19 @@
 
 namespace roadslam::pipeline {
 
+gnss_fusion::GnssFactor recordedFixFactor(const gnss::GnssFix& f, double t_s, const gnss::EnuFrame& enu,
+                                          const gnss_fusion::GnssFusionParams& p) {
+  gnss_fusion::GnssFactor factor;
+  factor.t_s = t_s;
+  factor.p_enu = enu.toEnu(f.position);
+  factor.cov = f.covarianceEnu(p.uere_m, p.fallback_sigma_m);
+  if (!std::isfinite(f.hdop)) {
+    const double s = p.fallback_sigma_m;
+    factor.cov = Eigen::Vector3d(s * s, s * s, 1e6).asDiagonal();
+  }
+  return factor;
+}
+
 LiveGnss::LiveGnss(const gnss_fusion::GnssFusionParams& p) : online_(p), p_(p) {
   counts_.source = p.live_source_label;
   counts_.source_chosen = has_source_ = !p.live_source_label.empty();
@@ -51,24 +64,11 @@ std::optional<Eigen::Isometry3d> LiveGnss::correct(double t_s, const Eigen::Isom
   std::size_t k = 0;
   for (; k < pending_.size() && pending_[k].t_receive_s <= t_s; ++k) {
     const auto& f = pending_[k];
-    gnss::GnssFix g;  // as gnssInputFromFixes: GGA HDOP x uere, else the fallback sigma and the height free
-    g.has_position = true;
-    g.quality = f.quality;
-    g.hdop = f.hdop;
-    g.position = f.position;
     if (!enu_) {
-      origin_ = g.position;
-      enu_.emplace(g.position);
+      origin_ = f.position;
+      enu_.emplace(f.position);
     }
-    gnss_fusion::GnssFactor factor;
-    factor.t_s = f.t_receive_s;
-    factor.p_enu = enu_->toEnu(g.position);
-    factor.cov = g.covarianceEnu(p_.uere_m, p_.fallback_sigma_m);
-    if (!std::isfinite(f.hdop)) {
-      const double s = p_.fallback_sigma_m;
-      factor.cov = Eigen::Vector3d(s * s, s * s, 1e6).asDiagonal();
-    }
-    online_.addFix(factor);
+    online_.addFix(recordedFixFactor(f, f.t_receive_s, *enu_, p_));
     ++counts_.fixes;
   }
   pending_.erase(pending_.begin(), pending_.begin() + static_cast<long>(k));

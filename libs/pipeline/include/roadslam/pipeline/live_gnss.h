@@ -22,6 +22,13 @@
 
 namespace roadslam::pipeline {
 
+/// A recording's fix (a CObservationGPS record, a position packet's RMC) as a fusion factor at \p t_s
+/// in \p enu: a GGA's HDOP x uere gives its covariance (gnss::GnssFix::covarianceEnu); without HDOP
+/// (an RMC alone carries no height), fallback_sigma_m horizontally and the height free (sigma 1 km).
+/// The one rule of the live correction and of the whole-drive fusion of a recording's fixes.
+gnss_fusion::GnssFactor recordedFixFactor(const gnss::GnssFix& f, double t_s, const gnss::EnuFrame& enu,
+                                          const gnss_fusion::GnssFusionParams& p);
+
 struct LiveGnssCounts {
   /// Records of the source fused, and those without a valid fix [count]; until a source has a fix,
   /// every record posted (none has a fix).
