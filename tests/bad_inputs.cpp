@@ -15,6 +15,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <string>
@@ -117,6 +118,13 @@ void makeFiles() {
                                 (w / "truncated.pcap").string() + "\n[sweep]\nodometry.registration_voxel_sise_m = 1\n");
   write(w / "exp-no-input.ini", "[experiment]\nbase_config = " + kSrc + "/ini/default.ini\n[dataset.x]\ninput = " +
                                     (w / "nope.pcap").string() + "\n");
+  // Output folders that are not the run's to write: another program's, a data folder, a map run
+  // (made by roadslam-map itself: a prior map for --prior-map, then --out on it), for the rows *-into-*
+  write(w / "sim-folder" / "velodyne.pcap", pcap.substr(0, 100000));
+  write(w / "sim-folder" / "run.json", R"({"format": "roadslam-run", "format_version": 1, "program": "roadslam-sim",
+      "input": "urban-loop seed 1", "input_id": "/x/urban-loop.ini?seed=1&duration_s=0", "state": "complete"})");
+  write(w / "data-folder" / "drive.pcap", pcap.substr(0, 100000));
+  write(w / "data-folder-force" / "drive.pcap", pcap.substr(0, 100000));
   // a long KITTI folder for the signal row: one sweep under 3000 names (hard links, no space)
   {
     std::string sweep;
@@ -142,6 +150,9 @@ void makeFiles() {
   write(w / "kitti-two" / "000000.bin", bin);  // a recording for roadslam-view rows
   write(w / "kitti-two" / "000001.bin", bin);
   write(w / "kitti-damaged" / "000001.bin", bin.substr(0, 1001));
+  const std::string prior = binDir() + "/roadslam-map --config " + kSrc + "/ini/default.ini --input " + (w / "kitti-two").string() +
+                            " --out " + (w / "prior-map").string() + " --quiet 2> /dev/null";
+  if (std::system(prior.c_str()) != 0) ADD_FAILURE() << "could not make the prior map: " << prior;
   write(w / "kitti-damaged" / "000002.bin", bin);
   write(w / "kitti-bad-times" / "velodyne" / "000000.bin", bin);
   write(w / "kitti-bad-times" / "times.txt", "0.0\n0.1\n0.2\n");
@@ -263,7 +274,16 @@ const Row kTable[] = {
   {"map-bad-stamp-ref",    "roadslam-map --config {W}/bad-stamp-reference.ini --input {W}/truncated.pcap --out {O}", 1, "expected start, middle or end"},
   {"map-bad-bool",         "roadslam-map --config {W}/bad-bool.ini --input {W}/truncated.pcap --out {O}", 1, "is not a boolean"},
   // roadslam-map: signals
-  {"map-sigint",           "roadslam-map --config {S}/ini/default.ini --input {W}/kitti-long --out {O} --quiet", 130, "", 1500},
+  {"map-sigint",           "roadslam-map --config {S}/ini/default.ini --input {W}/kitti-long --out {O} --quiet", 130, "roadslam-map: interrupted: the outputs of the sweeps so far", 1500},
+  {"map-out-is-prior-map", "roadslam-map --config {S}/ini/default.ini --input {W}/kitti-two --prior-map {W}/prior-map --out {W}/prior-map", 1, "prior-map' is or holds this run's input"},
+  {"map-into-sim-folder",  "roadslam-map --config {S}/ini/default.ini --input {W}/truncated.pcap --out {W}/sim-folder", 1, "sim-folder' holds the outputs of roadslam-sim (its run.json), not of roadslam-map"},
+  {"map-into-data-folder", "roadslam-map --config {S}/ini/default.ini --input {W}/truncated.pcap --out {W}/data-folder", 1, "data-folder' holds files no roadslam run wrote (drive.pcap; no run.json); give a new or empty --out folder, or --force"},
+  {"map-into-other-run",   "roadslam-map --config {S}/ini/default.ini --input {W}/truncated.pcap --out {W}/prior-map", 1, "prior-map' holds roadslam-map's run on "},
+  {"map-input-in-out",     "roadslam-map --config {S}/ini/default.ini --input {W}/data-folder/drive.pcap --out {W}/data-folder", 1, "is or holds this run's input"},
+  {"map-force",            "roadslam-map --config {S}/ini/default.ini --input {W}/truncated.pcap --out {W}/data-folder-force --force --quiet", 0, "warning: --force: '"},
+  {"bounds-into-map-folder", "roadslam-bounds --config {S}/ini/bounds.ini --input {W}/kitti-two --out {W}/prior-map", 1, "holds the outputs of roadslam-map (its run.json), not of roadslam-bounds"},
+  {"sim-into-map-folder",  "roadslam-sim --scenario {S}/ini/sim/urban-loop.ini --duration 1 --out {W}/prior-map", 1, "holds the outputs of roadslam-map (its run.json), not of roadslam-sim"},
+  {"sim-sigint",           "roadslam-sim --scenario {S}/ini/sim/urban-loop.ini --duration 900 --out {O} --quiet", 130, "roadslam-sim: interrupted: the first", 1500},
   // roadslam-bounds
   {"bounds-sigint",        "roadslam-bounds --config {S}/ini/bounds.ini --input {W}/kitti-long --out {O} --quiet", 130, "interrupted: the outputs of the sweeps so far", 1500},
   {"bounds-typo-key",      "roadslam-bounds --config {W}/bounds-typo.ini --input {W}/truncated.pcap --out {O}", 1, "unknown key 'curb_min_jmup_m' in [boundary] (nearest known: curb_min_jump_m)"},
@@ -441,8 +461,8 @@ TEST_P(BadInputs, GivesTheDocumentedMessageAndExitCode) {
   const auto left = leftovers(out);
   EXPECT_TRUE(left.empty()) << row.id << " left " << left.front();
   if (row.exit_code != 0 && row.exit_code != 130 && std::string(row.command).find("{O}") != std::string::npos) {
-    // a run refused at the door writes nothing
-    EXPECT_TRUE(!fs::exists(out) || fs::is_empty(out)) << row.id << " wrote into " << out;
+    // a run refused at the door writes nothing, not even an empty folder
+    EXPECT_FALSE(fs::exists(out)) << row.id << " made " << out << (fs::is_empty(out) ? " (empty)" : " and wrote into it");
   }
 }
 
@@ -454,3 +474,67 @@ INSTANTIATE_TEST_SUITE_P(Table, BadInputs, ::testing::ValuesIn(kTable),
                          });
 
 TEST(BadInputs, TheTableHasFortyRows) { EXPECT_GE(std::size(kTable), 40u); }
+
+// A full disk: each program writes into a small tmpfs of its own, mounted in a user and mount
+// namespace (unshare -rm, no root needed), so the disk really fills (write(2) fails with ENOSPC). The
+// program must name the reason, keep what fitted (the small, valuable outputs first) and leave no
+// temporary file.
+namespace {
+
+struct FullDiskRun {
+  int exit_code = -1;
+  std::string output;  ///< the program's stdout + stderr
+  std::string files;   ///< `ls -A` of the output folder after the run, one name per line
+};
+
+/// Runs \p program_args (the program's name, then its arguments; {D} is the small disk's folder) with
+/// a tmpfs of \p size at {D}; nullopt when this machine cannot make one (no user namespaces).
+std::optional<FullDiskRun> onFullDisk(const std::string& size, const std::string& program_args, const std::string& out_sub) {
+  const fs::path mnt = work() / ("disk-" + std::to_string(std::hash<std::string>{}(program_args) % 100000));
+  fs::create_directories(mnt);
+  std::string args = program_args;
+  for (size_t p; (p = args.find("{D}")) != std::string::npos;) args.replace(p, 3, mnt.string());
+  const fs::path log = mnt.string() + ".log", listing = mnt.string() + ".ls";
+  const std::string inner = "mount -t tmpfs -o size=" + size + " none " + mnt.string() + " || exit 99; " + binDir() + "/" +
+                            args + " > " + log.string() + " 2>&1; rc=$?; ls -A " + (mnt / out_sub).string() + " > " +
+                            listing.string() + " 2>/dev/null; exit $rc";
+  const int status = std::system(("unshare -rm sh -c '" + inner + "'").c_str());
+  if (!WIFEXITED(status) || WEXITSTATUS(status) == 99 || (WEXITSTATUS(status) == 1 && !fs::exists(log))) return std::nullopt;
+  return FullDiskRun{WEXITSTATUS(status), fileText(log), fileText(listing)};
+}
+
+bool lists(const std::string& files, const std::string& name) { return ("\n" + files).find("\n" + name + "\n") != std::string::npos; }
+
+}  // namespace
+
+TEST(BadInputs, FullDiskMapKeepsTheTrajectoryAndNamesTheReason) {
+  makeFiles();
+  const auto r = onFullDisk("96k", "roadslam-map --config " + kSrc + "/ini/default.ini --input " + kSrc +
+                                       "/rawlogs/boxroom-vlp16.pcap --out {D}/run --quiet", "run");
+  if (!r) GTEST_SKIP() << "no tmpfs in a user namespace here (unshare -rm): the full-disk case is not run";
+  EXPECT_EQ(r->exit_code, 1) << r->output;
+  EXPECT_NE(r->output.find("No space left on device"), std::string::npos) << r->output;
+  EXPECT_EQ(r->output.find(".tmp-"), std::string::npos) << "a temporary name in the message:\n" << r->output;
+  EXPECT_TRUE(lists(r->files, "trajectory.tum")) << r->files;
+  EXPECT_TRUE(lists(r->files, "frames.csv")) << r->files;
+  EXPECT_EQ(r->files.find(".tmp"), std::string::npos) << "left a temporary file:\n" << r->files;
+}
+
+TEST(BadInputs, FullDiskRawlogConvertNamesTheReasonWithoutABacktrace) {
+  makeFiles();
+  const auto r = onFullDisk("64k", "roadslam-rawlog convert " + kSrc + "/rawlogs/boxroom-vlp16.pcap {D}/x.rawlog", ".");
+  if (!r) GTEST_SKIP() << "no tmpfs in a user namespace here (unshare -rm): the full-disk case is not run";
+  EXPECT_EQ(r->exit_code, 1) << r->output;
+  EXPECT_NE(r->output.find("No space left on device"), std::string::npos) << r->output;
+  EXPECT_EQ(r->output.find("==== MRPT exception"), std::string::npos) << r->output;
+  EXPECT_EQ(r->files.find(".tmp"), std::string::npos) << "left a temporary file:\n" << r->files;
+}
+
+TEST(BadInputs, FullDiskSimNamesTheReasonAndLeavesNoTemporaryFile) {
+  makeFiles();
+  const auto r = onFullDisk("64k", "roadslam-sim --scenario " + kSrc + "/ini/sim/urban-loop.ini --duration 2 --out {D}/sim --quiet", "sim");
+  if (!r) GTEST_SKIP() << "no tmpfs in a user namespace here (unshare -rm): the full-disk case is not run";
+  EXPECT_EQ(r->exit_code, 1) << r->output;
+  EXPECT_NE(r->output.find("No space left on device"), std::string::npos) << r->output;
+  EXPECT_EQ(r->files.find(".tmp"), std::string::npos) << "left a temporary file:\n" << r->files;
+}

@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
   app.add_flag("--whole-drive", req.whole_drive,
                "two passes: fit every sweep from the curbs of the whole drive, along its own path "
                "(a finished drive; default: live, each sweep from the sweeps before it)");
+  roadslam::addForceFlag(app, req.force);
   app.add_flag("--allow-unknown-keys", req.allow_unknown_keys, "ini keys no component reads are warnings, not errors");
   app.add_flag("--quiet", quiet, "nothing on stdout (no progress bar, no summary); errors on stderr");
   app.add_flag("--json", json, "print the summary as JSON (as in OUT/summary.json) instead of text");
@@ -36,10 +37,8 @@ int main(int argc, char** argv) {
     const auto summary = roadslam::jobs::runBoundsJob(req);
     if (!quiet) std::cout << (json ? summary.dump(2) + "\n" : roadslam::jobs::boundsSummaryText(summary, req.out_dir));
     for (const auto& w : summary["warnings"]) std::cerr << "roadslam-bounds: warning: " << w.get<std::string>() << "\n";
-    if (summary.value("interrupted", false)) {
-      std::cerr << "roadslam-bounds: interrupted: the outputs of the sweeps so far are in " << req.out_dir << "\n";
-      return 130;  // 128 + SIGINT, as roadslam-map
-    }
+    if (summary.value("interrupted", false))
+      return roadslam::interruptedExit("roadslam-bounds", "the outputs of the sweeps so far are in " + req.out_dir);
     return 0;
   } catch (const std::exception& e) {
     std::cerr << "roadslam-bounds: " << e.what() << "\n";

@@ -31,6 +31,7 @@ int main(int argc, char** argv) {
       ->check(CLI::ExistingDirectory);
   app.add_flag("--export-sweeps", req.export_sweeps,
                "each posed sweep, deskewed (lidar frame at its reference time), as OUT/sweeps/NNNNNN.pcd");
+  roadslam::addForceFlag(app, req.force);
   app.add_flag("--allow-unknown-keys", req.allow_unknown_keys, "ini keys no component reads are warnings, not errors");
   app.add_flag("--quiet", quiet, "nothing on stdout (no progress bar, no summary); errors and warnings on stderr");
   app.add_flag("--json", json, "print the summary as JSON (as in OUT/summary.json) instead of text");
@@ -41,7 +42,10 @@ int main(int argc, char** argv) {
     const auto out = roadslam::jobs::runMapJob(req);
     if (!quiet) std::cout << (json ? out.summary.dump(2) + "\n" : roadslam::jobs::summaryText(out.summary, req.out_dir));
     for (const auto& w : out.summary["warnings"]) std::cerr << "roadslam-map: warning: " << w.get<std::string>() << "\n";
-    return out.interrupted ? 130 : 0;
+    for (const auto& e : out.summary["write_errors"]) std::cerr << "roadslam-map: " << e.get<std::string>() << "\n";
+    if (!out.summary["write_errors"].empty()) return 1;  // the other outputs are there, summary.json lists what is not
+    if (out.interrupted) return roadslam::interruptedExit("roadslam-map", "the outputs of the sweeps so far are in " + req.out_dir);
+    return 0;
   } catch (const std::exception& e) {
     std::cerr << "roadslam-map: " << e.what() << "\n";
     return 1;

@@ -55,3 +55,40 @@ TEST(AtomicFile, UnwritableFolderThrowsNamingThePath) {
     EXPECT_NE(std::string(e.what()).find("/nonexistent_dir_roadslam/x.txt"), std::string::npos);
   }
 }
+
+// A full disk: the temporary file is /dev/full (every write(2) fails with ENOSPC), as when the disk
+// fills during a run. The error names the file and the system's reason, and nothing is left behind.
+TEST(AtomicFile, FullDiskNamesTheReasonAndLeavesNoTemporaryFile) {
+  const auto d = tmpDir();
+  const auto p = d / "map.pcd";
+  fs::create_symlink("/dev/full", roadslam::tempPathFor(p.string()));
+  try {
+    roadslam::AtomicFile f(p.string());
+    f.stream() << std::string(200000, 'x');  // more than the buffer: write(2) runs before commit too
+    f.commit();
+    FAIL() << "expected an exception";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()), "cannot write '" + p.string() + "': No space left on device");
+  }
+  EXPECT_FALSE(fs::exists(p));
+  EXPECT_TRUE(fs::is_empty(d)) << "a temporary file was left";
+  fs::remove_all(d);
+}
+
+TEST(TempFile, AnUncommittedTemporaryFileIsRemoved) {
+  const auto d = tmpDir();
+  const auto p = d / "map.bt";
+  {
+    roadslam::TempFile t(p.string(), ".bt");
+    std::ofstream(t.path()) << "partial";
+    EXPECT_TRUE(fs::exists(t.path()));
+  }
+  EXPECT_TRUE(fs::is_empty(d));
+  {
+    roadslam::TempFile t(p.string());
+    std::ofstream(t.path()) << "whole";
+    t.commit();
+  }
+  EXPECT_EQ(slurp(p), "whole");
+  fs::remove_all(d);
+}

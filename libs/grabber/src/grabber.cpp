@@ -35,11 +35,6 @@ Grabber::Grabber(const GrabParams& params, const std::string& out_dir)
   Impl& g = *impl_;
   g.params = params;
   g.out_dir = out_dir;
-  if (!out_dir.empty()) {
-    std::error_code ec;
-    fs::create_directories(out_dir, ec);
-    if (ec) throw std::runtime_error("cannot create output folder '" + out_dir + "': " + ec.message());
-  }
   for (const auto& sp : params.sensors) {
     auto rt = std::make_unique<SensorRt>(sp, params.writer.queue_capacity);
     rt->rx = std::make_unique<sources::UdpReceiver>(sp.udp);
@@ -67,7 +62,12 @@ Grabber::Grabber(const GrabParams& params, const std::string& out_dir)
       g.gnss->replay = true;
     }
   }
-  if (!out_dir.empty()) writeSessionFiles(params, out_dir);
+  if (!out_dir.empty()) {  // only once every source opened: a failed start leaves no empty session folder
+    std::error_code ec;
+    fs::create_directories(out_dir, ec);
+    if (ec) throw std::runtime_error("cannot create output folder '" + out_dir + "': " + ec.message());
+    writeSessionFiles(params, out_dir);
+  }
   g.writer_task = makeWriter(g);
 }
 

@@ -17,6 +17,7 @@
 #include "roadslam/odometry/odometry.h"
 #include "roadslam/pipeline/pipeline.h"
 #include "roadslam/pipeline/stage_factory.h"
+#include "roadslam/runfolder/output_folder.h"
 #include "roadslam/runfolder/run_folder.h"
 #include "roadslam/runfolder/boundaries.h"
 #include "roadslam/runfolder/summary.h"
@@ -128,6 +129,9 @@ nlohmann::json runBoundsJob(const BoundsRequest& req) {
   std::optional<Georef> georef;
   if (!req.georef_path.empty()) georef = readGeoref(req.georef_path);
   std::vector<GeoPolyline> geo_lines;
+  const auto forced = runfolder::claimOutputFolder(
+      req.out_dir, {runfolder::kBoundsProgram, req.input_path, "", "",
+                    {req.config_path, req.trajectory_path, req.georef_path, req.times_path}, req.force});
   std::error_code ec;
   fs::create_directories(req.out_dir + "/frames", ec);
   if (ec) throw std::runtime_error("cannot create output folder '" + req.out_dir + "': " + ec.message());
@@ -165,7 +169,7 @@ nlohmann::json runBoundsJob(const BoundsRequest& req) {
   if (!last_png.empty()) fs::copy_file(last_png, req.out_dir + "/top_view.png", fs::copy_options::overwrite_existing);
   const sources::ScanSource& stream = pipe.source();
   const double n = static_cast<double>(std::max<size_t>(tot.frames, 1));
-  nlohmann::json s = {{"input", stream.describe()}, {"method", toString(params.method)}, {"frames", tot.frames},
+  nlohmann::json s = {{"input", stream.describe()}, {"input_id", runfolder::canonicalPath(req.input_path)}, {"method", toString(params.method)}, {"frames", tot.frames},
                       {"frames_without_pose", tot.no_pose}, {"ms_per_frame_mean", tot.ms_sum / n},
                       {"ms_per_frame_max", tot.ms_max}, {"left_found_rate", tot.left / n},
                       {"right_found_rate", tot.right / n}, {"both_found_rate", tot.both / n},
@@ -175,6 +179,7 @@ nlohmann::json runBoundsJob(const BoundsRequest& req) {
                       {"mode", req.whole_drive ? "whole_drive" : "live"}, {"curb_map_cells", det->curbMap().size()}};
   if (req.whole_drive) s["ms_per_frame_first_pass_mean"] = drive.ms_mean;
   s["warnings"] = unknown_keys;
+  for (const auto& w : forced) s["warnings"].push_back(w);
   if (!stream.errorMessage().empty()) s["warnings"].push_back("input damaged: " + stream.errorMessage());
   s["interrupted"] = stopRequested();  // Ctrl-C / SIGTERM: the outputs so far, as roadslam-map's
   s["complete"] = stream.errorMessage().empty() && !stopRequested();

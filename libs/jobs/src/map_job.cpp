@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "map_job_params.h"
+#include "map_run_files.h"
 #include "map_sinks.h"
 #include "roadslam/common/atomic_file.h"
 #include "roadslam/common/config.h"
@@ -22,23 +23,14 @@
 #include "roadslam/pipeline/stages/maps.h"
 #include "roadslam/pipeline/stages/objects.h"
 #include "roadslam/pipeline/stages/sweep_export.h"
+#include "roadslam/runfolder/output_folder.h"
+#include "roadslam/runfolder/run_folder.h"
 #include "roadslam/sources/scan_source.h"
 
 namespace fs = std::filesystem;
 
 namespace roadslam::jobs {
 namespace {
-
-void prepareOutDir(const std::string& dir) {
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec || !fs::is_directory(dir)) {
-    throw std::runtime_error("cannot create output folder '" + dir + "': " + ec.message());
-  }
-  // probe: fail before hours of processing, not after
-  writeFileAtomically(dir + "/.write_test", "");
-  fs::remove(dir + "/.write_test");
-}
 
 nlohmann::json loopsJson(const mapping::Mapper& m) {
   nlohmann::json acc = nlohmann::json::array(), rej = nlohmann::json::array();
@@ -156,9 +148,10 @@ void writeMapsStage(const MapRequest& req, const MapJobParams& params, pipeline:
                          {"ms_total", m.ms_total}};
 }
 
-/// GNSS fusion of the trajectory (batch, and the online mode replayed) and its outputs.
-void writeGnss(const MapRequest& req, const MapJobParams& params, const sources::ScanSource& stream,
-               GnssRequest& gnss, const pipeline::MapsStage* maps, MapOutcome& out) {
+/// GNSS fusion of the trajectory (batch, and the online mode replayed) and its small outputs (the
+/// geo-referenced trajectories); returns the fused T_enu_lidar per stamp for the ENU maps (empty: none).
+mapping::PoseVector writeGnss(const MapRequest& req, const MapJobParams& params, const sources::ScanSource& stream,
+                              GnssRequest& gnss, MapOutcome& out, std::vector<double>& stamps) {
   if (gnss.from_input) {
     try {
       gnss.input = gnssInputFromFixes(gnss.fixes, "GPS fixes of " + stream.describe() + " (" + gnss.label + ")",
@@ -167,8 +160,7 @@ void writeGnss(const MapRequest& req, const MapJobParams& params, const sources:
       out.summary["warnings"].push_back(std::string("GNSS fusion not done: ") + e.what());
     }
   }
-  if (!gnss.input) return;
-  std::vector<double> stamps;
+  if (!gnss.input) return {};
   mapping::PoseVector T, T_odom;
   for (size_t i = 0; i < out.frames.size(); ++i) {
     if (out.frames[i].status == odometry::FrameStatus::Skipped) continue;
@@ -179,14 +171,24 @@ void writeGnss(const MapRequest& req, const MapJobParams& params, const sources:
   }
   mapping::PoseVector T_enu;
   out.summary["gnss"] = fuseAndWriteGnss(req.out_dir, stamps, T, *gnss.input, params.gnss_fusion, &T_enu);
-  if (maps && !T_enu.empty())
-    out.summary["gnss"]["enu_maps"] = writeEnuMaps(req.out_dir, maps->mapper().keyframes(), stamps, T_enu, params.chain.maps);
   out.summary["gnss"]["online"] = writeOnlineGnss(req.out_dir, stamps, T_odom, *gnss.input, params.gnss_fusion);
   const auto& g = out.summary["gnss"];
   if (g["status"] != "ok") out.summary["warnings"].push_back("GNSS fusion not done: " + g["status"].get<std::string>());
   for (const auto& [name, n] : gnss.input->log.counters.named()) {
     if (n > 0 && name != "lines" && name != "sentences" && name != "epochs" && name != "fixes" && name != "unsupported sentence")
       out.summary["warnings"].push_back("GNSS log: " + std::to_string(n) + " x " + name);
+  }
+  return T_enu;
+}
+
+/// Runs \p write; a failure (a full disk, a file system error) is recorded in the summary's
+/// "write_errors" and the run goes on to write the other outputs, so one lost file never loses the rest.
+template <typename F>
+void attempt(MapOutcome& out, F&& write) {
+  try {
+    write();
+  } catch (const std::exception& e) {
+    out.summary["write_errors"].push_back(e.what());
   }
 }
 
@@ -203,7 +205,11 @@ MapOutcome runMapJob(const MapRequest& req) {
   if (!req.prior_map_dir.empty()) stages.prior_map = mapping::readMapFolder(req.prior_map_dir);
   auto source = pipeline::openNonEmptySource(req.input_path, *cfg, req.times_path);
   GnssRequest gnss(req, params.gnss_fusion);
-  prepareOutDir(req.out_dir);
+  runfolder::OutputClaim claim{runfolder::kMapProgram, req.input_path, source->describe(), "",
+                               {req.config_path, req.times_path, req.can_log_path, req.vehicle_ini_path, req.gnss_path,
+                                req.prior_map_dir},
+                               req.force};
+  const auto forced = runfolder::claimOutputFolder(req.out_dir, claim);
   writeFileAtomically(req.out_dir + "/config_used.ini", params.used());
 
   const bool localize = stages.prior_map.has_value();
@@ -223,13 +229,14 @@ MapOutcome runMapJob(const MapRequest& req) {
   if (localize) {
     sinks.localization.bridge(out.frames);
     out.T_map_lidar = sinks.localization.T_map_lidar;
-    writeFileAtomically(req.out_dir + "/localization.csv", sinks.localization.csv);
   }
   out.summary = summarize(out.frames);
   out.summary["warnings"] = nlohmann::json::array();
   for (const auto& w : unknown_keys) out.summary["warnings"].push_back(w);
+  for (const auto& w : forced) out.summary["warnings"].push_back(w);
   const sources::ScanSource& stream = pipe.source();
   summarizeInput(stream, params, out);
+  out.summary["input_id"] = runfolder::inputId(claim);
   const auto* odometry = dynamic_cast<const pipeline::OdometryPoses*>(&pipe.poses());
   if (const pipeline::CanPriorStream* can = odometry ? odometry->can() : nullptr) {
     out.summary["can"] = {{"input", can->describe()}, {"frames", can->framesRead()},
@@ -238,22 +245,41 @@ MapOutcome runMapJob(const MapRequest& req) {
   }
   const pipeline::StageTimes& ms = pipe.totals();
   out.summary["ms_by_stage_total"] = {{"source", ms.source}, {"odometry", ms.of("poses")}, {"maps", ms.of("maps")}};
+  out.summary["write_errors"] = nlohmann::json::array();
+  // The outputs smallest and most valuable first, so a full disk loses the big maps, not the trajectory.
+  const auto files = mapRunFiles(out.frames, out.T_map_lidar);
+  runfolder::writeMapTrajectories(req.out_dir, files);
+  {  // a summary of the run beside them before the big files, should the disk fill on those
+    nlohmann::json early = out.summary;
+    early["complete"] = false;
+    early["write_errors"].push_back("the run had not finished writing its outputs (maps, objects, GNSS) when this summary was written");
+    runfolder::writeSummaryJson(req.out_dir + "/" + runfolder::kSummaryJson, early);
+  }
+  if (localize) {
+    attempt(out, [&] { writeFileAtomically(req.out_dir + "/localization.csv", sinks.localization.csv); });
+    const auto* loc = pipe.find<pipeline::LocalizationStage>();
+    out.summary["localization"] = sinks.localization.summary(req.prior_map_dir, loc->localizer().mapPoints());
+  }
   if (auto* objects = pipe.find<pipeline::ObjectTrackingStage>()) {
     out.summary["ms_by_stage_total"]["objects"] = ms.of("objects") + ms.of("dynamic_removal");
     out.summary["ms_by_stage_total"]["deskew"] = ms.of("deskew");
     out.summary["objects"] = sinks.objects.summary(objects->objects());
-    sinks.objects.write(req.out_dir);
-  }
-  if (localize) {
-    const auto* loc = pipe.find<pipeline::LocalizationStage>();
-    out.summary["localization"] = sinks.localization.summary(req.prior_map_dir, loc->localizer().mapPoints());
+    attempt(out, [&] { sinks.objects.write(req.out_dir); });
   }
   if (const auto* e = pipe.find<pipeline::SweepExportStage>()) out.summary["sweeps_exported"] = e->written();
-  if (maps) writeMapsStage(req, params, *maps, sinks, ms, out);
   gnss.take(pipe.source());
-  writeGnss(req, params, stream, gnss, maps, out);
+  std::vector<double> gnss_stamps;
+  mapping::PoseVector T_enu;
+  attempt(out, [&] { T_enu = writeGnss(req, params, stream, gnss, out, gnss_stamps); });
+  if (maps) attempt(out, [&] { writeMapsStage(req, params, *maps, sinks, ms, out); });
+  if (maps && !T_enu.empty()) {
+    attempt(out, [&] {
+      out.summary["gnss"]["enu_maps"] = writeEnuMaps(req.out_dir, maps->mapper().keyframes(), gnss_stamps, T_enu, params.chain.maps);
+    });
+  }
   out.summary["wall_time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  writeMapOutputs(req.out_dir, out.frames, out.T_map_lidar, out.summary);
+  if (!out.summary["write_errors"].empty()) out.summary["complete"] = false;
+  attempt(out, [&] { runfolder::writeMapRunEnd(req.out_dir, out.summary); });
   return out;
 }
 

@@ -115,9 +115,7 @@ nlohmann::json summarize(const std::vector<odometry::FrameResult>& frames) {
   return j;
 }
 
-void writeMapOutputs(const std::string& out_dir, const std::vector<odometry::FrameResult>& frames,
-                     const std::vector<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>>& T_map_lidar,
-                     const nlohmann::json& summary) {
+runfolder::MapRunFiles mapRunFiles(const std::vector<odometry::FrameResult>& frames, const mapping::PoseVector& T_map_lidar) {
   runfolder::MapRunFiles out;
   for (size_t i = 0; i < frames.size(); ++i) {
     const auto& f = frames[i];
@@ -128,6 +126,13 @@ void writeMapOutputs(const std::string& out_dir, const std::vector<odometry::Fra
     out.odometry.stamps_s.push_back(f.stamp_s);
     out.odometry.poses.push_back(f.T_world_lidar);
   }
+  return out;
+}
+
+void writeMapOutputs(const std::string& out_dir, const std::vector<odometry::FrameResult>& frames,
+                     const std::vector<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>>& T_map_lidar,
+                     const nlohmann::json& summary) {
+  runfolder::MapRunFiles out = mapRunFiles(frames, T_map_lidar);
   out.summary = summary;
   runfolder::writeMapRun(out_dir, out);
 }

@@ -56,6 +56,8 @@ std::string summaryText(const nlohmann::json& s, const std::string& out_dir) {
                                    : "not fused: " + g.value("status", std::string("?")));
   }
   lines.emplace_back("warnings", warningsValue(s.contains("warnings") ? s["warnings"].size() : 0));
+  if (s.contains("write_errors") && !s["write_errors"].empty())
+    lines.emplace_back("write errors", std::to_string(s["write_errors"].size()) + " outputs not written (on stderr, summary.json write_errors)");
   lines.emplace_back("outputs", out_dir + " (trajectory.tum, maps, frames.csv, summary.json)");
   return alignedLines(lines);
 }

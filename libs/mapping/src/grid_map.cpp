@@ -1,3 +1,4 @@
+#include <cerrno>
 #include <mrpt/img/CImage.h>
 #include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/maps/COccupancyGridMap2D.h>
@@ -85,9 +86,10 @@ void writeGridPng(const std::string& png_path, const std::string& yaml_path, con
       img.setPixel(c, g.height - 1 - r, v < 0 ? 205 : (v == 0 ? 254 : 0));  // map_server's colours
     }
   }
-  const std::string tmp = tempPathFor(png_path) + ".png";  // the extension selects the encoder
-  if (!img.saveToFile(tmp)) throw std::runtime_error("cannot write grid image '" + png_path + "'");
-  commitTempFile(tmp, png_path);
+  TempFile tmp(png_path, ".png");  // the extension selects the encoder
+  errno = 0;
+  if (!img.saveToFile(tmp.path())) throw std::runtime_error(tmp.failure("grid image"));
+  tmp.commit();
   std::ostringstream y;
   y << "# ROS map_server map: origin = map-frame pose of the lower-left pixel [m, m, rad]\n"
     << "image: " << std::filesystem::path(png_path).filename().string() << "\n"
@@ -110,13 +112,16 @@ void writeGridMrpt(const std::string& path, const Grid2D& g) {
       m.setCell(c, r, v < 0 ? 0.5f : (v == 0 ? 0.99f : 0.01f));  // MRPT cells hold p(free)
     }
   }
-  const std::string tmp = tempPathFor(path);
-  {
+  TempFile tmp(path);
+  try {
     mrpt::io::CFileGZOutputStream f;
-    if (!f.open(tmp)) throw std::runtime_error("cannot write gridmap '" + path + "'");
+    errno = 0;
+    if (!f.open(tmp.path())) throw std::runtime_error("open");
     mrpt::serialization::archiveFrom(f) << m;
+  } catch (const std::exception&) {
+    throw std::runtime_error(tmp.failure("gridmap"));
   }
-  commitTempFile(tmp, path);
+  tmp.commit();
 }
 
 }  // namespace roadslam::mapping

@@ -1,5 +1,6 @@
 #include "roadslam/mapping/octo_map.h"
 
+#include <cerrno>
 #include <octomap/OcTree.h>
 
 #include <algorithm>
@@ -190,28 +191,28 @@ InsertStats OctoMapBuilder::insertReference(const std::vector<Eigen::Vector3f>& 
 }
 
 void OctoMapBuilder::writeBt(const std::string& path) const {
-  const std::string tmp = tempPathFor(path);
+  TempFile tmp(path);
   {
-    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
+    std::ofstream f(tmp.path(), std::ios::binary | std::ios::trunc);
+    errno = 0;
     // octomap's writeBinaryConst() with its header, without the " done." it prints on stderr
     // (AbstractOccupancyOcTree.cpp, OCTOMAP_DEBUG in Debian's library build): a --quiet run stays quiet.
     const auto& t = tree();
     f << "# Octomap OcTree binary file\n# (feel free to add / change comments, but leave the first line as it is!)\n#\n"
       << "id " << t.getTreeType() << "\nsize " << t.size() << "\nres " << t.getResolution() << "\ndata\n";
-    if (!f || !t.writeBinaryData(f) || !f.flush()) {
-      throw std::runtime_error("cannot write octomap '" + path + "'");
-    }
+    if (!f || !t.writeBinaryData(f) || !f.flush()) throw std::runtime_error(tmp.failure("octomap"));
   }
-  commitTempFile(tmp, path);
+  tmp.commit();
 }
 
 void OctoMapBuilder::writeOt(const std::string& path) const {
-  const std::string tmp = tempPathFor(path);
+  TempFile tmp(path);
   {
-    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    if (!f || !tree().write(f) || !f.flush()) throw std::runtime_error("cannot write octomap '" + path + "'");
+    std::ofstream f(tmp.path(), std::ios::binary | std::ios::trunc);
+    errno = 0;
+    if (!f || !tree().write(f) || !f.flush()) throw std::runtime_error(tmp.failure("octomap"));
   }
-  commitTempFile(tmp, path);
+  tmp.commit();
 }
 
 Agreement compareOctoMaps(const octomap::OcTree& reference, const octomap::OcTree& other) {

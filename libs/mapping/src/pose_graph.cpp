@@ -1,6 +1,7 @@
 // The only translation unit that includes MRPT's graph-SLAM headers (levmarq.h costs ~4 s to parse).
 #include "roadslam/mapping/pose_graph.h"
 
+#include <cerrno>
 #include <mrpt/graphs/CNetworkOfPoses.h>
 #include <mrpt/graphslam/levmarq.h>
 
@@ -191,13 +192,14 @@ double PoseGraph::edgeChi2(size_t e) const {
 }
 
 void PoseGraph::saveToTextFile(const std::string& path) const {
-  const std::string tmp = tempPathFor(path);
+  TempFile tmp(path);
   try {
-    impl_->graph.saveToTextFile(tmp);
-  } catch (const std::exception& e) {
-    throw std::runtime_error("cannot write pose graph '" + path + "': " + e.what());
+    errno = 0;
+    impl_->graph.saveToTextFile(tmp.path());
+  } catch (const std::exception&) {
+    throw std::runtime_error(tmp.failure("pose graph"));
   }
-  commitTempFile(tmp, path);
+  tmp.commit();
 }
 
 Matrix6d PoseGraph::odometryInformation(const Matrix6d& reg_info) const {

@@ -1,3 +1,4 @@
+#include <cerrno>
 #include <mrpt/maps/CSimpleMap.h>
 #include <mrpt/maps/CSimplePointsMap.h>
 #include <mrpt/obs/CObservationPointCloud.h>
@@ -34,9 +35,10 @@ void writeSimpleMap(const std::string& path, const std::vector<Keyframe>& kfs, c
     auto pdf = mrpt::poses::CPose3DPDFGaussian::Create(mrpt::poses::CPose3D::FromHomogeneousMatrix(M), cov);
     sm.insert(pdf, sf);
   }
-  const std::string tmp = tempPathFor(path);
-  if (!sm.saveToFile(tmp)) throw std::runtime_error("cannot write simplemap '" + path + "'");
-  commitTempFile(tmp, path);
+  TempFile tmp(path);
+  errno = 0;
+  if (!sm.saveToFile(tmp.path())) throw std::runtime_error(tmp.failure("simplemap"));
+  tmp.commit();
 }
 
 }  // namespace roadslam::mapping

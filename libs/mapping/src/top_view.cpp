@@ -1,3 +1,4 @@
+#include <cerrno>
 #include <mrpt/img/CImage.h>
 
 #include <algorithm>
@@ -87,9 +88,10 @@ void drawTopView(const std::string& png_path, const std::vector<Eigen::Vector3f>
                                        " loop closures, points coloured by height" +
                                        (boxes.empty() ? std::string() : ", yellow: moving tracks (last box, id, 1 s arrow)"),
               mrpt::img::TColor(255, 255, 255));
-  const std::string tmp = tempPathFor(png_path) + ".png";
-  if (!img.saveToFile(tmp)) throw std::runtime_error("cannot write top view '" + png_path + "'");
-  commitTempFile(tmp, png_path);
+  TempFile tmp(png_path, ".png");
+  errno = 0;
+  if (!img.saveToFile(tmp.path())) throw std::runtime_error(tmp.failure("top view"));
+  tmp.commit();
 }
 
 }  // namespace roadslam::mapping

@@ -3,7 +3,6 @@
 #include "roadslam/rawlog/gps_observation.h"
 
 #include <mrpt/core/Clock.h>
-#include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/obs/CObservationGPS.h>
 #include <mrpt/obs/CObservationVelodyneScan.h>
 #include <mrpt/serialization/CArchive.h>
@@ -15,6 +14,7 @@
 
 #include "roadslam/common/atomic_file.h"
 #include "roadslam/common/config.h"
+#include "roadslam/common/gz_output.h"
 #include "roadslam/common/param_table.h"
 #include "roadslam/velodyne/position.h"
 
@@ -50,17 +50,27 @@ void RawlogWriter::Params::saveToConfigFile(mrpt::config::CConfigFileBase& c,
 }
 
 struct RawlogWriter::Impl {
-  std::string path, tmp;
+  explicit Impl(const std::string& p) : path(p), tmp(p) {}
+  std::string path;
+  TempFile tmp;  // removed unless close() commits it
   Params params;
   mrpt::obs::VelodyneCalibration calibration;
-  mrpt::io::CFileGZOutputStream out;
+  std::unique_ptr<GzOutput> out;
   bool closed = false;
+
+  /// Serializes \p obs; a write error surfaces as GzOutput's message (MRPT's archive may wrap it).
+  template <typename T>
+  void write(const T& obs) {
+    try {
+      mrpt::serialization::archiveFrom(*out) << obs;
+    } catch (const std::exception& e) {
+      throw std::runtime_error(out->error().empty() ? e.what() : out->error());
+    }
+  }
 };
 
 RawlogWriter::RawlogWriter(const std::string& path, const Params& params)
-    : impl_(std::make_unique<Impl>()) {
-  impl_->path = path;
-  impl_->tmp = tempPathFor(path);
+    : impl_(std::make_unique<Impl>(path)) {
   impl_->params = params;
   if (!params.calibration_file.empty()) {
     if (!impl_->calibration.loadFromXMLFile(params.calibration_file))
@@ -70,16 +80,10 @@ RawlogWriter::RawlogWriter(const std::string& path, const Params& params)
     if (impl_->calibration.empty())
       throw std::runtime_error("no default Velodyne calibration for model '" + params.model + "'");
   }
-  if (!impl_->out.open(impl_->tmp, 1))
-    throw std::runtime_error("cannot create rawlog '" + path + "' (temporary '" + impl_->tmp + "')");
+  impl_->out = std::make_unique<GzOutput>(impl_->tmp.path(), 1, path);
 }
 
-RawlogWriter::~RawlogWriter() {
-  if (impl_ && !impl_->closed) {
-    impl_->out.close();
-    std::remove(impl_->tmp.c_str());
-  }
-}
+RawlogWriter::~RawlogWriter() = default;  // an unclosed rawlog's temporary file goes with Impl::tmp
 
 void RawlogWriter::writeSweep(const std::vector<velodyne::RawPacket>& data_packets) {
   auto obs = CObservationVelodyneScan::Create();
@@ -103,7 +107,7 @@ void RawlogWriter::writeSweep(const std::vector<velodyne::RawPacket>& data_packe
     std::memcpy(&obs->scan_packets.back(), pkt.payload.data(), velodyne::kDataPacketSize);
   }
   if (obs->scan_packets.empty()) return;
-  mrpt::serialization::archiveFrom(impl_->out) << *obs;
+  impl_->write(*obs);
   packets_ += obs->scan_packets.size();
   ++sweeps_;
 }
@@ -118,7 +122,7 @@ bool RawlogWriter::writePosition(const velodyne::RawPacket& position_packet) {
   }
   mrpt::obs::CObservationGPS obs;
   fillRmcObservation(*pos.fix, position_packet.stamp_s, impl_->params.gps_label, obs);
-  mrpt::serialization::archiveFrom(impl_->out) << obs;
+  impl_->write(obs);
   ++gps_;
   return true;
 }
@@ -126,15 +130,15 @@ bool RawlogWriter::writePosition(const velodyne::RawPacket& position_packet) {
 void RawlogWriter::writeGnss(const gnss::GnssFix& fix) {
   mrpt::obs::CObservationGPS obs;
   fillGnssObservation(fix, impl_->params.gps_label, obs);
-  mrpt::serialization::archiveFrom(impl_->out) << obs;
+  impl_->write(obs);
   ++gps_;
 }
 
 void RawlogWriter::close() {
   if (impl_->closed) return;
-  impl_->out.close();
+  impl_->out->close();
   impl_->closed = true;
-  commitTempFile(impl_->tmp, impl_->path);
+  impl_->tmp.commit();
 }
 
 NmeaImportSummary nmeaLogToRawlog(const std::string& nmea_path, const std::string& rawlog_path,

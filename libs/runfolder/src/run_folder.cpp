@@ -51,6 +51,7 @@ Manifest manifestFor(const std::string& program, const nlohmann::json& summary) 
   Manifest m;
   m.program = program;
   if (summary.contains("input") && summary["input"].is_string()) m.input = summary["input"].get<std::string>();
+  if (summary.contains("input_id") && summary["input_id"].is_string()) m.input_id = summary["input_id"].get<std::string>();
   return m;
 }
 
@@ -73,14 +74,22 @@ MapRunFiles mapRunOfTrajectory(const datasets::Trajectory& T_map_lidar, const st
   return f;
 }
 
-void writeMapRun(const std::string& dir, const MapRunFiles& f) {
+void writeMapTrajectories(const std::string& dir, const MapRunFiles& f) {
   datasets::writeTum(dir + "/" + kTrajectoryTum, f.trajectory);
   datasets::writeTum(dir + "/" + kOdometryTum, f.odometry);
   datasets::writeKittiPoses(dir + "/trajectory_kitti.txt", f.trajectory.poses);
   datasets::writeTimes(dir + "/trajectory_times.txt", f.trajectory.stamps_s);
   writeFramesCsv(dir + "/" + kFramesCsv, f.frames);
-  writeSummaryJson(dir + "/" + kSummaryJson, f.summary);
-  writeManifest(dir, manifestFor(kMapProgram, f.summary));
+}
+
+void writeMapRunEnd(const std::string& dir, const nlohmann::json& summary) {
+  writeSummaryJson(dir + "/" + kSummaryJson, summary);
+  writeManifest(dir, manifestFor(kMapProgram, summary));
+}
+
+void writeMapRun(const std::string& dir, const MapRunFiles& f) {
+  writeMapTrajectories(dir, f);
+  writeMapRunEnd(dir, f.summary);
 }
 
 }  // namespace roadslam::runfolder

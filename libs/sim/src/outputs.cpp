@@ -29,18 +29,18 @@ using nlohmann::json;
 
 class PcapSink : public PacketSink {
  public:
-  PcapSink(const std::string& path, PacketSink* also) : tmp_(tempPathFor(path)), path_(path), w_(tmp_), also_(also) {}
+  PcapSink(const std::string& path, PacketSink* also) : tmp_(path), w_(tmp_.path(), path), also_(also) {}
   void packet(double capture_s, uint16_t port, const uint8_t* data, std::size_t size) override {
     w_.writeUdp(capture_s, port, port, data, size);
     if (also_) also_->packet(capture_s, port, data, size);
   }
   void commit() {
     w_.close();
-    commitTempFile(tmp_, path_);
+    tmp_.commit();
   }
 
  private:
-  std::string tmp_, path_;
+  TempFile tmp_;  // removed when the run throws before commit
   pcap::PcapWriter w_;
   PacketSink* also_;
 };
@@ -208,7 +208,8 @@ RunReport runToDirectory(Simulator& sim, const OutputOptions& opt) {
             {"lost_returns", {{"no_hit", s.lidar.no_hit}, {"too_close", s.lidar.too_close},
                               {"grazing", s.lidar.grazing}, {"dark", s.lidar.dark},
                               {"dropped", s.lidar.dropped}}},
-            {"start_epoch_s", sim.params().start_epoch_s}, {"lidar_model", sim.params().lidar.model}};
+            {"start_epoch_s", sim.params().start_epoch_s}, {"lidar_model", sim.params().lidar.model},
+            {"interrupted", s.interrupted}, {"complete", !s.interrupted}};
   if (sim.params().can.enabled) {
     j["can_frames"] = rep.can_frames;
     j["can_dbc"] = rep.can_dbc;

@@ -1,5 +1,7 @@
 #include "roadslam/sim/simulator.h"
 
+#include "roadslam/common/stop_signal.h"
+
 #include <mrpt/config/CConfigFileBase.h>
 
 #include <algorithm>
@@ -114,6 +116,11 @@ SimStats Simulator::runSweeps(const std::function<void(uint64_t, Scan&&)>& on_sw
   st.sweeps = static_cast<uint64_t>(std::floor(duration_s() * p_.lidar.rotation_hz + 1e-9));
   Scan scan;
   for (uint64_t k = 0; k < st.sweeps; ++k) {
+    if (stopRequested()) {
+      st.sweeps = k;
+      st.interrupted = true;
+      break;
+    }
     lidar_->simulateSweep(k, scan, truth);
     scan.stamp_s += static_cast<double>(p_.start_epoch_s);
     on_sweep(k, std::move(scan));
@@ -129,11 +136,16 @@ SimStats Simulator::run(PacketSink& sink, std::vector<TrueReturn>* truth) {
   if (p_.lidar.hdl64()) throw std::runtime_error("run: [lidar] model hdl64 has no packets (runSweeps)");
   const auto wall0 = std::chrono::steady_clock::now();
   const double T = duration_s(), P = LidarSimulator::packetPeriod_s();
-  const auto n = static_cast<uint64_t>(std::floor(T / P));
+  auto n = static_cast<uint64_t>(std::floor(T / P));
   std::array<velodyne::FiringSequence, velodyne::kVlp16SequencesPerPacket> seq{};
   SimStats st;
   double next_position_s = 0;  // simulation time of the next $GPRMC packet
   for (uint64_t k = 0; k < n; ++k) {
+    if (stopRequested()) {  // the packets so far stay a valid capture; the outputs cover them
+      n = k;
+      st.interrupted = true;
+      break;
+    }
     lidar_->simulatePacket(k, seq, truth);
     const auto bytes = velodyne::encodeVlp16Packet(seq, packetTimestampUs(k));
     const double capture = packetCaptureTime(k);

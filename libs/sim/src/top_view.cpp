@@ -1,3 +1,4 @@
+#include <cerrno>
 #include <mrpt/img/CImage.h>
 
 #include <algorithm>
@@ -111,9 +112,10 @@ void drawTopView(const Simulator& sim, const std::string& png_path, int max_px) 
   img.textOut(12, v.h - 32, "100 m", TColor(0, 0, 0));
   img.textOut(10, 8, sim.params().name + "  seed " + std::to_string(sim.params().seed) +
                          "  red: drive (thick: simulated), green: curbs, blue circle: start, magenta: moving cars at t=0", TColor(0, 0, 0));
-  const std::string tmp = tempPathFor(png_path) + ".png";  // the extension selects the format
-  if (!img.saveToFile(tmp)) throw std::runtime_error("cannot write " + png_path);
-  commitTempFile(tmp, png_path);
+  TempFile tmp(png_path, ".png");  // the extension selects the format
+  errno = 0;
+  if (!img.saveToFile(tmp.path())) throw std::runtime_error(tmp.failure());
+  tmp.commit();
 }
 
 }  // namespace roadslam::sim

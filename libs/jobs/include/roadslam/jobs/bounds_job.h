@@ -31,6 +31,9 @@ struct BoundsRequest {
   bool progress = true;
   /// Ini keys no component reads are warnings in the summary instead of an error (checked_config.h).
   bool allow_unknown_keys = false;
+  /// Write into out_dir even when it holds another program's or another input's run, or an input
+  /// (runfolder/output_folder.h); the refusal is then a warning in the summary.
+  bool force = false;
 };
 
 /// Runs the job; returns the summary (frames, ms_per_frame_mean/max = detector wall time per sweep,

@@ -56,6 +56,9 @@ struct MapRequest {
   std::string prior_map_dir;
   /// Each posed sweep, deskewed, as OUT/sweeps/NNNNNN.pcd (stages/sweep_export.h).
   bool export_sweeps = false;
+  /// Write into out_dir even when it holds another program's or another input's run, or an input
+  /// (runfolder/output_folder.h); the refusal is then a warning in the summary.
+  bool force = false;
 };
 
 struct MapOutcome {

@@ -12,8 +12,9 @@ namespace roadslam::pcap {
 
 class PcapWriter {
  public:
-  /// Creates (truncates) \p path; throws std::runtime_error naming the file on failure.
-  explicit PcapWriter(const std::string& path);
+  /// Creates (truncates) \p path; throws std::runtime_error "cannot write 'NAME': REASON" on any
+  /// failure, NAME = \p name (the final file when \p path is a temporary one) or \p path.
+  explicit PcapWriter(const std::string& path, const std::string& name = "");
   ~PcapWriter();
   PcapWriter(const PcapWriter&) = delete;
   PcapWriter& operator=(const PcapWriter&) = delete;

@@ -56,7 +56,7 @@ RunFolder openBoundsRun(const std::string& dir);
 std::vector<long> trajectoryRowOfFrames(const std::vector<FrameRow>& frames, size_t trajectory_poses,
                                         const std::string& dir);
 
-/// The manifest of a run by \p program whose summary is \p summary (its "input").
+/// The manifest of a run by \p program whose summary is \p summary (its "input" and "input_id").
 Manifest manifestFor(const std::string& program, const nlohmann::json& summary);
 
 /// What writeMapRun writes.
@@ -76,5 +76,10 @@ MapRunFiles mapRunOfTrajectory(const datasets::Trajectory& T_map_lidar, const st
 /// frames.csv, summary.json and, last, run.json (manifestFor(kMapProgram, summary)) into \p dir, each
 /// atomically; throws naming the file.
 void writeMapRun(const std::string& dir, const MapRunFiles& files);
+/// writeMapRun in two steps, for a job that writes its other outputs between them: the trajectories
+/// and frames.csv first (small, the most valuable), ...
+void writeMapTrajectories(const std::string& dir, const MapRunFiles& files);
+/// ... and summary.json then run.json (state "complete") last.
+void writeMapRunEnd(const std::string& dir, const nlohmann::json& summary);
 
 }  // namespace roadslam::runfolder

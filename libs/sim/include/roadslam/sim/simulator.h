@@ -64,6 +64,8 @@ struct SimStats {
   double duration_s = 0, distance_m = 0;  ///< simulated time [s], distance driven [m]
   double wall_s = 0;                      ///< wall-clock time of run() [s]
   LidarCounters lidar;
+  /// A stop signal (stop_signal.h) ended the run early: duration_s is what was simulated.
+  bool interrupted = false;
 };
 
 class Simulator {
