@@ -28,10 +28,13 @@ TEST(GnssJob, SmallLoopFusedGeoreferencedOutputs) {
   sp.gnss.multipath_start_s = 20;
   sp.gnss.multipath_duration_s = 2;
   const sim::Simulator s(sp);
+  // the run's inputs beside its output folder, never in it (runfolder/output_folder.h)
   const std::string out = std::string(ROADSLAM_BINARY_DIR) + "/test-out/map-job-small-loop-gnss";
-  std::filesystem::create_directories(out);
+  const std::string in = out + "-inputs";
+  std::filesystem::remove_all(out);
+  std::filesystem::create_directories(in);
   const auto gt = datasets::readTum(sim_dir + "/gt_trajectory.tum");
-  const auto run = sim::writeGnss(s, gt.stamps_s.back() - static_cast<double>(sp.start_epoch_s), out + "/");
+  const auto run = sim::writeGnss(s, gt.stamps_s.back() - static_cast<double>(sp.start_epoch_s), in + "/");
   // the antenna in the lidar frame: [gnss] lever arm (vehicle frame) less the lidar mount (no rotation)
   std::ifstream def(std::string(ROADSLAM_SOURCE_DIR) + "/ini/default.ini");
   std::stringstream ini;
@@ -42,12 +45,12 @@ TEST(GnssJob, SmallLoopFusedGeoreferencedOutputs) {
   text = text.substr(0, at) + "[gnss_fusion]\nlever_x_m = " + std::to_string(sp.gnss.lever_x_m - sp.lidar.mount_x_m) +
          "\nlever_y_m = " + std::to_string(sp.gnss.lever_y_m - sp.lidar.mount_y_m) + "\nlever_z_m = " +
          std::to_string(sp.gnss.lever_z_m - sp.lidar.mount_height_m) + "\n";
-  std::ofstream(out + "/map-gnss.ini") << text;
+  std::ofstream(in + "/map-gnss.ini") << text;
 
   jobs::MapRequest req;
-  req.config_path = out + "/map-gnss.ini";
+  req.config_path = in + "/map-gnss.ini";
   req.input_path = sim_dir + "/velodyne.pcap";
-  req.gnss_path = out + "/gnss.nmea";
+  req.gnss_path = in + "/gnss.nmea";
   req.out_dir = out;
   req.progress = false;
   req.allow_unknown_keys = true;  // the cut-down [gnss_fusion] leaves the other keys at their defaults
@@ -198,7 +201,7 @@ TEST(GnssJob, FromInputFusesOneChosenGpsSource) {
     jobs::MapRequest req;
     req.config_path = std::string(ROADSLAM_SOURCE_DIR) + "/ini/default.ini";
     req.input_path = dir + input;
-    req.out_dir = dir + "/out";
+    req.out_dir = dir + "/out" + input;  // a run folder per input
     req.progress = false;
     req.maps = false;
     req.gnss_from_input = true;

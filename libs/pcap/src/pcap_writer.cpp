@@ -54,7 +54,7 @@ PcapWriter::~PcapWriter() {
 void PcapWriter::writeUdp(double stamp_s, uint16_t src_port, uint16_t dst_port,
                           const uint8_t* payload, std::size_t size, uint32_t src_ip,
                           uint32_t dst_ip) {
-  if (impl_->file == nullptr) throw std::logic_error("PcapWriter: write after close on '" + impl_->name + "'");
+  if (impl_->file == nullptr) throw std::runtime_error("PcapWriter: write after close on '" + impl_->name + "'");
   if (size > net::kMaxUdpPayload) throw std::runtime_error("PcapWriter: UDP payload too large for '" + impl_->name + "'");
   const std::size_t frame_len = net::kEthHeader + net::kIpv4Header + net::kUdpHeader + size;
   auto& b = impl_->buf;

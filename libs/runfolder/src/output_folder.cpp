@@ -62,7 +62,7 @@ std::string refusalReason(const std::string& dir, const OutputClaim& claim) {
     return "'" + dir + "' holds the outputs of " + m->program + " (its " + kManifestFile + "), not of " + claim.program + kWhatToDo;
   }
   const std::string identity = inputId(claim);
-  if (m->input_id != identity) {
+  if (!m->input_id.empty() && m->input_id != identity) {  // empty: a run from before input_id, of this program
     return "'" + dir + "' holds " + m->program + "'s run on " + (m->input_id.empty() ? "'" + m->input + "'" : m->input_id) +
            ", not on " + identity + kWhatToDo;
   }
