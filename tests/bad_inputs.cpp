@@ -124,6 +124,9 @@ void makeFiles() {
   write(w / "sim-folder" / "run.json", R"({"format": "roadslam-run", "format_version": 1, "program": "roadslam-sim",
       "input": "urban-loop seed 1", "input_id": "/x/urban-loop.ini?seed=1&duration_s=0", "state": "complete"})");
   write(w / "data-folder" / "drive.pcap", pcap.substr(0, 100000));
+  // side inputs of another drive: a CAN log and poses of 2001, beside recordings of other times
+  write(w / "other-drive.log", "(1000000000.000000) can0 123#0011223344556677\n(1000000060.000000) can0 123#0011223344556677\n");
+  write(w / "other-drive.tum", "1000000000.0 0 0 0 0 0 0 1\n1000000010.0 1 0 0 0 0 0 1\n");
   write(w / "data-folder-force" / "drive.pcap", pcap.substr(0, 100000));
   // a long KITTI folder for the signal row: one sweep under 3000 names (hard links, no space)
   {
@@ -281,6 +284,8 @@ const Row kTable[] = {
   {"map-into-other-run",   "roadslam-map --config {S}/ini/default.ini --input {W}/truncated.pcap --out {W}/prior-map", 1, "prior-map' holds roadslam-map's run on "},
   {"map-input-in-out",     "roadslam-map --config {S}/ini/default.ini --input {W}/data-folder/drive.pcap --out {W}/data-folder", 1, "is or holds this run's input"},
   {"map-force",            "roadslam-map --config {S}/ini/default.ini --input {W}/truncated.pcap --out {W}/data-folder-force --force --quiet", 0, "warning: --force: '"},
+  {"map-can-other-drive",  "roadslam-map --config {S}/ini/default.ini --input {W}/truncated.pcap --out {O} --can {W}/other-drive.log --vehicle {S}/ini/vehicles/roadslam-sim.ini", 1, "other-drive.log covers 1000000000.000 to 1000000060.000 s (60.0 s), but the recording starts at"},
+  {"bounds-trajectory-other-drive", "roadslam-bounds --config {S}/ini/bounds.ini --input {W}/kitti-two --out {O} --trajectory {W}/other-drive.tum", 1, "other-drive.tum covers 1000000000.000 to 1000000010.000 s (10.0 s), but the recording starts at -0.050 s, 1000000000.0 s before it: another drive, or another clock"},
   {"bounds-into-map-folder", "roadslam-bounds --config {S}/ini/bounds.ini --input {W}/kitti-two --out {W}/prior-map", 1, "holds the outputs of roadslam-map (its run.json), not of roadslam-bounds"},
   {"sim-into-map-folder",  "roadslam-sim --scenario {S}/ini/sim/urban-loop.ini --duration 1 --out {W}/prior-map", 1, "holds the outputs of roadslam-map (its run.json), not of roadslam-sim"},
   {"sim-sigint",           "roadslam-sim --scenario {S}/ini/sim/urban-loop.ini --duration 900 --out {O} --quiet", 130, "roadslam-sim: interrupted: the first", 1500},

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstring>
 #include <cstdio>
+#include <fstream>
 #include <istream>
 #include <sstream>
 #include <stdexcept>
@@ -342,6 +343,31 @@ void writeCandumpFile(const std::string& path, const std::vector<CanFrame>& fram
     out.stream().write(buf, static_cast<std::streamsize>(formatCandumpLine(f, buf, sizeof(buf))));
   }
   out.commit();
+}
+
+std::optional<CandumpSpan> candumpSpan(const std::string& path) {
+  CandumpReader reader(path);
+  CanFrame f;
+  if (!reader.next(f)) return std::nullopt;
+  CandumpSpan span{static_cast<double>(f.t_us) * 1e-6, static_cast<double>(f.t_us) * 1e-6};
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  const std::streamoff size = in.tellg();
+  const std::streamoff tail = std::min<std::streamoff>(size, 64 * 1024);  // many lines of 30-200 bytes
+  std::string text(static_cast<size_t>(tail), '\0');
+  in.seekg(size - tail);
+  in.read(text.data(), tail);
+  for (size_t end = text.size(); end > 0;) {  // the last line that parses, from the end
+    const size_t begin = text.rfind('\n', end - 1);
+    const size_t from = begin == std::string::npos ? 0 : begin + 1;
+    const char* error = nullptr;
+    if (from < end && parseCandumpLine(std::string_view(text).substr(from, end - from), f, &error)) {
+      span.last_s = std::max(span.first_s, static_cast<double>(f.t_us) * 1e-6);
+      break;
+    }
+    if (begin == std::string::npos) break;
+    end = begin;
+  }
+  return span;
 }
 
 }  // namespace roadslam::can

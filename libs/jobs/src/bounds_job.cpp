@@ -11,6 +11,8 @@
 #include "roadslam/common/atomic_file.h"
 #include "roadslam/common/config.h"
 #include "roadslam/common/progress.h"
+#include "roadslam/common/side_input.h"
+#include "roadslam/datasets/trajectory_io.h"
 #include "roadslam/common/stop_signal.h"
 #include "roadslam/jobs/gnss_outputs.h"
 #include "roadslam/sources/scan_source.h"
@@ -111,6 +113,14 @@ void drawFrame(const std::string& out_dir, const pipeline::PipelineFrame& pf, co
   boundary::writeCostGridPng(out_dir + "/" + name, f.grid);
 }
 
+/// The poses given must be of the recording's drive and clock (common/side_input.h).
+void checkTrajectory(const std::string& path, double recording_start_s) {
+  const auto T = datasets::readTum(path);
+  if (T.stamps_s.empty()) throw std::runtime_error("--trajectory " + path + ": no pose in it");
+  const std::string why = sideInputMismatch("--trajectory " + path, T.stamps_s.front(), T.stamps_s.back(), recording_start_s);
+  if (!why.empty()) throw std::runtime_error(why);
+}
+
 }  // namespace
 
 nlohmann::json runBoundsJob(const BoundsRequest& req) {
@@ -122,7 +132,9 @@ nlohmann::json runBoundsJob(const BoundsRequest& req) {
   op.loadFromConfigFile(*cfg);
   sources::loadSourceSections(*cfg);
   const auto unknown_keys = cfg->checkEntries(req.allow_unknown_keys);
-  auto source = pipeline::openNonEmptySource(req.input_path, *cfg, req.times_path);
+  double start_s = 0;
+  auto source = pipeline::openNonEmptySource(req.input_path, *cfg, req.times_path, &start_s);
+  if (!req.trajectory_path.empty()) checkTrajectory(req.trajectory_path, start_s);
   // a trajectory or georeference that cannot be read fails here, before any output
   auto det = std::make_shared<boundary::BoundaryDetector>(params);
   pipeline::StageList stages = boundsStages(req, op, det, req.whole_drive ? pipeline::BoundaryUse::Accumulate : pipeline::BoundaryUse::Detect);

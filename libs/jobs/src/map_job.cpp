@@ -10,7 +10,9 @@
 #include "map_job_params.h"
 #include "map_run_files.h"
 #include "map_sinks.h"
+#include "roadslam/can/candump.h"
 #include "roadslam/common/atomic_file.h"
+#include "roadslam/common/side_input.h"
 #include "roadslam/common/config.h"
 #include "roadslam/common/progress.h"
 #include "roadslam/common/stop_signal.h"
@@ -71,6 +73,14 @@ struct GnssRequest {
     if (from_input) keepFixes(src.takeGpsFixes(), label, fixes);
   }
 };
+
+/// A CAN log for the prior must be of the recording's drive and clock (common/side_input.h).
+void checkCanLog(const std::string& path, double recording_start_s) {
+  const auto span = can::candumpSpan(path);
+  if (!span) throw std::runtime_error("--can " + path + ": no CAN frame in it");
+  const std::string why = sideInputMismatch("--can " + path, span->first_s, span->last_s, recording_start_s);
+  if (!why.empty()) throw std::runtime_error(why);
+}
 
 /// What the job collects from the pipeline's frames.
 struct Sinks {
@@ -203,7 +213,9 @@ MapOutcome runMapJob(const MapRequest& req) {
   if (!req.can_log_path.empty() && req.vehicle_ini_path.empty()) throw std::runtime_error("--can needs --vehicle (the car's vehicle ini)");
   pipeline::StageRequest stages;
   if (!req.prior_map_dir.empty()) stages.prior_map = mapping::readMapFolder(req.prior_map_dir);
-  auto source = pipeline::openNonEmptySource(req.input_path, *cfg, req.times_path);
+  double start_s = 0;
+  auto source = pipeline::openNonEmptySource(req.input_path, *cfg, req.times_path, &start_s);
+  if (!req.can_log_path.empty()) checkCanLog(req.can_log_path, start_s);
   GnssRequest gnss(req, params.gnss_fusion);
   runfolder::OutputClaim claim{runfolder::kMapProgram, req.input_path, source->describe(), "",
                                {req.config_path, req.times_path, req.can_log_path, req.vehicle_ini_path, req.gnss_path,

@@ -85,13 +85,14 @@ std::optional<PipelineFrame> Pipeline::next() {
 }
 
 std::unique_ptr<sources::ScanSource> openNonEmptySource(const std::string& path, const mrpt::config::CConfigFileBase& cfg,
-                                                        const std::string& times_path) {
+                                                        const std::string& times_path, double* first_stamp_s) {
   auto src = sources::openScanSource(path, cfg, times_path);
   std::optional<Scan> first = src->next();
   if (!first) {
     const std::string err = src->errorMessage();
     throw std::runtime_error("input '" + path + "' gives no sweep" + (err.empty() ? "" : ": " + err));
   }
+  if (first_stamp_s) *first_stamp_s = first->stamp_s;
   return std::make_unique<PeekedSource>(std::move(src), std::move(*first));
 }
 

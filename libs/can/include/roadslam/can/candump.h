@@ -18,6 +18,7 @@
 #include <fstream>
 #include <iosfwd>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -80,6 +81,14 @@ class CandumpReader {
 
 /// Reads a whole log; bad lines are reported in \p stats (optional).
 std::vector<CanFrame> readCandumpFile(const std::string& path, CandumpStats* stats = nullptr);
+/// The times of a log's first and last good frames [s since epoch], read from its head and its tail
+/// only (a log of hours opens at once); nullopt when it has no good frame. Throws naming the file
+/// when it cannot be opened.
+struct CandumpSpan {
+  double first_s = 0, last_s = 0;
+};
+std::optional<CandumpSpan> candumpSpan(const std::string& path);
+
 /// Writes frames as a candump log (atomically: to a temporary file, then renamed).
 void writeCandumpFile(const std::string& path, const std::vector<CanFrame>& frames);
 

@@ -58,8 +58,9 @@ class Pipeline {
 
 /// Opens the recording \p path (sources::openScanSource) and reads its first sweep: an input that
 /// gives none is an error ("input 'X' gives no sweep: <why>") before any output exists. The sweep
-/// read is handed out again by the returned source's first next().
+/// read is handed out again by the returned source's first next(); its stamp goes to \p first_stamp_s
+/// when given (the side inputs are checked against it, common/side_input.h).
 std::unique_ptr<sources::ScanSource> openNonEmptySource(const std::string& path, const mrpt::config::CConfigFileBase& cfg,
-                                                        const std::string& times_path = "");
+                                                        const std::string& times_path = "", double* first_stamp_s = nullptr);
 
 }  // namespace roadslam::pipeline
