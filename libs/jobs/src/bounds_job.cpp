@@ -6,6 +6,7 @@
 #include <map>
 #include <optional>
 
+#include "lidar_model_json.h"
 #include "roadslam/boundary/detector.h"
 #include "roadslam/boundary/output.h"
 #include "roadslam/common/atomic_file.h"
@@ -174,6 +175,7 @@ nlohmann::json runBoundsJob(const BoundsRequest& req) {
                       {"geo_boundaries", geo_lines.size()},
                       {"mode", req.whole_drive ? "whole_drive" : "live"}, {"curb_map_cells", det->curbMap().size()}};
   if (req.whole_drive) s["ms_per_frame_first_pass_mean"] = drive.ms_mean;
+  addLidarModel(s, stream);
   s["warnings"] = unknown_keys;
   if (!stream.errorMessage().empty()) s["warnings"].push_back("input damaged: " + stream.errorMessage());
   s["interrupted"] = stopRequested();  // Ctrl-C / SIGTERM: the outputs so far, as roadslam-map's

@@ -7,6 +7,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "lidar_model_json.h"
 #include "map_job_params.h"
 #include "map_sinks.h"
 #include "roadslam/common/atomic_file.h"
@@ -124,6 +125,7 @@ void summarizeInput(const sources::ScanSource& stream, const MapJobParams& param
   }
   const auto st = stream.stats();
   out.summary["input"] = stream.describe();
+  addLidarModel(out.summary, stream);
   out.summary["packets"] = st.packets;
   out.summary["malformed_packets"] = st.malformed_packets;
   out.summary["partial_sweeps"] = st.partial_sweeps;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "roadslam/sources/gps_fix.h"
+#include "roadslam/velodyne/layout.h"
 #include "roadslam/velodyne/packet.h"
 
 namespace roadslam::sources {
@@ -60,22 +61,39 @@ class PacketSource {
 /// past the hour): a step larger than 1.5 expected periods means round(step/period)-1 packets lost.
 /// Period (unless \p forced_period_s > 0): VLP-16 1327.104 us (24 sequences x 55.296 us), HDL-32E
 /// 552.96 us (12 blocks x 46.08 us); half of it in dual return mode (each firing fills two blocks).
-/// The model is \p model, or the packet's product byte when Unknown.
+/// The model is \p model or, when Unknown, the one velodyne::chooseModel gives for the stream's first
+/// LayoutDetector::kWindowPackets packets (their layout over a disagreeing product byte; the packet's
+/// own byte when neither names a model): the steps of that window are counted once it is chosen.
 class GapCounter {
  public:
   explicit GapCounter(double forced_period_s = 0, velodyne::Model model = velodyne::Model::Unknown)
       : forced_period_s_(forced_period_s), model_(model) {}
   /// Expected step between consecutive data packets [s].
   static double packetPeriod_s(velodyne::Model model, bool dual);
-  /// Feeds one 1206-byte data payload; returns the packets missing just before it [count].
+  /// Feeds one 1206-byte data payload; returns the packets missing just before it [count] (0 while
+  /// the model is being chosen: those steps are counted when it is).
   uint64_t feed(const uint8_t* payload);
-  uint64_t missing() const { return missing_; }
+  /// Packets missing so far [count], the steps of a window still open counted with the model its
+  /// packets show so far.
+  uint64_t missing() const;
 
  private:
+  struct Step {
+    int64_t step_us;
+    bool dual;
+    uint8_t product;
+  };
+  uint64_t lost(const Step& s, velodyne::Model model) const;
+  velodyne::Model streamModel() const;
+
   double forced_period_s_;
   velodyne::Model model_;
   int64_t last_us_ = -1;
   uint64_t missing_ = 0;
+  velodyne::LayoutDetector layout_;
+  std::vector<Step> pending_;  // steps of the layout window, counted once the model is chosen
+  bool chosen_ = false;
+  velodyne::Model chosen_model_ = velodyne::Model::Unknown;
 };
 
 /// Classification of one UDP payload by port and size, shared by every backend.

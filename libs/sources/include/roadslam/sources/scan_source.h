@@ -21,6 +21,14 @@ class CConfigFileBase;
 
 namespace roadslam::sources {
 
+/// The LiDAR model a source decodes its packets as, and why (velodyne/model_choice.h): summary.json's
+/// lidar_model, lidar_model_source and lidar_layout (docs/run-folder.md).
+struct LidarModelReport {
+  std::string model;   ///< "VLP-16", "HDL-32E", "unknown" (not decoded), "undecided" (nothing read yet)
+  std::string source;  ///< "ini", "packet layout" or "product byte"
+  std::string layout;  ///< what the packets' layout says (velodyne::LayoutVerdict::describe)
+};
+
 /// What every scan source counts; the per-sweep path counts problems here, never throws.
 struct ScanSourceStats {
   uint64_t sweeps = 0;             ///< sweeps closed (partial included) [count]
@@ -45,6 +53,8 @@ class ScanSource {
   virtual ScanSourceStats stats() const = 0;
   /// Total sweeps when known in advance (KITTI folders), else 0: for progress and ETA.
   virtual size_t sizeHint() const { return 0; }
+  /// The model Velodyne packets are decoded as; nullopt for sources of points (KITTI folders).
+  virtual std::optional<LidarModelReport> lidarModel() const { return std::nullopt; }
   /// Non-empty once the input turned out damaged (truncated, undecodable record, unreadable .bin):
   /// names the file and the place; the sweeps before it were returned normally.
   virtual std::string errorMessage() const { return {}; }
