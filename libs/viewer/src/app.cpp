@@ -122,8 +122,8 @@ std::string recordingToOpen(const std::string& path, std::ostream& err) {
     if (fs::exists(out) && fs::last_write_time(out, ec) >= fs::last_write_time(path, ec)) return out;
   }
   err << "roadslam-view: converting " << path << " into " << out << " once ...\n";
+  // The model's warning, if any, comes with the summary line (ViewerModel::lidarModel), once.
   const auto s = sources::convertToRawlog(path, out, {}, {}, "roadslam-rawlog convert --model");
-  for (const auto& w : s.warnings) err << "roadslam-view: warning: " << w << "\n";
   if (s.observations == 0) throw std::runtime_error("'" + path + "' holds no Velodyne sweep");
   return out;
 }
