@@ -26,7 +26,7 @@ int main(int argc, char** argv) {
   app.add_option("--udp", udp, "also stream the data packets to HOST:PORT (IPv4)");
   app.add_option("--speed", speed, "UDP pace as a multiple of real time (> 0)")->check(CLI::PositiveNumber);
   app.add_option("--top-view", top_view, "draw a top view of the world to this PNG");
-  app.add_flag("--quiet", quiet, "nothing on stdout (no summary); errors on stderr");
+  app.add_flag("--quiet", quiet, "nothing on stdout (no summary) and no progress bar; errors on stderr");
   CLI11_PARSE(app, argc, argv);
   try {
     auto params = roadslam::sim::ScenarioParams::fromFile(scenario);
@@ -35,6 +35,7 @@ int main(int argc, char** argv) {
     roadslam::sim::OutputOptions opt;
     opt.dir = out;
     opt.top_view_png = top_view;
+    opt.progress = !quiet;
     if (!udp.empty()) {
       const auto colon = udp.rfind(':');
       const int port = colon == std::string::npos ? 0 : std::atoi(udp.c_str() + colon + 1);

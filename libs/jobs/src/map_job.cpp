@@ -10,9 +10,9 @@
 #include "lidar_model_json.h"
 #include "map_job_params.h"
 #include "map_sinks.h"
+#include "source_progress.h"
 #include "roadslam/common/atomic_file.h"
 #include "roadslam/common/config.h"
-#include "roadslam/common/progress.h"
 #include "roadslam/common/stop_signal.h"
 #include "roadslam/jobs/gnss_outputs.h"
 #include "roadslam/mapping/map_outputs.h"
@@ -91,7 +91,7 @@ struct Sinks {
 void drive(pipeline::Pipeline& pipe, const MapRequest& req, GnssRequest& gnss, Sinks& sinks, MapOutcome& out) {
   pipeline::ObjectTrackingStage* objects = pipe.find<pipeline::ObjectTrackingStage>();
   const bool localize = pipe.find<pipeline::LocalizationStage>() != nullptr;
-  ProgressBar bar("roadslam-map", pipe.source().sizeHint());
+  SourceProgress bar("roadslam-map", pipe.source(), req.progress);
   while (!stopRequested()) {
     if (req.max_frames && out.frames.size() >= req.max_frames) break;
     auto f = pipe.next();
@@ -100,7 +100,7 @@ void drive(pipeline::Pipeline& pipe, const MapRequest& req, GnssRequest& gnss, S
     if (objects) sinks.objects.add(*f, objects->objects());
     if (localize) sinks.localization.add(*f);
     out.frames.push_back(std::move(*f->pose.odometry));
-    if (req.progress) bar.update(out.frames.size());
+    bar.update(out.frames.size());
   }
   pipe.finish();
   bar.finish();

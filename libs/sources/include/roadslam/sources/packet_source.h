@@ -28,6 +28,13 @@ struct SourceStats {
   double last_stamp_s = 0;         ///< stamp of the last returned packet [s]
 };
 
+/// How far a recording has been read, for progress and ETA: bytes of its file(s) [bytes]; total 0 =
+/// unknown (live). Compressed files count their compressed bytes.
+struct ReadProgress {
+  uint64_t bytes_read = 0;
+  uint64_t bytes_total = 0;
+};
+
 /// Ports that identify Velodyne traffic (VLP-16 manual 63-9243, section 9).
 struct PortConfig {
   uint16_t data_port = velodyne::kDefaultDataPort;          ///< [UDP port]
@@ -55,6 +62,8 @@ class PacketSource {
   /// GPS fixes the source holds already decoded (rawlog CObservationGPS records) since the last
   /// call; position packets returned by next() are not repeated here.
   virtual std::vector<gnss::GnssFix> takeDecodedFixes() { return {}; }
+  /// Bytes of the recording read so far and in all (both 0 for a live source).
+  virtual ReadProgress readProgress() const { return {}; }
 };
 
 /// Counts packets missing from a data stream from the sensor's own timestamps (bytes 1200-1203, us

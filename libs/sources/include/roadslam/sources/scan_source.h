@@ -14,6 +14,7 @@
 
 #include "roadslam/common/scan.h"
 #include "roadslam/sources/gps_fix.h"
+#include "roadslam/sources/packet_source.h"
 
 namespace mrpt::config {
 class CConfigFileBase;
@@ -53,6 +54,9 @@ class ScanSource {
   virtual ScanSourceStats stats() const = 0;
   /// Total sweeps when known in advance (KITTI folders), else 0: for progress and ETA.
   virtual size_t sizeHint() const { return 0; }
+  /// Bytes of a recorded input read so far and in all (packet recordings; both 0 when unknown, live):
+  /// progress and ETA where the sweeps are not counted in advance.
+  virtual ReadProgress readProgress() const { return {}; }
   /// The model Velodyne packets are decoded as; nullopt for sources of points (KITTI folders).
   virtual std::optional<LidarModelReport> lidarModel() const { return std::nullopt; }
   /// Non-empty once the input turned out damaged (truncated, undecodable record, unreadable .bin):

@@ -67,6 +67,7 @@ class SweepSource : public ScanSource {
   /// The model chosen (model_choice.h); before the first next() the choice is not made yet and the
   /// model reads "undecided".
   std::optional<LidarModelReport> lidarModel() const override;
+  ReadProgress readProgress() const override { return packets_->readProgress(); }
   /// The choice itself; nullopt before the first next().
   const std::optional<velodyne::ModelChoice>& modelChoice() const { return choice_; }
 
