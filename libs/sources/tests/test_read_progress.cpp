@@ -38,7 +38,9 @@ void expectMonotoneToTotal(const std::vector<ReadProgress>& p, uint64_t total) {
   for (std::size_t i = 0; i < p.size(); ++i) {
     EXPECT_EQ(p[i].bytes_total, total);
     EXPECT_LE(p[i].bytes_read, total);
-    if (i > 0) EXPECT_GE(p[i].bytes_read, p[i - 1].bytes_read) << i;
+    if (i > 0) {
+      EXPECT_GE(p[i].bytes_read, p[i - 1].bytes_read) << i;
+    }
   }
   EXPECT_LT(p.front().bytes_read, total / 2);
 }
