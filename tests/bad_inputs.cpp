@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <optional>
@@ -61,6 +62,23 @@ std::string fileText(const fs::path& p) {
   return std::string((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
 }
 
+/// \p pcap (classic pcap, Ethernet/IPv4/UDP records) with the product byte of every Velodyne data
+/// packet (1206-byte payload to port 2368, byte 1205) set to \p product.
+std::string withProductByte(std::string pcap, unsigned char product) {
+  constexpr size_t kGlobalHeader = 24, kRecordHeader = 16, kUdpPayload = 42, kPayload = 1206;
+  for (size_t at = kGlobalHeader; at + kRecordHeader <= pcap.size();) {
+    uint32_t len = 0;
+    std::memcpy(&len, pcap.data() + at + 8, 4);  // incl_len, host (little-endian) byte order
+    const size_t rec = at + kRecordHeader;
+    const bool data = len == kUdpPayload + kPayload && rec + len <= pcap.size() &&
+                      static_cast<unsigned char>(pcap[rec + 36]) == 2368 / 256 &&
+                      static_cast<unsigned char>(pcap[rec + 37]) == 2368 % 256;
+    if (data) pcap[rec + kUdpPayload + 1205] = static_cast<char>(product);
+    at = rec + len;
+  }
+  return pcap;
+}
+
 /// The bad files every row may name as {W}/...
 void makeFiles() {
   static bool done = false;
@@ -74,6 +92,7 @@ void makeFiles() {
   write(w / "empty.rawlog", "");
   const std::string pcap = fileText(kSrc + "/rawlogs/boxroom-vlp16.pcap");
   write(w / "truncated.pcap", pcap.substr(0, 300000));
+  write(w / "vlp16-hdl32-byte.pcap", withProductByte(pcap, 0x21));  // a VLP-16 capture with the HDL-32E byte
   write(w / "notes.txt", "not a recording\n");
   fs::create_directories(w / "empty-dir");
   write(w / "typo-key.ini", def + "\n[odometry]\nvoxel_sise_m = 0.5\n");
@@ -91,6 +110,11 @@ void makeFiles() {
   write(w / "bad-spin.ini", "[kitti]\nspin = sideways\n");
   write(w / "bad-stamp-reference.ini", "[kitti]\nstamp_reference = centre\n");
   write(w / "bad-bool.ini", "[odometry]\ndeskew = maybe\n");
+  {
+    std::string m = def;  // [velodyne] model = auto, its first line of that text, set to hdl32
+    m.replace(m.find("model = auto"), 12, "model = hdl32");
+    write(w / "model-hdl32.ini", m);
+  }
   write(w / "name-and-alias.ini", "[preprocess]\nego_radius_m = 2.5\n; the thesis's name\nrad = 3\n");
   write(w / "bad-motion-model.ini", "; the tracker's filter\n[tracking]\n\nmotion_model = kalman\n");
   write(w / "bad-gnss-optimizer.ini", "[gnss_fusion]\noptimizer = g2o\n");
@@ -247,6 +271,10 @@ const Row kTable[] = {
   {"map-random-pcap",      "roadslam-map --config {S}/ini/default.ini --input {W}/random.pcap --out {O}", 1, "random.pcap"},
   {"map-empty-pcap",       "roadslam-map --config {S}/ini/default.ini --input {W}/empty.pcap --out {O}", 1, "empty.pcap"},
   {"map-truncated-pcap",   "roadslam-map --config {S}/ini/default.ini --input {W}/truncated.pcap --out {O} --quiet", 0, "input damaged, 4 sweeps read before it"},
+  {"map-product-byte-lies", "roadslam-map --config {S}/ini/default.ini --input {W}/vlp16-hdl32-byte.pcap --out {O} --quiet", 0,
+   "warning: packets have the VLP-16 layout (110.6 us per block) but product byte 0x21 says HDL-32E; decoding as VLP-16; set [velodyne] model = hdl32 to force"},
+  {"map-model-set-against-layout", "roadslam-map --config {W}/model-hdl32.ini --input {S}/rawlogs/boxroom-vlp16.pcap --out {O} --quiet", 0,
+   "warning: packets have the VLP-16 layout (110.6 us per block) but [velodyne] model = hdl32 forces HDL-32E; decoding as HDL-32E as set"},
   {"map-unknown-kind",     "roadslam-map --config {S}/ini/default.ini --input {W}/notes.txt --out {O}", 1, "unknown kind"},
   {"map-empty-folder",     "roadslam-map --config {S}/ini/default.ini --input {W}/empty-dir --out {O}", 1, "holds no .bin"},
   {"map-kitti-damaged",    "roadslam-map --config {S}/ini/default.ini --input {W}/kitti-damaged --out {O} --quiet", 0, "not a multiple of 16"},
@@ -297,6 +325,8 @@ const Row kTable[] = {
   {"bounds-input-missing", "roadslam-bounds --config {S}/ini/bounds.ini --input {W}/nope.pcap --out {O}", 1, "does not exist"},
   {"bounds-bad-trajectory","roadslam-bounds --config {S}/ini/bounds.ini --input {W}/truncated.pcap --trajectory {W}/three-columns.tum --out {O}", 1, "three-columns.tum"},
   {"bounds-truncated-pcap","roadslam-bounds --config {S}/ini/bounds.ini --input {W}/truncated.pcap --out {O} --quiet", 0, "input damaged"},
+  {"bounds-product-byte-lies", "roadslam-bounds --config {S}/ini/bounds.ini --input {W}/vlp16-hdl32-byte.pcap --out {O} --quiet", 0,
+   "but product byte 0x21 says HDL-32E; decoding as VLP-16; set [velodyne] model = hdl32 to force"},
   // roadslam-experiment
   {"exp-typo-sweep-key",   "roadslam-experiment --config {W}/exp-typo.ini --out {O}", 1, "exp-typo.ini:6: unknown key 'odometry.registration_voxel_sise_m' in [sweep]: no component of a job reads it (nearest known: odometry.registration_voxel_m)"},
   {"exp-dataset-missing",  "roadslam-experiment --config {W}/exp-no-input.ini --out {O}", 1, "exp-no-input.ini:4: [dataset.x] input"},
@@ -342,6 +372,9 @@ const Row kTable[] = {
   {"rawlog-info-truncated","roadslam-rawlog info {W}/truncated.pcap", 1, "damaged at record 239 (byte 299344)"},
   {"rawlog-info-missing",  "roadslam-rawlog info {W}/nope.rawlog", 1, "nope.rawlog"},
   {"rawlog-convert-random","roadslam-rawlog convert {W}/random.pcap {O}/x.rawlog", 1, "random.pcap"},
+  {"rawlog-info-product-byte-lies", "roadslam-rawlog info {W}/vlp16-hdl32-byte.pcap", 0,
+   "roadslam-rawlog: warning: packets have the VLP-16 layout (110.6 us per block) but product byte 0x21 says HDL-32E; decoding as VLP-16; set --model hdl32 to force"},
+  {"rawlog-convert-product-byte-lies", "roadslam-rawlog convert {W}/vlp16-hdl32-byte.pcap {W}/vlp16-hdl32-byte.rawlog", 0, "lidar model VLP-16 (by packet layout)"},
   // roadslam-eval
   {"eval-gt-missing",      "roadslam-eval --gt {W}/nope.tum --est {W}/a.tum", 105, "File does not exist"},
   {"eval-three-columns",   "roadslam-eval --gt {W}/three-columns.tum --est {W}/a.tum", 1, "3 columns, expected 8"},

@@ -129,20 +129,34 @@ TEST(RawlogApp, OtherRealCapturesMatchTheirOracles) {
   EXPECT_EQ(h["packets"], 500);
   EXPECT_EQ(h["sweeps"].get<int>() + h["partial_sweeps"].get<int>() - 1, 3);
   EXPECT_EQ(h["missing_packets"], 0);
-  // VeloView vlp-16.test: frame_count 52 (partial first/last frames count); 1,902 data packets;
-  // its product byte says HDL-32E, so only with the model forced is nothing "missing".
+  // VeloView vlp-16.test: frame_count 52 (partial first/last frames count); 1,902 data packets.
+  // Its product byte says HDL-32E: decoded by its layout, it is the VLP-16 the model forced gives
+  // (nothing "missing", the same points); forced to the byte's HDL-32E, every step is a gap.
   const json v = info(vlp16, "--model vlp16");
   EXPECT_EQ(v["sweeps"].get<int>() + v["partial_sweeps"].get<int>(), 52);
   EXPECT_EQ(v["packets"], 1902);
   EXPECT_EQ(v["missing_packets"], 0);
+  EXPECT_EQ(v["lidar_model_source"], "ini");
   EXPECT_NEAR(v["sweeps_per_s"].get<double>(), 20.0, 0.2);  // MANIFEST: 20 Hz
-  EXPECT_GT(info(vlp16)["missing_packets"].get<int>(), 1000);
+  const json by_layout = info(vlp16);
+  EXPECT_EQ(by_layout["lidar_model"], "VLP-16");
+  EXPECT_EQ(by_layout["lidar_model_source"], "packet layout");
+  EXPECT_EQ(by_layout["model"], "vlp16");
+  EXPECT_EQ(by_layout["missing_packets"], 0);
+  EXPECT_EQ(by_layout["points"], v["points"]);
+  ASSERT_EQ(by_layout["warnings"].size(), 1u);
+  EXPECT_NE(by_layout["warnings"][0].get<std::string>().find("but product byte 0x21 says HDL-32E; decoding as VLP-16"),
+            std::string::npos);
+  EXPECT_GT(info(vlp16, "--model hdl32")["missing_packets"].get<int>(), 1000);
   // VeloView monterey.test: frame_count 19; TestPositionReader: 299 position packets.
   const json m = info(monterey);
   EXPECT_EQ(m["sweeps"].get<int>() + m["partial_sweeps"].get<int>(), 19);
   EXPECT_EQ(m["packets"], 2702);
   EXPECT_EQ(m["gps_fixes"], 299);
   EXPECT_EQ(m["model"], "hdl32");
+  EXPECT_EQ(m["lidar_model"], "HDL-32E");
+  EXPECT_EQ(m["lidar_model_source"], "product byte");
+  EXPECT_EQ(m["warnings"].size(), 0u);
 }
 
 TEST(RawlogApp, ConvertThenInfoGivesTheSameCountsAndMrptReadsIt) {

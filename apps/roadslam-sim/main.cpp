@@ -27,8 +27,9 @@ int main(int argc, char** argv) {
   app.add_option("--speed", req.udp_speed, "UDP pace as a multiple of real time (> 0)")->check(CLI::PositiveNumber);
   app.add_option("--top-view", req.top_view_png, "draw a top view of the world to this PNG");
   roadslam::addForceFlag(app, req.force);
-  app.add_flag("--quiet", quiet, "nothing on stdout (no summary); errors on stderr");
+  app.add_flag("--quiet", quiet, "nothing on stdout (no summary) and no progress bar; errors on stderr");
   CLI11_PARSE(app, argc, argv);
+  req.progress = !quiet;
   if (seed_opt->count() > 0) req.seed = seed;
   if (duration_opt->count() > 0) req.duration_s = duration;
   roadslam::installStopSignalHandlers();

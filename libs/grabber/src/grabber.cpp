@@ -140,7 +140,10 @@ void Grabber::stop() {
   if (g.gnss && g.gnss->thread.joinable()) g.gnss->thread.join();
   g.writing = false;  // the writer drains every queue, then closes the files
   if (g.writer_thread.joinable()) g.writer_thread.join();
-  writeSummary(status());
+  GrabStatus st = status();
+  writeSummary(st);
+  std::lock_guard<std::mutex> lock(impl_->status_mutex);
+  impl_->held_events = std::move(st.events);  // the caller's next status() tells them
 }
 
 std::uint16_t Grabber::dataPort(std::size_t i) const { return impl_->sensors.at(i)->rx->dataPort(); }

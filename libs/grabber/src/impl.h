@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -19,6 +20,7 @@
 #include "roadslam/gnss/nmea.h"
 #include "roadslam/sources/nmea_source.h"
 #include "roadslam/sources/udp_receiver.h"
+#include "roadslam/velodyne/model_choice.h"
 
 namespace mrpt::obs {
 class CObservationGPS;
@@ -48,6 +50,14 @@ struct SensorRt {
   bool locked = false;
   std::uint64_t other_sender = 0;    // packets of another sender, not recorded
   std::uint64_t bad_flag = 0;        // 1206-byte data payloads without the 0xEEFF block flag
+  velodyne::LayoutDetector layout;   // the first data packets' layout (sensor thread)
+  // The model chosen from it (velodyne/model_choice.h), once, by the sensor thread: before its first
+  // sweep goes to the writer, or when the layout window is full. decided_model: its Model value for
+  // the writer's calibration (0 = not yet).
+  std::mutex model_mutex;
+  std::optional<velodyne::ModelChoice> model;
+  std::atomic<int> decided_model{0};
+  bool model_reported = false;       // its warning went out as a status event (under Impl::status_mutex)
   BoundedQueue<SensorItem> queue;
   std::thread thread;
   std::atomic<std::uint64_t> packets{0}, data_packets{0}, position_packets{0}, malformed{0},
@@ -140,6 +150,7 @@ struct Grabber::Impl {
   bool started = false, stopped = false;
   double start_s = 0;
   std::mutex status_mutex;
+  std::vector<std::string> held_events;  // status events of stop()'s own status() call, for the next caller
   double rate_prev_s = 0;
 
   void sensorLoop(SensorRt& s);

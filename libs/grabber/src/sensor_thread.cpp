@@ -32,9 +32,20 @@ void atomicMax(std::atomic<double>& a, double v) {
   if (v > a.load(std::memory_order_relaxed)) a.store(v, std::memory_order_relaxed);
 }
 
+/// Chooses the sensor's model from the layout seen so far (once): the summary's lidar_model and, with
+/// model = auto and no calibration file, the calibration written with its sweeps.
+void decideModel(SensorRt& s) {
+  if (s.decided_model.load() != 0 || s.model) return;
+  auto c = velodyne::chooseModel(s.params.udp.ports.model, s.layout.verdict(), "[" + s.params.section + "] model");
+  std::lock_guard<std::mutex> lock(s.model_mutex);
+  s.decided_model.store(static_cast<int>(c.model));
+  s.model = std::move(c);
+}
+
 void pushOrCount(SensorRt& s, SensorItem&& item) {
   const std::size_t n = item.packets.size();
   if (n == 0) return;
+  if (item.sweep) decideModel(s);  // the writer needs it for this sweep's calibration
   const bool sweep = item.sweep;
   if (s.queue.tryPush(std::move(item))) {
     if (sweep) s.sweeps.fetch_add(1, std::memory_order_relaxed);
@@ -81,6 +92,10 @@ void Grabber::Impl::sensorLoop(SensorRt& s) {
         return;
       }
       s.gaps.feed(pkt.payload.data());
+      if (!s.layout.full()) {
+        s.layout.add(pkt.payload.data(), pkt.payload.size());
+        if (s.layout.full()) decideModel(s);
+      }
     }
     const double off = clockOffset_s(pkt, data);
     s.offset_s.store(off, std::memory_order_relaxed);
@@ -115,6 +130,7 @@ void Grabber::Impl::sensorLoop(SensorRt& s) {
   }
   copyStats(s);
   pushOrCount(s, SensorItem{self, true, s.grouper.takePartial()});
+  decideModel(s);  // a sensor that sent no sweep: the set model, or none
 }
 
 }  // namespace roadslam::grabber

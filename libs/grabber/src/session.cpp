@@ -30,7 +30,9 @@ GrabStatus runSession(const GrabParams& params, const SessionOptions& opt,
     grabber.writeSummary(st);
   }
   grabber.stop();
-  return grabber.status();
+  GrabStatus st = grabber.status();
+  for (const auto& e : st.events) print(e);  // e.g. a model warning of a short session
+  return st;
 }
 
 }  // namespace roadslam::grabber

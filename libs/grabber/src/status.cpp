@@ -48,6 +48,8 @@ GrabStatus Grabber::status() {
   Impl& g = *impl_;
   std::lock_guard<std::mutex> lock(g.status_mutex);
   GrabStatus st;
+  st.events = std::move(g.held_events);
+  g.held_events.clear();
   const double now = wallNow();
   st.elapsed_s = g.started ? now - g.start_s : 0;
   const double dt = std::max(1e-6, now - g.rate_prev_s);
@@ -87,6 +89,16 @@ GrabStatus Grabber::status() {
     }
     o.silent = s->silent;
     o.silent_events = s->silent_events;
+    {
+      std::lock_guard<std::mutex> model_lock(s->model_mutex);
+      if (s->model) {
+        o.lidar_model = velodyne::displayName(s->model->model);
+        o.lidar_model_source = velodyne::toString(s->model->source);
+        o.lidar_layout = s->model->layout.describe();
+        if (!s->model->warning.empty() && !s->model_reported) st.events.push_back(o.label + ": warning: " + s->model->warning);
+        s->model_reported = true;
+      }
+    }
     st.sensors.push_back(o);
   }
   if (g.can) {
@@ -191,7 +203,9 @@ void Grabber::writeSummary(const GrabStatus& s) const {
                        {"queue_drops", o.queue_drops}, {"queue_high_water", o.queue_high_water},
                        {"sweeps_queued", o.sweeps}, {"pause_cuts", o.pause_cuts},
                        {"clock_offset_s", o.clock_offset_s}, {"clock_offset_min_s", o.clock_offset_min_s},
-                       {"clock_offset_max_s", o.clock_offset_max_s}, {"silent_events", o.silent_events}});
+                       {"clock_offset_max_s", o.clock_offset_max_s}, {"silent_events", o.silent_events},
+                       {"lidar_model", o.lidar_model}, {"lidar_model_source", o.lidar_model_source},
+                       {"lidar_layout", o.lidar_layout}});
   }
   json j = {{"elapsed_s", s.elapsed_s},
             {"packets_received", received},

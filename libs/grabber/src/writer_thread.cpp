@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstring>
 #include <map>
+#include <optional>
 #include <thread>
 
 #include "impl.h"
@@ -59,6 +60,9 @@ class Writer : public WriterTask {
   void writePosition(const SensorItem& it);
   void writeVehicle(const can::CanFrame& f);
   void writeObs(const std::shared_ptr<mrpt::obs::CObservation>& o);
+  /// The calibration stored with sensor \p i's sweeps: its calibration file, the set model's, or
+  /// (model = auto) that of the model its packets showed (SensorRt::decided_model).
+  const mrpt::obs::VelodyneCalibration& calibrationOf(int i);
   void flushAll();
   void updateCounters();
   void openSidecars();
@@ -80,6 +84,7 @@ class Writer : public WriterTask {
   Grabber::Impl& g_;
   std::unique_ptr<SegmentWriter> seg_;  // null when monitoring
   std::vector<mrpt::obs::VelodyneCalibration> calib_;
+  std::optional<mrpt::obs::VelodyneCalibration> hdl32_default_;  // loaded when a sensor on auto shows one
   std::vector<std::unique_ptr<pcap::PcapWriter>> pcap_;
   std::FILE* candump_ = nullptr;
   std::FILE* nmea_ = nullptr;  // gnss_NNN.nmea.log: the libs/gnss/nmea.h log format
@@ -264,6 +269,15 @@ void Writer::writeObs(const std::shared_ptr<mrpt::obs::CObservation>& o) {
   if (g_.tap) g_.tap(o);
 }
 
+const mrpt::obs::VelodyneCalibration& Writer::calibrationOf(int i) {
+  const SensorParams& sp = g_.params.sensors[std::size_t(i)];
+  const bool by_packets = sp.scan.calibration_file.empty() && sp.udp.ports.model == velodyne::Model::Unknown;
+  if (!by_packets || g_.sensors[std::size_t(i)]->decided_model.load() != int(velodyne::Model::HDL32))
+    return calib_[std::size_t(i)];  // the set model's, or VLP16 (params.cpp's default for auto)
+  if (!hdl32_default_) hdl32_default_ = mrpt::obs::VelodyneCalibration::LoadDefaultCalibration("HDL32");
+  return *hdl32_default_;
+}
+
 void Writer::writeSweep(const SensorItem& it) {
   const SensorParams& sp = g_.params.sensors[std::size_t(it.sensor)];
   const rawlog::RawlogWriter::Params& p = sp.scan;
@@ -272,7 +286,7 @@ void Writer::writeSweep(const SensorItem& it) {
   obs->sensorPose = mrpt::poses::CPose3D(p.x_m, p.y_m, p.z_m, p.yaw_rad, p.pitch_rad, p.roll_rad);
   obs->minRange = p.min_range_m;
   obs->maxRange = p.max_range_m;
-  obs->calibration = calib_[std::size_t(it.sensor)];
+  obs->calibration = calibrationOf(it.sensor);
   obs->timestamp = mrpt::Clock::fromDouble(it.packets.front().stamp_s);
   obs->originalReceivedTimestamp = obs->timestamp;
   obs->scan_packets.resize(it.packets.size());

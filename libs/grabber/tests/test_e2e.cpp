@@ -11,6 +11,7 @@
 #include <map>
 #include <mutex>
 #include <nlohmann/json.hpp>
+#include <set>
 
 #include <mrpt/core/Clock.h>
 #include <mrpt/io/CFileGZInputStream.h>
@@ -23,6 +24,7 @@
 #include "roadslam/pcap/pcap_reader.h"
 #include "roadslam/rawlog/rawlog_index.h"
 #include "roadslam/sim/outputs.h"
+#include "roadslam/velodyne/encoder.h"
 #include "roadslam/velodyne/sweep_assembler.h"
 
 using namespace roadslam;
@@ -420,4 +422,85 @@ TEST(GrabIndex, EachClosedSegmentCarriesItsIndex) {
   }
   EXPECT_EQ(observations, g.status().writer.observations);
   EXPECT_GT(points, 0u) << "access points at the sync flushes (every 4 MB of data)";
+}
+
+namespace {
+
+/// \p n packets of an HDL-32E turning at 10 Hz (a block every 46.08 us, HDL-32E manual appendix E):
+/// ranges by laser, so channels k and k+16 differ as two lasers do.
+std::vector<test::SimPacket> hdl32Packets(int n) {
+  std::vector<test::SimPacket> out;
+  for (int k = 0; k < n; ++k) {
+    std::array<velodyne::Hdl32Firing, velodyne::kBlocksPerPacket> f{};
+    const double t_pkt = k * velodyne::kBlocksPerPacket * velodyne::kHdl32BlockPeriod_s;
+    for (int b = 0; b < velodyne::kBlocksPerPacket; ++b) {
+      f[b].azimuth_deg = std::fmod(3600.0 * (t_pkt + b * velodyne::kHdl32BlockPeriod_s), 360.0);
+      for (int c = 0; c < velodyne::kHdl32Lasers; ++c) f[b].returns[c] = {3.0f + 0.5f * float(c), 50};
+    }
+    const auto bytes = velodyne::encodeHdl32Packet(f, 1000000u + uint32_t(std::lround(t_pkt * 1e6)));
+    out.push_back({t_pkt, 2368, std::vector<uint8_t>(bytes.begin(), bytes.end())});
+  }
+  return out;
+}
+
+/// Laser counts of the calibrations stored with the sweeps of \p rawlog.
+std::set<std::size_t> calibrationLasers(const std::string& rawlog) {
+  std::set<std::size_t> out;
+  mrpt::io::CFileGZInputStream in(rawlog);
+  auto ar = mrpt::serialization::archiveFrom(in);
+  for (;;) {
+    mrpt::serialization::CSerializable::Ptr rec;
+    try {
+      rec = ar.ReadObject();
+    } catch (const std::exception&) {
+      break;
+    }
+    if (auto v = std::dynamic_pointer_cast<mrpt::obs::CObservationVelodyneScan>(rec))
+      out.insert(v->calibration.laser_corrections.size());
+  }
+  return out;
+}
+
+/// A grabber on model = auto fed \p pkts; its summary.json's first sensor and the final status.
+std::pair<nlohmann::json, GrabStatus> grabAuto(const std::vector<test::SimPacket>& pkts, const std::string& dir) {
+  const std::string ini = "[grab]\nsensors = lidar\nflush_period_ms = 200\nstatus_period_ms = 200\n"
+                          "[lidar]\ndata_port = 0\nposition_port = 0\nmodel = auto\nsensor_label = LIDAR\n";
+  Grabber g(test::paramsFromText(ini), dir);
+  g.start();
+  test::sendPaced(pkts, g.dataPort(0), g.positionPort(0), 4.0);
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  g.stop();
+  GrabStatus st = g.status();
+  g.writeSummary(st);
+  return {nlohmann::json::parse(test::readAll(dir + "/summary.json"))["sensors"][0], st};
+}
+
+}  // namespace
+
+// model = auto: each sensor's model comes from its packets (velodyne/model_choice.h), is named in
+// summary.json, and chooses the calibration stored with its sweeps.
+TEST(GrabModel, AnHdl32OnAutoIsRecordedWithTheHdl32Calibration) {
+  test::TempDir dir("model_hdl32");
+  const auto [sensor, st] = grabAuto(hdl32Packets(300), dir.str());
+  EXPECT_EQ(sensor["lidar_model"], "HDL-32E");
+  EXPECT_EQ(sensor["lidar_model_source"], "product byte");
+  EXPECT_EQ(sensor["lidar_layout"].get<std::string>().rfind("HDL-32E layout (46.", 0), 0u) << sensor;
+  EXPECT_EQ(calibrationLasers(dir.str() + "/grab_000.rawlog"), std::set<std::size_t>{32});
+}
+
+TEST(GrabModel, AVlp16WithTheHdl32ByteIsAVlp16ByItsLayoutWithAWarning) {
+  std::vector<test::SimPacket> data;
+  for (const auto& p : test::simPackets(1.2))
+    if (p.port == 2368) data.push_back(p), data.back().bytes[velodyne::kProductIdOffset] = 0x21;
+  test::TempDir dir("model_lying_byte");
+  const auto [sensor, st] = grabAuto(data, dir.str());
+  EXPECT_EQ(sensor["lidar_model"], "VLP-16");
+  EXPECT_EQ(sensor["lidar_model_source"], "packet layout");
+  std::string events;
+  for (const auto& e : st.events) events += e + "\n";
+  EXPECT_NE(events.find("LIDAR: warning: packets have the VLP-16 layout (110.6 us per block) but product byte 0x21 "
+                        "says HDL-32E; decoding as VLP-16; set [lidar] model = hdl32 to force"),
+            std::string::npos)
+      << events;
+  EXPECT_EQ(calibrationLasers(dir.str() + "/grab_000.rawlog"), std::set<std::size_t>{16});
 }

@@ -6,11 +6,12 @@
 #include <map>
 #include <optional>
 
+#include "lidar_model_json.h"
+#include "source_progress.h"
 #include "roadslam/boundary/detector.h"
 #include "roadslam/boundary/output.h"
 #include "roadslam/common/atomic_file.h"
 #include "roadslam/common/config.h"
-#include "roadslam/common/progress.h"
 #include "roadslam/common/side_input.h"
 #include "roadslam/datasets/trajectory_io.h"
 #include "roadslam/common/stop_signal.h"
@@ -74,7 +75,7 @@ struct Drive {
 Drive accumulateDrive(const BoundsRequest& req, std::unique_ptr<sources::ScanSource> source, pipeline::StageList stages,
                       boundary::BoundaryDetector& det) {
   pipeline::Pipeline pipe(std::move(source), std::move(stages));
-  ProgressBar bar("roadslam-bounds: whole drive, pass 1", pipe.source().sizeHint());
+  SourceProgress bar("roadslam-bounds: whole drive, pass 1", pipe.source(), req.progress);
   Drive d;
   size_t n = 0;
   while (!enough(req, d.poses.size())) {
@@ -82,8 +83,9 @@ Drive accumulateDrive(const BoundsRequest& req, std::unique_ptr<sources::ScanSou
     if (!f) break;
     d.poses.push_back(std::move(f->pose));
     if (d.poses.back().ok) d.ms_mean += f->ms.of("boundaries"), ++n;
-    if (req.progress) bar.update(d.poses.size());
+    bar.update(d.poses.size());
   }
+  bar.finish();
   det.finishAccumulation();
   d.ms_mean /= static_cast<double>(std::max<size_t>(n, 1));
   return d;
@@ -160,7 +162,7 @@ nlohmann::json runBoundsJob(const BoundsRequest& req) {
   pipeline::Pipeline pipe(std::move(source), std::move(stages));
   AtomicFile jsonl(req.out_dir + "/boundaries.jsonl");
   Totals tot;
-  ProgressBar bar("roadslam-bounds", pipe.source().sizeHint());
+  SourceProgress bar("roadslam-bounds", pipe.source(), req.progress);
   std::string last_png;
   while (!enough(req, pipe.frames()) && !(req.whole_drive && pipe.frames() >= drive.poses.size())) {
     const auto pf = pipe.next();
@@ -174,8 +176,9 @@ nlohmann::json runBoundsJob(const BoundsRequest& req) {
     jsonl.stream() << toJson(*pf->boundary).dump() << "\n";
     if (georef) addGeoLines(*pf->boundary, geo_lines);
     if (req.png_every > 0 && pf->boundary->index % static_cast<size_t>(req.png_every) == 0) drawFrame(req.out_dir, *pf, *det, last_png);
-    if (req.progress) bar.update(tot.frames);
+    bar.update(tot.frames);
   }
+  bar.finish();
   jsonl.commit();
   if (georef) writeGeoBoundaries(req.out_dir, geo_lines, *georef);
   if (!last_png.empty()) fs::copy_file(last_png, req.out_dir + "/top_view.png", fs::copy_options::overwrite_existing);
@@ -190,6 +193,7 @@ nlohmann::json runBoundsJob(const BoundsRequest& req) {
                       {"geo_boundaries", geo_lines.size()},
                       {"mode", req.whole_drive ? "whole_drive" : "live"}, {"curb_map_cells", det->curbMap().size()}};
   if (req.whole_drive) s["ms_per_frame_first_pass_mean"] = drive.ms_mean;
+  addLidarModel(s, stream);
   s["warnings"] = unknown_keys;
   for (const auto& w : forced) s["warnings"].push_back(w);
   if (!stream.errorMessage().empty()) s["warnings"].push_back("input damaged: " + stream.errorMessage());

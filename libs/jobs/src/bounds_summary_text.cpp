@@ -2,6 +2,7 @@
 #include <string>
 
 #include "roadslam/jobs/bounds_job.h"
+#include "lidar_model_json.h"
 #include "roadslam/common/text_summary.h"
 
 namespace roadslam::jobs {
@@ -9,6 +10,7 @@ namespace roadslam::jobs {
 std::string boundsSummaryText(const nlohmann::json& s, const std::string& out_dir) {
   SummaryLines lines;
   lines.emplace_back("input", s.value("input", std::string("?")));
+  if (s.contains("lidar_model")) lines.emplace_back("lidar model", lidarModelText(s));
   lines.emplace_back("mode", s.value("mode", std::string("?")) + ", poses from " + s.value("poses", std::string("?")));
   lines.emplace_back("frames", formatText("%d (%d without a pose)", s.value("frames", 0), s.value("frames_without_pose", 0)));
   lines.emplace_back("found", formatText("left %.1f %%, right %.1f %%, both %.1f %% of the frames",

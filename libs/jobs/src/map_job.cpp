@@ -7,14 +7,15 @@
 #include <optional>
 #include <stdexcept>
 
+#include "lidar_model_json.h"
 #include "map_job_params.h"
 #include "map_run_files.h"
 #include "map_sinks.h"
+#include "source_progress.h"
 #include "roadslam/can/candump.h"
 #include "roadslam/common/atomic_file.h"
 #include "roadslam/common/side_input.h"
 #include "roadslam/common/config.h"
-#include "roadslam/common/progress.h"
 #include "roadslam/common/stop_signal.h"
 #include "roadslam/jobs/gnss_outputs.h"
 #include "roadslam/mapping/map_outputs.h"
@@ -92,7 +93,7 @@ struct Sinks {
 void drive(pipeline::Pipeline& pipe, const MapRequest& req, GnssRequest& gnss, Sinks& sinks, MapOutcome& out) {
   pipeline::ObjectTrackingStage* objects = pipe.find<pipeline::ObjectTrackingStage>();
   const bool localize = pipe.find<pipeline::LocalizationStage>() != nullptr;
-  ProgressBar bar("roadslam-map", pipe.source().sizeHint());
+  SourceProgress bar("roadslam-map", pipe.source(), req.progress);
   while (!stopRequested()) {
     if (req.max_frames && out.frames.size() >= req.max_frames) break;
     auto f = pipe.next();
@@ -101,7 +102,7 @@ void drive(pipeline::Pipeline& pipe, const MapRequest& req, GnssRequest& gnss, S
     if (objects) sinks.objects.add(*f, objects->objects());
     if (localize) sinks.localization.add(*f);
     out.frames.push_back(std::move(*f->pose.odometry));
-    if (req.progress) bar.update(out.frames.size());
+    bar.update(out.frames.size());
   }
   pipe.finish();
   bar.finish();
@@ -126,6 +127,7 @@ void summarizeInput(const sources::ScanSource& stream, const MapJobParams& param
   }
   const auto st = stream.stats();
   out.summary["input"] = stream.describe();
+  addLidarModel(out.summary, stream);
   out.summary["packets"] = st.packets;
   out.summary["malformed_packets"] = st.malformed_packets;
   out.summary["partial_sweeps"] = st.partial_sweeps;

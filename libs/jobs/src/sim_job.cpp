@@ -33,6 +33,7 @@ SimOutcome runSimJob(const SimRequest& req) {
   sim::OutputOptions opt;
   opt.dir = req.out_dir;
   opt.top_view_png = req.top_view_png;
+  opt.progress = req.progress;
   parseUdp(req.udp, req.udp_speed, opt);
   runfolder::OutputClaim claim{kSimProgram, req.scenario_path, "", "", {}, req.force};
   char id[96];

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <string>
 
+#include "lidar_model_json.h"
 #include "roadslam/common/text_summary.h"
 #include "roadslam/jobs/map_job.h"
 
@@ -17,6 +18,7 @@ int statusCount(const nlohmann::json& s, const char* status) {
 std::string summaryText(const nlohmann::json& s, const std::string& out_dir) {
   SummaryLines lines;
   lines.emplace_back("input", s.value("input", std::string("?")));
+  if (s.contains("lidar_model")) lines.emplace_back("lidar model", lidarModelText(s));
   std::string by_status;
   if (s.contains("frames_by_status")) {
     for (const auto& [k, v] : s["frames_by_status"].items()) {

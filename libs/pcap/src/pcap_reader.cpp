@@ -3,6 +3,7 @@
 #include <pcap/pcap.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <stdexcept>
 
 #include "link_layer.h"
@@ -37,6 +38,18 @@ PcapReader::~PcapReader() {
 }
 
 int PcapReader::linkType() const { return impl_->dlt; }
+
+uint64_t PcapReader::bytesRead() const {
+  FILE* f = impl_->handle ? pcap_file(impl_->handle) : nullptr;
+  const long at = f ? std::ftell(f) : -1;
+  return at > 0 ? static_cast<uint64_t>(at) : 0;
+}
+
+uint64_t PcapReader::fileSize() const {
+  std::error_code ec;
+  const auto n = std::filesystem::file_size(path_, ec);
+  return ec ? 0 : static_cast<uint64_t>(n);
+}
 
 ReadStatus PcapReader::next(UdpDatagram& out) {
   if (status_ != ReadStatus::Ok) return status_;

@@ -30,6 +30,8 @@ class PeekedSource : public sources::ScanSource {
   size_t sizeHint() const override { return src_->sizeHint(); }
   std::string errorMessage() const override { return src_->errorMessage(); }
   std::vector<std::string> warnings() const override { return src_->warnings(); }
+  sources::ReadProgress readProgress() const override { return src_->readProgress(); }
+  std::optional<sources::LidarModelReport> lidarModel() const override { return src_->lidarModel(); }
 
  private:
   std::unique_ptr<sources::ScanSource> src_;

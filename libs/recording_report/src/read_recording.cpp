@@ -9,6 +9,7 @@
 
 #include "internal.h"
 #include "roadslam/rawlog/rawlog_session.h"
+#include "roadslam/velodyne/model_choice.h"
 #include "roadslam/sources/gps_fix.h"
 #include "roadslam/sources/rawlog_source.h"
 #include "roadslam/sources/recording.h"
@@ -30,11 +31,13 @@ struct LidarAcc {
   std::vector<double> stamps, wraps;
   velodyne::Model forced = velodyne::Model::Unknown;
   sources::GapCounter gaps{0, forced};
+  velodyne::LayoutDetector layout;  // the model by the packets (velodyne/model_choice.h)
   int last_azimuth = -1;
   uint8_t product = 0, mode = 0;
   void feed(const velodyne::RawPacket& p) {
     stamps.push_back(p.stamp_s);
     gaps.feed(p.payload.data());
+    layout.add(p.payload.data(), p.payload.size());
     const int az = p.payload[2] | (p.payload[3] << 8);  // first block azimuth [0.01 deg]
     if (last_azimuth >= 0 && az < last_azimuth - 18000) wraps.push_back(p.stamp_s);  // a turn completed
     last_azimuth = az;
@@ -145,16 +148,20 @@ struct SensorStreams {
     return false;
   }
 
-  std::vector<PendingStream> streams() {
+  /// The streams; a LiDAR's model as every program decodes it (velodyne::chooseModel), its
+  /// disagreement with the product byte or the set model into \p warnings.
+  std::vector<PendingStream> streams(std::vector<std::string>& warnings) {
     std::vector<PendingStream> out;
     for (auto& [label, acc] : lidars) {
       PendingStream ps;
       const bool dual = acc.mode == static_cast<uint8_t>(velodyne::ReturnMode::Dual);
-      const auto model = static_cast<velodyne::Model>(acc.product);
-      if (model != velodyne::Model::Unknown) ps.nominal_period_s = sources::GapCounter::packetPeriod_s(model, dual);
+      const velodyne::ModelChoice c = velodyne::chooseModel(acc.forced, acc.layout.verdict(), "--lidar-model");
+      if (!c.warning.empty()) warnings.push_back(label + ": " + c.warning);
+      if (c.model != velodyne::Model::Unknown) ps.nominal_period_s = sources::GapCounter::packetPeriod_s(c.model, dual);
       ps.info.label = label;
       ps.info.kind = "lidar";
-      ps.info.model = modelName(acc.product);
+      ps.info.model = c.model != velodyne::Model::Unknown ? modelName(static_cast<uint8_t>(c.model)) : modelName(acc.product);
+      ps.info.model_source = velodyne::toString(c.source);
       ps.info.drops = acc.gaps.missing();
       ps.info.malformed = malformed;
       sweepRate(acc.wraps, ps.info);
@@ -203,7 +210,7 @@ std::vector<PendingStream> readSensors(RecordingReport& r, const std::string& li
   }
   if (s.empty()) throw std::runtime_error(r.recording + ": no Velodyne, GPS or other sensor data in it");
   gnssPath(std::move(s.fixes), r);
-  return s.streams();
+  return s.streams(r.warnings);
 }
 
 }  // namespace roadslam::recording_report

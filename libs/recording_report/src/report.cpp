@@ -52,6 +52,7 @@ RecordingReport buildReport(const ReportInputs& in, const ReportParams& p) {
     StreamStats s = streamStats(std::move(ps.stamps), ps.nominal_period_s, r.start_s, p);
     const StreamStats& i = ps.info;
     s.label = i.label, s.kind = i.kind, s.drops = i.drops, s.malformed = i.malformed, s.model = i.model;
+    s.model_source = i.model_source;
     s.sweeps = i.sweeps, s.sweep_rate_hz = i.sweep_rate_hz;
     r.streams.push_back(std::move(s));
   }
@@ -74,7 +75,8 @@ nlohmann::json streamJson(const StreamStats& s, double start_s) {
                       {"gap_threshold_s", s.gap_threshold_s}, {"gap_count", s.gap_count}, {"gap_time_s", s.gap_time_s},
                       {"gaps", gaps}, {"drops", s.drops}, {"malformed", s.malformed},
                       {"rate_over_time", {{"bin_start_s", s.bin_t_s}, {"rate_hz", s.bin_rate_hz}}}};
-  if (s.kind == "lidar") j["model"] = s.model, j["sweeps"] = s.sweeps, j["sweep_rate_hz"] = s.sweep_rate_hz;
+  if (s.kind == "lidar")
+    j["model"] = s.model, j["model_source"] = s.model_source, j["sweeps"] = s.sweeps, j["sweep_rate_hz"] = s.sweep_rate_hz;
   return j;
 }
 

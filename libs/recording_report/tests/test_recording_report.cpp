@@ -461,4 +461,17 @@ TEST(RecordingReport, RealCapturesAndCanLogMatchTheirManifests) {
   EXPECT_GT(stream(b, "can")->gap_count + b.can->ids[0].gaps, 0u) << "irregular timing shows";
   ASSERT_EQ(b.warnings.size(), 1u);
   EXPECT_NE(b.warnings[0].find("does not overlap"), std::string::npos);
+  // Left to the packets, the product byte's HDL-32E loses to their VLP-16 layout, with a warning:
+  // the same model, packet period and drops as forced.
+  in.lidar_model.clear();
+  in.can_log.clear();
+  const auto c = rr::buildReport(in);
+  EXPECT_EQ(stream(c, "lidar")->model, "vlp16");
+  EXPECT_EQ(stream(c, "lidar")->model_source, "packet layout");
+  EXPECT_EQ(stream(c, "lidar")->drops, 0u);
+  EXPECT_NEAR(stream(c, "lidar")->nominal_period_s, 1327.104e-6, 1e-9);
+  ASSERT_EQ(c.warnings.size(), 1u);
+  EXPECT_NE(c.warnings[0].find("but product byte 0x21 says HDL-32E; decoding as VLP-16; set --lidar-model hdl32 to force"),
+            std::string::npos)
+      << c.warnings[0];
 }

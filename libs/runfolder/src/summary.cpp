@@ -67,6 +67,8 @@ MapSummary mapSummaryFromJson(const nlohmann::json& j, const std::string& what) 
   s.interrupted = maybe<bool>(j, "interrupted", false, what);
   s.warnings = need<std::vector<std::string>>(j, "warnings", what);
   s.input = maybe<std::string>(j, "input", "", what);
+  s.lidar_model = maybe<std::string>(j, "lidar_model", "", what);
+  s.lidar_model_source = maybe<std::string>(j, "lidar_model_source", "", what);
   return s;
 }
 
@@ -85,6 +87,8 @@ BoundsSummary boundsSummaryFromJson(const nlohmann::json& j, const std::string& 
   s.complete = need<bool>(j, "complete", what);
   s.warnings = need<std::vector<std::string>>(j, "warnings", what);
   s.input = maybe<std::string>(j, "input", "", what);
+  s.lidar_model = maybe<std::string>(j, "lidar_model", "", what);
+  s.lidar_model_source = maybe<std::string>(j, "lidar_model_source", "", what);
   return s;
 }
 
@@ -109,6 +113,7 @@ nlohmann::json mapSummaryJson(const MapSummary& s) {
     j["loops"] = {{"accepted", loops(s.loops_accepted)}, {"rejected", loops(s.loops_rejected)}};
   }
   j["complete"] = s.complete, j["interrupted"] = s.interrupted, j["warnings"] = s.warnings, j["input"] = s.input;
+  if (!s.lidar_model.empty()) j["lidar_model"] = s.lidar_model, j["lidar_model_source"] = s.lidar_model_source;
   return j;
 }
 

@@ -13,10 +13,12 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <nlohmann/json.hpp>
 
 #include "roadslam/can/candump.h"
 #include "roadslam/common/atomic_file.h"
+#include "roadslam/common/progress.h"
 #include "roadslam/datasets/kitti_scans.h"
 #include "roadslam/datasets/trajectory_io.h"
 #include "roadslam/pcap/pcap_writer.h"
@@ -29,10 +31,15 @@ using nlohmann::json;
 
 class PcapSink : public PacketSink {
  public:
-  PcapSink(const std::string& path, PacketSink* also) : tmp_(path), w_(tmp_.path(), path), also_(also) {}
+  /// \p progress (optional): fed the simulated seconds since the first packet.
+  PcapSink(const std::string& path, PacketSink* also, ProgressBar* progress = nullptr)
+      : tmp_(path), w_(tmp_.path(), path), also_(also), progress_(progress) {}
   void packet(double capture_s, uint16_t port, const uint8_t* data, std::size_t size) override {
     w_.writeUdp(capture_s, port, port, data, size);
     if (also_) also_->packet(capture_s, port, data, size);
+    if (!progress_) return;
+    if (!t0_) t0_ = capture_s;
+    progress_->update(capture_s - *t0_, 0);
   }
   void commit() {
     w_.close();
@@ -43,6 +50,8 @@ class PcapSink : public PacketSink {
   TempFile tmp_;  // removed when the run throws before commit
   pcap::PcapWriter w_;
   PacketSink* also_;
+  ProgressBar* progress_;
+  std::optional<double> t0_;  // capture time of the first packet [s]
 };
 
 void writeTum(const Simulator& sim, double duration_s, const std::string& path) {
@@ -133,7 +142,7 @@ void writeObjects(const Simulator& sim, double duration_s, const std::string& pa
   writeFileAtomically(path, j.dump() + "\n");
 }
 /// hdl64: the KITTI raw-style folder: velodyne/NNNNNN.bin, times.txt, poses_velo_kitti.txt.
-SimStats writeKittiFolder(Simulator& sim, const std::string& d) {
+SimStats writeKittiFolder(Simulator& sim, const std::string& d, ProgressBar* progress) {
   namespace fs = std::filesystem;
   std::error_code ec;
   fs::create_directories(d + "velodyne", ec);
@@ -153,6 +162,7 @@ SimStats writeKittiFolder(Simulator& sim, const std::string& d) {
     const Eigen::Isometry3d T_world_lidar = toEigen(lidar.lidarPose(lidar.sweepStamp_s(k)));
     if (k == 0) T_first_world = T_world_lidar.inverse();
     poses.push_back(T_first_world * T_world_lidar);
+    if (progress) progress->update(lidar.sweepStamp_s(k) - lidar.sweepStamp_s(0), static_cast<size_t>(k + 1));
   });
   writeFileAtomically(d + "times.txt", times);
   datasets::writeKittiPoses(d + "poses_velo_kitti.txt", poses);
@@ -170,14 +180,18 @@ RunReport runToDirectory(Simulator& sim, const OutputOptions& opt) {
   std::unique_ptr<UdpStreamer> udp;
   if (!opt.udp_host.empty()) udp = std::make_unique<UdpStreamer>(opt.udp_host, opt.udp_port, opt.udp_speed);
   RunReport rep;
+  std::optional<ProgressBar> bar;
+  if (opt.progress) bar.emplace("roadslam-sim", sim.duration_s(), ProgressMeasure::SimulatedSeconds);
+  ProgressBar* progress = bar ? &*bar : nullptr;
   if (sim.params().lidar.hdl64()) {
     if (udp) throw std::runtime_error("--udp needs [lidar] model = vlp16 (hdl64 writes a .bin folder)");
-    rep.stats = writeKittiFolder(sim, d);
+    rep.stats = writeKittiFolder(sim, d, progress);
   } else {
-    PcapSink pcap(d + "velodyne.pcap", udp.get());
+    PcapSink pcap(d + "velodyne.pcap", udp.get(), progress);
     rep.stats = sim.run(pcap);
     pcap.commit();
   }
+  if (bar) bar->finish();
   writeTum(sim, rep.stats.duration_s, d + "gt_trajectory.tum");
   writeVehicleCsv(sim, rep.stats.duration_s, d + "gt_vehicle.csv");
   writeBoundaries(sim, d + "gt_boundaries.json");

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "roadslam/velodyne/model_choice.h"
 #include "roadslam/velodyne/packet.h"
 
 namespace roadslam::sources {
@@ -20,22 +21,47 @@ double GapCounter::packetPeriod_s(velodyne::Model model, bool dual) {
   return dual ? 0.5 * single : single;
 }
 
+velodyne::Model GapCounter::streamModel() const {
+  return velodyne::chooseModel(velodyne::Model::Unknown, layout_.verdict()).model;
+}
+
+uint64_t GapCounter::lost(const Step& s, velodyne::Model model) const {
+  if (model == velodyne::Model::Unknown) model = velodyne::Model(s.product);  // as the byte says
+  const double period_us = forced_period_s_ > 0 ? forced_period_s_ * 1e6 : packetPeriod_s(model, s.dual) * 1e6;
+  return s.step_us > 1.5 * period_us ? uint64_t(std::llround(s.step_us / period_us)) - 1 : 0;
+}
+
 uint64_t GapCounter::feed(const uint8_t* payload) {
   const int64_t t_us = readLe32(payload + velodyne::kTimestampOffset);
   const bool dual = payload[velodyne::kReturnModeOffset] == uint8_t(velodyne::ReturnMode::Dual);
-  const auto model = model_ != velodyne::Model::Unknown ? model_
-                                                        : velodyne::Model(payload[velodyne::kProductIdOffset]);
-  const double period_us =
-      forced_period_s_ > 0 ? forced_period_s_ * 1e6 : packetPeriod_s(model, dual) * 1e6;
-  uint64_t lost = 0;
+  const bool by_layout = model_ == velodyne::Model::Unknown && forced_period_s_ <= 0;
+  if (by_layout && !chosen_) layout_.add(payload, velodyne::kDataPacketSize);
+  uint64_t n = 0;
   if (last_us_ >= 0) {
     int64_t step = t_us - last_us_;
     if (step < -kHour_us / 2) step += kHour_us;  // the counter wraps at the top of the hour
-    if (step > 1.5 * period_us) lost = uint64_t(std::llround(step / period_us)) - 1;
+    const Step s{step, dual, payload[velodyne::kProductIdOffset]};
+    if (!by_layout) n = lost(s, model_);
+    else if (chosen_) n = lost(s, chosen_model_);
+    else pending_.push_back(s);
   }
   last_us_ = t_us;
-  missing_ += lost;
-  return lost;
+  if (by_layout && !chosen_ && layout_.full()) {  // the window is complete: count its steps
+    chosen_ = true;
+    chosen_model_ = streamModel();
+    for (const auto& p : pending_) missing_ += lost(p, chosen_model_);
+    pending_.clear();
+  }
+  missing_ += n;
+  return n;
+}
+
+uint64_t GapCounter::missing() const {
+  if (pending_.empty()) return missing_;
+  const velodyne::Model m = streamModel();
+  uint64_t n = missing_;
+  for (const auto& p : pending_) n += lost(p, m);
+  return n;
 }
 
 PacketKind classify(const PortConfig& ports, uint16_t dst_port, std::size_t size) {

@@ -11,6 +11,8 @@ PcapPacketSource::~PcapPacketSource() = default;
 
 std::string PcapPacketSource::errorMessage() const { return reader_->errorMessage(); }
 
+ReadProgress PcapPacketSource::readProgress() const { return {reader_->bytesRead(), reader_->fileSize()}; }
+
 std::optional<velodyne::RawPacket> PcapPacketSource::next() {
   pcap::UdpDatagram d;
   while (!finished_) {

@@ -1,7 +1,6 @@
 #include "roadslam/sources/rawlog_source.h"
 
 #include <mrpt/core/Clock.h>
-#include <mrpt/io/CFileGZInputStream.h>
 #include <mrpt/obs/CObservationGPS.h>
 #include <mrpt/obs/CObservationVelodyneScan.h>
 #include <mrpt/obs/CSensoryFrame.h>
@@ -12,6 +11,7 @@
 #include <cstring>
 #include <ctime>
 #include <stdexcept>
+#include "gz_read_stream.h"
 #include "roadslam/rawlog/mrpt_message.h"
 
 #include "roadslam/common/param_table.h"
@@ -75,7 +75,7 @@ gnss::GnssFix gpsFixFromObservation(const mrpt::obs::CObservationGPS& o) {
 }
 
 struct RawlogPacketSource::Impl {
-  mrpt::io::CFileGZInputStream in;
+  detail::GzReadStream in;
   std::deque<mrpt::obs::CObservation::Ptr> pending;  // observations of a sensory frame
 };
 
@@ -134,6 +134,10 @@ bool RawlogPacketSource::readMore() {
       others_.push_back({obs->sensorLabel, obs->GetRuntimeClass()->className, mrpt::Clock::toDouble(obs->timestamp)});
   }
   return true;
+}
+
+ReadProgress RawlogPacketSource::readProgress() const {
+  return {impl_->in.compressedPosition(), impl_->in.getTotalBytesCount()};
 }
 
 std::vector<RawlogPacketSource::OtherRecord> RawlogPacketSource::takeOtherRecords() {

@@ -44,10 +44,11 @@ std::unique_ptr<PacketSource> openRecording(const std::string& path, const PortC
   }
 }
 
-RecordingSummary summarizeRecording(const std::string& path, const velodyne::DecoderParams& params) {
+RecordingSummary summarizeRecording(const std::string& path, const velodyne::DecoderParams& params,
+                                    const std::string& force_setting) {
   PortConfig ports;
   ports.model = params.model;
-  SweepSource sweeps(openRecording(path, ports), params);
+  SweepSource sweeps(openRecording(path, ports), params, force_setting);
   RecordingSummary s;
   s.path = path;
   s.format = dynamic_cast<const PcapPacketSource*>(&sweeps.packets()) ? "pcap" : "rawlog";
@@ -80,13 +81,21 @@ RecordingSummary summarizeRecording(const std::string& path, const velodyne::Dec
   s.duration_s = last_data_s - first_data_s;
   s.sweeps_per_s = ss.sweepRate_hz();
   s.packets_per_s = s.duration_s > 0 ? double(s.packets - 1) / s.duration_s : 0.0;
+  if (const auto m = sweeps.lidarModel()) {
+    s.lidar_model = m->model;
+    s.lidar_model_source = m->source;
+    s.lidar_layout = m->layout;
+  }
+  s.warnings = sweeps.warnings();
   return s;
 }
 
 std::string toJson(const RecordingSummary& s) {
   const nlohmann::json j = {
       {"path", s.path},           {"format", s.format},
-      {"model", s.model},         {"sweeps", s.sweeps},
+      {"model", s.model},         {"lidar_model", s.lidar_model},
+      {"lidar_model_source", s.lidar_model_source}, {"lidar_layout", s.lidar_layout},
+      {"warnings", s.warnings},   {"sweeps", s.sweeps},
       {"partial_sweeps", s.partial_sweeps},
       {"packets", s.packets},     {"position_packets", s.position_packets},
       {"points", s.points},       {"gps_fixes", s.gps_fixes},
@@ -100,6 +109,7 @@ std::string toJson(const RecordingSummary& s) {
 
 std::string toText(const RecordingSummary& s) {
   std::string t = fmt::format("{} ({}, {})\n", s.path, s.format, s.model);
+  t += fmt::format("  lidar model       {} (by {}; {})\n", s.lidar_model, s.lidar_model_source, s.lidar_layout);
   t += fmt::format("  sweeps            {} complete + {} partial\n", s.sweeps, s.partial_sweeps);
   t += fmt::format("  data packets      {}\n", s.packets);
   t += fmt::format("  points            {}\n", s.points);
@@ -115,10 +125,10 @@ std::string toText(const RecordingSummary& s) {
 
 ConvertSummary convertToRawlog(const std::string& in, const std::string& out,
                                const velodyne::DecoderParams& params,
-                               rawlog::RawlogWriter::Params writer_params) {
+                               rawlog::RawlogWriter::Params writer_params, const std::string& force_setting) {
   PortConfig ports;
   ports.model = params.model;
-  SweepSource sweeps(openRecording(in, ports), params);
+  SweepSource sweeps(openRecording(in, ports), params, force_setting);
   if (writer_params.calibration_file.empty()) writer_params.calibration_file = params.calibration_file;
   bool model_set = params.model != velodyne::Model::Unknown;
   if (model_set) writer_params.model = params.model == velodyne::Model::HDL32 ? "HDL32" : "VLP16";
@@ -165,6 +175,8 @@ ConvertSummary convertToRawlog(const std::string& in, const std::string& out,
                                         used.getContent());
   sum.packets = writer->packetsWritten();
   sum.gps = writer->gpsWritten();
+  if (const auto m = sweeps.lidarModel()) sum.lidar_model = m->model, sum.lidar_model_source = m->source;
+  sum.warnings = sweeps.warnings();
   return sum;
 }
 

@@ -20,6 +20,11 @@ void addCounts(SourceStats& a, const SourceStats& b) {
 SegmentedPacketSource::SegmentedPacketSource(std::vector<std::string> segments, const PortConfig& ports)
     : segments_(std::move(segments)), ports_(ports) {
   if (segments_.empty()) throw std::runtime_error("a rawlog session needs at least one segment");
+  for (const auto& s : segments_) {
+    std::error_code ec;
+    const auto n = std::filesystem::file_size(s, ec);
+    bytes_total_ += ec ? 0 : n;
+  }
   source_ = std::make_unique<RawlogPacketSource>(segments_.front(), ports_);
 }
 
@@ -32,8 +37,13 @@ std::string SegmentedPacketSource::describe() const {
 
 bool SegmentedPacketSource::finished() const { return !source_; }
 
+ReadProgress SegmentedPacketSource::readProgress() const {
+  return {bytes_done_ + (source_ ? source_->readProgress().bytes_read : 0), bytes_total_};
+}
+
 void SegmentedPacketSource::closeCurrent() {
   addCounts(done_, source_->stats());
+  bytes_done_ += source_->readProgress().bytes_total;
   for (auto& f : source_->takeDecodedFixes()) fixes_.push_back(f);
   if (!source_->errorMessage().empty())
     error_ += (error_.empty() ? "" : "; ") + source_->errorMessage();

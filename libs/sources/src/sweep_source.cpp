@@ -7,9 +7,50 @@ double SweepSourceStats::sweepRate_hz() const {
   return wrap_sweeps >= 2 && span > 0 ? double(wrap_sweeps - 1) / span : 0.0;
 }
 
-SweepSource::SweepSource(std::unique_ptr<PacketSource> packets,
-                         const velodyne::DecoderParams& params)
-    : packets_(std::move(packets)), assembler_(params) {}
+SweepSource::SweepSource(std::unique_ptr<PacketSource> packets, const velodyne::DecoderParams& params,
+                         std::string force_setting)
+    : packets_(std::move(packets)), params_(params), force_setting_(std::move(force_setting)), assembler_(params) {}
+
+std::vector<std::string> SweepSource::warnings() const {
+  if (!choice_ || choice_->warning.empty()) return {};
+  return {choice_->warning};
+}
+
+std::optional<LidarModelReport> SweepSource::lidarModel() const {
+  if (!choice_) return LidarModelReport{"undecided", "", ""};
+  return LidarModelReport{velodyne::displayName(choice_->model), velodyne::toString(choice_->source),
+                          choice_->layout.describe()};
+}
+
+bool SweepSource::chooseModel() {
+  while (!layout_.full()) {
+    ReadAhead r{packets_->next(), packets_->takeDecodedFixes()};
+    const bool got = r.packet.has_value();
+    if (got && r.packet->payload.size() == velodyne::kDataPacketSize)
+      layout_.add(r.packet->payload.data(), r.packet->payload.size());
+    if (got || !r.fixes.empty()) ahead_.push_back(std::move(r));
+    if (got) continue;
+    if (!packets_->finished()) return false;  // live: the window is not full yet
+    break;
+  }
+  choice_ = velodyne::chooseModel(params_.model, layout_.verdict(), force_setting_);
+  assembler_.setStreamModel(choice_->model);
+  return true;
+}
+
+std::optional<velodyne::RawPacket> SweepSource::nextPacket(bool& waiting) {
+  waiting = false;
+  while (!ahead_.empty()) {
+    ReadAhead r = std::move(ahead_.front());
+    ahead_.pop_front();
+    for (auto& f : r.fixes) keepFix(f);
+    if (r.packet) return std::move(r.packet);  // else fixes alone: on to the next
+  }
+  auto pkt = packets_->next();
+  for (auto& f : packets_->takeDecodedFixes()) keepFix(f);
+  waiting = !pkt && !packets_->finished();
+  return pkt;
+}
 
 ScanSourceStats SweepSource::stats() const {
   const auto& a = assembler_.stats();
@@ -39,12 +80,13 @@ Scan SweepSource::deliver(Scan s) {
 }
 
 std::optional<Scan> SweepSource::next() {
+  if (!choice_ && !chooseModel()) return std::nullopt;  // live: nothing decided within the timeout
   while (!assembler_.hasSweep()) {
     if (finished_) return std::nullopt;
-    auto pkt = packets_->next();
-    for (auto& f : packets_->takeDecodedFixes()) keepFix(f);
+    bool waiting = false;
+    auto pkt = nextPacket(waiting);
     if (!pkt) {
-      if (!packets_->finished()) return std::nullopt;  // live: nothing within the timeout
+      if (waiting) return std::nullopt;  // live: nothing within the timeout
       finished_ = true;
       assembler_.finish();
       continue;

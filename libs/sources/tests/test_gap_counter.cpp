@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "roadslam/sources/packet_source.h"
 #include "test_packets.h"
 
@@ -55,14 +57,22 @@ TEST(GapCounter, Hdl32PeriodFromTheProductByteOrAForcedModel) {
   for (int k = 0; k < 50; ++k)
     if (k != 20) by_byte.feed(makeDataPacket(uint32_t(k * 552960LL / 1000), 0, k, 0x37, 0x21).data());
   EXPECT_EQ(by_byte.missing(), 1u);
-  // An early VLP-16 reporting 0x21 at the VLP-16 rate: read as HDL-32E, every step looks like a
-  // gap; with the model forced, none is missing.
-  GapCounter lying, forced(0, roadslam::velodyne::Model::VLP16);
-  for (int k = 0; k < 50; ++k) {
-    const auto p = makeDataPacket(uint32_t(k * 1327104LL / 1000), 0, k, 0x37, 0x21);
-    lying.feed(p.data());
+  // An early VLP-16 reporting 0x21: forced to HDL-32E, every step looks like a gap; forced to VLP-16
+  // or left to the packets' layout (10 Hz: 0.4 deg per 110.592 us block; channels k and k+16 the
+  // same laser), none is missing, and a real gap still counts.
+  GapCounter as_hdl32(0, roadslam::velodyne::Model::HDL32), forced(0, roadslam::velodyne::Model::VLP16), by_layout;
+  for (int k = 0; k < 150; ++k) {
+    if (k == 120) continue;
+    auto p = makeDataPacket(stampOf(k, 1000), uint16_t(k * 480 % 36000), k, 0x37, 0x21);
+    for (int b = 0; b < 12; ++b) std::copy_n(p.begin() + b * 100 + 4, 48, p.begin() + b * 100 + 52);
+    as_hdl32.feed(p.data());
     forced.feed(p.data());
+    by_layout.feed(p.data());
+    if (k == 50) {
+      EXPECT_EQ(by_layout.missing(), 0u) << "while the layout window is open";
+    }
   }
-  EXPECT_GT(lying.missing(), 40u);
-  EXPECT_EQ(forced.missing(), 0u);
+  EXPECT_GT(as_hdl32.missing(), 140u);
+  EXPECT_EQ(forced.missing(), 1u);
+  EXPECT_EQ(by_layout.missing(), 1u);
 }

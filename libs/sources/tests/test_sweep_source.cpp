@@ -184,3 +184,36 @@ TEST(SweepSource, LiveUdpReplayGivesTheSameSweepsAsThePcap) {
   EXPECT_EQ(live.packets().stats().kernel_drops, 0u);
   fs::remove(file);
 }
+
+// The VeloView VLP-16 capture reports the HDL-32E product byte (../shared/data README): on model =
+// auto it is decoded by its packets' layout, as the same capture with the model set to vlp16 (the
+// VeloView oracle test's setting), and the source says why and warns.
+TEST(SweepSource, RealVlp16WithTheHdl32ByteDecodesAsTheVlp16ItIs) {
+  const std::string pcap =
+      std::string(ROADSLAM_SHARED_DATA) + "/velodyne/veloview_vlp-16-test-90deg-1-50-frames.pcap";
+  if (!fs::exists(pcap)) GTEST_SKIP() << "missing " << pcap;
+  struct Run {
+    std::unique_ptr<SweepSource> src;
+    std::vector<size_t> sizes;  // points per sweep
+  };
+  auto run = [&](roadslam::velodyne::Model model) {
+    roadslam::velodyne::DecoderParams p;
+    p.model = model;
+    Run r{std::make_unique<SweepSource>(std::make_unique<PcapPacketSource>(pcap), p), {}};
+    while (auto s = r.src->next()) r.sizes.push_back(s->points.size());
+    return r;
+  };
+  const Run by_layout = run(roadslam::velodyne::Model::Unknown), forced = run(roadslam::velodyne::Model::VLP16);
+  EXPECT_EQ(by_layout.sizes.size(), 52u);  // VeloView's frame_count
+  EXPECT_EQ(by_layout.sizes, forced.sizes);
+  ASSERT_TRUE(by_layout.src->lidarModel());
+  EXPECT_EQ(by_layout.src->lidarModel()->model, "VLP-16");
+  EXPECT_EQ(by_layout.src->lidarModel()->source, "packet layout");
+  ASSERT_EQ(by_layout.src->warnings().size(), 1u);
+  EXPECT_NE(by_layout.src->warnings()[0].find("but product byte 0x21 says HDL-32E; decoding as VLP-16; set [velodyne] "
+                                          "model = hdl32 to force"),
+            std::string::npos);
+  EXPECT_EQ(forced.src->lidarModel()->source, "ini");
+  EXPECT_TRUE(forced.src->warnings().empty());
+  EXPECT_EQ(by_layout.src->stats().packets, forced.src->stats().packets);
+}

@@ -22,16 +22,14 @@ struct Timing {
   }
 };
 
-/// Block-to-block azimuth advance [0.01 deg]: VeloView takes element 6 of the 11 sorted
-/// differences, which ignores the zero steps of dual-return pairs and one wrap outlier.
-int blockAzimuthStep(const uint16_t* az) {
+}  // namespace
+
+int blockAzimuthStep(const std::array<uint16_t, kBlocksPerPacket>& az) {
   std::array<int, kBlocksPerPacket - 1> d{};
   for (int i = 0; i + 1 < kBlocksPerPacket; ++i) d[i] = (36000 + az[i + 1] - az[i]) % 36000;
   std::nth_element(d.begin(), d.begin() + 6, d.end());
   return d[6];
 }
-
-}  // namespace
 
 const char* toString(DecodeStatus status) {
   switch (status) {
@@ -71,9 +69,10 @@ Model Decoder::modelOf(const uint8_t* data, std::size_t size) const noexcept {
   if (params_.model != Model::Unknown) return params_.model;
   if (size != kDataPacketSize) return Model::Unknown;
   const uint8_t product = data[kProductIdOffset];
-  if (product == static_cast<uint8_t>(Model::VLP16)) return Model::VLP16;
-  if (product == static_cast<uint8_t>(Model::HDL32)) return Model::HDL32;
-  return Model::Unknown;
+  if (product != static_cast<uint8_t>(Model::VLP16) && product != static_cast<uint8_t>(Model::HDL32))
+    return Model::Unknown;
+  if (stream_model_ != Model::Unknown) return stream_model_;
+  return static_cast<Model>(product);
 }
 
 namespace {
@@ -144,7 +143,7 @@ DecodeStatus Decoder::decode(const uint8_t* data, std::size_t size, std::vector<
   k.timing = Timing{k.vlp16, k.vlp16 ? 110.592 : 46.08};
   k.dual = tail[4] == static_cast<uint8_t>(ReturnMode::Dual);
   k.step_per_us =
-      params_.intra_block_azimuth ? blockAzimuthStep(az.data()) / k.timing.block_period_us : 0.0;
+      params_.intra_block_azimuth ? blockAzimuthStep(az) / k.timing.block_period_us : 0.0;
   k.keep_last = params_.dual_returns != DualReturns::Strongest;
   k.keep_strongest = params_.dual_returns != DualReturns::Last;
   k.drop_dups = params_.drop_dual_duplicates && params_.dual_returns == DualReturns::Both;

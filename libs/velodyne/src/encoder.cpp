@@ -72,6 +72,25 @@ DataPacketBytes encodeVlp16Packet(const std::array<FiringSequence, kVlp16Sequenc
   return pkt;
 }
 
+DataPacketBytes encodeHdl32Packet(const std::array<Hdl32Firing, kBlocksPerPacket>& firings, uint32_t timestamp_us,
+                                  ReturnMode mode, Model product) {
+  DataPacketBytes pkt{};
+  for (int b = 0; b < kBlocksPerPacket; ++b) {
+    uint8_t* blk = pkt.data() + b * kBlockSize;
+    putU16(blk, kBlockFlag);
+    putU16(blk + 2, encodeAzimuth(firings[b].azimuth_deg));
+    for (int c = 0; c < kHdl32Lasers; ++c) {
+      uint8_t* ch = blk + 4 + 3 * c;
+      putU16(ch, encodeRange(firings[b].returns[c].range_m));
+      ch[2] = firings[b].returns[c].intensity;
+    }
+  }
+  putU32(pkt.data() + kTimestampOffset, timestamp_us);
+  pkt[kReturnModeOffset] = static_cast<uint8_t>(mode);
+  pkt[kProductIdOffset] = static_cast<uint8_t>(product);
+  return pkt;
+}
+
 std::array<uint8_t, kPositionPacketSize> encodePositionPacket(uint32_t timestamp_us,
                                                               const char* nmea) {
   // Manual 9.4 / MRPT TVelodynePositionPacket: u32 timestamp at byte 198, NMEA sentence at 206.

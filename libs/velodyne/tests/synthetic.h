@@ -21,7 +21,7 @@ struct SyntheticStream {
 /// \p n packets of a VLP-16 spinning at \p rate_hz from azimuth \p az0_deg, timestamps from t0_us.
 inline SyntheticStream spinVlp16(const RangeFn& range, int n, double rate_hz = 10.0,
                                  double az0_deg = 0.0, uint32_t t0_us = 1000000,
-                                 ReturnMode mode = ReturnMode::Strongest) {
+                                 ReturnMode mode = ReturnMode::Strongest, Model product = Model::VLP16) {
   const Calibration cal = Calibration::builtinVlp16();
   SyntheticStream s;
   const double deg_per_s = 360.0 * rate_hz;
@@ -39,7 +39,32 @@ inline SyntheticStream spinVlp16(const RangeFn& range, int n, double rate_hz = 1
         seq[q].last[l] = {r, static_cast<uint8_t>(10 + l)};
       }
     }
-    s.packets.push_back(encodeVlp16Packet(seq, t0_us + static_cast<uint32_t>(std::lround(t_pkt * 1e6)), mode));
+    s.packets.push_back(encodeVlp16Packet(seq, t0_us + static_cast<uint32_t>(std::lround(t_pkt * 1e6)), mode, product));
+    s.stamps_s.push_back(1.7e9 + t_pkt);
+  }
+  return s;
+}
+
+/// \p n packets of an HDL-32E spinning at \p rate_hz (a block every 46.08 us, a laser every 1.152 us,
+/// HDL-32E manual 63-9113 appendix E), single return, product byte \p product.
+inline SyntheticStream spinHdl32(const RangeFn& range, int n, double rate_hz = 10.0, double az0_deg = 0.0,
+                                 uint32_t t0_us = 1000000, Model product = Model::HDL32) {
+  const Calibration cal = Calibration::builtinHdl32();
+  SyntheticStream s;
+  const double deg_per_s = 360.0 * rate_hz;
+  for (int k = 0; k < n; ++k) {
+    std::array<Hdl32Firing, kBlocksPerPacket> firings{};
+    const double t_pkt = k * kBlocksPerPacket * kHdl32BlockPeriod_s;
+    for (int b = 0; b < kBlocksPerPacket; ++b) {
+      const double t_block = t_pkt + b * kHdl32BlockPeriod_s;
+      firings[b].azimuth_deg = std::fmod(az0_deg + deg_per_s * t_block, 360.0);
+      for (int c = 0; c < kHdl32Lasers; ++c) {
+        const double az = (az0_deg + deg_per_s * (t_block + c * kHdl32LaserPeriod_s)) * M_PI / 180;
+        firings[b].returns[c] = {static_cast<float>(range(az, cal.lasers[c].vertical_rad)), static_cast<uint8_t>(c)};
+      }
+    }
+    s.packets.push_back(encodeHdl32Packet(firings, t0_us + static_cast<uint32_t>(std::lround(t_pkt * 1e6)),
+                                          ReturnMode::Strongest, product));
     s.stamps_s.push_back(1.7e9 + t_pkt);
   }
   return s;

@@ -33,8 +33,9 @@ std::pair<int, int> parseSize(const std::string& text) {
   return {w, h};
 }
 
-std::string summaryLine(const ViewerModel& m) {
+std::string summaryLine(ViewerModel& m) {
   const auto& idx = m.recording();
+  const std::string lidar = m.lidarModel().text;
   std::string name = m.inputs().recording, how = m.live() ? " (live)" : "";
   if (m.session() && m.session()->segments() > 1) {
     char text[96];
@@ -52,11 +53,12 @@ std::string summaryLine(const ViewerModel& m) {
     name = r->path();
     how = text;
   }
-  char buf[600];
+  char buf[700];
   std::snprintf(buf, sizeof buf,
-                "%s: %zu observations over %.1f s%s; %zu frames, %zu loops, %zu map points, "
+                "%s: %zu observations over %.1f s%s%s; %zu frames, %zu loops, %zu map points, "
                 "%zu boundary sweeps, %zu ground-truth poses, %zu CAN samples, %zu OctoMap voxels, %zu grid cells occupied",
-                name.c_str(), idx.size(), m.endTime() - m.startTime(), how.c_str(), m.frames().size(),
+                name.c_str(), idx.size(), m.endTime() - m.startTime(), how.c_str(),
+                lidar.empty() ? "" : ("; lidar " + lidar).c_str(), m.frames().size(),
                 m.loops().size(), m.mapPoints().size(), m.boundaries().size(), m.groundTruth().size(), m.can().size(), m.octoVoxels().size(),
                 m.grid() ? m.grid()->occupied : std::size_t(0));
   return buf;
@@ -120,7 +122,8 @@ std::string recordingToOpen(const std::string& path, std::ostream& err) {
     if (fs::exists(out) && fs::last_write_time(out, ec) >= fs::last_write_time(path, ec)) return out;
   }
   err << "roadslam-view: converting " << path << " into " << out << " once ...\n";
-  const auto s = sources::convertToRawlog(path, out);
+  // The model's warning, if any, comes with the summary line (ViewerModel::lidarModel), once.
+  const auto s = sources::convertToRawlog(path, out, {}, {}, "roadslam-rawlog convert --model");
   if (s.observations == 0) throw std::runtime_error("'" + path + "' holds no Velodyne sweep");
   return out;
 }
@@ -154,6 +157,7 @@ int runView(const ViewRequest& req, std::ostream& out, std::ostream& err) {
   ViewerModel model(in);
   if (headless) model.waitForIndex();  // renders may need any time of the recording
   for (const auto& warning : model.warnings()) err << "roadslam-view: warning: " << warning << "\n";
+  if (const auto lidar = model.lidarModel(); !lidar.warning.empty()) err << "roadslam-view: warning: " << lidar.warning << "\n";
   out << summaryLine(model) << "\n";
   if (!model.can().empty()) {
     double v_max = 0;

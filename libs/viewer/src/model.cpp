@@ -30,6 +30,7 @@
 
 #include "roadslam/runfolder/run_folder.h"
 #include "roadslam/viewer/scene.h"
+#include "roadslam/viewer/sweep.h"
 
 namespace roadslam::viewer {
 namespace fs = std::filesystem;
@@ -106,6 +107,22 @@ void ViewerModel::indexDone() {
   }
   for (const auto& o : deferred_overlaps_) checkOverlap(o.what, o.t0, o.t1);
   deferred_overlaps_.clear();
+}
+
+ViewerModel::LidarModel ViewerModel::lidarModel() {
+  constexpr std::size_t kLookAhead = 1000;  // observations searched for the first Velodyne sweep
+  const auto& idx = recording();
+  for (std::size_t i = 0; i < std::min(idx.size(), kLookAhead); ++i) {
+    if (!idx.entry(i).known || idx.className(i) != "CObservationVelodyneScan") continue;
+    try {
+      const auto sweep = sweepOf(*index_->load(i));
+      if (!sweep) continue;
+      return {sweep->model + " (by " + sweep->model_source + ")", sweep->model_warning};
+    } catch (const std::exception&) {
+      continue;  // a damaged observation: the next one
+    }
+  }
+  return {};
 }
 
 void ViewerModel::waitForIndex() {

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "roadslam/velodyne/decoder.h"
+#include "roadslam/velodyne/model_choice.h"
 
 namespace roadslam::viewer {
 
@@ -21,14 +22,36 @@ Eigen::Isometry3d toIsometry(const mrpt::poses::CPose3D& p) {
   return T;
 }
 
+/// The model of a recorded sweep (model_choice.h over its own packets, about 75 of a VLP-16 turn);
+/// where their layout is inconclusive, the laser count of the calibration the recorder stored
+/// (roadslam-rawlog convert and roadslam-grab store the model they decoded) over the product byte.
+struct ObservationModel {
+  velodyne::Model model = velodyne::Model::Unknown;
+  std::string source, warning;
+};
+ObservationModel observationModel(const mrpt::obs::CObservationVelodyneScan& v) {
+  velodyne::LayoutDetector layout;
+  for (const auto& raw : v.scan_packets) layout.add(reinterpret_cast<const uint8_t*>(&raw), velodyne::kDataPacketSize);
+  const velodyne::ModelChoice c = velodyne::chooseModel(velodyne::Model::Unknown, layout.verdict(),
+                                                        "roadslam-rawlog convert --model");
+  const auto lasers = v.calibration.laser_corrections.size();
+  const auto stored = lasers == 16 ? velodyne::Model::VLP16 : lasers == 32 ? velodyne::Model::HDL32 : velodyne::Model::Unknown;
+  if (c.layout.model == velodyne::Model::Unknown && stored != velodyne::Model::Unknown)
+    return {stored, "rawlog calibration", ""};
+  return {c.model, velodyne::toString(c.source), c.warning};
+}
+
 std::optional<SweepPoints> velodyneSweep(const mrpt::obs::CObservationVelodyneScan& v) {
   SweepPoints s;
   s.stamp_s = mrpt::Clock::toDouble(v.timestamp);
   s.T_base_lidar = toIsometry(v.sensorPose);
   s.packets = v.scan_packets.size();
-  velodyne::DecoderParams dp;  // the calibration's laser count names the model (some VLP-16 report 0x21)
-  const auto lasers = v.calibration.laser_corrections.size();
-  dp.model = lasers == 16 ? velodyne::Model::VLP16 : lasers == 32 ? velodyne::Model::HDL32 : velodyne::Model::Unknown;
+  const ObservationModel om = observationModel(v);
+  s.model = velodyne::displayName(om.model);
+  s.model_source = om.source;
+  s.model_warning = om.warning;
+  velodyne::DecoderParams dp;
+  dp.model = om.model;
   const velodyne::Decoder decoder(dp);
   s.points.reserve(v.scan_packets.size() * 384);
   std::vector<ScanPoint> pkt;
@@ -41,7 +64,7 @@ std::optional<SweepPoints> velodyneSweep(const mrpt::obs::CObservationVelodyneSc
     velodyne::PacketInfo info;
     if (decoder.decode(b, velodyne::kDataPacketSize, pkt, &info) != velodyne::DecodeStatus::Ok) continue;
     double t_pkt = info.timestamp_us * 1e-6;
-    if (first) t_first = t_pkt, first = false, s.model = velodyne::modelName(info.model);
+    if (first) t_first = t_pkt, first = false;
     if (t_pkt < t_first - 1800) t_pkt += 3600;  // the sensor's counter wraps at the hour
     if (info.mode == velodyne::ReturnMode::Dual) s.returns = 2;
     for (auto& p : pkt) {
@@ -93,12 +116,13 @@ std::string describe(const mrpt::obs::CObservation& obs, const SweepPoints* s) {
   const Eigen::Vector3d ypr = s->T_base_lidar.rotation().eulerAngles(2, 1, 0) * 180.0 / M_PI;
   std::string cls = obs.GetRuntimeClass()->className;
   cls = cls.substr(cls.rfind(':') == std::string::npos ? 0 : cls.rfind(':') + 1);
+  const std::string model = s->model + (s->model_source.empty() ? "" : " (by " + s->model_source + ")");
   char buf[640];
   std::snprintf(buf, sizeof buf,
                 "class       %s\nlabel       %s\ntime        %.6f s\nmodel       %s\npackets     %zu\n"
                 "points      %zu\nrings       %d\nreturns     %d\ntime span   %.1f ms\n"
                 "sensor pose x %.2f y %.2f z %.2f m, yaw %.1f pitch %.1f roll %.1f deg\n",
-                cls.c_str(), obs.sensorLabel.c_str(), s->stamp_s, s->model.c_str(),
+                cls.c_str(), obs.sensorLabel.c_str(), s->stamp_s, model.c_str(),
                 s->packets, s->points.size(), s->rings, s->returns, s->span_s * 1e3, t.x(), t.y(), t.z(),
                 ypr.x(), ypr.y(), ypr.z());
   return buf;

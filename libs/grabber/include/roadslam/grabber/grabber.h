@@ -57,6 +57,9 @@ struct SensorStatus {
   double clock_offset_min_s = 0, clock_offset_max_s = 0;  ///< over the session [s]
   bool silent = false;                  ///< no packet for silent_after_s
   std::uint64_t silent_events = 0;      ///< times it went silent [count]
+  /// The model its packets show (velodyne/model_choice.h: "VLP-16", "HDL-32E", "unknown"; "undecided"
+  /// before its first sweep), why ("ini", "packet layout", "product byte") and the layout found.
+  std::string lidar_model = "undecided", lidar_model_source, lidar_layout;
 };
 
 struct CanStatus {

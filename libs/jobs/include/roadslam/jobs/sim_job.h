@@ -23,6 +23,7 @@ struct SimRequest {
   double udp_speed = 1.0;               ///< pace as a multiple of real time
   std::string top_view_png;
   bool force = false;                   ///< write into a folder another run wrote (output_folder.h)
+  bool progress = true;                 ///< progress bar on stderr when it is a terminal
 };
 
 struct SimOutcome {

@@ -64,6 +64,10 @@ class PcapReader {
   const std::string& errorMessage() const { return error_; }
   const PcapReadStats& stats() const { return stats_; }
   int linkType() const;               ///< DLT_* value of the capture
+  /// Bytes of the file read so far (where the next record starts) and the file's size [bytes]: the
+  /// progress of a replay whose records are not counted in advance.
+  uint64_t bytesRead() const;
+  uint64_t fileSize() const;
   const std::string& path() const { return path_; }
 
  private:

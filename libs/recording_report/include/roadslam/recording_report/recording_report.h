@@ -47,7 +47,8 @@ struct StreamStats {
   std::vector<Gap> gaps;           ///< the longest max_listed_gaps, in time order
   std::uint64_t drops = 0;         ///< messages missing per the sensor's own clock (Velodyne) [count]
   std::uint64_t malformed = 0;     ///< wrong-size / undecodable messages [count]
-  std::string model;               ///< lidar: vlp16, hdl32 (product byte)
+  std::string model;               ///< lidar: vlp16, hdl32: as decoded (velodyne/model_choice.h)
+  std::string model_source;        ///< lidar: why: ini (--lidar-model), packet layout, product byte
   std::uint64_t sweeps = 0;        ///< lidar: complete turns seen (wrap to wrap, none spanning lost packets) [count]
   double sweep_rate_hz = 0;        ///< lidar: rotation rate, sweeps / their summed duration [Hz]
   std::vector<double> bin_t_s;     ///< rate over time: bin start [s since start]

@@ -35,6 +35,8 @@ struct MapSummary {
   bool complete = false, interrupted = false;
   std::vector<std::string> warnings;
   std::string input;
+  /// The LiDAR model the packets were decoded as and why (empty for a KITTI folder: no packets).
+  std::string lidar_model, lidar_model_source;
   nlohmann::json json;  ///< the whole object
 
   /// Frames of \p status (0 when none).
@@ -51,6 +53,7 @@ struct BoundsSummary {
   bool complete = false;
   std::vector<std::string> warnings;
   std::string input;
+  std::string lidar_model, lidar_model_source;  ///< as MapSummary's
   nlohmann::json json;
 };
 

@@ -35,6 +35,8 @@ struct OutputOptions {
   uint16_t udp_port = 0;         ///< [-]
   double udp_speed = 1.0;        ///< pace: 1 = real time, 2 = twice as fast [-]
   std::string top_view_png;      ///< also draw the top view here when not empty
+  /// Progress on stderr when it is a terminal: simulated seconds of the scenario's, with ETA
+  bool progress = false;
 };
 
 struct RunReport {

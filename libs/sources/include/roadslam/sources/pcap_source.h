@@ -29,6 +29,7 @@ class PcapPacketSource : public PacketSource {
   std::string describe() const override { return "pcap:" + path_; }
   /// Empty unless the capture is damaged (truncated mid-record); names the file and record.
   std::string errorMessage() const override;
+  ReadProgress readProgress() const override;
 
  private:
   std::unique_ptr<pcap::PcapReader> reader_;

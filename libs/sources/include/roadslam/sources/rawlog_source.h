@@ -37,6 +37,8 @@ class RawlogPacketSource : public PacketSource {
   const SourceStats& stats() const override { return stats_; }
   std::string describe() const override { return "rawlog:" + path_; }
   std::string errorMessage() const override { return error_; }
+  /// Compressed bytes of the file read and its size.
+  ReadProgress readProgress() const override;
 
   /// GPS fixes (CObservationGPS records with an RMC message) read since the last call.
   std::vector<gnss::GnssFix> takeDecodedFixes() override;

@@ -7,6 +7,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "roadslam/sources/packet_source.h"
 #include "roadslam/rawlog/rawlog_writer.h"
@@ -21,6 +22,10 @@ struct RecordingSummary {
   std::string path;
   std::string format;              ///< "pcap" or "rawlog"
   std::string model;               ///< decoder model of the first data packet (vlp16, hdl32)
+  std::string lidar_model;         ///< the model decoded, "VLP-16" / "HDL-32E" / "unknown" (model_choice.h)
+  std::string lidar_model_source;  ///< "ini" (here: --model), "packet layout" or "product byte"
+  std::string lidar_layout;        ///< what the packets' layout says (velodyne::LayoutVerdict::describe)
+  std::vector<std::string> warnings;  ///< the model choice's warning, when the layout disagrees
   uint64_t sweeps = 0;             ///< complete sweeps (one full turn, wrap to wrap) [count]
   uint64_t partial_sweeps = 0;     ///< first / last incomplete sweeps [count]
   uint64_t packets = 0;            ///< Velodyne data packets [count]
@@ -36,9 +41,9 @@ struct RecordingSummary {
 };
 
 /// Reads the whole recording once. Throws (naming the file) when it is damaged or holds no
-/// Velodyne data packet.
-RecordingSummary summarizeRecording(const std::string& path,
-                                    const velodyne::DecoderParams& params = {});
+/// Velodyne data packet. \p force_setting: how the user forces the model, for the warning's advice.
+RecordingSummary summarizeRecording(const std::string& path, const velodyne::DecoderParams& params = {},
+                                    const std::string& force_setting = "--model");
 
 /// `--json` output: an object with the RecordingSummary field names as keys.
 std::string toJson(const RecordingSummary& s);
@@ -49,16 +54,21 @@ struct ConvertSummary {
   uint64_t observations = 0;  ///< CObservationVelodyneScan records written (one per sweep) [count]
   uint64_t packets = 0;       ///< data packets stored [count]
   uint64_t gps = 0;           ///< CObservationGPS records written [count]
+  std::string lidar_model;    ///< the model decoded and written as the calibration (RecordingSummary)
+  std::string lidar_model_source;
+  std::vector<std::string> warnings;  ///< the model choice's warning, when the layout disagrees
 };
 
 /// Converts \p in (.pcap or .rawlog) to the MRPT rawlog \p out: one CObservationVelodyneScan per
 /// sweep as cut by the assembler (a packet in which a sweep ends opens the next observation, so
 /// every packet is stored exactly once, unchanged), one CObservationGPS per RMC position packet.
-/// \p writer_params.model / calibration_file default from \p params when empty.
+/// \p writer_params.model / calibration_file default from \p params when empty; the model written is
+/// the one decoded (model_choice.h: the packet layout over a disagreeing product byte).
 /// The configuration actually used is written next to the output as "<out>.ini" (sections
 /// [velodyne] = DecoderParams, [rawlog] = RawlogWriter::Params), loadable by both Params.
 ConvertSummary convertToRawlog(const std::string& in, const std::string& out,
                                const velodyne::DecoderParams& params = {},
-                               rawlog::RawlogWriter::Params writer_params = {});
+                               rawlog::RawlogWriter::Params writer_params = {},
+                               const std::string& force_setting = "--model");
 
 }  // namespace roadslam::sources

@@ -14,12 +14,21 @@
 
 #include "roadslam/common/scan.h"
 #include "roadslam/sources/gps_fix.h"
+#include "roadslam/sources/packet_source.h"
 
 namespace mrpt::config {
 class CConfigFileBase;
 }
 
 namespace roadslam::sources {
+
+/// The LiDAR model a source decodes its packets as, and why (velodyne/model_choice.h): summary.json's
+/// lidar_model, lidar_model_source and lidar_layout (docs/run-folder.md).
+struct LidarModelReport {
+  std::string model;   ///< "VLP-16", "HDL-32E", "unknown" (not decoded), "undecided" (nothing read yet)
+  std::string source;  ///< "ini", "packet layout" or "product byte"
+  std::string layout;  ///< what the packets' layout says (velodyne::LayoutVerdict::describe)
+};
 
 /// What every scan source counts; the per-sweep path counts problems here, never throws.
 struct ScanSourceStats {
@@ -45,6 +54,11 @@ class ScanSource {
   virtual ScanSourceStats stats() const = 0;
   /// Total sweeps when known in advance (KITTI folders), else 0: for progress and ETA.
   virtual size_t sizeHint() const { return 0; }
+  /// Bytes of a recorded input read so far and in all (packet recordings; both 0 when unknown, live):
+  /// progress and ETA where the sweeps are not counted in advance.
+  virtual ReadProgress readProgress() const { return {}; }
+  /// The model Velodyne packets are decoded as; nullopt for sources of points (KITTI folders).
+  virtual std::optional<LidarModelReport> lidarModel() const { return std::nullopt; }
   /// Non-empty once the input turned out damaged (truncated, undecodable record, unreadable .bin):
   /// names the file and the place; the sweeps before it were returned normally.
   virtual std::string errorMessage() const { return {}; }

@@ -29,6 +29,8 @@ class SegmentedPacketSource : public PacketSource {
   /// Every damaged segment, one after the other ("; "-separated).
   std::string errorMessage() const override { return error_; }
   std::vector<gnss::GnssFix> takeDecodedFixes() override;
+  /// Bytes of the segments read (the closed ones whole) of their sum.
+  ReadProgress readProgress() const override;
 
  private:
   void closeCurrent();
@@ -38,6 +40,7 @@ class SegmentedPacketSource : public PacketSource {
   std::size_t current_ = 0;
   std::unique_ptr<RawlogPacketSource> source_;
   SourceStats stats_, done_;  // done_: the closed segments' sums
+  uint64_t bytes_total_ = 0, bytes_done_ = 0;  // all segments' sizes, the closed ones' [bytes]
   std::vector<gnss::GnssFix> fixes_;
   std::string error_;
 };

@@ -14,6 +14,7 @@
 #include "roadslam/sources/gps_fix.h"
 #include "roadslam/sources/packet_source.h"
 #include "roadslam/sources/scan_source.h"
+#include "roadslam/velodyne/model_choice.h"
 #include "roadslam/velodyne/sweep_assembler.h"
 
 namespace roadslam::sources {
@@ -32,10 +33,16 @@ struct SweepSourceStats {
   double sweepRate_hz() const;
 };
 
+/// Before the first sweep, the source reads the first velodyne::LayoutDetector::kWindowPackets data
+/// packets ahead (with the position packets between them) and chooses the stream's model from their
+/// layout and product byte (velodyne/model_choice.h); then it decodes every packet, those read ahead
+/// first, in arrival order, with that model. lidarModel() tells the choice, warnings() its warning.
 class SweepSource : public ScanSource {
  public:
   /// \p packets is owned; \p params select model, calibration, cut angle, stamp clock.
-  SweepSource(std::unique_ptr<PacketSource> packets, const velodyne::DecoderParams& params = {});
+  /// \p force_setting names how a user forces the model, for the warning's advice (model_choice.h).
+  SweepSource(std::unique_ptr<PacketSource> packets, const velodyne::DecoderParams& params = {},
+              std::string force_setting = "[velodyne] model");
 
   /// Next sweep; nullopt when the recording is exhausted (after the final partial sweep) or, live,
   /// when no packet arrived within the receiver's timeout.
@@ -55,6 +62,14 @@ class SweepSource : public ScanSource {
   ScanSourceStats stats() const override;
   /// The packet source's damage report (truncated or undecodable recording), empty when none.
   std::string errorMessage() const override { return packets_->errorMessage(); }
+  /// The model choice's warning (layout against product byte or set model), when there is one.
+  std::vector<std::string> warnings() const override;
+  /// The model chosen (model_choice.h); before the first next() the choice is not made yet and the
+  /// model reads "undecided".
+  std::optional<LidarModelReport> lidarModel() const override;
+  ReadProgress readProgress() const override { return packets_->readProgress(); }
+  /// The choice itself; nullopt before the first next().
+  const std::optional<velodyne::ModelChoice>& modelChoice() const { return choice_; }
 
   /// Optional observer of every raw packet (data and position) in arrival order, with the number
   /// of sweeps the assembler closed while taking it (data packets only): lets a recorder store the
@@ -68,10 +83,26 @@ class SweepSource : public ScanSource {
   const SweepSourceStats& sweepStats() const { return stats_; }
 
  private:
+  /// A packet read ahead for the model choice, with the fixes the source decoded beside it.
+  struct ReadAhead {
+    std::optional<velodyne::RawPacket> packet;
+    std::vector<gnss::GnssFix> fixes;
+  };
   Scan deliver(Scan s);
   void keepFix(const gnss::GnssFix& f);
+  /// Reads ahead until the layout window is full or the recording ends, then chooses the model;
+  /// false while a live source has not delivered the window yet.
+  bool chooseModel();
+  /// The next packet: read ahead first, then from the source (fixes kept); sets \p waiting when a
+  /// live source had nothing.
+  std::optional<velodyne::RawPacket> nextPacket(bool& waiting);
 
   std::unique_ptr<PacketSource> packets_;
+  velodyne::DecoderParams params_;
+  std::string force_setting_;
+  velodyne::LayoutDetector layout_;
+  std::deque<ReadAhead> ahead_;
+  std::optional<velodyne::ModelChoice> choice_;
   velodyne::SweepAssembler assembler_;
   std::deque<gnss::GnssFix> fixes_;
   std::size_t max_pending_fixes_ = 0;

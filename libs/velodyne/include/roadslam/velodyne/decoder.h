@@ -55,13 +55,18 @@ class Decoder {
   DecodeStatus decode(const uint8_t* data, std::size_t size, std::vector<ScanPoint>& out,
                       PacketInfo* info = nullptr) const noexcept;
 
-  /// Model the decoder will use for this packet (forced one, else the product byte).
+  /// Model the decoder will use for this packet: the forced one (DecoderParams::model), else the
+  /// stream's (setStreamModel) when the product byte names a model we decode, else the product byte.
   Model modelOf(const uint8_t* data, std::size_t size) const noexcept;
+  /// The model chosen for the whole stream (model_choice.h: the packet layout over a product byte
+  /// that disagrees); Unknown (the default) = each packet's product byte. Ignored when a model is forced.
+  void setStreamModel(Model model) { stream_model_ = model; }
   const Calibration& calibration(Model model) const;
   const DecoderParams& params() const { return params_; }
 
  private:
   DecoderParams params_;
+  Model stream_model_ = Model::Unknown;
   Calibration vlp16_, hdl32_;
 };
 

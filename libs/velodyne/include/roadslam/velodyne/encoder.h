@@ -1,6 +1,6 @@
 #pragma once
 /// \file encoder.h
-/// The inverse of the decoder: builds real 1206-byte VLP-16 data packets from firing sequences.
+/// The inverse of the decoder: builds real 1206-byte VLP-16 and HDL-32E data packets from firings.
 /// Used by the simulator and by round-trip tests (encode known points, decode, compare within the
 /// packet quantisation: 2 mm range, 0.01 deg azimuth).
 
@@ -34,6 +34,18 @@ struct FiringSequence {
 DataPacketBytes encodeVlp16Packet(const std::array<FiringSequence, kVlp16SequencesPerPacket>& seq,
                                   uint32_t timestamp_us, ReturnMode mode = ReturnMode::Strongest,
                                   Model product = Model::VLP16);
+
+/// One HDL-32E firing: 32 lasers in packet channel order (HDL-32E manual 63-9113 appendix E:
+/// elevations -30.67, -9.33, -29.33, -8.00, ... deg), azimuth at the firing's first laser.
+struct Hdl32Firing {
+  double azimuth_deg = 0;                      ///< [0, 360)
+  std::array<LaserReturn, kHdl32Lasers> returns;
+};
+
+/// Encodes 12 HDL-32E firings (one packet, 552.96 us: a block every 46.08 us) into a data packet,
+/// firing k into block k, single return (\p mode Strongest or Last; the byte is written as given).
+DataPacketBytes encodeHdl32Packet(const std::array<Hdl32Firing, kBlocksPerPacket>& firings, uint32_t timestamp_us,
+                                  ReturnMode mode = ReturnMode::Strongest, Model product = Model::HDL32);
 
 /// A 512-byte position packet carrying \p nmea (e.g. a $GPRMC sentence) and the timestamp.
 std::array<uint8_t, kPositionPacketSize> encodePositionPacket(uint32_t timestamp_us,

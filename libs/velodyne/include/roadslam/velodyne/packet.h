@@ -44,11 +44,17 @@ constexpr int kVlp16SequencesPerPacket = 24;
 // HDL-32E: 32 lasers fired every 1.152 us, a block every 46.080 us.
 constexpr double kHdl32LaserPeriod_s = 1.152e-6;
 constexpr double kHdl32BlockPeriod_s = 46.080e-6;
+constexpr int kHdl32Lasers = 32;
 
 enum class ReturnMode : uint8_t { Strongest = 0x37, Last = 0x38, Dual = 0x39 };
 enum class Model : uint8_t { Unknown = 0, VLP16 = 0x22, HDL32 = 0x21 };
 
 using DataPacketBytes = std::array<uint8_t, kDataPacketSize>;
+
+/// Block-to-block azimuth advance of one packet [0.01 deg] from its 12 block azimuths [0.01 deg]:
+/// element 6 of the 11 sorted differences (as VeloView), which skips the zero steps of dual-return
+/// block pairs and one wrap outlier.
+int blockAzimuthStep(const std::array<uint16_t, kBlocksPerPacket>& azimuth);
 
 /// A UDP payload as received or read from a capture, with the clock it arrived on.
 struct RawPacket {

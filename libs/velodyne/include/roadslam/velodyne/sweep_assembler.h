@@ -56,6 +56,8 @@ class SweepAssembler {
   Scan takeSweep();
   const SweepStats& stats() const { return stats_; }
   const Decoder& decoder() const { return decoder_; }
+  /// Decoder::setStreamModel, for the packets added from now on.
+  void setStreamModel(Model model) { decoder_.setStreamModel(model); }
 
  private:
   /// Time from the first firing of a packet to the end of its last firing [s].

@@ -36,8 +36,9 @@ struct ViewRequest {
 /// Parses "WxH" [pixels]; throws std::invalid_argument naming the text.
 std::pair<int, int> parseSize(const std::string& text);
 
-/// One line for a person: observations, duration, how the index was opened, and what the results hold.
-std::string summaryLine(const ViewerModel& model);
+/// One line for a person: observations, duration, how the index was opened, the LiDAR model decoded
+/// (ViewerModel::lidarModel), and what the results hold.
+std::string summaryLine(ViewerModel& model);
 
 /// The rawlog to open for \p path: a rawlog as it is; a Velodyne pcap converted once into
 /// "<pcap>.rawlog" beside it (again when the pcap is newer), or into the temp folder when its

@@ -119,6 +119,14 @@ class ViewerModel {
   const ViewerInputs& inputs() const { return in_; }
   const std::vector<std::string>& warnings() const { return warnings_; }
 
+  /// The LiDAR model of the first Velodyne sweep of the recording (sweep.h: its own packets' layout,
+  /// else its calibration), as "VLP-16 (by packet layout)", and the warning when the packets' layout
+  /// and product byte disagree. Empty before a Velodyne sweep is indexed (and for point clouds).
+  struct LidarModel {
+    std::string text, warning;
+  };
+  LidarModel lidarModel();
+
   /// Time span shown on the timeline [s]: the recording's, or the frames' without stamps.
   double startTime() const;
   double endTime() const;

@@ -28,10 +28,15 @@ struct SweepPoints {
   int rings = 0;                 ///< distinct rings seen [count]
   int returns = 1;               ///< returns per firing (2: dual) [count]
   double span_s = 0;             ///< time from the first to the last point [s]
-  std::string model;             ///< sensor model ("VLP16", "HDL32", "point cloud")
+  std::string model;             ///< sensor model ("VLP-16", "HDL-32E", "unknown", "point cloud")
+  /// Why that model (Velodyne packets): "product byte", "packet layout" (velodyne/model_choice.h) or,
+  /// where the layout is inconclusive, "rawlog calibration" (its laser count)
+  std::string model_source;
+  std::string model_warning;     ///< the packets' layout against their product byte, when they disagree
 };
 
-/// The points of \p obs, or nullopt when it holds none (GPS, CAN, ...).
+/// The points of \p obs, or nullopt when it holds none (GPS, CAN, ...). A Velodyne sweep is decoded
+/// as the model its own packets show (velodyne/model_choice.h), else its calibration's laser count.
 std::optional<SweepPoints> sweepOf(const mrpt::obs::CObservation& obs);
 
 /// Details of \p obs for a person: for a sweep, points, rings, returns, time span and sensor pose;
