@@ -13,7 +13,7 @@ mkdir -p "$OUT"
 # the antenna in the lidar frame: [gnss] lever (0.5, 0, 1.7) in the vehicle frame less the lidar mount (1.2, 0, 1.9)
 sed -e '/^\[gnss_fusion\]/,$ s/^lever_x_m = 0.0/lever_x_m = -0.7/' -e '/^\[gnss_fusion\]/,$ s/^lever_z_m = 0.0/lever_z_m = -0.2/' \
   ini/default.ini > "$OUT/map-gnss.ini"
-[[ -f $OUT/highway/.done ]] || { "$B/bin/roadslam-sim" --scenario "$OUT/highway.ini" --out "$OUT/highway" && touch "$OUT/highway/.done"; }
+[[ -f $OUT/highway/.done ]] || { "$B/bin/roadslam-sim" --config "$OUT/highway.ini" --out "$OUT/highway" && touch "$OUT/highway/.done"; }
 [[ -f $OUT/highway_map/.done ]] || { "$B/bin/roadslam-map" --config "$OUT/map-gnss.ini" --input "$OUT/highway/velodyne.pcap" \
   --gnss "$OUT/highway/gnss.nmea" --out "$OUT/highway_map" --quiet && touch "$OUT/highway_map/.done"; }
 "$B/bench/bench_gnss" sim --scenario "$OUT/highway.ini" --sim "$OUT/highway" --run "$OUT/highway_map" --config "$OUT/map-gnss.ini"

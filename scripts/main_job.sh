@@ -17,7 +17,7 @@ echo "== 1. decode the bundled VLP-16 capture into a rawlog"
 "$BIN/roadslam-rawlog" info "$OUT/boxroom-vlp16.rawlog"
 
 echo "== 2. simulate 40 s of the urban loop, map it, score it against ground truth"
-"$BIN/roadslam-sim" --scenario ini/sim/urban-loop.ini --duration 40 --out "$OUT/sim-urban"
+"$BIN/roadslam-sim" --config ini/sim/urban-loop.ini --duration 40 --out "$OUT/sim-urban"
 "$BIN/roadslam-map" --config ini/default.ini --input "$OUT/sim-urban/velodyne.pcap" \
   --out "$OUT/map-urban" --quiet
 "$BIN/roadslam-eval" --gt "$OUT/sim-urban/gt_trajectory.tum" --est "$OUT/map-urban/trajectory.tum" \

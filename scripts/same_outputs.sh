@@ -25,7 +25,7 @@ for s in urban-loop parking-lot highway; do
   ini=ini/sim/$s.ini mark=velodyne.pcap
   [[ $s == highway ]] && ini=$WORK/highway-gnss.ini mark=gnss.nmea
   [[ -f "$WORK/drives/$s/$mark" ]] ||
-    "$BEFORE/roadslam-sim" --scenario "$ini" --duration 30 --out "$WORK/drives/$s" --quiet
+    "$BEFORE/roadslam-sim" --config "$ini" --duration 30 --out "$WORK/drives/$s" --quiet
 done
 printf '%s\n' "$(cat ini/default.ini)" "" "[objects]" "enabled = true" > "$WORK/objects.ini"
 printf '%s\n' "$(cat ini/kitti-hdl64.ini)" "" "[objects]" "enabled = true" > "$WORK/kitti-objects.ini"

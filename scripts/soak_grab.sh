@@ -35,7 +35,7 @@ INI
 GRAB_PID=$!
 trap 'kill -INT $GRAB_PID 2>/dev/null || true' EXIT
 sleep 1
-"$SIM" --scenario ini/sim/urban-loop.ini --out "$OUT/sim" --duration "$DURATION" \
+"$SIM" --config ini/sim/urban-loop.ini --out "$OUT/sim" --duration "$DURATION" \
   --udp "127.0.0.1:$PORT" --speed "$SPEED" > "$OUT/sim.log" &
 SIM_PID=$!
 echo "t_s,rss_kb" > "$OUT/rss.csv"

@@ -166,7 +166,7 @@ TEST(AppsCli, SimQuietPrintsNothing) {
   const fs::path root = fs::path(::testing::TempDir()) / ("apps_cli_sim_" + std::to_string(::getpid()));
   fs::remove_all(root);
   const std::string dir = root.string();
-  const std::string args = "--scenario " + std::string(ROADSLAM_SOURCE_DIR) + "/ini/sim/urban-loop.ini --duration 0.3 --out ";
+  const std::string args = "--config " + std::string(ROADSLAM_SOURCE_DIR) + "/ini/sim/urban-loop.ini --duration 0.3 --out ";
   const AppRun text = run("roadslam-sim", args + dir + "/text");
   ASSERT_EQ(text.code, 0) << text.err;
   EXPECT_NE(text.out.find("sweeps"), std::string::npos) << text.out;

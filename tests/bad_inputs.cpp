@@ -284,7 +284,7 @@ const Row kTable[] = {
   // roadslam-map: inis
   {"map-config-pcap",      "roadslam-map --config {W}/truncated.pcap --input {W}/truncated.pcap --out {O}", 1, "truncated.pcap' is a binary file, not an ini"},
   {"map-config-empty",     "roadslam-map --config {W}/empty.nmea --input {W}/truncated.pcap --out {O}", 1, "empty.nmea' has no [section]: not a roadslam ini"},
-  {"sim-scenario-empty",   "roadslam-sim --scenario {W}/empty.nmea --out {O}", 1, "has no [section]"},
+  {"sim-scenario-empty",   "roadslam-sim --config {W}/empty.nmea --out {O}", 1, "has no [section]"},
   {"map-typo-key",         "roadslam-map --config {W}/typo-key.ini --input {W}/truncated.pcap --out {O}", 1, "unknown key 'voxel_sise_m' in [odometry]"},
   {"map-typo-section",     "roadslam-map --config {W}/typo-section.ini --input {W}/truncated.pcap --out {O}", 1, "unknown section [odometri] (nearest known: [odometry])"},
   {"map-typo-allowed",     "roadslam-map --config {W}/typo-key.ini --input {W}/truncated.pcap --out {O} --quiet --allow-unknown-keys", 0, "warning: "},
@@ -315,8 +315,8 @@ const Row kTable[] = {
   {"map-can-other-drive",  "roadslam-map --config {S}/ini/default.ini --input {W}/truncated.pcap --out {O} --can {W}/other-drive.log --vehicle {S}/ini/vehicles/roadslam-sim.ini", 1, "other-drive.log covers 1000000000.000 to 1000000060.000 s (60.0 s), but the recording starts at"},
   {"bounds-trajectory-other-drive", "roadslam-bounds --config {S}/ini/bounds.ini --input {W}/kitti-two --out {O} --trajectory {W}/other-drive.tum", 1, "other-drive.tum covers 1000000000.000 to 1000000010.000 s (10.0 s), but the recording starts at -0.050 s, 1000000000.0 s before it: another drive, or another clock"},
   {"bounds-into-map-folder", "roadslam-bounds --config {S}/ini/bounds.ini --input {W}/kitti-two --out {W}/prior-map", 1, "holds the outputs of roadslam-map (its run.json), not of roadslam-bounds"},
-  {"sim-into-map-folder",  "roadslam-sim --scenario {S}/ini/sim/urban-loop.ini --duration 1 --out {W}/prior-map", 1, "holds the outputs of roadslam-map (its run.json), not of roadslam-sim"},
-  {"sim-sigint",           "roadslam-sim --scenario {S}/ini/sim/urban-loop.ini --duration 900 --out {O} --quiet", 130, "roadslam-sim: interrupted: the first", 1500},
+  {"sim-into-map-folder",  "roadslam-sim --config {S}/ini/sim/urban-loop.ini --duration 1 --out {W}/prior-map", 1, "holds the outputs of roadslam-map (its run.json), not of roadslam-sim"},
+  {"sim-sigint",           "roadslam-sim --config {S}/ini/sim/urban-loop.ini --duration 900 --out {O} --quiet", 130, "roadslam-sim: interrupted: the first", 1500},
   // roadslam-bounds
   {"bounds-sigint",        "roadslam-bounds --config {S}/ini/bounds.ini --input {W}/kitti-long --out {O} --quiet", 130, "interrupted: the outputs of the sweeps so far", 1500},
   {"bounds-typo-key",      "roadslam-bounds --config {W}/bounds-typo.ini --input {W}/truncated.pcap --out {O}", 1, "unknown key 'curb_min_jmup_m' in [boundary] (nearest known: curb_min_jump_m)"},
@@ -384,11 +384,14 @@ const Row kTable[] = {
   {"eval-standing-gt",     "roadslam-eval --gt {W}/standing.tum --est {W}/standing.tum", 1, "span 0.000 m: no motion to score"},
   {"eval-camera-gt",       "roadslam-eval --gt {W}/camera.txt --gt-times {W}/camera-times.txt --est {W}/lidar.tum", 1, "with --calib"},
   // roadslam-sim
-  {"sim-typo-key",         "roadslam-sim --scenario {W}/sim-typo.ini --out {O}", 1, "range_nosie_m"},
-  {"sim-bad-value",        "roadslam-sim --scenario {W}/sim-bad-value.ini --out {O}", 1, "duration_s"},
-  {"sim-bad-headway",      "roadslam-sim --scenario {W}/sim-bad-headway.ini --out {O}", 1, "sim-bad-headway.ini:14: [world] moving_car_headway_s = -1: must be > 0"},
-  {"sim-open-route-offset", "roadslam-sim --scenario {W}/sim-open-route-offset.ini --out {O}", 1, "start_offset_m needs a closed route"},
-  {"sim-missing",          "roadslam-sim --scenario {W}/nope.ini --out {O}", 105, "File does not exist"},
+  {"sim-typo-key",         "roadslam-sim --config {W}/sim-typo.ini --out {O}", 1, "unknown key 'range_nosie_m' in [lidar] (nearest known: range_noise_m)"},
+  {"sim-typo-allowed",     "roadslam-sim --config {W}/sim-typo.ini --duration 0.2 --out {O} --quiet --allow-unknown-keys", 0, "warning: "},
+  {"sim-old-spelling",     "roadslam-sim --scenario {S}/ini/sim/urban-loop.ini --duration 0.2 --out {O} --quiet", 0, "roadslam-sim: --scenario is an old spelling: use --config"},
+  {"map-negative-max-frames", "roadslam-map --config {S}/ini/default.ini --input {W}/truncated.pcap --out {O} --max-frames -1", 105, "--max-frames"},
+  {"sim-bad-value",        "roadslam-sim --config {W}/sim-bad-value.ini --out {O}", 1, "duration_s"},
+  {"sim-bad-headway",      "roadslam-sim --config {W}/sim-bad-headway.ini --out {O}", 1, "sim-bad-headway.ini:14: [world] moving_car_headway_s = -1: must be > 0"},
+  {"sim-open-route-offset", "roadslam-sim --config {W}/sim-open-route-offset.ini --out {O}", 1, "start_offset_m needs a closed route"},
+  {"sim-missing",          "roadslam-sim --config {W}/nope.ini --out {O}", 105, "File does not exist"},
   // roadslam-grab
   {"grab-typo-key",        "roadslam-grab --config {W}/grab-typo.ini --out {O} --duration 0.1", 1, "segmnet_mb"},
   {"grab-missing",         "roadslam-grab --config {W}/nope.ini --out {O}", 105, "File does not exist"},
@@ -570,7 +573,7 @@ TEST(BadInputs, FullDiskRawlogConvertNamesTheReasonWithoutABacktrace) {
 
 TEST(BadInputs, FullDiskSimNamesTheReasonAndLeavesNoTemporaryFile) {
   makeFiles();
-  const auto r = onFullDisk("64k", "roadslam-sim --scenario " + kSrc + "/ini/sim/urban-loop.ini --duration 2 --out {D}/sim --quiet", "sim");
+  const auto r = onFullDisk("64k", "roadslam-sim --config " + kSrc + "/ini/sim/urban-loop.ini --duration 2 --out {D}/sim --quiet", "sim");
   if (!r) GTEST_SKIP() << "no tmpfs in a user namespace here (unshare -rm): the full-disk case is not run";
   EXPECT_EQ(r->exit_code, 1) << r->output;
   EXPECT_NE(r->output.find("No space left on device"), std::string::npos) << r->output;

@@ -22,7 +22,7 @@ int main(int argc, char** argv) {
                  "map_georef.json of roadslam-map --gnss: also write boundaries.geojson / .kml (poses: that run's trajectory.tum)")
       ->check(CLI::ExistingFile);
   app.add_option("--png-every", req.png_every, "draw every N-th sweep into OUT/frames (0 = none)");
-  app.add_option("--max-frames", req.max_frames, "stop after this many sweeps (0 = all)");
+  app.add_option("--max-frames", req.max_frames, "stop after this many sweeps (0 = all)")->check(CLI::NonNegativeNumber);
   app.add_flag("--whole-drive", req.whole_drive,
                "two passes: fit every sweep from the curbs of the whole drive, along its own path "
                "(a finished drive; default: live, each sweep from the sweeps before it)");

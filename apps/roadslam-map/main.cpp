@@ -16,7 +16,7 @@ int main(int argc, char** argv) {
   app.add_option("--out", req.out_dir, "output folder (created when missing)")->required();
   app.add_option("--times", req.times_path, "KITTI folder: its times file (default: times.txt beside or one level up)")
       ->check(CLI::ExistingFile);
-  app.add_option("--max-frames", req.max_frames, "stop after this many frames (0 = all)");
+  app.add_option("--max-frames", req.max_frames, "stop after this many frames (0 = all)")->check(CLI::NonNegativeNumber);
   app.add_option("--can", req.can_log_path, "candump log of the same drive: wheel odometry prior")->check(CLI::ExistingFile);
   app.add_option("--vehicle", req.vehicle_ini_path, "the car's vehicle ini (ini/vehicles/...), with --can")->check(CLI::ExistingFile);
   app.add_option("--gnss", req.gnss_path, "NMEA log of the same drive: GNSS fused at the end, geo-referenced outputs")

@@ -19,7 +19,7 @@ int main(int argc, char** argv) {
   rr::ReportParams p;
   std::string out;
   bool quiet = false;
-  app.add_option("recording", in.recording, ".pcap, .rawlog(.gz) or a roadslam-grab session folder")->required();
+  app.add_option("recording,--input", in.recording, ".pcap, .rawlog(.gz) or a roadslam-grab session folder")->required();
   app.add_option("--out", out, "output folder for report.html and report.json")->required();
   app.add_option("--can", in.can_log, "candump log (default: a grab folder's can_*.candump.log)")->check(CLI::ExistingFile);
   app.add_option("--vehicle", in.vehicle_ini, "vehicle ini (ini/vehicles/X.ini): DBC names, signals, dead reckoning")

@@ -18,7 +18,7 @@ int main(int argc, char** argv) {
   unsigned long long seed = 0;
   double duration = 0;
   bool quiet = false;
-  app.add_option("--scenario", req.scenario_path, "scenario ini (ini/sim/*.ini)")->required()->check(CLI::ExistingFile);
+  app.add_option("--config,--scenario", req.scenario_path, "scenario ini (ini/sim/*.ini)")->required()->check(CLI::ExistingFile);
   app.add_option("--out", req.out_dir, "output folder (new, empty, or an earlier run of the same scenario)")->required();
   auto* seed_opt = app.add_option("--seed", seed, "override [scenario] seed (>= 0)")->check(CLI::Range(0, 2147483647));
   auto* duration_opt = app.add_option("--duration", duration, "override [scenario] duration_s [s] (0 = whole drive)")
@@ -27,7 +27,9 @@ int main(int argc, char** argv) {
   app.add_option("--speed", req.udp_speed, "UDP pace as a multiple of real time (> 0)")->check(CLI::PositiveNumber);
   app.add_option("--top-view", req.top_view_png, "draw a top view of the world to this PNG");
   roadslam::addForceFlag(app, req.force);
+  roadslam::addAllowUnknownKeysFlag(app, req.allow_unknown_keys);
   app.add_flag("--quiet", quiet, "nothing on stdout (no summary) and no progress bar; errors on stderr");
+  roadslam::warnOldSpellings(argc, argv, "roadslam-sim", {{"--scenario", "--config"}});
   CLI11_PARSE(app, argc, argv);
   req.progress = !quiet;
   if (seed_opt->count() > 0) req.seed = seed;

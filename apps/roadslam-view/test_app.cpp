@@ -350,7 +350,7 @@ TEST(RoadslamViewApp, CanSignalsOfTheDriveArePlotted) {
   const auto& f = fixture();
   const std::string bin = fs::path(kBin).parent_path().string(), src = ROADSLAM_SOURCE_DIR;
   const fs::path sim = f.dir / "sim4";
-  ASSERT_EQ(std::system((bin + "/roadslam-sim --scenario " + src + "/ini/sim/urban-loop.ini --duration 4 --out " +
+  ASSERT_EQ(std::system((bin + "/roadslam-sim --config " + src + "/ini/sim/urban-loop.ini --duration 4 --out " +
                          sim.string() + " > /dev/null 2>&1").c_str()), 0);
   double v_gt = 0;
   {
@@ -469,7 +469,7 @@ std::pair<AppRun, std::size_t> viewWhileStreaming(const std::string& args, const
   std::thread viewer([&] { view = run(args, prefix); });
   std::this_thread::sleep_for(std::chrono::duration<double>(delay_s));
   const std::string bin = fs::path(kBin).parent_path().string(), src = ROADSLAM_SOURCE_DIR;
-  const int sim = std::system((bin + "/roadslam-sim --scenario " + src + "/ini/sim/urban-loop.ini --duration " +
+  const int sim = std::system((bin + "/roadslam-sim --config " + src + "/ini/sim/urban-loop.ini --duration " +
                                std::to_string(duration_s) + " --out " + sim_dir.string() + " --udp 127.0.0.1:" +
                                std::to_string(port) + " > /dev/null 2>&1").c_str());
   viewer.join();
@@ -528,7 +528,7 @@ TEST(RoadslamViewLive, GrabIniWithCanShowsAndRecords) {
   const std::string bin = fs::path(kBin).parent_path().string(), src = ROADSLAM_SOURCE_DIR;
   const fs::path dir = f.dir / "live_grab", can_sim = dir / "can_sim", rec = dir / "rec";
   fs::create_directories(dir);
-  ASSERT_EQ(std::system((bin + "/roadslam-sim --scenario " + src + "/ini/sim/urban-loop.ini --duration 3 --out " +
+  ASSERT_EQ(std::system((bin + "/roadslam-sim --config " + src + "/ini/sim/urban-loop.ini --duration 3 --out " +
                          can_sim.string() + " > /dev/null 2>&1").c_str()), 0);
   const int port = freeUdpPort();
   const fs::path ini = dir / "grab.ini";

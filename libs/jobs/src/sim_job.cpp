@@ -27,7 +27,8 @@ void parseUdp(const std::string& udp, double speed, sim::OutputOptions& opt) {
 
 SimOutcome runSimJob(const SimRequest& req) {
   SimOutcome out;
-  out.params = sim::ScenarioParams::fromFile(req.scenario_path);
+  std::vector<std::string> unknown;
+  out.params = sim::ScenarioParams::fromFile(req.scenario_path, req.allow_unknown_keys ? &unknown : nullptr);
   if (req.seed) out.params.seed = *req.seed;
   if (req.duration_s) out.params.duration_s = *req.duration_s;
   sim::OutputOptions opt;
@@ -41,6 +42,7 @@ SimOutcome runSimJob(const SimRequest& req) {
   claim.input_suffix = id;
   sim::Simulator sim(out.params);  // checks the scenario before the folder is claimed
   out.warnings = runfolder::claimOutputFolder(req.out_dir, claim);
+  out.warnings.insert(out.warnings.begin(), unknown.begin(), unknown.end());
   out.report = sim::runToDirectory(sim, opt);
   runfolder::Manifest m;
   m.program = kSimProgram;

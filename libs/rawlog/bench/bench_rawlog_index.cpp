@@ -1,6 +1,6 @@
 // Open time of a rawlog with and without its cached index, and the latency of a jump to a time
 // (findAtTime + load of that observation), as a table. Make a big rawlog with the simulator:
-//   build/bin/roadslam-sim --scenario ini/sim/urban-loop.ini --duration 600 --out /tmp/sim600
+//   build/bin/roadslam-sim --config ini/sim/urban-loop.ini --duration 600 --out /tmp/sim600
 //   build/bin/roadslam-rawlog convert /tmp/sim600/velodyne.pcap /tmp/big600.rawlog
 //   build/bench/bench_rawlog_index /tmp/big600.rawlog [jumps]
 #include <sys/resource.h>

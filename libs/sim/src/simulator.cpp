@@ -10,6 +10,7 @@
 #include <ctime>
 #include <stdexcept>
 
+#include "roadslam/common/checked_config.h"
 #include "roadslam/common/config.h"
 #include "roadslam/common/param_table.h"
 #include "roadslam/velodyne/encoder.h"
@@ -21,10 +22,20 @@ namespace {
 /// test's central differences a little beyond) [s].
 constexpr double kTrafficMargin_s = 10.0;
 
+/// Keys of \p section that no parameter reads: an error in every program's words (checked_config.h:
+/// "FILE:LINE: unknown key 'K' in [S] (nearest known: N)"), or with \p unknown a warning appended there.
 void rejectUnknown(const mrpt::config::CConfigFileBase& cfg, const std::string& section,
-                   const std::vector<std::string>& known) {
-  const auto bad = unknownKeys(cfg, section, known);
-  if (!bad.empty()) throw std::runtime_error("[" + section + "] unknown key '" + bad.front() + "'");
+                   const std::vector<std::string>& known, std::vector<std::string>* unknown) {
+  const auto* file = dynamic_cast<const CheckedConfig*>(&cfg);
+  for (const auto& key : unknownKeys(cfg, section, known)) {
+    const int line = file ? file->lineOf(section, key) : 0;
+    const std::string near = nearestName(key, known);
+    const std::string where = file ? file->path() + (line > 0 ? ":" + std::to_string(line) : "") + ": " : "";
+    const std::string msg = where + "unknown key '" + key + "' in [" + section + "]" +
+                            (near.empty() ? "" : " (nearest known: " + near + ")");
+    if (!unknown) throw std::runtime_error(msg);
+    unknown->push_back(msg);
+  }
 }
 }  // namespace
 
@@ -41,18 +52,18 @@ void ScenarioParams::fields(ParamTable& t) {
   t.num("origin_lon_deg", origin_lon_deg);
 }
 
-void ScenarioParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg) {
+void ScenarioParams::loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, std::vector<std::string>* unknown) {
   std::vector<std::string> sections;
   cfg.getAllSections(sections);
   for (const auto& s : sections)
     if (s != "scenario" && s != "world" && s != "trajectory" && s != "lidar" && s != "can" && s != "gnss")
       throw std::runtime_error("unknown section [" + s + "] (expected scenario, world, trajectory, lidar, can, gnss)");
-  rejectUnknown(cfg, "scenario", fieldKeys<ScenarioParams>());
-  rejectUnknown(cfg, "world", WorldParams::keys());
-  rejectUnknown(cfg, "trajectory", TrajectoryParams::keys());
-  rejectUnknown(cfg, "lidar", LidarParams::keys());
-  rejectUnknown(cfg, "can", CanParams::keys());
-  rejectUnknown(cfg, "gnss", GnssParams::keys());
+  rejectUnknown(cfg, "scenario", fieldKeys<ScenarioParams>(), unknown);
+  rejectUnknown(cfg, "world", WorldParams::keys(), unknown);
+  rejectUnknown(cfg, "trajectory", TrajectoryParams::keys(), unknown);
+  rejectUnknown(cfg, "lidar", LidarParams::keys(), unknown);
+  rejectUnknown(cfg, "can", CanParams::keys(), unknown);
+  rejectUnknown(cfg, "gnss", GnssParams::keys(), unknown);
   loadFields(*this, cfg, "scenario");
   if (duration_s < 0) throw std::runtime_error("[scenario] duration_s must be >= 0");
   world.loadFromConfigFile(cfg, "world");
@@ -71,11 +82,11 @@ void ScenarioParams::saveToConfigFile(mrpt::config::CConfigFileBase& cfg) const 
   if (gnss.enabled) gnss.saveToConfigFile(cfg, "gnss");
 }
 
-ScenarioParams ScenarioParams::fromFile(const std::string& path) {
+ScenarioParams ScenarioParams::fromFile(const std::string& path, std::vector<std::string>* unknown) {
   const auto cfg = loadIniFile(path);
   ScenarioParams p;
   try {
-    p.loadFromConfigFile(*cfg);
+    p.loadFromConfigFile(*cfg, unknown);
   } catch (const std::exception& e) {
     const std::string what = e.what();
     throw std::runtime_error(what.find(path) == std::string::npos ? path + ": " + what : what);

@@ -24,6 +24,7 @@ struct SimRequest {
   std::string top_view_png;
   bool force = false;                   ///< write into a folder another run wrote (output_folder.h)
   bool progress = true;                 ///< progress bar on stderr when it is a terminal
+  bool allow_unknown_keys = false;      ///< unknown scenario keys are warnings, not errors
 };
 
 struct SimOutcome {

@@ -45,10 +45,12 @@ struct ScenarioParams {
   /// The ini keys, one line each (common/param_table.h): load, save and the known keys.
   void fields(ParamTable& t);
   /// Loads every section; throws naming the file, section and key on a bad value or an unknown key.
-  void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg);
+  /// Unknown sections and keys throw naming file, line and the nearest known key; with \p unknown
+  /// (--allow-unknown-keys) unknown keys are appended there as warnings instead.
+  void loadFromConfigFile(const mrpt::config::CConfigFileBase& cfg, std::vector<std::string>* unknown = nullptr);
   void saveToConfigFile(mrpt::config::CConfigFileBase& cfg) const;
   /// loadIniFile() + loadFromConfigFile(), errors prefixed with \p path.
-  static ScenarioParams fromFile(const std::string& path);
+  static ScenarioParams fromFile(const std::string& path, std::vector<std::string>* unknown = nullptr);
 };
 
 /// Receives the simulated UDP payloads in time order.
