@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "roadslam/rawlog/mrpt_stamp.h"
 #include "roadslam/rawlog/rawlog_index.h"
 #include "seekable_stream.h"
 
@@ -49,7 +50,7 @@ struct RawlogIndex::Impl {
     e.offset = offset;
     e.size = uint32_t(std::min<uint64_t>(size, 0xffffffffu));
     e.sub = sub;
-    e.stamp_s = o && o->timestamp != INVALID_TIMESTAMP ? mrpt::Clock::toDouble(o->timestamp)
+    e.stamp_s = o && o->timestamp != INVALID_TIMESTAMP ? stampSeconds(o->timestamp)
                                                          : std::numeric_limits<double>::quiet_NaN();
     e.label = labels.id(o ? o->sensorLabel : std::string());
     const auto colons = cls.rfind("::");  // "mrpt::obs::CObservationGPS" -> "CObservationGPS"

@@ -13,6 +13,7 @@
 #include <ctime>
 #include <stdexcept>
 #include "roadslam/rawlog/mrpt_message.h"
+#include "roadslam/rawlog/mrpt_stamp.h"
 
 #include "roadslam/common/param_table.h"
 
@@ -131,7 +132,7 @@ bool RawlogPacketSource::readMore() {
   } else {
     ++other_;
     if (keep_other_ && obs)
-      others_.push_back({obs->sensorLabel, obs->GetRuntimeClass()->className, mrpt::Clock::toDouble(obs->timestamp)});
+      others_.push_back({obs->sensorLabel, obs->GetRuntimeClass()->className, rawlog::stampSeconds(obs->timestamp)});
   }
   return true;
 }

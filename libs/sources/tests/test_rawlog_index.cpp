@@ -282,6 +282,28 @@ TEST(RawlogIndex, UnknownClassesAreListedAndSkipped) {
   EXPECT_EQ(k, obs.size());
 }
 
+// MRPT stamps before 1970 read back negative (mrpt::Clock::toDouble wraps them to ~1.8e12 s): a
+// KITTI sweep stamped at its first firing, half a sweep before times.txt's 0.0.
+TEST(RawlogIndex, StampsBefore1970ReadBackNegative) {
+  const fs::path path = tempDir() / "before1970.rawlog";
+  const double stamps[] = {-0.05, 0.05, 0.15};
+  {
+    mrpt::io::CFileGZOutputStream f(path.string());
+    auto ar = mrpt::serialization::archiveFrom(f);
+    for (const double t : stamps) {
+      mrpt::obs::CObservationGPS g;
+      g.timestamp = mrpt::Clock::fromDouble(t);
+      ar << g;
+    }
+  }
+  RawlogIndexOptions no_cache;
+  no_cache.use_cache = no_cache.write_cache = false;
+  const auto idx = RawlogIndex::open(path.string(), no_cache);
+  ASSERT_EQ(idx->size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) EXPECT_NEAR(idx->entry(i).stamp_s, stamps[i], 1e-7);
+  EXPECT_NEAR(idx->lastStamp() - idx->firstStamp(), 0.2, 1e-7);
+}
+
 TEST(RawlogIndex, MissingFileIsNamed) {
   try {
     RawlogIndex::open("/nonexistent/x.rawlog");

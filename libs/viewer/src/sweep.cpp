@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "roadslam/rawlog/mrpt_stamp.h"
 #include "roadslam/velodyne/decoder.h"
 
 namespace roadslam::viewer {
@@ -23,7 +24,7 @@ Eigen::Isometry3d toIsometry(const mrpt::poses::CPose3D& p) {
 
 std::optional<SweepPoints> velodyneSweep(const mrpt::obs::CObservationVelodyneScan& v) {
   SweepPoints s;
-  s.stamp_s = mrpt::Clock::toDouble(v.timestamp);
+  s.stamp_s = rawlog::stampSeconds(v.timestamp);
   s.T_base_lidar = toIsometry(v.sensorPose);
   s.packets = v.scan_packets.size();
   velodyne::DecoderParams dp;  // the calibration's laser count names the model (some VLP-16 report 0x21)
@@ -59,7 +60,7 @@ std::optional<SweepPoints> velodyneSweep(const mrpt::obs::CObservationVelodyneSc
 std::optional<SweepPoints> cloudSweep(const mrpt::obs::CObservationPointCloud& c) {
   if (!c.pointcloud) return std::nullopt;
   SweepPoints s;
-  s.stamp_s = mrpt::Clock::toDouble(c.timestamp);
+  s.stamp_s = rawlog::stampSeconds(c.timestamp);
   s.T_base_lidar = toIsometry(c.sensorPose);
   s.model = "point cloud";
   const auto& xs = c.pointcloud->getPointsBufferRef_x();
