@@ -101,10 +101,12 @@ int main(int argc, char** argv) {
     if (*info) {
       const RecordingSummary s = summarizeRecording(info_in, info_opt.params());
       fmt::print("{}", json ? toJson(s) + "\n" : toText(s));
+      if (!s.damage.empty()) fmt::print(stderr, "roadslam-rawlog: warning: {}\n", s.damage);
     } else if (*conv) {
       const ConvertSummary s = convertToRawlog(conv_in, conv_out, conv_opt.params());
       fmt::print("{}: {} sweeps ({} packets), {} GPS records\n", conv_out, s.observations,
                  s.packets, s.gps);
+      if (!s.damage.empty()) fmt::print(stderr, "roadslam-rawlog: warning: {}\n", s.damage);
     } else if (*rec) {
       roadslam::installStopSignalHandlers();  // Ctrl-C ends the recording cleanly; a second one at once
       UdpReceiver rx(udp);

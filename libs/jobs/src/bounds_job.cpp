@@ -175,7 +175,7 @@ nlohmann::json runBoundsJob(const BoundsRequest& req) {
                       {"mode", req.whole_drive ? "whole_drive" : "live"}, {"curb_map_cells", det->curbMap().size()}};
   if (req.whole_drive) s["ms_per_frame_first_pass_mean"] = drive.ms_mean;
   s["warnings"] = unknown_keys;
-  if (!stream.errorMessage().empty()) s["warnings"].push_back("input damaged: " + stream.errorMessage());
+  if (!stream.errorMessage().empty()) s["warnings"].push_back(sources::damageWarning(stream));
   s["interrupted"] = stopRequested();  // Ctrl-C / SIGTERM: the outputs so far, as roadslam-map's
   s["complete"] = stream.errorMessage().empty() && !stopRequested();
   for (const auto& w : stream.warnings()) s["warnings"].push_back(w);

@@ -117,7 +117,7 @@ void RawlogIndex::Impl::build(uint64_t span, const std::function<bool(const Impl
         if (more) continue;
         if (!stream->damage().empty()) failure = "after a record of unknown class '" + *cls + "'";
         else break;
-      } else if (std::string(e.what()).find("Cannot read requested number of bytes") != std::string::npos) {
+      } else if (detail::isCutShort(e.what())) {
         failure = "record cut short";  // MRPT wraps its CExceptionEOF from inside an object
       } else {
         failure = innermostMessage(e.what());
@@ -126,12 +126,7 @@ void RawlogIndex::Impl::build(uint64_t span, const std::function<bool(const Impl
     if (!rec && failure.empty() && stream->damage().empty()) break;  // clean end of file
     if (!rec) {
       complete = false;
-      std::ostringstream m;
-      m << "stopped at observation " << entries.size() << " (uncompressed byte " << start;
-      if (gzip) m << ", compressed byte " << zstart;
-      m << "): " << (failure.empty() ? std::string("end of data") : failure);
-      if (!stream->damage().empty()) m << "; " << stream->damage();
-      stop = m.str();
+      stop = stopMessageOf(start, zstart, failure);
       break;
     }
     const uint64_t size = stream->getPosition() - start;
@@ -146,6 +141,21 @@ void RawlogIndex::Impl::build(uint64_t span, const std::function<bool(const Impl
   }
   uncompressed = stream->getPosition();
   stream->recordAccessPoints(0);
+}
+
+// "truncated record at uncompressed byte N (observation K, compressed byte Z); <the stream's damage>"
+std::string RawlogIndex::Impl::stopMessageOf(uint64_t start, uint64_t zstart, const std::string& failure) const {
+  const std::string& damage = stream->damage();
+  // data ending inside a record (or the compressed stream ending): truncated; a record failing
+  // with no cause of its own: the stream's damage is the cause
+  const bool cut = failure == "record cut short" || (failure.empty() && damage.rfind("compressed stream cut short", 0) == 0);
+  const std::string cause = cut ? "" : failure.empty() ? damage : failure;
+  std::ostringstream m;
+  m << detail::stopPlace(start, cause) << " (observation " << entries.size();
+  if (gzip) m << ", compressed byte " << zstart;
+  m << ")";
+  if (!damage.empty() && cause != damage) m << "; " << damage;
+  return m.str();
 }
 
 void RawlogIndex::Impl::finish() {

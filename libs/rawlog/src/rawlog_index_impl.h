@@ -63,6 +63,8 @@ struct RawlogIndex::Impl {
   void build(uint64_t span, const std::function<bool(const Impl&)>& progress = {});
   bool abandoned = false;
   bool resync(uint64_t from);
+  /// stop's text for reading stopped at uncompressed byte \p start (compressed \p zstart) for \p failure.
+  std::string stopMessageOf(uint64_t start, uint64_t zstart, const std::string& failure) const;
   void finish();
   std::string serialize() const;
   bool deserialize(const std::string& buf, std::string& why);

@@ -103,12 +103,13 @@ bool RawlogPacketSource::readMore() {
       rec = mrpt::serialization::archiveFrom(impl_->in).ReadObject();
     } catch (const mrpt::serialization::CExceptionEOF&) {
       // EOF before the first byte of a record is the clean end; inside one, a truncated file.
-      if (impl_->in.getPosition() != start)
-        error_ = path_ + ": truncated record at uncompressed byte " + std::to_string(start);
+      if (impl_->in.getPosition() != start) error_ = path_ + ": " + rawlog::detail::stopPlace(start);
       return false;
     } catch (const std::exception& e) {
-      error_ = path_ + ": not a readable MRPT rawlog (record at byte " + std::to_string(start) +
-               ": " + innermostMessage(e.what()) + ")";
+      // the first record unreadable: not a rawlog at all; a later one: damage (words as RawlogIndex's)
+      const std::string cause = innermostMessage(e.what());
+      if (start == 0) error_ = path_ + ": not a readable MRPT rawlog (record at byte 0: " + cause + ")";
+      else error_ = path_ + ": " + rawlog::detail::stopPlace(start, rawlog::detail::isCutShort(e.what()) ? "" : cause);
       return false;
     }
     if (auto sf = std::dynamic_pointer_cast<mrpt::obs::CSensoryFrame>(rec)) {

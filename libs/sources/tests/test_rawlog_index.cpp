@@ -27,6 +27,7 @@
 #include "roadslam/rawlog/rawlog_session.h"
 #include "roadslam/sources/scan_source.h"
 #include "roadslam/rawlog/rawlog_writer.h"
+#include "roadslam/sources/rawlog_source.h"
 #include "test_packets.h"
 
 using namespace roadslam::sources;
@@ -219,14 +220,29 @@ TEST(RawlogIndex, TruncatedFileIsIndexedUpToTheDamage) {
   ASSERT_GT(idx->size(), 5u);
   ASSERT_LT(idx->size(), full.size());
   const std::string& m = idx->stopMessage();
-  EXPECT_NE(m.find("stopped at observation " + std::to_string(idx->size())), std::string::npos) << m;
-  EXPECT_NE(m.find("compressed byte"), std::string::npos) << m;
-  EXPECT_NE(m.find("record cut short"), std::string::npos) << m;
+  EXPECT_EQ(m.rfind("truncated record at uncompressed byte ", 0), 0u) << m;  // as RawlogPacketSource words it
+  EXPECT_NE(m.find("(observation " + std::to_string(idx->size()) + ", compressed byte"), std::string::npos) << m;
   for (std::size_t i = 0; i < idx->size(); ++i) EXPECT_EQ(bytesOf(*idx->load(i)), full[i]);
   // the damage is cached too
   const auto cached = RawlogIndex::open(path.string(), smallSpan());
   EXPECT_TRUE(cached->openInfo().from_cache);
   EXPECT_EQ(cached->stopMessage(), m);
+}
+
+// The replay (RawlogPacketSource, which roadslam-map reads) and the index (which roadslam-view
+// reads) name the place of a cut rawlog in the same words: the index's message begins with the replay's.
+TEST(RawlogIndex, TruncationIsNamedAsTheReplayNamesIt) {
+  const fs::path path = tempDir() / "cut_same_words.rawlog";
+  writeRecording(path, 20, 76);
+  fs::resize_file(path, fs::file_size(path) / 2);
+  RawlogPacketSource replay(path.string());
+  while (replay.next()) {
+  }
+  const auto idx = RawlogIndex::open(path.string(), smallSpan());
+  const std::string replay_place = replay.errorMessage();
+  ASSERT_EQ(replay_place.rfind(path.string() + ": truncated record at uncompressed byte ", 0), 0u) << replay_place;
+  EXPECT_EQ((path.string() + ": " + idx->stopMessage()).rfind(replay_place + " (observation ", 0), 0u)
+      << replay_place << "\nvs " << idx->stopMessage();
 }
 
 TEST(RawlogIndex, CorruptCompressedDataStopsThereWithTheByte) {
@@ -242,7 +258,8 @@ TEST(RawlogIndex, CorruptCompressedDataStopsThereWithTheByte) {
   const auto idx = RawlogIndex::open(path.string(), smallSpan());
   EXPECT_FALSE(idx->complete());
   EXPECT_LT(idx->size(), full.size());
-  EXPECT_NE(idx->stopMessage().find("stopped at observation"), std::string::npos) << idx->stopMessage();
+  EXPECT_NE(idx->stopMessage().find(" record at uncompressed byte "), std::string::npos) << idx->stopMessage();
+  EXPECT_NE(idx->stopMessage().find("(observation " + std::to_string(idx->size())), std::string::npos) << idx->stopMessage();
   for (std::size_t i = 0; i < idx->size(); ++i) EXPECT_EQ(bytesOf(*idx->load(i)), full[i]);
 }
 
@@ -282,8 +299,6 @@ TEST(RawlogIndex, UnknownClassesAreListedAndSkipped) {
   EXPECT_EQ(k, obs.size());
 }
 
-// MRPT stamps before 1970 read back negative (mrpt::Clock::toDouble wraps them to ~1.8e12 s): a
-// KITTI sweep stamped at its first firing, half a sweep before times.txt's 0.0.
 TEST(RawlogIndex, StampsBefore1970ReadBackNegative) {
   const fs::path path = tempDir() / "before1970.rawlog";
   const double stamps[] = {-0.05, 0.05, 0.15};

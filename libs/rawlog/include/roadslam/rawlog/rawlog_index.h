@@ -9,7 +9,7 @@
 /// seek decompresses at most `span` bytes.
 ///
 /// Damage never throws: a truncated or corrupt rawlog is indexed up to the damage, and complete() is
-/// false with stopMessage() naming the observation index and byte where reading stopped. A record of
+/// false with stopMessage() naming the byte and the observation where reading stopped. A record of
 /// a class this build does not know (not registered with MRPT) is listed with its class name and
 /// skipped by searching forward for the next record a registered class reads.
 ///
@@ -68,8 +68,10 @@ class RawlogIndex : public ObservationIndex {
 
   /// False when reading stopped at damage (a truncated or corrupt file) before the end.
   bool complete() const;
-  /// Where reading stopped and why, e.g. "stopped at observation 41 (uncompressed byte 3781234,
-  /// compressed byte 1203321): compressed stream cut short ..."; empty when complete.
+  /// Where reading stopped and why, in the replay's words (sources::RawlogPacketSource) followed by
+  /// what only the index knows, e.g. "truncated record at uncompressed byte 3781234 (observation 41,
+  /// compressed byte 1203321); compressed stream cut short at compressed byte 1250000", or
+  /// "unreadable record at uncompressed byte N: CAUSE (observation K)"; empty when complete.
   const std::string& stopMessage() const;
   /// Classes this build cannot read, with their number of records.
   std::vector<std::pair<std::string, std::size_t>> unknownClasses() const;
