@@ -165,6 +165,32 @@ void RawlogIndex::Impl::finish() {
 
 std::string RawlogIndex::sidecarPath(const std::string& rawlog_path) { return rawlog_path + ".idx"; }
 
+RawlogIndex::IndexFiles RawlogIndex::indexFiles(const std::string& rawlog_path, const RawlogIndexOptions& opt) {
+  IndexFiles f;
+  f.read.push_back(sidecarPath(rawlog_path));
+  if (!opt.cache_path) {
+    f.write = f.read.front();
+    return f;
+  }
+  f.write = opt.cache_path(rawlog_path);
+  if (f.write != f.read.front()) f.read.push_back(f.write);
+  return f;
+}
+
+bool RawlogIndex::Impl::readFirstFresh(const std::vector<std::string>& files) {
+  std::string notes;
+  for (const auto& file : files) {
+    std::ifstream f(file, std::ios::binary);
+    if (!f) continue;
+    const std::string buf((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    std::string why;
+    if (deserialize(buf, why)) return true;
+    notes += (notes.empty() ? "index '" : "; index '") + file + "' " + why;
+  }
+  if (!notes.empty()) info.cache_note = notes + ": rebuilt";
+  return false;
+}
+
 std::unique_ptr<RawlogIndex> RawlogIndex::open(const std::string& path, const RawlogIndexOptions& opt) {
   return open(path, opt, {});
 }
@@ -175,17 +201,8 @@ std::unique_ptr<RawlogIndex> RawlogIndex::open(const std::string& path, const Ra
   auto impl = std::make_unique<Impl>();
   impl->path = path;
   impl->stamp = detail::stampOf(path);
-  const std::string side = sidecarPath(path);
-  bool loaded = false;
-  if (opt.use_cache) {
-    std::ifstream f(side, std::ios::binary);
-    if (f) {
-      std::string buf((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-      std::string why;
-      loaded = impl->deserialize(buf, why);
-      if (!loaded) impl->info.cache_note = "index '" + side + "' " + why + ": rebuilt";
-    }
-  }
+  const IndexFiles files = indexFiles(path, opt);
+  const bool loaded = opt.use_cache && impl->readFirstFresh(files.read);
   if (!loaded) {
     impl->labels.clear();
     impl->classes.clear();
@@ -194,7 +211,7 @@ std::unique_ptr<RawlogIndex> RawlogIndex::open(const std::string& path, const Ra
     if (impl->abandoned) return nullptr;
     if (opt.write_cache) {
       try {
-        writeFileAtomically(side, impl->serialize());
+        writeFileAtomically(files.write, impl->serialize());
         impl->info.cache_written = true;
       } catch (const std::exception& e) {
         impl->info.cache_note = std::string("index not cached: ") + e.what();

@@ -68,6 +68,9 @@ struct RawlogIndex::Impl {
   void finish();
   std::string serialize() const;
   bool deserialize(const std::string& buf, std::string& why);
+  /// Reads the first of \p files that exists and is fresh; false, with why the others were not
+  /// used in info.cache_note, when none is.
+  bool readFirstFresh(const std::vector<std::string>& files);
 };
 
 }  // namespace roadslam::rawlog

@@ -299,6 +299,49 @@ TEST(RawlogIndex, UnknownClassesAreListedAndSkipped) {
   EXPECT_EQ(k, obs.size());
 }
 
+// A program that must not write beside its input (roadslam-view) keeps the index where cache_path
+// says; a fresh sidecar beside the rawlog (roadslam-grab's) is still read, and never written.
+TEST(RawlogIndex, CachePathKeepsTheIndexAwayFromTheRawlog) {
+  const fs::path dir = tempDir() / "cache_path";
+  fs::remove_all(dir);
+  fs::create_directories(dir / "cache");
+  const fs::path path = dir / "drive.rawlog";
+  writeRecording(path, 4, 30);
+  RawlogIndexOptions opt = smallSpan();
+  opt.cache_path = [&dir](const std::string&) { return (dir / "cache" / "drive.idx").string(); };
+  const auto files = RawlogIndex::indexFiles(path.string(), opt);
+  EXPECT_EQ(files.write, (dir / "cache" / "drive.idx").string());
+  ASSERT_EQ(files.read.size(), 2u);
+  EXPECT_EQ(files.read[0], RawlogIndex::sidecarPath(path.string()));
+
+  const auto built = RawlogIndex::open(path.string(), opt);
+  EXPECT_TRUE(built->openInfo().cache_written);
+  EXPECT_FALSE(fs::exists(RawlogIndex::sidecarPath(path.string()))) << "nothing beside the rawlog";
+  EXPECT_TRUE(fs::exists(dir / "cache" / "drive.idx"));
+  EXPECT_TRUE(RawlogIndex::open(path.string(), opt)->openInfo().from_cache);
+  const auto background = BackgroundRawlogIndex::open(path.string(), opt);
+  ASSERT_NE(background->done(), nullptr) << "a fresh cached index opens whole at once";
+  EXPECT_EQ(background->size(), built->size());
+
+  // a fresh sidecar beside the rawlog is read first; the cached one is left as it is
+  fs::remove(dir / "cache" / "drive.idx");
+  RawlogIndex::open(path.string(), smallSpan());  // writes the sidecar, as roadslam-grab would
+  const auto beside = RawlogIndex::open(path.string(), opt);
+  EXPECT_TRUE(beside->openInfo().from_cache);
+  EXPECT_FALSE(fs::exists(dir / "cache" / "drive.idx"));
+
+  // a stale sidecar beside it is not rewritten: the index is built into the cache
+  std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  writeRecording(path, 3, 30, 99);
+  const auto side_bytes = fs::file_size(RawlogIndex::sidecarPath(path.string()));
+  const auto rebuilt = RawlogIndex::open(path.string(), opt);
+  EXPECT_EQ(rebuilt->size(), 6u);
+  EXPECT_TRUE(fs::exists(dir / "cache" / "drive.idx"));
+  EXPECT_EQ(fs::file_size(RawlogIndex::sidecarPath(path.string())), side_bytes);
+}
+
+// MRPT stamps before 1970 read back negative (mrpt::Clock::toDouble wraps them to ~1.8e12 s): a
+// KITTI sweep stamped at its first firing, half a sweep before times.txt's 0.0.
 TEST(RawlogIndex, StampsBefore1970ReadBackNegative) {
   const fs::path path = tempDir() / "before1970.rawlog";
   const double stamps[] = {-0.05, 0.05, 0.15};
