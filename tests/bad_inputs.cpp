@@ -66,6 +66,8 @@ void makeFiles() {
   if (done) return;
   done = true;
   const fs::path w = work();
+  // roadslam-view's conversions and indexes go into the user's cache folder: the table's own one
+  setenv("XDG_CACHE_HOME", (w / "xdg-cache").c_str(), 1);
   const std::string def = fileText(kSrc + "/ini/default.ini");
   write(w / "random.rawlog", randomBytes(20000, 1));
   write(w / "random.pcap", randomBytes(20000, 2));
@@ -147,6 +149,10 @@ void makeFiles() {
   write(w / "kitti-bad-times" / "times.txt", "0.0\n0.1\n0.2\n");
   write(w / "kitti-bad-times-value" / "velodyne" / "000000.bin", bin);
   write(w / "kitti-bad-times-value" / "times.txt", "zero\n");
+  // a KITTI odometry sequence (00/velodyne/*.bin, 00/times.txt from 0.0): its first sweep is stamped
+  // at its first firing, 0.05 s before 0.0
+  for (const char* n : {"000000.bin", "000001.bin", "000002.bin"}) write(w / "kitti-odometry" / "velodyne" / n, bin);
+  write(w / "kitti-odometry" / "times.txt", "0.0\n0.1\n0.2\n");
   // CAN
   write(w / "garbage.log", randomBytes(0, 0) + "hello world\n(12.5) can0 zzz#00\nnot candump\n");
   write(w / "half-good.log", "(1.000000) can0 123#0011\n(1.010000) can0 123#0011\nbroken line\n");
@@ -352,6 +358,15 @@ const Row kTable[] = {
   {"view-live-sequence",   "roadslam-view --udp 0 --render-sequence {O}/seq", 1, "--render-sequence and --video need a recording"},
   {"view-bad-tracks-csv",  "roadslam-view {W}/kitti-two --map {W}/map-bad-tracks --render {O}/x.png --at 0", 1, "tracks.csv:2: column 'x' is not a number: 'abc'"},
   {"view-map-no-manifest", "roadslam-view {W}/kitti-two --map {W}/map-old --render {O}/x.png --at 0", 1, "map-old/run.json: missing"},
+  // roadslam-view: damaged recordings read up to the damage, in roadslam-map's words
+  {"view-truncated-pcap",  "roadslam-view {W}/truncated.pcap --render {O}.png --size 160x120", 0, "roadslam-view: warning: input damaged, 4 sweeps read before it: PcapReader: '{W}/truncated.pcap' damaged at record 239 (byte 299344)"},
+  {"view-cut-rawlog",      "roadslam-view {W}/cut.rawlog --render {O}.png --size 160x120 --no-index-cache", 0, "roadslam-view: warning: input damaged, 3 sweeps read before it: {W}/cut.rawlog: truncated record at uncompressed byte "},
+  {"view-kitti-damaged",   "roadslam-view {W}/kitti-damaged --render {O}.png --size 160x120", 0, "roadslam-view: warning: input damaged, 1 sweep read before it, and 1 after it: KITTI scan '{W}/kitti-damaged/000001.bin' has 1001 bytes"},
+  {"view-kitti-odometry",  "roadslam-view {W}/kitti-odometry/velodyne --render {O}.png --size 160x120", 0, "kitti-odometry/velodyne: 3 observations over 0.2 s"},
+  {"view-kitti-no-times",  "roadslam-view {W}/kitti-two --render {O}.png --size 160x120", 0, "kitti-two: 2 observations over 0.1 s"},
+  // roadslam-view: --at outside the recording
+  {"view-at-past-end",     "roadslam-view {W}/kitti-two --render {O}/x.png --at 500", 2, "roadslam-view: --at 500 s is past the end of {W}/kitti-two (0.1 s long)"},
+  {"view-at-negative",     "roadslam-view {W}/kitti-two --render {O}/x.png --at -1", 2, "roadslam-view: --at -1 s is before the start of {W}/kitti-two"},
   {"report-map-no-manifest", "roadslam-report {W}/truncated.pcap --map {W}/map-old --out {O}", 1, "re-create it with roadslam-map"},
 };
 // clang-format on

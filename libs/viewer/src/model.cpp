@@ -29,7 +29,9 @@
 #include <mrpt/obs/CObservationOdometry.h>
 
 #include "roadslam/runfolder/run_folder.h"
+#include "roadslam/sources/scan_source.h"
 #include "roadslam/viewer/scene.h"
+#include "roadslam/viewer/sweep.h"
 
 namespace roadslam::viewer {
 namespace fs = std::filesystem;
@@ -86,6 +88,16 @@ ViewerModel::ViewerModel(const ViewerInputs& in) : in_(in) {
   loadResults();
 }
 
+namespace {
+/// The damage of \p idx in sources::damageWarning()'s words: its observations holding points are the
+/// sweeps before it (a rawlog's observation is one sweep).
+std::string damageOf(const rawlog::RawlogIndex& idx) {
+  std::size_t sweeps = 0;
+  for (std::size_t i = 0; i < idx.size(); ++i) sweeps += idx.entry(i).known && holdsSweep(idx.className(i));
+  return sources::damageWarning(sweeps, idx.path() + ": " + idx.stopMessage());
+}
+}  // namespace
+
 // The checks that need the whole recording.
 void ViewerModel::indexDone() {
   const bool one = session_->segments() == 1;
@@ -93,7 +105,7 @@ void ViewerModel::indexDone() {
     const rawlog::RawlogIndex* idx = session_->segment(k).done();
     if (!idx) continue;  // its indexing stopped: in errors()
     const std::string what = one ? "recording" : "segment " + idx->path();
-    if (!idx->complete()) warnings_.push_back(what + " damaged: " + idx->stopMessage());
+    if (!idx->complete()) warnings_.push_back(damageOf(*idx));
     for (const auto& [cls, n] : idx->unknownClasses())
       warnings_.push_back(what + ": " + std::to_string(n) + " observations of unknown class " + cls + " skipped");
     if (!idx->openInfo().cache_note.empty()) warnings_.push_back(idx->openInfo().cache_note);

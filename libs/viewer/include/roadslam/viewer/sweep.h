@@ -31,6 +31,11 @@ struct SweepPoints {
   std::string model;             ///< sensor model ("VLP16", "HDL32", "point cloud")
 };
 
+/// True for the classes sweepOf() draws (short names, as rawlog::ObservationIndex::className gives them).
+inline bool holdsSweep(const std::string& class_name) {
+  return class_name == "CObservationVelodyneScan" || class_name == "CObservationPointCloud";
+}
+
 /// The points of \p obs, or nullopt when it holds none (GPS, CAN, ...).
 std::optional<SweepPoints> sweepOf(const mrpt::obs::CObservation& obs);
 
