@@ -13,6 +13,7 @@
 #include <stdexcept>
 
 #include "roadslam/common/atomic_file.h"
+#include "roadslam/rawlog/mrpt_stamp.h"
 #include "roadslam/rawlog/rawlog_session.h"
 #include "roadslam/sources/recording.h"
 #include "roadslam/sources/scan_source.h"
@@ -42,7 +43,7 @@ std::string kittiToRawlog(const std::string& folder, const std::string& out) {
   while (auto scan = src->next()) {
     auto obs = mrpt::obs::CObservationPointCloud::Create();
     obs->sensorLabel = "KITTI";
-    obs->timestamp = mrpt::Clock::fromDouble(scan->stamp_s);  // read back with rawlog::stampSeconds
+    obs->timestamp = rawlog::stampOf(scan->stamp_s);  // the first sweep may be before 0.0: mrpt_stamp.h
     auto pts = mrpt::maps::CPointsMapXYZI::Create();
     pts->reserve(scan->points.size());
     for (const auto& q : scan->points) {
