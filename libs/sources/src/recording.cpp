@@ -162,7 +162,7 @@ ConvertSummary convertToRawlog(const std::string& in, const std::string& out,
   mrpt::config::CConfigFileMemory used;
   params.saveToConfigFile(used, "velodyne");
   writer_params.saveToConfigFile(used, "rawlog");
-  writeFileAtomically(out + ".ini", "; written by roadslam-rawlog convert " + in + "\n" +
+  writeFileAtomically(out + ".ini", "; the settings of the conversion of " + in + " (sources::convertToRawlog)\n" +
                                         used.getContent());
   sum.packets = writer->packetsWritten();
   sum.gps = writer->gpsWritten();

@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <numeric>
 #include <sstream>
 #include <stdexcept>
 #include <unordered_set>
@@ -89,12 +90,23 @@ ViewerModel::ViewerModel(const ViewerInputs& in) : in_(in) {
 }
 
 namespace {
-/// The damage of \p idx in sources::damageWarning()'s words: its observations holding points are the
-/// sweeps before it (a rawlog's observation is one sweep).
-std::string damageOf(const rawlog::RawlogIndex& idx) {
-  std::size_t sweeps = 0;
-  for (std::size_t i = 0; i < idx.size(); ++i) sweeps += idx.entry(i).known && holdsSweep(idx.className(i));
-  return sources::damageWarning(sweeps, idx.path() + ": " + idx.stopMessage());
+/// The sweeps of each segment of \p session (a rawlog's observation holding points is one sweep).
+std::vector<uint64_t> sweepsPerSegment(const rawlog::RawlogSession& session) {
+  std::vector<uint64_t> n(session.segments(), 0);
+  for (std::size_t k = 0; k < n.size(); ++k)
+    if (const rawlog::RawlogIndex* idx = session.segment(k).done())
+      for (std::size_t i = 0; i < idx->size(); ++i) n[k] += idx->entry(i).known && holdsSweep(idx->className(i));
+  return n;
+}
+
+/// The damage of segment \p k in sources::damageWarning()'s words: the sweeps up to its end are
+/// before it, those of the later segments (a session goes on past a damaged segment) after it.
+std::string damageOf(const rawlog::RawlogSession& session, std::size_t k) {
+  const auto n = sweepsPerSegment(session);
+  const uint64_t before = std::accumulate(n.begin(), n.begin() + long(k) + 1, uint64_t(0));
+  const uint64_t after = std::accumulate(n.begin() + long(k) + 1, n.end(), uint64_t(0));
+  const rawlog::RawlogIndex& idx = *session.segment(k).done();
+  return sources::damageWarning(before, idx.path() + ": " + idx.stopMessage(), after);
 }
 }  // namespace
 
@@ -105,7 +117,7 @@ void ViewerModel::indexDone() {
     const rawlog::RawlogIndex* idx = session_->segment(k).done();
     if (!idx) continue;  // its indexing stopped: in errors()
     const std::string what = one ? "recording" : "segment " + idx->path();
-    if (!idx->complete()) warnings_.push_back(damageOf(*idx));
+    if (!idx->complete()) warnings_.push_back(damageOf(*session_, k));
     for (const auto& [cls, n] : idx->unknownClasses())
       warnings_.push_back(what + ": " + std::to_string(n) + " observations of unknown class " + cls + " skipped");
     if (!idx->openInfo().cache_note.empty()) warnings_.push_back(idx->openInfo().cache_note);
