@@ -192,6 +192,9 @@ void makeFiles() {
   {  // the box room's rawlog cut in the middle of a record (a copy interrupted)
     const std::string box = fileText(w / "box.rawlog");
     write(w / "cut.rawlog", box.substr(0, box.size() * 6 / 10));
+    // a roadslam-grab session whose first segment a crash cut short: the next one is read too
+    write(w / "session-damaged" / "grab_000.rawlog", box.substr(0, box.size() * 6 / 10));
+    write(w / "session-damaged" / "grab_001.rawlog", box);
   }
   // trajectories
   write(w / "three-columns.tum", "1 2 3\n");
@@ -246,6 +249,7 @@ const Row kTable[] = {
   {"map-cut-rawlog",       "roadslam-map --config {S}/ini/default.ini --input {W}/cut.rawlog --out {O} --quiet", 0, "warning: input damaged, 3 sweeps read before it: {W}/cut.rawlog: truncated record at uncompressed byte "},
   {"map-unknown-kind",     "roadslam-map --config {S}/ini/default.ini --input {W}/notes.txt --out {O}", 1, "unknown kind"},
   {"map-empty-folder",     "roadslam-map --config {S}/ini/default.ini --input {W}/empty-dir --out {O}", 1, "holds no .bin"},
+  {"map-session-damaged",  "roadslam-map --config {S}/ini/default.ini --input {W}/session-damaged --out {O} --quiet", 0, "warning: input damaged, 3 sweeps read before it, and 6 after it: {W}/session-damaged/grab_000.rawlog: truncated record at uncompressed byte "},
   {"map-kitti-damaged",    "roadslam-map --config {S}/ini/default.ini --input {W}/kitti-damaged --out {O} --quiet", 0, "warning: input damaged, 1 sweep read before it, and 1 after it: KITTI scan '{W}/kitti-damaged/000001.bin' has 1001 bytes, not a multiple of 16"},
   {"map-kitti-times-count","roadslam-map --config {S}/ini/default.ini --input {W}/kitti-bad-times/velodyne --out {O}", 1, "has 3 stamps for 1 .bin"},
   {"map-kitti-times-value","roadslam-map --config {S}/ini/default.ini --input {W}/kitti-bad-times-value/velodyne --out {O}", 1, "times.txt:1"},
@@ -361,6 +365,7 @@ const Row kTable[] = {
   // roadslam-view: damaged recordings read up to the damage, in roadslam-map's words
   {"view-truncated-pcap",  "roadslam-view {W}/truncated.pcap --render {O}.png --size 160x120", 0, "roadslam-view: warning: input damaged, 4 sweeps read before it: PcapReader: '{W}/truncated.pcap' damaged at record 239 (byte 299344)"},
   {"view-cut-rawlog",      "roadslam-view {W}/cut.rawlog --render {O}.png --size 160x120 --no-index-cache", 0, "roadslam-view: warning: input damaged, 3 sweeps read before it: {W}/cut.rawlog: truncated record at uncompressed byte "},
+  {"view-session-damaged", "roadslam-view {W}/session-damaged --render {O}.png --size 160x120", 0, "roadslam-view: warning: input damaged, 3 sweeps read before it, and 6 after it: {W}/session-damaged/grab_000.rawlog: truncated record at uncompressed byte "},
   {"view-kitti-damaged",   "roadslam-view {W}/kitti-damaged --render {O}.png --size 160x120", 0, "roadslam-view: warning: input damaged, 1 sweep read before it, and 1 after it: KITTI scan '{W}/kitti-damaged/000001.bin' has 1001 bytes"},
   {"view-kitti-odometry",  "roadslam-view {W}/kitti-odometry/velodyne --render {O}.png --size 160x120", 0, "kitti-odometry/velodyne: 3 observations over 0.2 s"},
   {"view-kitti-no-times",  "roadslam-view {W}/kitti-two --render {O}.png --size 160x120", 0, "kitti-two: 2 observations over 0.1 s"},
