@@ -102,11 +102,13 @@ int main(int argc, char** argv) {
       const RecordingSummary s = summarizeRecording(info_in, info_opt.params());
       fmt::print("{}", json ? toJson(s) + "\n" : toText(s));
       for (const auto& w : s.warnings) fmt::print(stderr, "roadslam-rawlog: warning: {}\n", w);
+      if (!s.damage.empty()) fmt::print(stderr, "roadslam-rawlog: warning: {}\n", s.damage);
     } else if (*conv) {
       const ConvertSummary s = convertToRawlog(conv_in, conv_out, conv_opt.params());
       fmt::print("{}: {} sweeps ({} packets), {} GPS records; lidar model {} (by {})\n", conv_out, s.observations,
                  s.packets, s.gps, s.lidar_model, s.lidar_model_source);
       for (const auto& w : s.warnings) fmt::print(stderr, "roadslam-rawlog: warning: {}\n", w);
+      if (!s.damage.empty()) fmt::print(stderr, "roadslam-rawlog: warning: {}\n", s.damage);
     } else if (*rec) {
       roadslam::installStopSignalHandlers();  // Ctrl-C ends the recording cleanly; a second one at once
       UdpReceiver rx(udp);

@@ -30,7 +30,7 @@ int main(int argc, char** argv) {
       ->check(CLI::ExistingFile);
   app.add_option("--vehicle", req.inputs.vehicle_ini, "the car's vehicle ini (ini/vehicles/...), with --can")->check(CLI::ExistingFile);
   app.add_option("--render", req.render_png, "render the scene at --at into this PNG (no window) and exit");
-  app.add_option("--at", req.at_s, "time for --render, seconds from the start of the recording");
+  app.add_option("--at", req.at_s, "time for --render, seconds from the start of the recording (0 to its length)");
   app.add_option("--render-sequence", req.sequence_dir, "render every --every-th sweep into DIR/NNNNNN.png and exit");
   app.add_option("--every", req.every, "with --render-sequence: one PNG per N sweeps")->check(CLI::PositiveNumber);
   app.add_option("--video", req.video, "encode the --every-th sweeps into this MP4 through ffmpeg and exit");
@@ -42,7 +42,9 @@ int main(int argc, char** argv) {
       ->check(CLI::ExistingFile);
   app.add_option("--run-slam", req.run_slam_ini, "run the odometry of this config (e.g. ini/default.ini) while replaying")
       ->check(CLI::ExistingFile);
-  app.add_flag("--no-index-cache", req.no_index_cache, "rebuild the rawlog index and do not write REC.idx");
+  app.add_flag("--no-index-cache", req.no_index_cache,
+               "keep nothing in the cache folder ($XDG_CACHE_HOME/roadslam): index the rawlog again, convert a pcap "
+               "or KITTI folder into a temporary folder removed at exit");
   CLI11_PARSE(app, argc, argv);
   if (int(rec->count() > 0) + int(udp->count() > 0) + int(grab->count() > 0) != 1) {
     std::cerr << "roadslam-view: give one of a recording, --udp PORT or --grab INI\n" << app.help();

@@ -16,18 +16,21 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <sstream>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "roadslam/runfolder/run_folder.h"
 #include "roadslam/datasets/kitti_scans.h"
 #include "roadslam/rawlog/rawlog_index.h"
 #include "roadslam/rawlog/rawlog_session.h"
 #include "roadslam/sources/recording.h"
+#include "roadslam/viewer/recording_cache.h"
 
 namespace fs = std::filesystem;
 
@@ -37,6 +40,13 @@ namespace {
 // background: red and blue alike, no green. The jet colour map of the sweep never gives that hue.
 bool isTrajectoryHue(int r, int g, int b) { return r > 100 && b > 100 && g < 40 && std::abs(r - b) < 30; }
 const std::string kBin = ROADSLAM_VIEW_BIN;
+
+// The viewer keeps its conversions and indexes in the user's cache folder: this run's own.
+const fs::path kCache = [] {
+  const fs::path c = fs::temp_directory_path() / ("roadslam_view_app_" + std::to_string(getpid())) / "xdg-cache";
+  setenv("XDG_CACHE_HOME", c.c_str(), 1);
+  return c;
+}();
 
 struct AppRun {
   int status = -1;
@@ -58,6 +68,33 @@ std::string slurp(const fs::path& p) {
   return {std::istreambuf_iterator<char>(f), {}};
 }
 
+/// The names in \p dir, sorted: what a run wrote beside its input shows as a difference.
+std::vector<std::string> listing(const fs::path& dir) {
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+/// N from the summary line "...: N observations over ...".
+std::string observationsIn(const std::string& out) {
+  const auto end = out.find(" observations over");
+  if (end == std::string::npos) return "?";
+  const auto start = out.rfind(' ', end - 1) + 1;
+  return out.substr(start, end - start);
+}
+
+/// The first whole records of the pcap \p bytes that fit in \p n bytes (pcap-savefile(5): a 24-byte
+/// file header, 16-byte record headers with the captured length at byte 8): a shorter, whole capture.
+std::string wholeRecordsUpTo(const std::string& bytes, std::size_t n) {
+  std::size_t end = 24;
+  for (uint32_t incl = 0; end + 16 <= bytes.size(); end += 16 + incl) {
+    std::memcpy(&incl, bytes.data() + end + 8, 4);
+    if (end + 16 + incl > n) break;
+  }
+  return bytes.substr(0, end);
+}
+
 // The box room as a rawlog and a map folder whose trajectory drove 10 m along +x up to it.
 struct Fixture {
   fs::path dir, rawlog, map;
@@ -68,7 +105,9 @@ struct Fixture {
     map = dir / "map";
     roadslam::sources::convertToRawlog(std::string(ROADSLAM_SOURCE_DIR) + "/rawlogs/boxroom-vlp16.pcap",
                                        rawlog.string());
-    const double t0 = roadslam::rawlog::RawlogIndex::open(rawlog.string())->firstStamp();
+    roadslam::rawlog::RawlogIndexOptions no_sidecar;  // the viewer must find none beside it
+    no_sidecar.use_cache = no_sidecar.write_cache = false;
+    const double t0 = roadslam::rawlog::RawlogIndex::open(rawlog.string(), no_sidecar)->firstStamp();
     roadslam::datasets::Trajectory poses;
     for (int k = 0; k <= 20; ++k) {
       Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
@@ -134,6 +173,8 @@ TEST(RoadslamViewApp, HeadlessRenderIsDeterministicAndSequenceWritesPictures) {
   ASSERT_EQ(rs.status, 0) << rs.out;
   EXPECT_NE(rs.out.find(": 3 pictures"), std::string::npos) << rs.out;  // 6 sweeps, every 2nd
   EXPECT_EQ(std::distance(fs::directory_iterator(f.dir / "seq"), fs::directory_iterator{}), 3);
+  EXPECT_FALSE(fs::exists(f.rawlog.string() + ".idx")) << "the index is kept in the cache, not beside the rawlog";
+  EXPECT_TRUE(fs::exists(kCache / "roadslam" / roadslam::viewer::cacheFileName(f.rawlog.string(), ".idx")));
 }
 
 // The real outputs of roadslam-map and roadslam-bounds on the same recording load (their formats are
@@ -277,23 +318,19 @@ TEST(RoadslamViewApp, RunSlamDrawsTheObjectsRoadslamMapWrites) {
   EXPECT_TRUE(khaki(none).empty());
 }
 
-// A pcap opens directly: converted once into "<pcap>.rawlog" beside it (the same observations as
-// roadslam-rawlog's conversion), reused while fresh. --video encodes the sequence through ffmpeg.
+// A pcap opens directly: converted once into the cache (the same observations as roadslam-rawlog's
+// conversion), reused while unchanged. --video encodes the sequence through ffmpeg.
 TEST(RoadslamViewApp, OpensAPcapAndWritesAVideo) {
   const auto& f = fixture();
   const fs::path pcap = f.dir / "boxroom.pcap";
   fs::copy_file(std::string(ROADSLAM_SOURCE_DIR) + "/rawlogs/boxroom-vlp16.pcap", pcap, fs::copy_options::overwrite_existing);
-  fs::remove(pcap.string() + ".rawlog");
   const AppRun first = run(pcap.string() + " --size 320x240 --render " + (f.dir / "pcap.png").string());
   ASSERT_EQ(first.status, 0) << first.out;
-  EXPECT_NE(first.out.find("converting " + pcap.string()), std::string::npos) << first.out;
+  EXPECT_NE(first.out.find("converting " + pcap.string() + " into " + (kCache / "roadslam" / "boxroom-").string()),
+            std::string::npos) << first.out;
+  EXPECT_FALSE(fs::exists(pcap.string() + ".rawlog"));
   const AppRun viaRawlog = run(f.rawlog.string() + " --size 320x240 --render " + (f.dir / "rawlog.png").string());
-  const auto observations = [](const std::string& out) {
-    const auto end = out.find(" observations over");
-    const auto start = out.rfind(' ', end - 1) + 1;
-    return end == std::string::npos ? std::string("?") : out.substr(start, end - start);
-  };
-  EXPECT_EQ(observations(first.out), observations(viaRawlog.out)) << first.out << viaRawlog.out;
+  EXPECT_EQ(observationsIn(first.out), observationsIn(viaRawlog.out)) << first.out << viaRawlog.out;
   const AppRun second = run(pcap.string() + " --size 320x240 --render " + (f.dir / "pcap.png").string());
   EXPECT_EQ(second.out.find("converting"), std::string::npos) << "the conversion is kept: " << second.out;
 
@@ -337,8 +374,10 @@ TEST(RoadslamViewApp, OpensAKittiFolder) {
     times << 100.0 + k << "\n";
   }
   times.close();
+  const auto beside = listing(kitti.parent_path());
   const AppRun r = run(kitti.string() + " --size 320x240 --render " + (f.dir / "kitti.png").string() + " --at 1");
   ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_EQ(listing(kitti.parent_path()), beside) << "nothing written beside the folder";
   EXPECT_NE(r.out.find("converting the KITTI folder"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find(": 3 observations over 2.0 s"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("observation 1"), std::string::npos) << r.out;
@@ -377,6 +416,80 @@ TEST(RoadslamViewApp, CanSignalsOfTheDriveArePlotted) {
   EXPECT_NEAR(v, v_gt, 0.05 * v_gt + 0.2) << "the simulator writes a wheel-speed scale error of a few per cent";
   const int green = speedCurvePixels(png);
   EXPECT_GT(green, 10) << "the speed curve";
+}
+
+// Two different drives of the same name, velodyne.pcap (as the simulator names every capture), in two
+// folders: each shows its own observations (the oracle: roadslam-rawlog's conversion of each), and
+// nothing is written beside either; reopened, both conversions are reused; a pcap changed in place
+// is converted again.
+TEST(RoadslamViewApp, TwoPcapsOfTheSameNameShowTheirOwnDrive) {
+  const auto& f = fixture();
+  const fs::path a = f.dir / "driveA", b = f.dir / "driveB", oracle = f.dir / "oracle";
+  for (const auto& d : {a, b, oracle}) fs::create_directories(d);
+  const std::string box = slurp(std::string(ROADSLAM_SOURCE_DIR) + "/rawlogs/boxroom-vlp16.pcap");
+  const std::string shorter = wholeRecordsUpTo(box, box.size() * 6 / 10);
+  std::ofstream(a / "velodyne.pcap", std::ios::binary) << box;
+  std::ofstream(b / "velodyne.pcap", std::ios::binary) << shorter;
+  const auto expected = [&oracle](const fs::path& pcap, const std::string& name) {
+    const auto s = roadslam::sources::convertToRawlog(pcap.string(), (oracle / name).string());
+    return std::to_string(s.observations + s.gps);
+  };
+  const std::string n_a = expected(a / "velodyne.pcap", "a.rawlog"), n_b = expected(b / "velodyne.pcap", "b.rawlog");
+  ASSERT_NE(n_a, n_b);
+  const auto before_a = listing(a), before_b = listing(b);
+  const auto view = [&f](const fs::path& pcap) { return run(pcap.string() + " --size 160x120 --render " + (f.dir / "same-name.png").string()); };
+
+  const AppRun ra = view(a / "velodyne.pcap"), rb = view(b / "velodyne.pcap");
+  ASSERT_EQ(ra.status, 0) << ra.out;
+  ASSERT_EQ(rb.status, 0) << rb.out;
+  EXPECT_EQ(observationsIn(ra.out), n_a) << ra.out;
+  EXPECT_EQ(observationsIn(rb.out), n_b) << "the second drive, not the first one's conversion: " << rb.out;
+  EXPECT_NE(rb.out.find("converting " + (b / "velodyne.pcap").string()), std::string::npos) << rb.out;
+  EXPECT_EQ(listing(a), before_a);
+  EXPECT_EQ(listing(b), before_b);
+
+  const AppRun again = view(a / "velodyne.pcap");
+  EXPECT_EQ(again.out.find("converting"), std::string::npos) << again.out;
+  EXPECT_EQ(observationsIn(again.out), n_a) << again.out;
+
+  std::ofstream(a / "velodyne.pcap", std::ios::binary | std::ios::trunc) << shorter;  // drive A replaced
+  const AppRun changed = view(a / "velodyne.pcap");
+  EXPECT_NE(changed.out.find("converting " + (a / "velodyne.pcap").string()), std::string::npos) << changed.out;
+  EXPECT_EQ(observationsIn(changed.out), n_b) << changed.out;
+  EXPECT_EQ(listing(a), before_a);
+}
+
+// --no-index-cache, or a cache folder that cannot be made: the conversion goes into a private
+// temporary folder that is gone when the viewer exits; nothing is kept, nothing written beside the input.
+TEST(RoadslamViewApp, WithoutACacheNothingIsKept) {
+  const auto& f = fixture();
+  const fs::path in = f.dir / "nocache", xdg = f.dir / "nocache-xdg";
+  fs::create_directories(in);
+  fs::create_directories(xdg);
+  fs::copy_file(std::string(ROADSLAM_SOURCE_DIR) + "/rawlogs/boxroom-vlp16.pcap", in / "velodyne.pcap",
+                fs::copy_options::overwrite_existing);
+  std::ofstream(f.dir / "a-file") << "x";
+  const auto before = listing(in);
+  const std::string args = (in / "velodyne.pcap").string() + " --size 160x120 --render " + (f.dir / "nocache.png").string();
+  const struct {
+    std::string prefix, args, note;
+  } cases[] = {
+      {"env XDG_CACHE_HOME=" + xdg.string() + " ", args + " --no-index-cache", ""},
+      {"env XDG_CACHE_HOME=" + (f.dir / "a-file").string() + " ", args, "warning: cannot create the cache folder '" +
+                                                                            (f.dir / "a-file" / "roadslam").string() + "'"},
+  };
+  for (const auto& c : cases) {
+    const AppRun r = run(c.args, c.prefix);
+    ASSERT_EQ(r.status, 0) << r.out;
+    EXPECT_NE(r.out.find(c.note), std::string::npos) << r.out;
+    const auto at = r.out.find(" into "), end = r.out.find(" (removed at exit)");
+    ASSERT_TRUE(at != std::string::npos && end != std::string::npos) << r.out;
+    const fs::path conversion = r.out.substr(at + 6, end - at - 6);
+    EXPECT_FALSE(fs::exists(conversion.parent_path())) << conversion << " is left";
+    EXPECT_EQ(r.out.find("kept in"), std::string::npos) << r.out;
+    EXPECT_EQ(listing(in), before);
+  }
+  EXPECT_FALSE(fs::exists(xdg / "roadslam")) << "--no-index-cache keeps nothing in the cache folder";  // (Mesa keeps its own)
 }
 
 TEST(RoadslamViewApp, BadInputsExitWithOneLineNamingTheProblem) {

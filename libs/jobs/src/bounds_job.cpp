@@ -196,7 +196,7 @@ nlohmann::json runBoundsJob(const BoundsRequest& req) {
   addLidarModel(s, stream);
   s["warnings"] = unknown_keys;
   for (const auto& w : forced) s["warnings"].push_back(w);
-  if (!stream.errorMessage().empty()) s["warnings"].push_back("input damaged: " + stream.errorMessage());
+  if (!stream.errorMessage().empty()) s["warnings"].push_back(sources::damageWarning(stream));
   s["interrupted"] = stopRequested();  // Ctrl-C / SIGTERM: the outputs so far, as roadslam-map's
   s["complete"] = stream.errorMessage().empty() && !stopRequested();
   for (const auto& w : stream.warnings()) s["warnings"].push_back(w);

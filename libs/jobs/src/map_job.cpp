@@ -111,11 +111,8 @@ void drive(pipeline::Pipeline& pipe, const MapRequest& req, GnssRequest& gnss, S
 
 /// The input's part of the summary: its warnings, damage and statistics.
 void summarizeInput(const sources::ScanSource& stream, const MapJobParams& params, MapOutcome& out) {
-  const std::string damage = stream.errorMessage();
-  if (!damage.empty()) {
-    out.summary["warnings"].push_back("input damaged, " + std::to_string(stream.stats().sweeps) +
-                                      " sweeps read before it: " + damage);
-  }
+  const std::string damage = sources::damageWarning(stream);
+  if (!damage.empty()) out.summary["warnings"].push_back(damage);
   out.summary["complete"] = damage.empty() && !out.interrupted;
   for (const auto& w : stream.warnings()) out.summary["warnings"].push_back(w);
   const int timed = out.summary["deskewed_frames"].get<int>();

@@ -29,6 +29,7 @@ class PeekedSource : public sources::ScanSource {
   sources::ScanSourceStats stats() const override { return src_->stats(); }
   size_t sizeHint() const override { return src_->sizeHint(); }
   std::string errorMessage() const override { return src_->errorMessage(); }
+  uint64_t sweepsBeforeDamage() const override { return src_->sweepsBeforeDamage(); }
   std::vector<std::string> warnings() const override { return src_->warnings(); }
   sources::ReadProgress readProgress() const override { return src_->readProgress(); }
   std::optional<sources::LidarModelReport> lidarModel() const override { return src_->lidarModel(); }

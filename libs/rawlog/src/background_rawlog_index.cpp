@@ -17,9 +17,10 @@ std::unique_ptr<BackgroundRawlogIndex> BackgroundRawlogIndex::open(const std::st
   b->path_ = path;
   b->file_size_ = std::max<uint64_t>(1, detail::stampOf(path).size);  // throws naming a missing file
   RawlogIndexOptions fast = options;
-  if (options.use_cache) {  // a fresh sidecar: the whole index at once
+  if (options.use_cache) {  // a fresh index file: the whole index at once
+    const auto files = RawlogIndex::indexFiles(path, options).read;
     std::error_code ec;
-    if (std::filesystem::exists(RawlogIndex::sidecarPath(path), ec)) {
+    if (std::any_of(files.begin(), files.end(), [&ec](const std::string& f) { return std::filesystem::exists(f, ec); })) {
       bool stale = false;
       fast.on_build = [&stale](const std::string&) { stale = true; };
       // open() builds when the sidecar is stale: abandon at the first progress call instead

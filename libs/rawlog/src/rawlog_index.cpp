@@ -117,7 +117,7 @@ void RawlogIndex::Impl::build(uint64_t span, const std::function<bool(const Impl
         if (more) continue;
         if (!stream->damage().empty()) failure = "after a record of unknown class '" + *cls + "'";
         else break;
-      } else if (std::string(e.what()).find("Cannot read requested number of bytes") != std::string::npos) {
+      } else if (detail::isCutShort(e.what())) {
         failure = "record cut short";  // MRPT wraps its CExceptionEOF from inside an object
       } else {
         failure = innermostMessage(e.what());
@@ -126,12 +126,7 @@ void RawlogIndex::Impl::build(uint64_t span, const std::function<bool(const Impl
     if (!rec && failure.empty() && stream->damage().empty()) break;  // clean end of file
     if (!rec) {
       complete = false;
-      std::ostringstream m;
-      m << "stopped at observation " << entries.size() << " (uncompressed byte " << start;
-      if (gzip) m << ", compressed byte " << zstart;
-      m << "): " << (failure.empty() ? std::string("end of data") : failure);
-      if (!stream->damage().empty()) m << "; " << stream->damage();
-      stop = m.str();
+      stop = stopMessageOf(start, zstart, failure);
       break;
     }
     const uint64_t size = stream->getPosition() - start;
@@ -148,12 +143,53 @@ void RawlogIndex::Impl::build(uint64_t span, const std::function<bool(const Impl
   stream->recordAccessPoints(0);
 }
 
+// "truncated record at uncompressed byte N (observation K, compressed byte Z); <the stream's damage>"
+std::string RawlogIndex::Impl::stopMessageOf(uint64_t start, uint64_t zstart, const std::string& failure) const {
+  const std::string& damage = stream->damage();
+  // data ending inside a record (or the compressed stream ending): truncated; a record failing
+  // with no cause of its own: the stream's damage is the cause
+  const bool cut = failure == "record cut short" || (failure.empty() && damage.rfind("compressed stream cut short", 0) == 0);
+  const std::string cause = cut ? "" : failure.empty() ? damage : failure;
+  std::ostringstream m;
+  m << detail::stopPlace(start, cause) << " (observation " << entries.size();
+  if (gzip) m << ", compressed byte " << zstart;
+  m << ")";
+  if (!damage.empty() && cause != damage) m << "; " << damage;
+  return m.str();
+}
+
 void RawlogIndex::Impl::finish() {
   by_time.clear();
   for (uint32_t i = 0; i < entries.size(); ++i) by_time.add(i, entries[i].stamp_s);
 }
 
 std::string RawlogIndex::sidecarPath(const std::string& rawlog_path) { return rawlog_path + ".idx"; }
+
+RawlogIndex::IndexFiles RawlogIndex::indexFiles(const std::string& rawlog_path, const RawlogIndexOptions& opt) {
+  IndexFiles f;
+  f.read.push_back(sidecarPath(rawlog_path));
+  if (!opt.cache_path) {
+    f.write = f.read.front();
+    return f;
+  }
+  f.write = opt.cache_path(rawlog_path);
+  if (f.write != f.read.front()) f.read.push_back(f.write);
+  return f;
+}
+
+bool RawlogIndex::Impl::readFirstFresh(const std::vector<std::string>& files) {
+  std::string notes;
+  for (const auto& file : files) {
+    std::ifstream f(file, std::ios::binary);
+    if (!f) continue;
+    const std::string buf((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    std::string why;
+    if (deserialize(buf, why)) return true;
+    notes += (notes.empty() ? "index '" : "; index '") + file + "' " + why;
+  }
+  if (!notes.empty()) info.cache_note = notes + ": rebuilt";
+  return false;
+}
 
 std::unique_ptr<RawlogIndex> RawlogIndex::open(const std::string& path, const RawlogIndexOptions& opt) {
   return open(path, opt, {});
@@ -165,17 +201,8 @@ std::unique_ptr<RawlogIndex> RawlogIndex::open(const std::string& path, const Ra
   auto impl = std::make_unique<Impl>();
   impl->path = path;
   impl->stamp = detail::stampOf(path);
-  const std::string side = sidecarPath(path);
-  bool loaded = false;
-  if (opt.use_cache) {
-    std::ifstream f(side, std::ios::binary);
-    if (f) {
-      std::string buf((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-      std::string why;
-      loaded = impl->deserialize(buf, why);
-      if (!loaded) impl->info.cache_note = "index '" + side + "' " + why + ": rebuilt";
-    }
-  }
+  const IndexFiles files = indexFiles(path, opt);
+  const bool loaded = opt.use_cache && impl->readFirstFresh(files.read);
   if (!loaded) {
     impl->labels.clear();
     impl->classes.clear();
@@ -184,7 +211,7 @@ std::unique_ptr<RawlogIndex> RawlogIndex::open(const std::string& path, const Ra
     if (impl->abandoned) return nullptr;
     if (opt.write_cache) {
       try {
-        writeFileAtomically(side, impl->serialize());
+        writeFileAtomically(files.write, impl->serialize());
         impl->info.cache_written = true;
       } catch (const std::exception& e) {
         impl->info.cache_note = std::string("index not cached: ") + e.what();

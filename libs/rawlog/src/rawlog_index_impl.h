@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "roadslam/rawlog/mrpt_stamp.h"
 #include "roadslam/rawlog/rawlog_index.h"
 #include "seekable_stream.h"
 
@@ -49,7 +50,7 @@ struct RawlogIndex::Impl {
     e.offset = offset;
     e.size = uint32_t(std::min<uint64_t>(size, 0xffffffffu));
     e.sub = sub;
-    e.stamp_s = o && o->timestamp != INVALID_TIMESTAMP ? mrpt::Clock::toDouble(o->timestamp)
+    e.stamp_s = o && o->timestamp != INVALID_TIMESTAMP ? stampSeconds(o->timestamp)
                                                          : std::numeric_limits<double>::quiet_NaN();
     e.label = labels.id(o ? o->sensorLabel : std::string());
     const auto colons = cls.rfind("::");  // "mrpt::obs::CObservationGPS" -> "CObservationGPS"
@@ -62,9 +63,14 @@ struct RawlogIndex::Impl {
   void build(uint64_t span, const std::function<bool(const Impl&)>& progress = {});
   bool abandoned = false;
   bool resync(uint64_t from);
+  /// stop's text for reading stopped at uncompressed byte \p start (compressed \p zstart) for \p failure.
+  std::string stopMessageOf(uint64_t start, uint64_t zstart, const std::string& failure) const;
   void finish();
   std::string serialize() const;
   bool deserialize(const std::string& buf, std::string& why);
+  /// Reads the first of \p files that exists and is fresh; false, with why the others were not
+  /// used in info.cache_note, when none is.
+  bool readFirstFresh(const std::vector<std::string>& files);
 };
 
 }  // namespace roadslam::rawlog

@@ -8,6 +8,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "roadslam/rawlog/mrpt_stamp.h"
+
 namespace roadslam::sources {
 
 LiveObservations::LiveObservations(std::string name, double keep_s) : name_(std::move(name)), keep_s_(keep_s) {}
@@ -33,7 +35,7 @@ std::size_t LiveObservations::posted() const {
 void LiveObservations::append(Posted& p) {
   rawlog::RawlogEntry e;
   e.size = p.bytes;
-  e.stamp_s = p.obs->timestamp != INVALID_TIMESTAMP ? mrpt::Clock::toDouble(p.obs->timestamp)
+  e.stamp_s = p.obs->timestamp != INVALID_TIMESTAMP ? rawlog::stampSeconds(p.obs->timestamp)
                                                     : std::numeric_limits<double>::quiet_NaN();
   e.label = labels_.id(p.obs->sensorLabel);
   std::string cls = p.obs->GetRuntimeClass()->className;

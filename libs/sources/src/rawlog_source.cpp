@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include "gz_read_stream.h"
 #include "roadslam/rawlog/mrpt_message.h"
+#include "roadslam/rawlog/mrpt_stamp.h"
 
 #include "roadslam/common/param_table.h"
 
@@ -102,12 +103,13 @@ bool RawlogPacketSource::readMore() {
       rec = mrpt::serialization::archiveFrom(impl_->in).ReadObject();
     } catch (const mrpt::serialization::CExceptionEOF&) {
       // EOF before the first byte of a record is the clean end; inside one, a truncated file.
-      if (impl_->in.getPosition() != start)
-        error_ = path_ + ": truncated record at uncompressed byte " + std::to_string(start);
+      if (impl_->in.getPosition() != start) error_ = path_ + ": " + rawlog::detail::stopPlace(start);
       return false;
     } catch (const std::exception& e) {
-      error_ = path_ + ": not a readable MRPT rawlog (record at byte " + std::to_string(start) +
-               ": " + innermostMessage(e.what()) + ")";
+      // the first record unreadable: not a rawlog at all; a later one: damage (words as RawlogIndex's)
+      const std::string cause = innermostMessage(e.what());
+      if (start == 0) error_ = path_ + ": not a readable MRPT rawlog (record at byte 0: " + cause + ")";
+      else error_ = path_ + ": " + rawlog::detail::stopPlace(start, rawlog::detail::isCutShort(e.what()) ? "" : cause);
       return false;
     }
     if (auto sf = std::dynamic_pointer_cast<mrpt::obs::CSensoryFrame>(rec)) {
@@ -131,7 +133,7 @@ bool RawlogPacketSource::readMore() {
   } else {
     ++other_;
     if (keep_other_ && obs)
-      others_.push_back({obs->sensorLabel, obs->GetRuntimeClass()->className, mrpt::Clock::toDouble(obs->timestamp)});
+      others_.push_back({obs->sensorLabel, obs->GetRuntimeClass()->className, rawlog::stampSeconds(obs->timestamp)});
   }
   return true;
 }

@@ -67,9 +67,9 @@ RecordingSummary summarizeRecording(const std::string& path, const velodyne::Dec
   }
   sweeps.takeGpsFixes();
   const std::string err = sweeps.packets().errorMessage();
-  if (!err.empty()) throw std::runtime_error(err);
   const SourceStats& ps = sweeps.packets().stats();
-  if (ps.data_packets == 0) throw std::runtime_error(path + ": no Velodyne data packets");
+  if (ps.data_packets == 0) throw std::runtime_error(err.empty() ? path + ": no Velodyne data packets" : err);
+  s.damage = damageWarning(sweeps);
   const SweepSourceStats& ss = sweeps.sweepStats();
   s.packets = ps.data_packets;
   s.position_packets = ps.position_packets;
@@ -103,7 +103,7 @@ std::string toJson(const RecordingSummary& s) {
       {"skipped_packets", s.skipped_packets},
       {"missing_packets", s.missing_packets},
       {"duration_s", s.duration_s}, {"sweeps_per_s", s.sweeps_per_s},
-      {"packets_per_s", s.packets_per_s}};
+      {"packets_per_s", s.packets_per_s}, {"damage", s.damage}};
   return j.dump(2);
 }
 
@@ -120,6 +120,7 @@ std::string toText(const RecordingSummary& s) {
   t += fmt::format("  malformed packets {}\n", s.malformed_packets);
   t += fmt::format("  skipped packets   {}\n", s.skipped_packets);
   t += fmt::format("  missing packets   {}\n", s.missing_packets);
+  if (!s.damage.empty()) t += "  damaged           yes: the figures cover the data before the damage\n";
   return t;
 }
 
@@ -163,15 +164,15 @@ ConvertSummary convertToRawlog(const std::string& in, const std::string& out,
   });
   while (sweeps.next()) sweeps.takeGpsFixes();
   const std::string err = sweeps.packets().errorMessage();
-  if (!err.empty()) throw std::runtime_error(err);
   if (sweeps.packets().stats().data_packets == 0 || !writer)
-    throw std::runtime_error(in + ": no Velodyne data packets");
+    throw std::runtime_error(err.empty() ? in + ": no Velodyne data packets" : err);
+  sum.damage = damageWarning(sweeps);
   flush();
   writer->close();
   mrpt::config::CConfigFileMemory used;
   params.saveToConfigFile(used, "velodyne");
   writer_params.saveToConfigFile(used, "rawlog");
-  writeFileAtomically(out + ".ini", "; written by roadslam-rawlog convert " + in + "\n" +
+  writeFileAtomically(out + ".ini", "; the settings of the conversion of " + in + " (sources::convertToRawlog)\n" +
                                         used.getContent());
   sum.packets = writer->packetsWritten();
   sum.gps = writer->gpsWritten();

@@ -34,7 +34,10 @@ class KittiScanSource : public ScanSource {
         return scan;
       } catch (const std::exception& e) {
         ++stats_.malformed_packets;
-        if (error_.empty()) error_ = e.what();
+        if (error_.empty()) {
+          error_ = e.what();
+          sweeps_before_error_ = stats_.sweeps;
+        }
       }
     }
     return std::nullopt;
@@ -45,6 +48,7 @@ class KittiScanSource : public ScanSource {
   std::string errorMessage() const override {
     return error_.empty() ? "" : error_ + (stats_.malformed_packets > 1 ? " (and " + std::to_string(stats_.malformed_packets - 1) + " more)" : "");
   }
+  uint64_t sweepsBeforeDamage() const override { return error_.empty() ? stats_.sweeps : sweeps_before_error_; }
   size_t sizeHint() const override { return folder_.size(); }
   std::vector<std::string> warnings() const override {
     if (folder_.hasTimes()) return {};
@@ -62,9 +66,24 @@ class KittiScanSource : public ScanSource {
   size_t i_ = 0;
   ScanSourceStats stats_;
   std::string error_;
+  uint64_t sweeps_before_error_ = 0;
 };
 
+std::string sweeps(uint64_t n) { return std::to_string(n) + (n == 1 ? " sweep" : " sweeps"); }
+
 }  // namespace
+
+std::string damageWarning(uint64_t sweeps_before, const std::string& what, uint64_t sweeps_after) {
+  return "input damaged, " + sweeps(sweeps_before) + " read before it" +
+         (sweeps_after > 0 ? ", and " + std::to_string(sweeps_after) + " after it" : std::string()) + ": " + what;
+}
+
+std::string damageWarning(const ScanSource& source) {
+  const std::string what = source.errorMessage();
+  if (what.empty()) return {};
+  const uint64_t before = source.sweepsBeforeDamage();
+  return damageWarning(before, what, source.stats().sweeps - before);
+}
 
 std::unique_ptr<ScanSource> openScanSource(const std::string& path, const mrpt::config::CConfigFileBase& cfg,
                                            const std::string& times_path) {

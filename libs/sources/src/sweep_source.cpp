@@ -81,6 +81,10 @@ Scan SweepSource::deliver(Scan s) {
 
 std::optional<Scan> SweepSource::next() {
   if (!choice_ && !chooseModel()) return std::nullopt;  // live: nothing decided within the timeout
+  if (!damage_seen_ && !packets_->errorMessage().empty()) {  // seen on the call after the sweep that met it
+    damage_seen_ = true;
+    sweeps_before_damage_ = stats().sweeps;
+  }
   while (!assembler_.hasSweep()) {
     if (finished_) return std::nullopt;
     bool waiting = false;

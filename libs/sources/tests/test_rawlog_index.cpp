@@ -23,10 +23,12 @@
 #include <thread>
 
 #include "roadslam/rawlog/background_rawlog_index.h"
+#include "roadslam/rawlog/mrpt_stamp.h"
 #include "roadslam/rawlog/rawlog_index.h"
 #include "roadslam/rawlog/rawlog_session.h"
 #include "roadslam/sources/scan_source.h"
 #include "roadslam/rawlog/rawlog_writer.h"
+#include "roadslam/sources/rawlog_source.h"
 #include "test_packets.h"
 
 using namespace roadslam::sources;
@@ -219,14 +221,29 @@ TEST(RawlogIndex, TruncatedFileIsIndexedUpToTheDamage) {
   ASSERT_GT(idx->size(), 5u);
   ASSERT_LT(idx->size(), full.size());
   const std::string& m = idx->stopMessage();
-  EXPECT_NE(m.find("stopped at observation " + std::to_string(idx->size())), std::string::npos) << m;
-  EXPECT_NE(m.find("compressed byte"), std::string::npos) << m;
-  EXPECT_NE(m.find("record cut short"), std::string::npos) << m;
+  EXPECT_EQ(m.rfind("truncated record at uncompressed byte ", 0), 0u) << m;  // as RawlogPacketSource words it
+  EXPECT_NE(m.find("(observation " + std::to_string(idx->size()) + ", compressed byte"), std::string::npos) << m;
   for (std::size_t i = 0; i < idx->size(); ++i) EXPECT_EQ(bytesOf(*idx->load(i)), full[i]);
   // the damage is cached too
   const auto cached = RawlogIndex::open(path.string(), smallSpan());
   EXPECT_TRUE(cached->openInfo().from_cache);
   EXPECT_EQ(cached->stopMessage(), m);
+}
+
+// The replay (RawlogPacketSource, which roadslam-map reads) and the index (which roadslam-view
+// reads) name the place of a cut rawlog in the same words: the index's message begins with the replay's.
+TEST(RawlogIndex, TruncationIsNamedAsTheReplayNamesIt) {
+  const fs::path path = tempDir() / "cut_same_words.rawlog";
+  writeRecording(path, 20, 76);
+  fs::resize_file(path, fs::file_size(path) / 2);
+  RawlogPacketSource replay(path.string());
+  while (replay.next()) {
+  }
+  const auto idx = RawlogIndex::open(path.string(), smallSpan());
+  const std::string replay_place = replay.errorMessage();
+  ASSERT_EQ(replay_place.rfind(path.string() + ": truncated record at uncompressed byte ", 0), 0u) << replay_place;
+  EXPECT_EQ((path.string() + ": " + idx->stopMessage()).rfind(replay_place + " (observation ", 0), 0u)
+      << replay_place << "\nvs " << idx->stopMessage();
 }
 
 TEST(RawlogIndex, CorruptCompressedDataStopsThereWithTheByte) {
@@ -242,7 +259,8 @@ TEST(RawlogIndex, CorruptCompressedDataStopsThereWithTheByte) {
   const auto idx = RawlogIndex::open(path.string(), smallSpan());
   EXPECT_FALSE(idx->complete());
   EXPECT_LT(idx->size(), full.size());
-  EXPECT_NE(idx->stopMessage().find("stopped at observation"), std::string::npos) << idx->stopMessage();
+  EXPECT_NE(idx->stopMessage().find(" record at uncompressed byte "), std::string::npos) << idx->stopMessage();
+  EXPECT_NE(idx->stopMessage().find("(observation " + std::to_string(idx->size())), std::string::npos) << idx->stopMessage();
   for (std::size_t i = 0; i < idx->size(); ++i) EXPECT_EQ(bytesOf(*idx->load(i)), full[i]);
 }
 
@@ -280,6 +298,72 @@ TEST(RawlogIndex, UnknownClassesAreListedAndSkipped) {
       EXPECT_EQ(bytesOf(*idx->load(i)), obs[k++]);
     }
   EXPECT_EQ(k, obs.size());
+}
+
+// A program that must not write beside its input (roadslam-view) keeps the index where cache_path
+// says; a fresh sidecar beside the rawlog (roadslam-grab's) is still read, and never written.
+TEST(RawlogIndex, CachePathKeepsTheIndexAwayFromTheRawlog) {
+  const fs::path dir = tempDir() / "cache_path";
+  fs::remove_all(dir);
+  fs::create_directories(dir / "cache");
+  const fs::path path = dir / "drive.rawlog";
+  writeRecording(path, 4, 30);
+  RawlogIndexOptions opt = smallSpan();
+  opt.cache_path = [&dir](const std::string&) { return (dir / "cache" / "drive.idx").string(); };
+  const auto files = RawlogIndex::indexFiles(path.string(), opt);
+  EXPECT_EQ(files.write, (dir / "cache" / "drive.idx").string());
+  ASSERT_EQ(files.read.size(), 2u);
+  EXPECT_EQ(files.read[0], RawlogIndex::sidecarPath(path.string()));
+
+  const auto built = RawlogIndex::open(path.string(), opt);
+  EXPECT_TRUE(built->openInfo().cache_written);
+  EXPECT_FALSE(fs::exists(RawlogIndex::sidecarPath(path.string()))) << "nothing beside the rawlog";
+  EXPECT_TRUE(fs::exists(dir / "cache" / "drive.idx"));
+  EXPECT_TRUE(RawlogIndex::open(path.string(), opt)->openInfo().from_cache);
+  const auto background = BackgroundRawlogIndex::open(path.string(), opt);
+  ASSERT_NE(background->done(), nullptr) << "a fresh cached index opens whole at once";
+  EXPECT_EQ(background->size(), built->size());
+
+  // a fresh sidecar beside the rawlog is read first; the cached one is left as it is
+  fs::remove(dir / "cache" / "drive.idx");
+  RawlogIndex::open(path.string(), smallSpan());  // writes the sidecar, as roadslam-grab would
+  const auto beside = RawlogIndex::open(path.string(), opt);
+  EXPECT_TRUE(beside->openInfo().from_cache);
+  EXPECT_FALSE(fs::exists(dir / "cache" / "drive.idx"));
+
+  // a stale sidecar beside it is not rewritten: the index is built into the cache
+  std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  writeRecording(path, 3, 30, 99);
+  const auto side_bytes = fs::file_size(RawlogIndex::sidecarPath(path.string()));
+  const auto rebuilt = RawlogIndex::open(path.string(), opt);
+  EXPECT_EQ(rebuilt->size(), 6u);
+  EXPECT_TRUE(fs::exists(dir / "cache" / "drive.idx"));
+  EXPECT_EQ(fs::file_size(RawlogIndex::sidecarPath(path.string())), side_bytes);
+}
+
+// MRPT stamps before 1970 read back negative (mrpt::Clock::toDouble wraps them to ~1.8e12 s): a
+// KITTI sweep stamped at its first firing, half a sweep before times.txt's 0.0.
+TEST(RawlogIndex, StampsBefore1970ReadBackNegative) {
+  const fs::path path = tempDir() / "before1970.rawlog";
+  const double stamps[] = {-0.05, 0.05, 0.15};
+  {
+    mrpt::io::CFileGZOutputStream f(path.string());
+    auto ar = mrpt::serialization::archiveFrom(f);
+    for (const double t : stamps) {
+      mrpt::obs::CObservationGPS g;
+      g.timestamp = stampOf(t);
+      ar << g;
+    }
+  }
+  RawlogIndexOptions no_cache;
+  no_cache.use_cache = no_cache.write_cache = false;
+  const auto idx = RawlogIndex::open(path.string(), no_cache);
+  ASSERT_EQ(idx->size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_NEAR(idx->entry(i).stamp_s, stamps[i], 1e-7);
+    EXPECT_NEAR(stampSeconds(stampOf(stamps[i])), stamps[i], 1e-7);
+  }
+  EXPECT_NEAR(idx->lastStamp() - idx->firstStamp(), 0.2, 1e-7);
 }
 
 TEST(RawlogIndex, MissingFileIsNamed) {

@@ -13,10 +13,12 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <thread>
 
 #include "roadslam/sources/boxroom.h"
 #include "roadslam/sources/pcap_source.h"
+#include "roadslam/sources/recording.h"
 #include "roadslam/sources/scan_source.h"
 #include "roadslam/sources/sweep_source.h"
 #include "roadslam/sources/udp_receiver.h"
@@ -136,6 +138,49 @@ TEST(ScanSource, OpensAPcapByItsPathAndCountsPacketsAndSweeps) {
   }
   fs::remove(other);
   fs::remove(file);
+}
+
+// A roadslam-grab session whose first segment a crash cut short: reading goes on with the next one,
+// and the damage counts the sweeps before it (those of the cut segment read alone), not all of them.
+TEST(ScanSource, DamageInASessionCountsTheSweepsBeforeIt) {
+  BoxRoomParams p;
+  p.revolutions = 6;
+  const fs::path pcap = boxRoomFile(p, "session_damage_");
+  const fs::path dir = fs::temp_directory_path() / ("session_damage_" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  convertToRawlog(pcap.string(), (dir / "whole.rawlog").string());
+  std::string bytes;
+  {
+    std::ifstream f(dir / "whole.rawlog", std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(f), {});
+  }
+  fs::create_directories(dir / "session");
+  std::ofstream(dir / "session" / "grab_000.rawlog", std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+  fs::copy_file(dir / "whole.rawlog", dir / "session" / "grab_001.rawlog");
+  mrpt::config::CConfigFileMemory cfg;
+  const auto count = [&cfg](const fs::path& path) {
+    auto src = openScanSource(path.string(), cfg);
+    while (src->next()) {
+    }
+    return std::pair<uint64_t, std::string>(src->stats().sweeps, damageWarning(*src));
+  };
+  const auto [cut_alone, cut_warning] = count(dir / "session" / "grab_000.rawlog");
+  const auto [whole, whole_warning] = count(dir / "whole.rawlog");
+  EXPECT_EQ(whole_warning, "");
+  ASSERT_NE(cut_warning, "");
+  auto session = openScanSource((dir / "session").string(), cfg);
+  while (session->next()) {
+  }
+  EXPECT_EQ(session->sweepsBeforeDamage(), cut_alone);
+  EXPECT_GT(session->stats().sweeps, cut_alone + whole / 2);
+  EXPECT_EQ(damageWarning(*session).rfind("input damaged, " + std::to_string(cut_alone) + " sweeps read before it, and " +
+                                              std::to_string(session->stats().sweeps - cut_alone) + " after it: ",
+                                          0),
+            0u)
+      << damageWarning(*session);
+  fs::remove_all(dir);
+  fs::remove(pcap);
 }
 
 TEST(SweepSource, LiveUdpReplayGivesTheSameSweepsAsThePcap) {

@@ -1,10 +1,5 @@
 #include "roadslam/viewer/app.h"
 
-#include <mrpt/config/CConfigFileMemory.h>
-#include <mrpt/io/CFileGZOutputStream.h>
-#include <mrpt/maps/CPointsMapXYZI.h>
-#include <mrpt/obs/CObservationPointCloud.h>
-#include <mrpt/serialization/CArchive.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -16,9 +11,8 @@
 #include <stdexcept>
 
 #include "roadslam/rawlog/rawlog_session.h"
-#include "roadslam/sources/recording.h"
-#include "roadslam/sources/scan_source.h"
 #include "roadslam/viewer/live_slam.h"
+#include "roadslam/viewer/recording_open.h"
 #include "roadslam/viewer/render.h"
 #include "roadslam/viewer/replay.h"
 #include "roadslam/viewer/window.h"
@@ -36,7 +30,7 @@ std::pair<int, int> parseSize(const std::string& text) {
 std::string summaryLine(ViewerModel& m) {
   const auto& idx = m.recording();
   const std::string lidar = m.lidarModel().text;
-  std::string name = m.inputs().recording, how = m.live() ? " (live)" : "";
+  std::string name = m.inputs().name(), how = m.live() ? " (live)" : "";
   if (m.session() && m.session()->segments() > 1) {
     char text[96];
     std::snprintf(text, sizeof text, " (%zu segments%s)", m.session()->segments(),
@@ -50,7 +44,6 @@ std::string summaryLine(ViewerModel& m) {
     char text[64];
     std::snprintf(text, sizeof text, " (index %s, %.0f ms)", r->openInfo().from_cache ? "cached" : "built",
                   r->openInfo().seconds * 1e3);
-    name = r->path();
     how = text;
   }
   char buf[700];
@@ -64,68 +57,20 @@ std::string summaryLine(ViewerModel& m) {
   return buf;
 }
 
-namespace {
-
-/// A KITTI folder of NNNNNN.bin sweeps as an MRPT rawlog of CObservationPointCloud (x, y, z,
-/// intensity; stamped as datasets::KittiParams times them: times.txt, else the nominal rate).
-void kittiToRawlog(const std::string& folder, const std::string& out) {
-  mrpt::config::CConfigFileMemory no_ini;
-  auto src = sources::openScanSource(folder, no_ini);
-  const std::string tmp = out + ".part";
-  {
-    mrpt::io::CFileGZOutputStream f(tmp);
-    if (!f.fileOpenCorrectly()) throw std::runtime_error("cannot write '" + tmp + "'");
-    auto ar = mrpt::serialization::archiveFrom(f);
-    while (auto scan = src->next()) {
-      auto obs = mrpt::obs::CObservationPointCloud::Create();
-      obs->sensorLabel = "KITTI";
-      obs->timestamp = mrpt::Clock::fromDouble(scan->stamp_s);
-      auto pts = mrpt::maps::CPointsMapXYZI::Create();
-      pts->reserve(scan->points.size());
-      for (const auto& q : scan->points) {
-        pts->insertPointFast(q.x, q.y, q.z);
-        pts->setPointIntensity(pts->size() - 1, q.intensity);
-      }
-      obs->pointcloud = pts;
-      ar << *obs;
-    }
+std::string atTimeProblem(double at_s, double duration_s, const std::string& name) {
+  constexpr double kSlack_s = 0.1;  // a sweep at 10 Hz: the last one covers this long past its stamp
+  char text[160];
+  if (at_s < 0) {
+    std::snprintf(text, sizeof text, "--at %g s is before the start of ", at_s);
+    return text + name + " (--at counts seconds from its start)";
   }
-  if (!src->errorMessage().empty()) throw std::runtime_error(src->errorMessage());
-  std::filesystem::rename(tmp, out);
-}
-
-}  // namespace
-
-std::string recordingToOpen(const std::string& path, std::ostream& err) {
-  namespace fs = std::filesystem;
-  if (fs::is_directory(path) && !rawlog::RawlogSession::segmentsOf(path).empty()) return path;  // a grab session
-  if (fs::is_directory(path)) {
-    const std::string folder = fs::path(path).lexically_normal().string();
-    std::string out = (folder.back() == '/' ? folder.substr(0, folder.size() - 1) : folder) + ".rawlog";
-    if (access(fs::path(out).parent_path().c_str(), W_OK) != 0) {
-      out = (fs::temp_directory_path() / (fs::path(out).filename().string())).string();
-    }
-    std::error_code ec;
-    if (fs::exists(out) && fs::last_write_time(out, ec) >= fs::last_write_time(path, ec)) return out;
-    err << "roadslam-view: converting the KITTI folder " << path << " into " << out << " once ...\n";
-    kittiToRawlog(path, out);
-    return out;
+  if (!(at_s <= duration_s + kSlack_s)) {
+    std::snprintf(text, sizeof text, "--at %g s is past the end of ", at_s);
+    std::string msg = text + name;
+    std::snprintf(text, sizeof text, " (%.1f s long)", duration_s);
+    return msg + text;
   }
-  const std::string ext = fs::path(path).extension().string();
-  if (ext != ".pcap" && ext != ".pcapng") return path;
-  std::string out = path + ".rawlog";
-  std::error_code ec;
-  const bool fresh = fs::exists(out) && fs::last_write_time(out, ec) >= fs::last_write_time(path, ec);
-  if (fresh) return out;
-  if (access(fs::path(path).parent_path().empty() ? "." : fs::path(path).parent_path().c_str(), W_OK) != 0) {
-    out = (fs::temp_directory_path() / (fs::path(path).filename().string() + ".rawlog")).string();
-    if (fs::exists(out) && fs::last_write_time(out, ec) >= fs::last_write_time(path, ec)) return out;
-  }
-  err << "roadslam-view: converting " << path << " into " << out << " once ...\n";
-  // The model's warning, if any, comes with the summary line (ViewerModel::lidarModel), once.
-  const auto s = sources::convertToRawlog(path, out, {}, {}, "roadslam-rawlog convert --model");
-  if (s.observations == 0) throw std::runtime_error("'" + path + "' holds no Velodyne sweep");
-  return out;
+  return {};
 }
 
 void encodeVideo(const std::string& png_dir, const std::string& mp4, double fps) {
@@ -147,17 +92,30 @@ int runView(const ViewRequest& req, std::ostream& out, std::ostream& err) {
   const bool headless = !req.render_png.empty() || !req.sequence_dir.empty() || !req.video.empty();
   const WindowOptions window{w, h, req.script, {}};
   if (!headless) checkWindowRequest(window);
+  RecordingCache cache(!req.no_index_cache);  // outlives the model: its private folder holds what the model reads
+  if (!cache.note().empty()) err << "roadslam-view: warning: " << cache.note() << "\n";
   ViewerInputs in = req.inputs;
-  in.recording = recordingToOpen(in.recording, err);
-  if (req.no_index_cache) in.index.use_cache = in.index.write_cache = false;
-  in.index.on_build = [&err, &req](const std::string& path) {
-    err << "roadslam-view: indexing " << path << " once"
-        << (req.no_index_cache ? "" : " (kept in " + rawlog::RawlogIndex::sidecarPath(path) + ")") << " ...\n";
+  const RecordingToOpen rec = recordingToOpen(in.recording, cache, err);
+  if (rec.rawlog != in.recording) in.source = in.recording;
+  in.recording = rec.rawlog;
+  if (!rec.damage.empty()) err << "roadslam-view: warning: " << rec.damage << "\n";
+  if (req.no_index_cache) in.index.use_cache = false;
+  cache.configureIndex(in.index);
+  in.index.on_build = [&err, index = in.index](const std::string& path) {
+    const std::string kept = std::filesystem::is_directory(path) ? userCacheFolder() : rawlog::RawlogIndex::indexFiles(path, index).write;
+    err << "roadslam-view: indexing " << path << " once" << (index.write_cache ? " (kept in " + kept + ")" : "") << " ...\n";
   };
   ViewerModel model(in);
   if (headless) model.waitForIndex();  // renders may need any time of the recording
   for (const auto& warning : model.warnings()) err << "roadslam-view: warning: " << warning << "\n";
   if (const auto lidar = model.lidarModel(); !lidar.warning.empty()) err << "roadslam-view: warning: " << lidar.warning << "\n";
+  if (!req.render_png.empty()) {
+    const std::string problem = atTimeProblem(req.at_s, model.endTime() - model.startTime(), in.name());
+    if (!problem.empty()) {
+      err << "roadslam-view: " << problem << "\n";
+      return 2;
+    }
+  }
   out << summaryLine(model) << "\n";
   if (!model.can().empty()) {
     double v_max = 0;

@@ -16,10 +16,7 @@ namespace roadslam::viewer {
 namespace {
 
 std::size_t sweepsIn(const rawlog::ObservationIndex& idx, std::size_t from, std::size_t count) {
-  for (std::size_t i = from; i < idx.size(); ++i) {
-    const auto& cls = idx.className(i);
-    count += cls == "CObservationVelodyneScan" || cls == "CObservationPointCloud";
-  }
+  for (std::size_t i = from; i < idx.size(); ++i) count += holdsSweep(idx.className(i));
   return count;
 }
 

@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <numeric>
 #include <sstream>
 #include <stdexcept>
 #include <unordered_set>
@@ -29,6 +30,7 @@
 #include <mrpt/obs/CObservationOdometry.h>
 
 #include "roadslam/runfolder/run_folder.h"
+#include "roadslam/sources/scan_source.h"
 #include "roadslam/viewer/scene.h"
 #include "roadslam/viewer/sweep.h"
 
@@ -87,6 +89,27 @@ ViewerModel::ViewerModel(const ViewerInputs& in) : in_(in) {
   loadResults();
 }
 
+namespace {
+/// The sweeps of each segment of \p session (a rawlog's observation holding points is one sweep).
+std::vector<uint64_t> sweepsPerSegment(const rawlog::RawlogSession& session) {
+  std::vector<uint64_t> n(session.segments(), 0);
+  for (std::size_t k = 0; k < n.size(); ++k)
+    if (const rawlog::RawlogIndex* idx = session.segment(k).done())
+      for (std::size_t i = 0; i < idx->size(); ++i) n[k] += idx->entry(i).known && holdsSweep(idx->className(i));
+  return n;
+}
+
+/// The damage of segment \p k in sources::damageWarning()'s words: the sweeps up to its end are
+/// before it, those of the later segments (a session goes on past a damaged segment) after it.
+std::string damageOf(const rawlog::RawlogSession& session, std::size_t k) {
+  const auto n = sweepsPerSegment(session);
+  const uint64_t before = std::accumulate(n.begin(), n.begin() + long(k) + 1, uint64_t(0));
+  const uint64_t after = std::accumulate(n.begin() + long(k) + 1, n.end(), uint64_t(0));
+  const rawlog::RawlogIndex& idx = *session.segment(k).done();
+  return sources::damageWarning(before, idx.path() + ": " + idx.stopMessage(), after);
+}
+}  // namespace
+
 // The checks that need the whole recording.
 void ViewerModel::indexDone() {
   const bool one = session_->segments() == 1;
@@ -94,7 +117,7 @@ void ViewerModel::indexDone() {
     const rawlog::RawlogIndex* idx = session_->segment(k).done();
     if (!idx) continue;  // its indexing stopped: in errors()
     const std::string what = one ? "recording" : "segment " + idx->path();
-    if (!idx->complete()) warnings_.push_back(what + " damaged: " + idx->stopMessage());
+    if (!idx->complete()) warnings_.push_back(damageOf(*session_, k));
     for (const auto& [cls, n] : idx->unknownClasses())
       warnings_.push_back(what + ": " + std::to_string(n) + " observations of unknown class " + cls + " skipped");
     if (!idx->openInfo().cache_note.empty()) warnings_.push_back(idx->openInfo().cache_note);

@@ -54,8 +54,7 @@ void Replay::jumpToObservation(std::size_t i) {
 
 bool Replay::holdsPoints(std::size_t i) const {
   const auto& idx = model_.recording();
-  const auto& cls = idx.className(i);
-  return idx.entry(i).known && (cls == "CObservationVelodyneScan" || cls == "CObservationPointCloud");
+  return idx.entry(i).known && holdsSweep(idx.className(i));
 }
 
 std::optional<std::size_t> Replay::currentObservation() const {

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "roadslam/rawlog/mrpt_stamp.h"
 #include "roadslam/velodyne/decoder.h"
 #include "roadslam/velodyne/model_choice.h"
 
@@ -43,7 +44,7 @@ ObservationModel observationModel(const mrpt::obs::CObservationVelodyneScan& v) 
 
 std::optional<SweepPoints> velodyneSweep(const mrpt::obs::CObservationVelodyneScan& v) {
   SweepPoints s;
-  s.stamp_s = mrpt::Clock::toDouble(v.timestamp);
+  s.stamp_s = rawlog::stampSeconds(v.timestamp);
   s.T_base_lidar = toIsometry(v.sensorPose);
   s.packets = v.scan_packets.size();
   const ObservationModel om = observationModel(v);
@@ -82,7 +83,7 @@ std::optional<SweepPoints> velodyneSweep(const mrpt::obs::CObservationVelodyneSc
 std::optional<SweepPoints> cloudSweep(const mrpt::obs::CObservationPointCloud& c) {
   if (!c.pointcloud) return std::nullopt;
   SweepPoints s;
-  s.stamp_s = mrpt::Clock::toDouble(c.timestamp);
+  s.stamp_s = rawlog::stampSeconds(c.timestamp);
   s.T_base_lidar = toIsometry(c.sensorPose);
   s.model = "point cloud";
   const auto& xs = c.pointcloud->getPointsBufferRef_x();

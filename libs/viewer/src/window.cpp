@@ -109,7 +109,7 @@ class ViewerWindow {
   ViewerWindow(Replay& replay, const WindowOptions& opt, std::ostream& out, std::ostream& err)
       : replay_(replay), out_(out), err_(err), status_fn_(opt.status), warned_(replay.model().warnings().size()) {
     if (!opt.script.empty()) script_ = readScript(opt.script);
-    win_ = std::make_shared<CapturingWindow>("roadslam-view: " + replay.model().inputs().recording,
+    win_ = std::make_shared<CapturingWindow>("roadslam-view: " + replay.model().inputs().name(),
                                              unsigned(opt.width_px), unsigned(opt.height_px));
     {
       std::lock_guard<std::mutex> lck(win_->background_scene_mtx);

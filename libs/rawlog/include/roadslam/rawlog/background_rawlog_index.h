@@ -1,10 +1,10 @@
 #pragma once
 /// \file background_rawlog_index.h
-/// A rawlog that opens at once however long it is: with a fresh "<rawlog>.idx" it is a RawlogIndex
-/// read from the sidecar; otherwise the index is built on a thread of its own (RawlogIndex::open,
-/// which writes the sidecar at the end) while the observations indexed so far can already be
-/// listed, looked up by time and loaded (each through the access points recorded so far: a seek
-/// decompresses at most one span). poll() on the reader's thread publishes the progress; once the
+/// A rawlog that opens at once however long it is: with a fresh index file ("<rawlog>.idx", or
+/// RawlogIndexOptions::cache_path's) it is a RawlogIndex read from it; otherwise the index is built
+/// on a thread of its own (RawlogIndex::open, which writes the index file at the end) while the
+/// observations indexed so far can already be listed, looked up by time and loaded (each through the
+/// access points recorded so far: a seek decompresses at most one span). poll() on the reader's thread publishes the progress; once the
 /// build is done the complete RawlogIndex takes over, with the same indices.
 ///
 /// The replay viewer opens recordings this way: an hour-long rawlog shows its first sweep in well
@@ -30,7 +30,7 @@ class BackgroundRawlogIndex : public ObservationIndex {
  public:
   /// Throws std::runtime_error naming \p path when it does not exist or cannot be read at all.
   static std::unique_ptr<BackgroundRawlogIndex> open(const std::string& path, const RawlogIndexOptions& options = {});
-  /// Abandons a build in progress (no sidecar is written) and joins.
+  /// Abandons a build in progress (no index file is written) and joins.
   ~BackgroundRawlogIndex() override;
   BackgroundRawlogIndex(const BackgroundRawlogIndex&) = delete;
   BackgroundRawlogIndex& operator=(const BackgroundRawlogIndex&) = delete;
@@ -39,7 +39,7 @@ class BackgroundRawlogIndex : public ObservationIndex {
   std::size_t poll();
   /// Polls until the build is done. Rethrows what stopped the build thread (an I/O error).
   void waitUntilDone();
-  /// The complete index, once a poll() saw the build finish (or the sidecar was fresh); else nullptr.
+  /// The complete index, once a poll() saw the build finish (or an index file was fresh); else nullptr.
   const RawlogIndex* done() const { return full_.get(); }
   /// Share of the file indexed [0, 1] (compressed bytes read / file size).
   double progress() const;

@@ -3,13 +3,13 @@
 /// Random access to an MRPT rawlog (observations format: a plain or gzip stream of serialized
 /// objects; also the sensory-frames format). The file is read once to build an index (per
 /// observation: uncompressed byte offset, size, time, sensor label, class name) that is cached in a
-/// sidecar file beside it, "<rawlog>.idx", stamped with the rawlog's size and modification time; a
-/// stale or unreadable sidecar is rebuilt. Observation i is then loaded by seeking to its offset:
+/// sidecar file beside it, "<rawlog>.idx", or where RawlogIndexOptions::cache_path says, stamped with
+/// the rawlog's size and modification time; a stale or unreadable one is rebuilt. Observation i is then loaded by seeking to its offset:
 /// a gzip rawlog keeps zlib access points (zran.c) every `span` uncompressed bytes in the sidecar, so a
 /// seek decompresses at most `span` bytes.
 ///
 /// Damage never throws: a truncated or corrupt rawlog is indexed up to the damage, and complete() is
-/// false with stopMessage() naming the observation index and byte where reading stopped. A record of
+/// false with stopMessage() naming the byte and the observation where reading stopped. A record of
 /// a class this build does not know (not registered with MRPT) is listed with its class name and
 /// skipped by searching forward for the next record a registered class reads.
 ///
@@ -34,8 +34,12 @@ namespace roadslam::rawlog {
 
 struct RawlogIndexOptions {
   uint64_t span_bytes = 4u << 20;  ///< gzip: uncompressed bytes between access points [bytes]
-  bool use_cache = true;           ///< read "<rawlog>.idx" when fresh
-  bool write_cache = true;         ///< write it after building (atomically; a failure is a warning)
+  bool use_cache = true;           ///< read the first fresh one of RawlogIndex::indexFiles().read
+  bool write_cache = true;         ///< write indexFiles().write after building (atomically; a failure is a warning)
+  /// Where the index is kept, for a program that must not write beside its input (roadslam-view):
+  /// given the rawlog's path, the index file to write, and to read after the sidecar beside the
+  /// rawlog (read when fresh: roadslam-grab writes one for each segment). Empty: "<rawlog>.idx".
+  std::function<std::string(const std::string& rawlog_path)> cache_path;
   /// Called once when the index has to be built (reading the whole file: ~1 s per 100 MB of gzip
   /// here), e.g. to tell the user; may be empty.
   std::function<void(const std::string& rawlog_path)> on_build;
@@ -58,6 +62,13 @@ class RawlogIndex : public ObservationIndex {
 
   /// Sidecar path for \p rawlog_path: "<rawlog_path>.idx".
   static std::string sidecarPath(const std::string& rawlog_path);
+  /// The index files of \p rawlog_path under \p options: those open() reads, in order (the first
+  /// fresh one is used: the sidecar, then options.cache_path's file), and the one it writes.
+  struct IndexFiles {
+    std::vector<std::string> read;
+    std::string write;
+  };
+  static IndexFiles indexFiles(const std::string& rawlog_path, const RawlogIndexOptions& options);
 
   const std::string& path() const;
   const RawlogOpenInfo& openInfo() const;
@@ -68,8 +79,10 @@ class RawlogIndex : public ObservationIndex {
 
   /// False when reading stopped at damage (a truncated or corrupt file) before the end.
   bool complete() const;
-  /// Where reading stopped and why, e.g. "stopped at observation 41 (uncompressed byte 3781234,
-  /// compressed byte 1203321): compressed stream cut short ..."; empty when complete.
+  /// Where reading stopped and why, in the replay's words (sources::RawlogPacketSource) followed by
+  /// what only the index knows, e.g. "truncated record at uncompressed byte 3781234 (observation 41,
+  /// compressed byte 1203321); compressed stream cut short at compressed byte 1250000", or
+  /// "unreadable record at uncompressed byte N: CAUSE (observation K)"; empty when complete.
   const std::string& stopMessage() const;
   /// Classes this build cannot read, with their number of records.
   std::vector<std::pair<std::string, std::size_t>> unknownClasses() const;

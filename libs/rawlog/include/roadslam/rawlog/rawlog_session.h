@@ -2,7 +2,7 @@
 /// \file rawlog_session.h
 /// A recording cut into segments, as roadslam-grab writes a session folder (<prefix>_000.rawlog,
 /// _001, ... rotated by size or time), as one sequence of observations. Every segment is indexed in
-/// the background at once (BackgroundRawlogIndex, each with its own sidecar); the session shows the
+/// the background at once (BackgroundRawlogIndex, each with its own index file); the session shows the
 /// segments in order, a later one only once every earlier one is wholly indexed, so indices only
 /// ever grow at the end. Labels and classes are renumbered into one table for the session.
 

@@ -2,8 +2,9 @@
 /// \file recording.h
 /// Whole-recording operations behind the roadslam-rawlog app: open a .pcap or MRPT .rawlog as a
 /// PacketSource, summarise it through the decoder and sweep assembler, convert it to a rawlog.
-/// File-level problems (missing, empty, not a capture, damaged, no Velodyne data) throw
-/// std::runtime_error with a one-line message naming the file.
+/// File-level problems (missing, empty, not a capture, no Velodyne data) throw std::runtime_error
+/// with a one-line message naming the file. A recording damaged part way (a capture cut by a power
+/// loss) is read up to the damage, which the result states in damageWarning()'s words.
 
 #include <memory>
 #include <string>
@@ -38,10 +39,12 @@ struct RecordingSummary {
   double duration_s = 0;           ///< first to last data packet stamp [s]
   double sweeps_per_s = 0;         ///< rotation rate from wrap-to-wrap sweep stamps [1/s]
   double packets_per_s = 0;        ///< data packet rate over duration_s [1/s]
+  std::string damage;              ///< damageWarning() of the recording; empty when it read whole
 };
 
-/// Reads the whole recording once. Throws (naming the file) when it is damaged or holds no
-/// Velodyne data packet. \p force_setting: how the user forces the model, for the warning's advice.
+/// Reads the whole recording once, up to its damage. Throws (naming the file) when no Velodyne data
+/// packet comes before the end or the damage. \p force_setting: how the user forces the model, for
+/// the warning's advice.
 RecordingSummary summarizeRecording(const std::string& path, const velodyne::DecoderParams& params = {},
                                     const std::string& force_setting = "--model");
 
@@ -57,9 +60,11 @@ struct ConvertSummary {
   std::string lidar_model;    ///< the model decoded and written as the calibration (RecordingSummary)
   std::string lidar_model_source;
   std::vector<std::string> warnings;  ///< the model choice's warning, when the layout disagrees
+  std::string damage;         ///< damageWarning() of the input; empty when it read whole
 };
 
-/// Converts \p in (.pcap or .rawlog) to the MRPT rawlog \p out: one CObservationVelodyneScan per
+/// Converts \p in (.pcap or .rawlog), up to its damage, to the MRPT rawlog \p out (throws naming \p in
+/// when no Velodyne data packet comes before the end or the damage): one CObservationVelodyneScan per
 /// sweep as cut by the assembler (a packet in which a sweep ends opens the next observation, so
 /// every packet is stored exactly once, unchanged), one CObservationGPS per RMC position packet.
 /// \p writer_params.model / calibration_file default from \p params when empty; the model written is

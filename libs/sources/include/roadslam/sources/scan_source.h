@@ -62,10 +62,21 @@ class ScanSource {
   /// Non-empty once the input turned out damaged (truncated, undecodable record, unreadable .bin):
   /// names the file and the place; the sweeps before it were returned normally.
   virtual std::string errorMessage() const { return {}; }
+  /// Sweeps returned before the damage (all of them when the source stops there, as a packet
+  /// source does; a KITTI folder goes on past an unreadable .bin) [count].
+  virtual uint64_t sweepsBeforeDamage() const { return stats().sweeps; }
   /// What the source had to assume, for the run's summary (e.g. a KITTI folder without a times file
   /// timed at its nominal sweep period). Empty when nothing was assumed.
   virtual std::vector<std::string> warnings() const { return {}; }
 };
+
+/// The one wording of a recording damaged part way, in every program that reads up to the damage
+/// (roadslam-map's and roadslam-bounds' summaries, roadslam-rawlog info, roadslam-view):
+/// "input damaged, 4 sweeps read before it: WHAT", with ", and 2 after it" when the reader went on past
+/// it (a KITTI folder's unreadable .bin). \p what names the file and the place.
+std::string damageWarning(uint64_t sweeps_before, const std::string& what, uint64_t sweeps_after = 0);
+/// damageWarning() of \p source's errorMessage(); empty when it read whole.
+std::string damageWarning(const ScanSource& source);
 
 /// Opens the recording \p path by what it is: a .pcap/.pcapng (Velodyne UDP capture), a .rawlog or
 /// .gz (MRPT, CObservationVelodyneScan packets), a roadslam-grab session folder (its rawlog segments

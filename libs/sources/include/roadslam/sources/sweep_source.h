@@ -70,6 +70,9 @@ class SweepSource : public ScanSource {
   ReadProgress readProgress() const override { return packets_->readProgress(); }
   /// The choice itself; nullopt before the first next().
   const std::optional<velodyne::ModelChoice>& modelChoice() const { return choice_; }
+  /// The sweeps closed when the damage was first seen (a roadslam-grab session goes on with the next
+  /// segment after a damaged one; a single file ends there, and this is all of them).
+  uint64_t sweepsBeforeDamage() const override { return damage_seen_ ? sweeps_before_damage_ : stats().sweeps; }
 
   /// Optional observer of every raw packet (data and position) in arrival order, with the number
   /// of sweeps the assembler closed while taking it (data packets only): lets a recorder store the
@@ -109,6 +112,8 @@ class SweepSource : public ScanSource {
   PacketObserver observer_;
   SweepSourceStats stats_;
   bool finished_ = false;
+  bool damage_seen_ = false;
+  uint64_t sweeps_before_damage_ = 0;
 };
 
 }  // namespace roadslam::sources

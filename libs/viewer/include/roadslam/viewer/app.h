@@ -40,16 +40,17 @@ std::pair<int, int> parseSize(const std::string& text);
 /// (ViewerModel::lidarModel), and what the results hold.
 std::string summaryLine(ViewerModel& model);
 
-/// The rawlog to open for \p path: a rawlog as it is; a Velodyne pcap converted once into
-/// "<pcap>.rawlog" beside it (again when the pcap is newer), or into the temp folder when its
-/// folder is not writable. Throws naming the file when the conversion fails.
-std::string recordingToOpen(const std::string& path, std::ostream& err);
+/// Why --at \p at_s [s from the start] cannot be rendered for the recording \p name, \p duration_s
+/// long: before its start, or past its end (more than one 10 Hz sweep, 0.1 s, after its last stamp);
+/// empty when it can.
+std::string atTimeProblem(double at_s, double duration_s, const std::string& name);
 
 /// Encodes DIR/NNNNNN.png (sorted) into \p mp4 at \p fps with ffmpeg (H.264, yuv420p); throws with a
 /// clear message when ffmpeg is not installed or fails.
 void encodeVideo(const std::string& png_dir, const std::string& mp4, double fps);
 
-/// Runs the request; returns the exit code (0 done, 1 a problem named on \p err).
+/// Runs the request; returns the exit code (0 done, 1 a problem named on \p err, 2 an --at outside
+/// the recording).
 int runView(const ViewRequest& req, std::ostream& out, std::ostream& err);
 
 /// The live view (req.isLive()): the window follows the sensors; --render writes the newest sweep

@@ -72,6 +72,7 @@ struct GridLayer {
 
 struct ViewerInputs {
   std::string recording;    ///< MRPT rawlog, or a roadslam-grab session folder of rawlog segments
+  std::string source;       ///< what the user named when \p recording is its conversion (a pcap, a KITTI folder)
   std::string map_dir;      ///< roadslam-map output folder (optional)
   std::string bounds_dir;   ///< roadslam-bounds output folder (optional)
   std::string ground_truth; ///< TUM trajectory T_world_lidar (optional)
@@ -81,6 +82,8 @@ struct ViewerInputs {
   bool octomap = false;     ///< the map folder's OctoMap (map.bt) occupied voxels instead of its point map
   bool grid = false;        ///< the map folder's occupancy grid (grid.gridmap) on the ground under the car
   rawlog::RawlogIndexOptions index;
+  /// The recording as the user named it: source, else recording.
+  const std::string& name() const { return source.empty() ? recording : source; }
 };
 
 class ViewerModel {

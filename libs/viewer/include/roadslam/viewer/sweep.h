@@ -35,6 +35,11 @@ struct SweepPoints {
   std::string model_warning;     ///< the packets' layout against their product byte, when they disagree
 };
 
+/// True for the classes sweepOf() draws (short names, as rawlog::ObservationIndex::className gives them).
+inline bool holdsSweep(const std::string& class_name) {
+  return class_name == "CObservationVelodyneScan" || class_name == "CObservationPointCloud";
+}
+
 /// The points of \p obs, or nullopt when it holds none (GPS, CAN, ...). A Velodyne sweep is decoded
 /// as the model its own packets show (velodyne/model_choice.h), else its calibration's laser count.
 std::optional<SweepPoints> sweepOf(const mrpt::obs::CObservation& obs);
