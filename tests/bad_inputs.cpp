@@ -275,7 +275,7 @@ const Row kTable[] = {
   {"map-no-config",        "roadslam-map --input {W}/truncated.pcap --out {O}", 106, "--config is required"},
   {"map-config-missing",   "roadslam-map --config {W}/nope.ini --input {W}/truncated.pcap --out {O}", 105, "File does not exist"},
   {"map-unknown-option",   "roadslam-map --config {S}/ini/default.ini --input {W}/truncated.pcap --out {O} --voxel 3", 109, "--voxel"},
-  {"map-bad-max-frames",   "roadslam-map --config {S}/ini/default.ini --input {W}/truncated.pcap --out {O} --max-frames many", 104, "--max-frames"},
+  {"map-bad-max-frames",   "roadslam-map --config {S}/ini/default.ini --input {W}/truncated.pcap --out {O} --max-frames many", 105, "--max-frames: Value many"},
   {"map-can-no-vehicle",   "roadslam-map --config {S}/ini/default.ini --input {W}/truncated.pcap --out {O} --can {W}/half-good.log", 1, "--can needs --vehicle"},
   // roadslam-map: inputs
   {"map-input-missing",    "roadslam-map --config {S}/ini/default.ini --input {W}/nope.pcap --out {O}", 1, "does not exist"},
@@ -403,6 +403,9 @@ const Row kTable[] = {
   // roadslam-sim
   {"sim-typo-key",         "roadslam-sim --config {W}/sim-typo.ini --out {O}", 1, "unknown key 'range_nosie_m' in [lidar] (nearest known: range_noise_m)"},
   {"sim-typo-allowed",     "roadslam-sim --config {W}/sim-typo.ini --duration 0.2 --out {O} --quiet --allow-unknown-keys", 0, "warning: "},
+  {"rawlog-convert-onto-input", "roadslam-rawlog convert {W}/data-folder/drive.pcap --out {W}/data-folder/drive.pcap", 1, "drive.pcap' is the input: the conversion would overwrite what it reads"},
+  {"rawlog-record-old-spelling", "roadslam-rawlog record {W}/nope-dir/x.pcap --seconds 0.2", 1, "roadslam-rawlog: --seconds is an old spelling: use --duration"},
+  {"rawlog-record-no-folder", "roadslam-rawlog record {W}/nope-dir/x.pcap --duration 0.2", 1, "cannot create '{W}/nope-dir/x.pcap': No such file or directory"},
   {"sim-old-spelling",     "roadslam-sim --scenario {S}/ini/sim/urban-loop.ini --duration 0.2 --out {O} --quiet", 0, "roadslam-sim: --scenario is an old spelling: use --config"},
   {"map-negative-max-frames", "roadslam-map --config {S}/ini/default.ini --input {W}/truncated.pcap --out {O} --max-frames -1", 105, "--max-frames"},
   {"sim-bad-value",        "roadslam-sim --config {W}/sim-bad-value.ini --out {O}", 1, "duration_s"},

@@ -223,7 +223,7 @@ TEST(RawlogApp, RecordCapturesLiveLoopbackTrafficThatInfoReads) {
   std::atomic<bool> done{false};
   AppRun rec;
   std::thread app([&] {
-    rec = run(fmt::format("record {} --bind 127.0.0.1 --port {} --position-port {} --packets {} --seconds 20",
+    rec = run(fmt::format("record {} --bind 127.0.0.1 --port {} --position-port {} --packets {} --duration 20",
                   out.string(), data_port, pos_port, kWanted));
     done = true;
   });
@@ -250,7 +250,7 @@ TEST(RawlogApp, RecordCapturesLiveLoopbackTrafficThatInfoReads) {
   EXPECT_EQ(j["malformed_packets"], 0);
   EXPECT_GT(j["points"].get<int>(), 0);
 
-  const AppRun none = run(fmt::format("record {} --bind 127.0.0.1 --port {} --position-port {} --seconds 0.2",
+  const AppRun none = run(fmt::format("record {} --bind 127.0.0.1 --port {} --position-port {} --duration 0.2",
                               (tmpDir() / "none.pcap").string(), freeUdpPort(), freeUdpPort()));
   expectOneLineFailureNaming(none, (tmpDir() / "none.pcap").string());
   EXPECT_FALSE(fs::exists(tmpDir() / "none.pcap"));
@@ -267,7 +267,7 @@ TEST(RawlogApp, CtrlCEndsARecordingWithACompleteCapture) {
   }
   const uint16_t data_port = freeUdpPort(), pos_port = freeUdpPort();
   const fs::path out = tmpDir() / "sigint.pcap", o = tmpDir() / "sigint.out", e = tmpDir() / "sigint.err";
-  const std::string cmd = fmt::format("exec {} record {} --bind 127.0.0.1 --port {} --position-port {} --seconds 30 >{} 2>{} </dev/null",
+  const std::string cmd = fmt::format("exec {} record {} --bind 127.0.0.1 --port {} --position-port {} --duration 30 >{} 2>{} </dev/null",
                                       ROADSLAM_RAWLOG_BIN, out.string(), data_port, pos_port, o.string(), e.string());
   const pid_t pid = fork();
   ASSERT_GE(pid, 0);

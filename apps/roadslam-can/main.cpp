@@ -22,26 +22,26 @@ int main(int argc, char** argv) {
 
   auto* dec = app.add_subcommand("decode", "decode every frame of LOG with a DBC");
   dec->add_option("--dbc", dbc, "DBC file")->required()->check(CLI::ExistingFile);
-  dec->add_option("LOG", log, "candump log")->required()->check(CLI::ExistingFile);
+  dec->add_option("LOG,--input", log, "candump log")->required()->check(CLI::ExistingFile);
   dec->add_option("--signals", signals, "comma-separated SIGNAL or MESSAGE.SIGNAL names (default: all)");
   dec->add_flag("--csv", csv, "CSV, one row per signal");
   dec->add_flag("--json", json, "JSON lines, one object per frame");
 
   auto* info = app.add_subcommand("info", "ids, rates, unknown ids, DLC mismatches and gaps of LOG");
-  info->add_option("LOG", log, "candump log")->required()->check(CLI::ExistingFile);
+  info->add_option("LOG,--input", log, "candump log")->required()->check(CLI::ExistingFile);
   info->add_option("--dbc", dbc, "DBC file (unknown ids, DLC mismatches)")->check(CLI::ExistingFile);
   info->add_flag("--json", json, "JSON output");
 
   auto* odo = app.add_subcommand("odometry", "dead reckoning from wheel speeds and yaw rate (or steering)");
   odo->add_option("--vehicle", vehicle, "ini/vehicles/<car>.ini")->required()->check(CLI::ExistingFile);
-  odo->add_option("LOG", log, "candump log")->required()->check(CLI::ExistingFile);
+  odo->add_option("LOG,--input", log, "candump log")->required()->check(CLI::ExistingFile);
   odo->add_option("--out", out, "trajectory, TUM format (config used goes to OUT.ini)")->required();
   odo->add_option("--gnss", gnss, "u-blox fix CSV: estimate yaw-rate bias and wheel-speed scale")->check(CLI::ExistingFile);
   odo->add_flag("--no-scale", no_scale, "with --gnss: estimate but do not apply the wheel-speed scale");
 
   auto* raw = app.add_subcommand("to-rawlog", "MRPT rawlog (odometry, IMU, GPS) + lossless candump sidecar");
   raw->add_option("--vehicle", vehicle, "ini/vehicles/<car>.ini")->required()->check(CLI::ExistingFile);
-  raw->add_option("LOG", log, "candump log")->required()->check(CLI::ExistingFile);
+  raw->add_option("LOG,--input", log, "candump log")->required()->check(CLI::ExistingFile);
   raw->add_option("OUT", out, "output .rawlog")->required();
   for (auto* c : {odo, raw}) c->add_option("--data-root", data_root, "folder the ini's DBC path is relative to");
 

@@ -45,23 +45,25 @@ int main(int argc, char** argv) {
   bool json = false;
   DecoderOptions info_opt;
   auto* info = app.add_subcommand("info", "Sweeps, packets, points, duration, rates, GPS fixes");
-  info->add_option("FILE", info_in, ".pcap or .rawlog")->required();
+  info->add_option("FILE,--input", info_in, ".pcap or .rawlog")->required();
   info->add_flag("--json", json, "machine-readable output");
   info_opt.addTo(info);
 
   std::string conv_in, conv_out;
   DecoderOptions conv_opt;
   auto* conv = app.add_subcommand("convert", "pcap -> MRPT rawlog (CObservationVelodyneScan per sweep)");
-  conv->add_option("IN", conv_in, "input .pcap (or .rawlog)")->required();
-  conv->add_option("OUT", conv_out, "output .rawlog")->required();
+  conv->add_option("IN,--input", conv_in, "input .pcap (or .rawlog)")->required();
+  conv->add_option("OUT,--out", conv_out, "output .rawlog")->required();
+  bool conv_quiet = false;
+  conv->add_flag("--quiet", conv_quiet, "nothing on stdout; errors and warnings on stderr");
   conv_opt.addTo(conv);
 
   std::string rec_out;
   roadslam::sources::UdpReceiver::Params udp;
   roadslam::sources::RecordLimits limits;
   auto* rec = app.add_subcommand("record", "Live capture from the sensor's UDP ports into a .pcap (Ctrl-C stops)");
-  rec->add_option("OUT", rec_out, "output .pcap")->required();
-  rec->add_option("--seconds", limits.duration_s, "stop after this long [s] (0 = until Ctrl-C)");
+  rec->add_option("OUT,--out", rec_out, "output .pcap")->required();
+  rec->add_option("--duration,--seconds", limits.duration_s, "stop after this long [s] (0 = until Ctrl-C)");
   rec->add_option("--packets", limits.max_packets, "stop after this many packets (0 = no limit)");
   rec->add_option("--port", udp.ports.data_port, "data port")->capture_default_str();
   rec->add_option("--position-port", udp.ports.position_port, "position port")->capture_default_str();
@@ -94,6 +96,7 @@ int main(int argc, char** argv) {
   auto* box = app.add_subcommand("make-boxroom", "Write the deterministic box-room VLP-16 capture");
   box->add_option("OUT", box_out, "output .pcap (bundled: rawlogs/boxroom-vlp16.pcap)")->required();
 
+  roadslam::warnOldSpellings(argc, argv, "roadslam-rawlog", {{"--seconds", "--duration"}});
   CLI11_PARSE(app, argc, argv);
   using namespace roadslam::sources;
   using namespace roadslam::rawlog;
@@ -105,8 +108,9 @@ int main(int argc, char** argv) {
       if (!s.damage.empty()) fmt::print(stderr, "roadslam-rawlog: warning: {}\n", s.damage);
     } else if (*conv) {
       const ConvertSummary s = convertToRawlog(conv_in, conv_out, conv_opt.params());
-      fmt::print("{}: {} sweeps ({} packets), {} GPS records; lidar model {} (by {})\n", conv_out, s.observations,
-                 s.packets, s.gps, s.lidar_model, s.lidar_model_source);
+      if (!conv_quiet)
+        fmt::print("{}: {} sweeps ({} packets), {} GPS records; lidar model {} (by {})\n", conv_out, s.observations,
+                   s.packets, s.gps, s.lidar_model, s.lidar_model_source);
       for (const auto& w : s.warnings) fmt::print(stderr, "roadslam-rawlog: warning: {}\n", w);
       if (!s.damage.empty()) fmt::print(stderr, "roadslam-rawlog: warning: {}\n", s.damage);
     } else if (*rec) {

@@ -10,7 +10,7 @@ int main(int argc, char** argv) {
   roadslam::viewer::ViewRequest req;
   std::string color = "height", camera = "follow";
   roadslam::addVersionFlag(app, "roadslam-view");
-  auto* rec = app.add_option("recording", req.inputs.recording,
+  auto* rec = app.add_option("recording,--input", req.inputs.recording,
                               "MRPT rawlog (observations or sensory-frames format), Velodyne pcap or KITTI .bin folder")
                   ->check(CLI::ExistingPath);
   auto* udp = app.add_option("--udp", req.live.udp_port, "live: show the sweeps of a VLP-16 sending to this UDP data port (2368)")

@@ -94,7 +94,7 @@ BoxRoomSummary writeBoxRoomPcap(const std::string& path, const BoxRoomParams& p)
   BoxRoomSummary sum;
   sum.min_range_m = std::numeric_limits<double>::infinity();
   try {
-    pcap::PcapWriter out(tmp);
+    pcap::PcapWriter out(tmp, path);
     const int seq_per_rev = p.packets_per_revolution * kVlp16SequencesPerPacket;
     const double step_deg = 360.0 / seq_per_rev;  // azimuth advance per firing sequence
     const double packet_s = kVlp16SequencesPerPacket * velodyne::kVlp16SequencePeriod_s;

@@ -18,7 +18,7 @@ RecordSummary recordToPcap(PacketSource& src, const std::string& out, const Reco
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   };
   try {
-    pcap::PcapWriter writer(tmp);
+    pcap::PcapWriter writer(tmp, out);
     while (!stopRequested() && !src.finished()) {
       if (limits.duration_s > 0 && elapsed_s() >= limits.duration_s) break;
       if (limits.max_packets > 0 && sum.packets >= limits.max_packets) break;

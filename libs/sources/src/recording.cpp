@@ -1,5 +1,6 @@
 #include "roadslam/sources/recording.h"
 
+#include <filesystem>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <nlohmann/json.hpp>
 #include <fmt/core.h>
@@ -127,6 +128,10 @@ std::string toText(const RecordingSummary& s) {
 ConvertSummary convertToRawlog(const std::string& in, const std::string& out,
                                const velodyne::DecoderParams& params,
                                rawlog::RawlogWriter::Params writer_params, const std::string& force_setting) {
+  std::error_code ec;
+  if (std::filesystem::equivalent(in, out, ec)) {
+    throw std::runtime_error("'" + out + "' is the input: the conversion would overwrite what it reads");
+  }
   PortConfig ports;
   ports.model = params.model;
   SweepSource sweeps(openRecording(in, ports), params, force_setting);

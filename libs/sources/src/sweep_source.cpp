@@ -81,7 +81,9 @@ Scan SweepSource::deliver(Scan s) {
 
 std::optional<Scan> SweepSource::next() {
   if (!choice_ && !chooseModel()) return std::nullopt;  // live: nothing decided within the timeout
-  if (!damage_seen_ && !packets_->errorMessage().empty()) {  // seen on the call after the sweep that met it
+  // The damage is met on the call after the sweep that met it; packets the model choice read ahead
+  // come before it, so it counts only once they are used.
+  if (!damage_seen_ && ahead_.empty() && !packets_->errorMessage().empty()) {
     damage_seen_ = true;
     sweeps_before_damage_ = stats().sweeps;
   }
