@@ -202,11 +202,13 @@ void makeFiles() {
   write(w / "no-fix.nmea", "$GPGGA,000001.00,,,,,0,00,99.9,,M,,M,,*5E\n$GPGGA,000002.00,4808.0,N,01134.0,E,1,08,0.9,0,M,0,M,,*00\n");
   write(w / "some-bad.nmea", "$GPRMC,000001.00,A,4808.0000,N,01134.0000,E,0.0,0.0,010124,,,A*5A\nnot nmea\n"
                              "$GPGGA,000002.00,4808.0,N,01134.0,E,1,08,0.9,0,M,0,M,,*00\n");
-  const std::string rmc1 = "$GPRMC,000001.00,A,4808.0000,N,01134.0000,E,0.0,0.0,010124,,,A*5A\n";
-  const std::string rmc2 = "$GPRMC,000002.00,A,4808.0000,N,01134.0000,E,0.0,0.0,010124,,,A*59\n";
-  const std::string rmc3 = "$GPRMC,000003.00,A,4808.0000,N,01134.0000,E,0.0,0.0,010124,,,A*58\n";
+  const std::string rmc1 = "$GPRMC,081801.00,A,4808.0000,N,01134.0000,E,0.0,0.0,210116,,,A*58\n";
+  const std::string rmc2 = "$GPRMC,081802.00,A,4808.0000,N,01134.0000,E,0.0,0.0,210116,,,A*5B\n";
+  const std::string rmc3 = "$GPRMC,081803.00,A,4808.0000,N,01134.0000,E,0.0,0.0,210116,,,A*5A\n";
   write(w / "malformed.nmea", rmc1 + "$GPRMC,12ab,A*0A\n" + rmc2);  // checksum right, time field not a time
-  write(w / "backwards.nmea", rmc3 + rmc2 + "$GPRMC,000004.00,A,4808.0000,N,01134.0000,E,0.0,0.0,010124,,,A*5F\n");
+  write(w / "backwards.nmea", rmc3 + rmc2 + "$GPRMC,081804.00,A,4808.0000,N,01134.0000,E,0.0,0.0,210116,,,A*5D\n");
+  write(w / "other-drive.nmea", "$GPRMC,000001.00,A,4808.0000,N,01134.0000,E,0.0,0.0,010124,,,A*5A\n"
+                                "$GPRMC,000002.00,A,4808.0000,N,01134.0000,E,0.0,0.0,010124,,,A*59\n");  // 2024, the box room 2016
   write(w / "void.nmea", "$GPRMC,000001.00,V,4808.0000,N,01134.0000,E,0.0,0.0,010124,,,A*4D\n"
                          "$GPRMC,000002.00,V,4808.0000,N,01134.0000,E,0.0,0.0,010124,,,A*4E\n");
   write(w / "empty.nmea", "");
@@ -369,6 +371,7 @@ const Row kTable[] = {
   {"map-gnss-empty",       "roadslam-map --config {S}/ini/default.ini --input {W}/truncated.pcap --out {O} --gnss {W}/empty.nmea", 1, "empty.nmea' holds no valid fix (0 lines"},
   {"map-gnss-void-fixes",  "roadslam-map --config {S}/ini/default.ini --input {W}/truncated.pcap --out {O} --gnss {W}/void.nmea", 1, "void.nmea' holds no valid fix (2 lines, 0 with a bad checksum, 2 epochs without a fix)"},
   {"map-gnss-malformed",   "roadslam-map --config {S}/ini/default.ini --input {W}/truncated.pcap --out {O} --gnss {W}/malformed.nmea --quiet", 0, "warning: GNSS log: 1 x malformed"},
+  {"map-gnss-other-drive", "roadslam-map --config {S}/ini/default.ini --input {W}/truncated.pcap --out {O} --gnss {W}/other-drive.nmea", 1, "other-drive.nmea covers 1704067201.000 to 1704067202.000 s (1.0 s), but the recording starts at 1453364282.000 s, 250702919.0 s before it: another drive, or another clock"},
   {"map-gnss-backwards",   "roadslam-map --config {S}/ini/default.ini --input {W}/truncated.pcap --out {O} --gnss {W}/backwards.nmea --quiet", 0, "warning: GNSS log: 1 x time backwards"},
   {"map-gnss-typo-key",    "roadslam-map --config {W}/gnss-typo.ini --input {W}/truncated.pcap --out {O}", 1, "gnss-typo.ini:2: unknown key 'uere_mm' in [gnss_fusion] (nearest known: uere_m)"},
   {"map-gnss-negative-uere", "roadslam-map --config {W}/gnss-negative-uere.ini --input {W}/truncated.pcap --out {O}", 1, "gnss-negative-uere.ini:2: [gnss_fusion] uere_m = -1: must be > 0"},

@@ -56,6 +56,10 @@ void keepFixes(const std::vector<gnss::GnssFix>& fixes, const std::string& label
     if (f.label == label) kept.push_back(f);
 }
 
+/// How far before a GNSS log's first fix the recording may start [s]: a receiver's cold start
+/// (time to first fix) takes up to a few minutes.
+constexpr double kGnssSlack_s = 300.0;
+
 /// The GNSS the request asks to fuse: an NMEA log (read before the run: a bad log fails before hours
 /// of processing), or the GPS source of the input chosen by label; their fixes are taken per sweep.
 struct GnssRequest {
@@ -64,9 +68,16 @@ struct GnssRequest {
   std::string label;
   std::vector<gnss::GnssFix> fixes;
 
-  GnssRequest(const MapRequest& req, const gnss_fusion::GnssFusionParams& p) : from_input(req.gnss_from_input) {
+  GnssRequest(const MapRequest& req, const gnss_fusion::GnssFusionParams& p, double recording_start_s)
+      : from_input(req.gnss_from_input) {
     if (!req.gnss_path.empty() && req.gnss_from_input) throw std::runtime_error("--gnss and --gnss-from-input exclude each other");
-    if (!req.gnss_path.empty()) input = readGnssInput(req.gnss_path, p);
+    if (!req.gnss_path.empty()) {
+      input = readGnssInput(req.gnss_path, p);
+      // a receiver's first fix may come minutes after power-on (cold start): a wider slack than CAN's
+      const std::string why = sideInputMismatch("--gnss " + req.gnss_path, input->factors.front().t_s,
+                                                input->factors.back().t_s, recording_start_s, kGnssSlack_s);
+      if (!why.empty()) throw std::runtime_error(why);
+    }
     if (!req.gnss_label.empty() && !req.gnss_from_input) throw std::runtime_error("--gnss-label needs --gnss-from-input");
     if (req.gnss_from_input) label = chooseGpsSource(sources::gpsSourcesOf(req.input_path), req.gnss_label, req.input_path);
   }
@@ -215,7 +226,7 @@ MapOutcome runMapJob(const MapRequest& req) {
   double start_s = 0;
   auto source = pipeline::openNonEmptySource(req.input_path, *cfg, req.times_path, &start_s);
   if (!req.can_log_path.empty()) checkCanLog(req.can_log_path, start_s);
-  GnssRequest gnss(req, params.gnss_fusion);
+  GnssRequest gnss(req, params.gnss_fusion, start_s);
   runfolder::OutputClaim claim{runfolder::kMapProgram, req.input_path, source->describe(), "",
                                {req.config_path, req.times_path, req.can_log_path, req.vehicle_ini_path, req.gnss_path,
                                 req.prior_map_dir},
