@@ -439,6 +439,7 @@ const Row kTable[] = {
   // roadslam-view: --at outside the recording
   {"view-at-past-end",     "roadslam-view {W}/kitti-two --render {O}/x.png --at 500", 2, "roadslam-view: --at 500 s is past the end of {W}/kitti-two (0.1 s long)"},
   {"view-at-negative",     "roadslam-view {W}/kitti-two --render {O}/x.png --at -1", 2, "roadslam-view: --at -1 s is before the start of {W}/kitti-two"},
+  {"report-into-map-folder", "roadslam-report {W}/truncated.pcap --out {W}/prior-map", 1, "holds the outputs of roadslam-map (its run.json), not of roadslam-report"},
   {"report-map-no-manifest", "roadslam-report {W}/truncated.pcap --map {W}/map-old --out {O}", 1, "re-create it with roadslam-map"},
 };
 // clang-format on

@@ -5,6 +5,7 @@
 
 #include <cstdio>
 #include <exception>
+#include <stdexcept>
 #include <string>
 
 #include "roadslam/common/cli.h"
@@ -31,9 +32,13 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1.0, 1e6));
   app.add_option("--min-gap", p.min_gap_s, "shorter intervals are never gaps [s]")->check(CLI::Range(0.0, 1e6));
   app.add_flag("--quiet", quiet, "print nothing but errors and warnings");
+  bool force = false;
+  roadslam::addForceFlag(app, force);
   CLI11_PARSE(app, argc, argv);
   try {
+    if (const std::string why = rr::reportFolderRefusal(out, in); !why.empty() && !force) throw std::runtime_error(why);
     const rr::RecordingReport r = rr::buildReport(in, p);
+    for (const auto& w : rr::claimReportFolder(out, in, force)) std::fprintf(stderr, "roadslam-report: warning: %s\n", w.c_str());
     rr::writeReport(r, out);
     for (const auto& w : r.warnings) std::fprintf(stderr, "roadslam-report: warning: %s\n", w.c_str());
     if (!r.damage.empty()) std::fprintf(stderr, "roadslam-report: warning: %s; reported up to there\n", r.damage.c_str());

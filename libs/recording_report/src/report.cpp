@@ -7,6 +7,8 @@
 
 #include "internal.h"
 #include "roadslam/common/atomic_file.h"
+#include "roadslam/runfolder/manifest.h"
+#include "roadslam/runfolder/output_folder.h"
 
 namespace roadslam::recording_report {
 
@@ -154,10 +156,30 @@ std::string toText(const RecordingReport& r) {
   return t;
 }
 
+namespace {
+constexpr const char* kReportProgram = "roadslam-report";
+
+runfolder::OutputClaim reportClaim(const ReportInputs& in, bool force) {
+  return {kReportProgram, in.recording, "", "", {in.can_log, in.vehicle_ini, in.map_dir}, force};
+}
+}  // namespace
+
+std::string reportFolderRefusal(const std::string& dir, const ReportInputs& in) {
+  return runfolder::refusalReason(dir, reportClaim(in, false));
+}
+
+std::vector<std::string> claimReportFolder(const std::string& dir, const ReportInputs& in, bool force) {
+  return runfolder::claimOutputFolder(dir, reportClaim(in, force));
+}
+
 void writeReport(const RecordingReport& r, const std::string& dir) {
   std::filesystem::create_directories(dir);
   writeFileAtomically(dir + "/report.json", toJson(r).dump(1) + "\n");
   writeFileAtomically(dir + "/report.html", toHtml(r));
+  if (auto m = runfolder::peekManifest(dir); m && m->program == kReportProgram) {
+    m->state = "complete";  // the claim's run.json, now with every file (docs/run-folder.md)
+    runfolder::writeManifest(dir, *m);
+  }
 }
 
 }  // namespace roadslam::recording_report

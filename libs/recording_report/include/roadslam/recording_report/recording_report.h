@@ -139,6 +139,13 @@ nlohmann::json toJson(const RecordingReport& r);
 std::string toHtml(const RecordingReport& r);
 /// Writes DIR/report.html and DIR/report.json (atomically), creating DIR.
 void writeReport(const RecordingReport& r, const std::string& dir);
+
+/// Why \p dir may not take the report of \p in (runfolder/output_folder.h: it must be new or empty,
+/// or an earlier report of the same recording); empty when it may. Checked before the report is built.
+std::string reportFolderRefusal(const std::string& dir, const ReportInputs& in);
+/// Claims \p dir (run.json "writing"; \p force: whatever is there) once the report is built;
+/// returns the warnings of a forced claim. writeReport marks it complete.
+std::vector<std::string> claimReportFolder(const std::string& dir, const ReportInputs& in, bool force);
 /// A few lines for the terminal.
 std::string toText(const RecordingReport& r);
 
