@@ -27,7 +27,7 @@ int main(int argc, char** argv) {
                "two passes: fit every sweep from the curbs of the whole drive, along its own path "
                "(a finished drive; default: live, each sweep from the sweeps before it)");
   roadslam::addForceFlag(app, req.force);
-  app.add_flag("--allow-unknown-keys", req.allow_unknown_keys, "ini keys no component reads are warnings, not errors");
+  roadslam::addAllowUnknownKeysFlag(app, req.allow_unknown_keys);
   app.add_flag("--quiet", quiet, "nothing on stdout (no progress bar, no summary); errors on stderr");
   app.add_flag("--json", json, "print the summary as JSON (as in OUT/summary.json) instead of text");
   CLI11_PARSE(app, argc, argv);

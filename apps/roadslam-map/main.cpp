@@ -32,7 +32,7 @@ int main(int argc, char** argv) {
   app.add_flag("--export-sweeps", req.export_sweeps,
                "each posed sweep, deskewed (lidar frame at its reference time), as OUT/sweeps/NNNNNN.pcd");
   roadslam::addForceFlag(app, req.force);
-  app.add_flag("--allow-unknown-keys", req.allow_unknown_keys, "ini keys no component reads are warnings, not errors");
+  roadslam::addAllowUnknownKeysFlag(app, req.allow_unknown_keys);
   app.add_flag("--quiet", quiet, "nothing on stdout (no progress bar, no summary); errors and warnings on stderr");
   app.add_flag("--json", json, "print the summary as JSON (as in OUT/summary.json) instead of text");
   CLI11_PARSE(app, argc, argv);
